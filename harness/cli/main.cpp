@@ -1,0 +1,208 @@
+// shadowbench — the command-line driver.
+//   shadowbench run CONFIG [--out DIR] [--backend osmesa|egl] [--cache-dir DIR]
+//                          [--no-cache] [--no-images] [--plugins DIR] [--quiet]
+//   shadowbench validate CONFIG [--plugins DIR]
+//   shadowbench list [--plugins DIR]
+//   shadowbench report RUN_DIR
+// Exit codes: 0 all jobs ok or skipped, 1 some job failed, 2 bad input
+// (config, arguments), 3 environment (no GL context, missing plugins).
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "config/experiment.h"
+#include "core/error.h"
+#include "core/registry.h"
+#include "core/scene_types.h"
+#include "results/report.h"
+#include "results/store.h"
+#include "run/runner.h"
+
+namespace {
+
+using namespace sb;
+
+constexpr const char* kUsage =
+    "usage:\n"
+    "  shadowbench run CONFIG [--out DIR] [--backend osmesa|egl] [--cache-dir DIR]\n"
+    "                         [--no-cache] [--no-images] [--plugins DIR] [--quiet]\n"
+    "  shadowbench validate CONFIG [--plugins DIR]\n"
+    "  shadowbench list [--plugins DIR]\n"
+    "  shadowbench report RUN_DIR\n";
+
+struct Args {
+  std::string command;
+  std::vector<std::string> positional;
+  std::string out, backend = "osmesa", cache_dir = "results/cache", plugins;
+  bool no_cache = false, no_images = false, quiet = false;
+};
+
+Args parse_args(int argc, char** argv) {
+  Args a;
+  if (argc < 2) throw InputError("", "command line", std::string("expected a command\n") + kUsage);
+  a.command = argv[1];
+  for (int i = 2; i < argc; ++i) {
+    const std::string s = argv[i];
+    auto value = [&](const char* name) {
+      if (i + 1 >= argc) throw InputError("", name, "expected a value after it");
+      return std::string(argv[++i]);
+    };
+    if (s == "--out")
+      a.out = value("--out");
+    else if (s == "--backend")
+      a.backend = value("--backend");
+    else if (s == "--cache-dir")
+      a.cache_dir = value("--cache-dir");
+    else if (s == "--plugins")
+      a.plugins = value("--plugins");
+    else if (s == "--no-cache")
+      a.no_cache = true;
+    else if (s == "--no-images")
+      a.no_images = true;
+    else if (s == "--quiet")
+      a.quiet = true;
+    else if (s.rfind("--", 0) == 0)
+      throw InputError("", s, std::string("unknown option\n") + kUsage);
+    else
+      a.positional.push_back(s);
+  }
+  return a;
+}
+
+Registry load_registry(const Args& a) {
+  Registry r;
+  const std::string dir = a.plugins.empty() ? default_plugin_dir() : a.plugins;
+  try {
+    if (r.load_plugins(dir) == 0) throw std::runtime_error("no technique plugins in " + dir);
+  } catch (const std::runtime_error& e) {
+    std::fprintf(stderr, "shadowbench: %s\n", e.what());
+    std::exit(kExitInternal);
+  }
+  return r;
+}
+
+std::string one_config(const Args& a) {
+  if (a.positional.size() != 1)
+    throw InputError("", "command line",
+                     "expected exactly one CONFIG file\n" + std::string(kUsage));
+  return a.positional[0];
+}
+
+std::string default_run_id(const std::string& name) {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", &tm);
+  return name + "-" + buf;
+}
+
+int cmd_list(const Args& a) {
+  const Registry r = load_registry(a);
+  std::printf("techniques:\n");
+  for (const auto& t : r.all()) {
+    std::string needs;
+    if (t.needs.closed_casters) needs += " closed_casters";
+    if (t.needs.edge_adjacency) needs += " edge_adjacency";
+    std::printf("  %-16s [%s] %s%s\n", t.name.c_str(), t.family.c_str(), t.summary.c_str(),
+                needs.empty() ? "" : ("  needs:" + needs).c_str());
+    for (const auto& p : t.params) {
+      std::string extra;
+      if (!p.choices.empty()) {
+        for (const auto& c : p.choices) extra += (extra.empty() ? "" : "|") + c;
+        extra = " {" + extra + "}";
+      }
+      std::printf("      %-14s %-8s default %-8s %s%s\n", p.name.c_str(), to_string(p.type).c_str(),
+                  p.default_value.dump().c_str(), p.doc.c_str(), extra.c_str());
+    }
+  }
+  std::printf("scenes:\n");
+  for (const auto& s : scene_types()) {
+    std::printf("  %-16s %s\n", s.name.c_str(), s.summary.c_str());
+    for (const auto& p : s.params)
+      std::printf("      %-14s %-8s default %-8s %s\n", p.name.c_str(), to_string(p.type).c_str(),
+                  p.default_value.dump().c_str(), p.doc.c_str());
+  }
+  return kExitOk;
+}
+
+int cmd_validate(const Args& a) {
+  const Registry r = load_registry(a);
+  const Experiment e = load_experiment(one_config(a), r);
+  std::printf(
+      "%s: ok: %zu scene variant(s) × %zu resolution(s) × %zu technique variant(s) = %zu jobs\n",
+      e.file.c_str(), e.scenes.size(), e.resolutions.size(), e.techniques.size(),
+      e.scenes.size() * e.resolutions.size() * e.techniques.size());
+  return kExitOk;
+}
+
+int cmd_run(const Args& a) {
+  const Registry r = load_registry(a);
+  const Experiment e = load_experiment(one_config(a), r);
+  RunOptions o;
+  o.backend = gl::backend_from_string(a.backend);
+  if (a.out.empty()) {
+    o.run_id = default_run_id(e.name);
+    o.run_dir = "results/" + o.run_id;
+  } else {
+    o.run_dir = a.out;
+    o.run_id = std::filesystem::path(a.out).lexically_normal().filename().string();
+    if (o.run_id.empty())
+      o.run_id = std::filesystem::path(a.out).lexically_normal().parent_path().filename().string();
+  }
+  o.cache_dir = a.no_cache ? "" : a.cache_dir;
+  o.write_images = !a.no_images;
+  o.quiet = a.quiet;
+  RunSummary s;
+  try {
+    s = run_experiment(e, o);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& ex) {
+    std::fprintf(stderr, "shadowbench: %s\n", ex.what());
+    return kExitInternal;
+  }
+  if (!a.quiet) {
+    const auto md = make_markdown(read_run_records(o.run_dir), e.name + " (" + o.run_id + ")");
+    std::printf("\n%s\n", md.c_str());
+  }
+  std::printf("%d ok, %d skipped, %d failed, %d resumed; results in %s\n", s.ok, s.skipped,
+              s.failed, s.resumed, o.run_dir.c_str());
+  return s.failed > 0 ? kExitJobsFailed : kExitOk;
+}
+
+int cmd_report(const Args& a) {
+  if (a.positional.size() != 1) throw InputError("", "command line", "expected one RUN_DIR");
+  const auto records = read_run_records(a.positional[0]);
+  const std::string title = records.empty() ? "shadowbench"
+                                            : records[0].value("experiment", "shadowbench") + " (" +
+                                                  records[0].value("run_id", "") + ")";
+  write_reports(a.positional[0], records, title);
+  std::printf("%s", make_markdown(records, title).c_str());
+  return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Args a = parse_args(argc, argv);
+    if (a.command == "run") return cmd_run(a);
+    if (a.command == "validate") return cmd_validate(a);
+    if (a.command == "list") return cmd_list(a);
+    if (a.command == "report") return cmd_report(a);
+    if (a.command == "--help" || a.command == "help" || a.command == "-h") {
+      std::printf("%s", kUsage);
+      return kExitOk;
+    }
+    throw InputError("", "command line", "unknown command '" + a.command + "'\n" + kUsage);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "shadowbench: error: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "shadowbench: internal error: %s\n", e.what());
+    return kExitInternal;
+  }
+}

@@ -1,0 +1,376 @@
+#include "config/experiment.h"
+
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/hash.h"
+
+namespace sb {
+namespace {
+
+using json = nlohmann::json;
+
+std::string describe(const json& v) {
+  std::string d = v.dump();
+  if (d.size() > 60) d = d.substr(0, 57) + "...";
+  return std::string(v.type_name()) + " " + d;
+}
+
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+  [[noreturn]] void fail(const std::string& pointer, const std::string& what) const {
+    throw InputError(file_, pointer.empty() ? "/" : pointer, what);
+  }
+  const json& object(const json& v, const std::string& pointer, const std::string& what) const {
+    if (!v.is_object()) fail(pointer, "expected " + what + " (an object), found " + describe(v));
+    return v;
+  }
+  void only_keys(const json& obj, const std::string& pointer,
+                 const std::vector<std::string>& allowed) const {
+    for (auto it = obj.begin(); it != obj.end(); ++it) {
+      bool ok = false;
+      for (const auto& a : allowed) ok = ok || a == it.key();
+      if (!ok) {
+        std::string list;
+        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        fail(pointer + "/" + it.key(),
+             "unknown key '" + it.key() + "' (expected one of: " + list + ")");
+      }
+    }
+  }
+  int integer(const json& v, const std::string& pointer, long long lo, long long hi) const {
+    if (!v.is_number_integer()) fail(pointer, "expected an integer, found " + describe(v));
+    const auto i = v.get<long long>();
+    if (i < lo || i > hi)
+      fail(pointer, "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                        "], found " + v.dump());
+    return static_cast<int>(i);
+  }
+  std::string string(const json& v, const std::string& pointer) const {
+    if (!v.is_string()) fail(pointer, "expected a string, found " + describe(v));
+    return v.get<std::string>();
+  }
+  bool boolean(const json& v, const std::string& pointer) const {
+    if (!v.is_boolean()) fail(pointer, "expected true or false, found " + describe(v));
+    return v.get<bool>();
+  }
+  glm::vec3 vec3(const json& v, const std::string& pointer) const {
+    if (!v.is_array() || v.size() != 3)
+      fail(pointer, "expected an array of 3 numbers, found " + describe(v));
+    glm::vec3 out;
+    for (int i = 0; i < 3; ++i) {
+      if (!v[size_t(i)].is_number())
+        fail(pointer + "/" + std::to_string(i),
+             "expected a number, found " + describe(v[size_t(i)]));
+      out[i] = v[size_t(i)].get<float>();
+    }
+    return out;
+  }
+  float positive(const json& v, const std::string& pointer, bool allow_zero) const {
+    if (!v.is_number()) fail(pointer, "expected a number, found " + describe(v));
+    const double d = v.get<double>();
+    if (allow_zero ? d < 0.0 : d <= 0.0)
+      fail(pointer, std::string("expected a ") + (allow_zero ? "non-negative" : "positive") +
+                        " number, found " + v.dump());
+    return static_cast<float>(d);
+  }
+  const std::string& file() const { return file_; }
+
+ private:
+  std::string file_;
+};
+
+std::string value_label(const json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
+
+// "base/k=5,size=1024" from the explicitly given parameters, in declaration order.
+std::string variant_name(const std::string& base, const std::vector<ParamSpec>& specs,
+                         const json& given) {
+  std::string suffix;
+  for (const auto& s : specs)
+    if (given.contains(s.name))
+      suffix += (suffix.empty() ? "" : ",") + s.name + "=" + value_label(given.at(s.name));
+  return suffix.empty() ? base : base + "/" + suffix;
+}
+
+void check_light(const Reader& r, const json& light, const std::string& p) {
+  r.object(light, p, "a light override");
+  r.only_keys(light, p, {"center", "target", "size", "intensity"});
+  if (light.contains("center")) r.vec3(light["center"], p + "/center");
+  if (light.contains("target")) r.vec3(light["target"], p + "/target");
+  if (light.contains("intensity")) r.positive(light["intensity"], p + "/intensity", true);
+  if (light.contains("size")) {
+    const json& s = light["size"];
+    if (s.is_number()) {
+      r.positive(s, p + "/size", true);
+    } else if (s.is_array() && s.size() == 2) {
+      r.positive(s[0], p + "/size/0", true);
+      r.positive(s[1], p + "/size/1", true);
+    } else {
+      r.fail(p + "/size", "expected a number or [width, height], found " + describe(s));
+    }
+  }
+  if (light.contains("center") && light.contains("target") &&
+      r.vec3(light["center"], p + "/center") == r.vec3(light["target"], p + "/target"))
+    r.fail(p + "/target", "expected a target different from the light's center");
+}
+
+void check_camera(const Reader& r, const json& camera, const std::string& p) {
+  r.object(camera, p, "a camera override");
+  r.only_keys(camera, p, {"eye", "target", "up", "fov_y", "near", "far"});
+  for (const char* k : {"eye", "target", "up"})
+    if (camera.contains(k)) r.vec3(camera[k], p + "/" + k);
+  if (camera.contains("fov_y")) {
+    const float f = r.positive(camera["fov_y"], p + "/fov_y", false);
+    if (f >= 180.0f)
+      r.fail(p + "/fov_y", "expected degrees in (0, 180), found " + camera["fov_y"].dump());
+  }
+  if (camera.contains("near")) r.positive(camera["near"], p + "/near", false);
+  if (camera.contains("far")) r.positive(camera["far"], p + "/far", false);
+}
+
+Resolution parse_resolution(const Reader& r, const json& v, const std::string& p) {
+  Resolution res;
+  if (v.is_array() && v.size() == 2) {
+    res.width = r.integer(v[0], p + "/0", 1, 16384);
+    res.height = r.integer(v[1], p + "/1", 1, 16384);
+  } else if (v.is_string()) {
+    const std::string s = v.get<std::string>();
+    const auto x = s.find('x');
+    try {
+      size_t used = 0;
+      res.width = std::stoi(s.substr(0, x), &used);
+      if (x == std::string::npos || used != x) throw std::invalid_argument(s);
+      res.height = std::stoi(s.substr(x + 1), &used);
+      if (used != s.size() - x - 1) throw std::invalid_argument(s);
+    } catch (const std::exception&) {
+      r.fail(p, "expected \"WIDTHxHEIGHT\" or [width, height], found " + v.dump());
+    }
+    if (res.width < 1 || res.height < 1 || res.width > 16384 || res.height > 16384)
+      r.fail(p, "expected sizes in [1, 16384], found " + v.dump());
+  } else {
+    r.fail(p, "expected \"WIDTHxHEIGHT\" or [width, height], found " + describe(v));
+  }
+  return res;
+}
+
+}  // namespace
+
+std::vector<json> expand_sweeps(const json& params, const std::string& file,
+                                const std::string& pointer) {
+  std::vector<json> out{json::object()};
+  if (params.is_null()) return out;
+  if (!params.is_object())
+    throw InputError(file, pointer, "expected an object of parameters, found " + describe(params));
+  for (auto it = params.begin(); it != params.end(); ++it) {
+    std::vector<json> values;
+    if (it.value().is_array()) {
+      if (it.value().empty())
+        throw InputError(file, pointer + "/" + it.key(),
+                         "expected a non-empty list to sweep, found []");
+      for (const auto& v : it.value()) values.push_back(v);
+    } else {
+      values.push_back(it.value());
+    }
+    std::vector<json> next;
+    for (const auto& partial : out)
+      for (const auto& v : values) {
+        json p = partial;
+        p[it.key()] = v;
+        next.push_back(std::move(p));
+      }
+    out = std::move(next);
+    if (out.size() > 100000)
+      throw InputError(file, pointer, "the sweep expands to more than 100000 variants");
+  }
+  return out;
+}
+
+Experiment parse_experiment(const json& doc, const std::string& file, const Registry& registry) {
+  Reader r(file);
+  r.object(doc, "", "an experiment");
+  r.only_keys(
+      doc, "",
+      {"name", "description", "scenes", "techniques", "resolutions", "frames", "reference"});
+  Experiment e;
+  e.file = file;
+  e.name = doc.contains("name") ? r.string(doc["name"], "/name") : "experiment";
+  if (e.name.empty() || e.name.find_first_of("/\\ ") != std::string::npos)
+    r.fail("/name", "expected a name without spaces or slashes, found \"" + e.name + "\"");
+  if (doc.contains("description")) e.description = r.string(doc["description"], "/description");
+
+  // Scenes.
+  if (!doc.contains("scenes")) r.fail("/scenes", "expected a list of scenes, found nothing");
+  const json& scenes = doc["scenes"];
+  if (!scenes.is_array() || scenes.empty())
+    r.fail("/scenes", "expected a non-empty list of scenes, found " + describe(scenes));
+  std::set<std::string> names;
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    const std::string p = "/scenes/" + std::to_string(i);
+    const json& entry = r.object(scenes[i], p, "a scene");
+    r.only_keys(entry, p, {"type", "params", "light", "camera", "label"});
+    if (!entry.contains("type")) r.fail(p + "/type", "expected a scene type, found nothing");
+    const std::string type = r.string(entry["type"], p + "/type");
+    const SceneType* st = find_scene_type(type);
+    if (st == nullptr) {
+      std::string known;
+      for (const auto& t : scene_types()) known += (known.empty() ? "" : ", ") + t.name;
+      r.fail(p + "/type", "unknown scene type \"" + type + "\" (known: " + known + ")");
+    }
+    json light = entry.value("light", json::object());
+    json camera = entry.value("camera", json::object());
+    check_light(r, light, p + "/light");
+    check_camera(r, camera, p + "/camera");
+    const json given = entry.value("params", json::object());
+    const std::string label =
+        entry.contains("label") ? r.string(entry["label"], p + "/label") : type;
+    for (const json& combo : expand_sweeps(given, file, p + "/params")) {
+      SceneVariant v;
+      v.type = type;
+      v.pointer = p;
+      v.params = resolve_params(st->params, combo, file, p + "/params");
+      v.name = variant_name(label, st->params, combo);
+      for (auto it = given.begin(); it != given.end(); ++it)
+        if (it.value().is_array()) v.swept[it.key()] = combo[it.key()];
+      v.light = light;
+      v.camera = camera;
+      if (!names.insert(v.name).second)
+        r.fail(p,
+               "scene variant \"" + v.name + "\" appears twice; give entries distinct \"label\"s");
+      e.scenes.push_back(std::move(v));
+    }
+  }
+
+  // Techniques.
+  if (!doc.contains("techniques"))
+    r.fail("/techniques", "expected a list of techniques, found nothing");
+  const json& techniques = doc["techniques"];
+  if (!techniques.is_array() || techniques.empty())
+    r.fail("/techniques", "expected a non-empty list of techniques, found " + describe(techniques));
+  names.clear();
+  for (size_t i = 0; i < techniques.size(); ++i) {
+    const std::string p = "/techniques/" + std::to_string(i);
+    json entry = techniques[i];
+    if (entry.is_string()) entry = json{{"name", entry}};
+    r.object(entry, p, "a technique (a name or an object)");
+    r.only_keys(entry, p, {"name", "params", "label"});
+    if (!entry.contains("name")) r.fail(p + "/name", "expected a technique name, found nothing");
+    const std::string name = r.string(entry["name"], p + "/name");
+    const TechniqueInfo* info = registry.find(name);
+    if (info == nullptr) {
+      std::string known;
+      for (const auto& t : registry.all()) known += (known.empty() ? "" : ", ") + t.name;
+      r.fail(p + (techniques[i].is_string() ? "" : "/name"),
+             "unknown technique \"" + name + "\" (registered: " + known + ")");
+    }
+    const std::string label =
+        entry.contains("label") ? r.string(entry["label"], p + "/label") : name;
+    const json given = entry.value("params", json::object());
+    for (const json& combo : expand_sweeps(given, file, p + "/params")) {
+      TechniqueVariant v;
+      v.info = info;
+      v.pointer = p;
+      v.params = resolve_params(info->params, combo, file, p + "/params");
+      v.name = variant_name(label, info->params, combo);
+      if (!names.insert(v.name).second)
+        r.fail(p, "technique variant \"" + v.name +
+                      "\" appears twice; give entries distinct \"label\"s");
+      e.techniques.push_back(std::move(v));
+    }
+  }
+
+  // Resolutions.
+  if (!doc.contains("resolutions"))
+    r.fail("/resolutions", "expected a list of resolutions, found nothing");
+  const json& res = doc["resolutions"];
+  if (!res.is_array() || res.empty())
+    r.fail("/resolutions", "expected a non-empty list of resolutions, found " + describe(res));
+  for (size_t i = 0; i < res.size(); ++i)
+    e.resolutions.push_back(parse_resolution(r, res[i], "/resolutions/" + std::to_string(i)));
+
+  if (doc.contains("frames")) {
+    const json& f = r.object(doc["frames"], "/frames", "frame counts");
+    r.only_keys(f, "/frames", {"warmup", "timed"});
+    if (f.contains("warmup")) e.warmup_frames = r.integer(f["warmup"], "/frames/warmup", 0, 100000);
+    if (f.contains("timed")) e.timed_frames = r.integer(f["timed"], "/frames/timed", 1, 100000);
+  }
+  if (doc.contains("reference")) {
+    const json& ref = r.object(doc["reference"], "/reference", "reference settings");
+    r.only_keys(ref, "/reference", {"spp", "seed", "cache"});
+    if (ref.contains("spp")) e.reference.spp = r.integer(ref["spp"], "/reference/spp", 2, 1 << 20);
+    if (ref.contains("seed"))
+      e.reference.seed =
+          static_cast<uint64_t>(r.integer(ref["seed"], "/reference/seed", 0, 2147483647));
+    if (ref.contains("cache")) e.reference.cache = r.boolean(ref["cache"], "/reference/cache");
+  }
+  return e;
+}
+
+Experiment load_experiment(const std::string& path, const Registry& registry) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot open the config file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& e) {
+    // Turn the byte offset into line:column.
+    size_t line = 1, col = 1;
+    for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        col = 1;
+      } else {
+        ++col;
+      }
+    }
+    std::string what = e.what();
+    const auto cut = what.find("syntax error");
+    throw InputError(path, "line " + std::to_string(line) + ", column " + std::to_string(col),
+                     "invalid JSON: " + (cut == std::string::npos ? what : what.substr(cut)));
+  }
+  Experiment e = parse_experiment(doc, path, registry);
+  Hasher h;
+  h.add(text);
+  e.content_hash = h.hex();
+  return e;
+}
+
+void apply_overrides(const SceneVariant& v, Scene& scene) {
+  AreaLight& l = scene.light;
+  const json& light = v.light;
+  if (!light.empty()) {
+    const auto vec = [](const json& a) {
+      return glm::vec3(a[0].get<float>(), a[1].get<float>(), a[2].get<float>());
+    };
+    const glm::vec3 center = light.contains("center") ? vec(light["center"]) : l.center;
+    const glm::vec3 target = light.contains("target") ? vec(light["target"]) : l.target;
+    float w = l.width(), h = l.height();
+    if (light.contains("size")) {
+      if (light["size"].is_number()) {
+        w = h = light["size"].get<float>();
+      } else {
+        w = light["size"][0].get<float>();
+        h = light["size"][1].get<float>();
+      }
+    }
+    const float intensity = light.value("intensity", l.intensity);
+    l = make_area_light(center, target, w, h, intensity);
+  }
+  const json& cam = v.camera;
+  const auto vec = [](const json& a) {
+    return glm::vec3(a[0].get<float>(), a[1].get<float>(), a[2].get<float>());
+  };
+  if (cam.contains("eye")) scene.camera.eye = vec(cam["eye"]);
+  if (cam.contains("target")) scene.camera.target = vec(cam["target"]);
+  if (cam.contains("up")) scene.camera.up = vec(cam["up"]);
+  if (cam.contains("fov_y")) scene.camera.fov_y_degrees = cam["fov_y"].get<float>();
+  if (cam.contains("near")) scene.camera.near_plane = cam["near"].get<float>();
+  if (cam.contains("far")) scene.camera.far_plane = cam["far"].get<float>();
+}
+
+}  // namespace sb

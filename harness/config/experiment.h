@@ -1,0 +1,72 @@
+#pragma once
+// An experiment config (docs/config.md), loaded and fully validated before any
+// GL context exists. List-valued parameters sweep: each combination becomes
+// one variant with a readable name.
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "core/params.h"
+#include "core/registry.h"
+#include "core/scene_types.h"
+
+namespace sb {
+
+struct SceneVariant {
+  std::string type;     // "sphere_grid"
+  std::string name;     // readable variant name: "sphere_grid/light_size=4"
+  std::string pointer;  // JSON pointer of its entry, for messages
+  Params params;
+  nlohmann::json swept = nlohmann::json::object();  // the parameters this variant fixed by sweep
+  nlohmann::json light = nlohmann::json::object();  // overrides (validated)
+  nlohmann::json camera = nlohmann::json::object();
+};
+
+struct TechniqueVariant {
+  const TechniqueInfo* info = nullptr;
+  std::string name;     // readable variant name: "pcf/k=5"
+  std::string pointer;  // JSON pointer of its entry
+  Params params;
+};
+
+struct Resolution {
+  int width = 0;
+  int height = 0;
+  std::string label() const { return std::to_string(width) + "x" + std::to_string(height); }
+};
+
+struct ReferenceConfig {
+  int spp = 256;
+  uint64_t seed = 1;
+  bool cache = true;
+};
+
+struct Experiment {
+  std::string file;  // as given on the command line
+  std::string name;
+  std::string description;
+  std::vector<SceneVariant> scenes;
+  std::vector<TechniqueVariant> techniques;
+  std::vector<Resolution> resolutions;
+  int warmup_frames = 2;
+  int timed_frames = 10;
+  ReferenceConfig reference;
+  std::string content_hash;  // of the file's bytes
+};
+
+// Throws InputError naming the file, the JSON pointer, what was expected and
+// what was found.
+Experiment load_experiment(const std::string& path, const Registry& registry);
+Experiment parse_experiment(const nlohmann::json& doc, const std::string& file,
+                            const Registry& registry);
+
+// Applies a scene entry's "light" and "camera" overrides (already validated).
+void apply_overrides(const SceneVariant& variant, Scene& scene);
+
+// Cross product of list-valued entries of `params` (an object). Each result
+// maps every key to a scalar; `swept` lists the keys that were lists.
+std::vector<nlohmann::json> expand_sweeps(const nlohmann::json& params, const std::string& file,
+                                          const std::string& pointer);
+
+}  // namespace sb

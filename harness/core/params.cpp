@@ -1,0 +1,163 @@
+#include "core/params.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/error.h"
+
+namespace sb {
+
+ParamSpec int_param(std::string name, int def, int min, int max, std::string doc) {
+  return {std::move(name), ParamType::Int, def, double(min), double(max), {}, std::move(doc), {}};
+}
+ParamSpec float_param(std::string name, double def, double min, double max, std::string doc) {
+  return {std::move(name), ParamType::Float, def, min, max, {}, std::move(doc), {}};
+}
+ParamSpec bool_param(std::string name, bool def, std::string doc) {
+  return {std::move(name), ParamType::Bool, def, 0, 1, {}, std::move(doc), {}};
+}
+ParamSpec choice_param(std::string name, std::string def, std::vector<std::string> choices,
+                       std::string doc) {
+  return {std::move(name),
+          ParamType::Choice,
+          std::move(def),
+          0,
+          0,
+          std::move(choices),
+          std::move(doc),
+          {}};
+}
+
+ParamSpec odd(ParamSpec spec) {
+  spec.rule = [](const nlohmann::json& v) {
+    return v.get<long long>() % 2 != 0 ? std::string() : std::string("an odd integer");
+  };
+  return spec;
+}
+
+std::string to_string(ParamType t) {
+  switch (t) {
+    case ParamType::Int:
+      return "integer";
+    case ParamType::Float:
+      return "number";
+    case ParamType::Bool:
+      return "boolean";
+    case ParamType::Choice:
+      return "string";
+  }
+  return "?";
+}
+
+const nlohmann::json& Params::get(const std::string& name) const {
+  auto it = values_.find(name);
+  if (it == values_.end()) throw std::logic_error("parameter '" + name + "' was never declared");
+  return *it;
+}
+int Params::get_int(const std::string& name) const { return get(name).get<int>(); }
+float Params::get_float(const std::string& name) const { return get(name).get<float>(); }
+bool Params::get_bool(const std::string& name) const { return get(name).get<bool>(); }
+std::string Params::get_string(const std::string& name) const {
+  return get(name).get<std::string>();
+}
+
+namespace {
+std::string describe(const nlohmann::json& v) {
+  std::string kind = v.type_name();
+  return kind + " " + v.dump();
+}
+std::string number(double v) {
+  nlohmann::json j = v;
+  if (v == std::floor(v) && std::fabs(v) < 1e15) j = static_cast<long long>(v);
+  return j.dump();
+}
+}  // namespace
+
+namespace {
+nlohmann::json check_type_and_range(const ParamSpec& spec, const nlohmann::json& value,
+                                    const std::string& file, const std::string& pointer) {
+  const std::string where = "parameter '" + spec.name + "': ";
+  switch (spec.type) {
+    case ParamType::Int: {
+      if (!value.is_number_integer() &&
+          !(value.is_number_float() && value.get<double>() == std::floor(value.get<double>())))
+        throw InputError(file, pointer, where + "expected an integer, found " + describe(value));
+      const double v = value.get<double>();
+      if (v < spec.min || v > spec.max)
+        throw InputError(file, pointer,
+                         where + "expected an integer in [" + number(spec.min) + ", " +
+                             number(spec.max) + "], found " + value.dump());
+      return static_cast<long long>(v);
+    }
+    case ParamType::Float: {
+      if (!value.is_number())
+        throw InputError(file, pointer, where + "expected a number, found " + describe(value));
+      const double v = value.get<double>();
+      if (!std::isfinite(v) || v < spec.min || v > spec.max)
+        throw InputError(file, pointer,
+                         where + "expected a number in [" + number(spec.min) + ", " +
+                             number(spec.max) + "], found " + value.dump());
+      return v;
+    }
+    case ParamType::Bool:
+      if (!value.is_boolean())
+        throw InputError(file, pointer, where + "expected true or false, found " + describe(value));
+      return value;
+    case ParamType::Choice: {
+      std::string list;
+      for (const auto& c : spec.choices) list += (list.empty() ? "" : ", ") + ("\"" + c + "\"");
+      if (!value.is_string())
+        throw InputError(file, pointer,
+                         where + "expected one of " + list + ", found " + describe(value));
+      for (const auto& c : spec.choices)
+        if (c == value.get<std::string>()) return value;
+      throw InputError(file, pointer,
+                       where + "expected one of " + list + ", found " + value.dump());
+    }
+  }
+  return value;
+}
+
+}  // namespace
+
+nlohmann::json check_param_value(const ParamSpec& spec, const nlohmann::json& value,
+                                 const std::string& file, const std::string& pointer) {
+  nlohmann::json v = check_type_and_range(spec, value, file, pointer);
+  if (spec.rule) {
+    const std::string expected = spec.rule(v);
+    if (!expected.empty())
+      throw InputError(
+          file, pointer,
+          "parameter '" + spec.name + "': expected " + expected + ", found " + value.dump());
+  }
+  return v;
+}
+
+Params resolve_params(const std::vector<ParamSpec>& specs, const nlohmann::json& given,
+                      const std::string& file, const std::string& pointer) {
+  nlohmann::json out = nlohmann::json::object();
+  if (!given.is_null() && !given.is_object())
+    throw InputError(file, pointer, "expected an object of parameters, found " + describe(given));
+  if (given.is_object()) {
+    for (auto it = given.begin(); it != given.end(); ++it) {
+      bool known = false;
+      for (const auto& s : specs) known = known || s.name == it.key();
+      if (!known) {
+        std::string names;
+        for (const auto& s : specs) names += (names.empty() ? "" : ", ") + s.name;
+        throw InputError(file, pointer + "/" + it.key(),
+                         "unknown parameter '" + it.key() +
+                             "' (known: " + (names.empty() ? "none" : names) + ")");
+      }
+    }
+  }
+  for (const auto& s : specs) {
+    if (given.is_object() && given.contains(s.name))
+      out[s.name] = check_param_value(s, given.at(s.name), file, pointer + "/" + s.name);
+    else
+      out[s.name] = s.default_value;
+  }
+  return Params(std::move(out));
+}
+
+}  // namespace sb

@@ -1,0 +1,63 @@
+#pragma once
+// Parameters declared as data: a technique or scene lists its parameters with
+// types, defaults and ranges; configs are checked against that list before
+// any GL context exists, and unknown keys are errors.
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace sb {
+
+enum class ParamType { Int, Float, Bool, Choice };
+
+struct ParamSpec {
+  std::string name;
+  ParamType type = ParamType::Float;
+  nlohmann::json default_value;
+  double min = -1e300;  // inclusive, for Int and Float
+  double max = 1e300;
+  std::vector<std::string> choices;  // for Choice
+  std::string doc;
+  // Optional extra rule on a value that already has the right type and range:
+  // returns "" when fine, else what was expected ("an odd integer").
+  std::function<std::string(const nlohmann::json&)> rule;
+};
+
+// Adds the rule "odd integer" to an Int parameter.
+ParamSpec odd(ParamSpec spec);
+
+ParamSpec int_param(std::string name, int def, int min, int max, std::string doc);
+ParamSpec float_param(std::string name, double def, double min, double max, std::string doc);
+ParamSpec bool_param(std::string name, bool def, std::string doc);
+ParamSpec choice_param(std::string name, std::string def, std::vector<std::string> choices,
+                       std::string doc);
+
+std::string to_string(ParamType t);
+
+// Resolved parameter values (defaults filled in, every value checked).
+class Params {
+ public:
+  Params() = default;
+  explicit Params(nlohmann::json values) : values_(std::move(values)) {}
+  int get_int(const std::string& name) const;
+  float get_float(const std::string& name) const;
+  bool get_bool(const std::string& name) const;
+  std::string get_string(const std::string& name) const;
+  const nlohmann::json& json() const { return values_; }
+
+ private:
+  const nlohmann::json& get(const std::string& name) const;
+  nlohmann::json values_ = nlohmann::json::object();
+};
+
+// Checks one scalar value against its spec; throws InputError naming `file`
+// and `pointer` (the value's JSON pointer) with what was expected and found.
+nlohmann::json check_param_value(const ParamSpec& spec, const nlohmann::json& value,
+                                 const std::string& file, const std::string& pointer);
+
+// Fills defaults into `given` (already-scalar values) and rejects unknown keys.
+Params resolve_params(const std::vector<ParamSpec>& specs, const nlohmann::json& given,
+                      const std::string& file, const std::string& pointer);
+
+}  // namespace sb

@@ -1,0 +1,47 @@
+#pragma once
+// The registry of techniques. Each technique family is a plugin module
+// (techniques/<family>/) exporting one C entry point,
+//   extern "C" void shadowbench_register_plugin(sb::Registry&);
+// that adds its variants. The harness loads every module in its plugin folder.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/params.h"
+#include "core/technique.h"
+
+namespace sb {
+
+struct TechniqueInfo {
+  std::string name;     // unique, used in configs: "shadow_map"
+  std::string family;   // the plugin folder: "shadow_map"
+  std::string summary;  // one line for `shadowbench list`
+  Needs needs;
+  std::vector<ParamSpec> params;
+  std::function<std::unique_ptr<Technique>(const Params&)> create;
+};
+
+class Registry {
+ public:
+  void add(TechniqueInfo info);  // throws std::logic_error on duplicates
+  const TechniqueInfo* find(const std::string& name) const;
+  const std::vector<TechniqueInfo>& all() const { return techniques_; }
+
+  // Loads every *.so in `dir`; throws std::runtime_error naming the module on
+  // a missing entry point or a dlopen failure. Returns the module count.
+  int load_plugins(const std::string& dir);
+
+ private:
+  std::vector<TechniqueInfo> techniques_;
+  std::vector<void*> modules_;  // kept open for the process lifetime
+};
+
+// The plugin folder: $SHADOWBENCH_PLUGIN_DIR, else <exe dir>/plugins, else the
+// build tree's folder.
+std::string default_plugin_dir();
+
+}  // namespace sb
+
+#define SHADOWBENCH_PLUGIN_ENTRY \
+  extern "C" __attribute__((visibility("default"))) void shadowbench_register_plugin

@@ -1,0 +1,41 @@
+#include "core/scene.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace sb {
+
+glm::mat4 Camera::view() const { return glm::lookAt(eye, target, up); }
+
+glm::mat4 Camera::projection(float aspect) const {
+  return glm::perspective(glm::radians(fov_y_degrees), aspect, near_plane, far_plane);
+}
+
+size_t Scene::triangle_count() const {
+  size_t n = 0;
+  for (const auto& m : meshes) n += m.triangle_count();
+  return n;
+}
+
+size_t Scene::caster_triangle_count() const {
+  size_t n = 0;
+  for (const auto& m : meshes)
+    if (m.casts_shadow) n += m.triangle_count();
+  return n;
+}
+
+Bounds Scene::bounds() const {
+  Bounds b;
+  for (const auto& m : meshes)
+    for (const auto& p : m.positions) b.extend(p);
+  return b;
+}
+
+Bounds Scene::caster_bounds() const {
+  Bounds b;
+  for (const auto& m : meshes)
+    if (m.casts_shadow)
+      for (const auto& p : m.positions) b.extend(p);
+  return b;
+}
+
+}  // namespace sb

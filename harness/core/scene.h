@@ -1,0 +1,82 @@
+#pragma once
+// CPU-side scene description shared by the rasteriser, the techniques and the
+// ray-traced reference. Units are arbitrary but consistent; +y is up.
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+namespace sb {
+
+struct Mesh {
+  std::string name;
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;  // per vertex, for shading only
+  std::vector<uint32_t> indices;   // triangle list, counter-clockwise = front
+  glm::vec3 albedo{0.8f};
+  // Receivers that never occlude the light (a ground plane under everything)
+  // are left out of every caster pass and of the reference's ray tracing.
+  bool casts_shadow = true;
+
+  size_t triangle_count() const { return indices.size() / 3; }
+};
+
+// A rectangular area light facing `target`. A point on it is
+// center + (2s-1)*half_u + (2t-1)*half_v for (s,t) in [0,1]^2.
+struct AreaLight {
+  glm::vec3 center{0.0f, 10.0f, 0.0f};
+  glm::vec3 half_u{0.5f, 0.0f, 0.0f};
+  glm::vec3 half_v{0.0f, 0.0f, 0.5f};
+  glm::vec3 target{0.0f};  // where the light looks; used by shadow-map projections
+  float intensity = 1.0f;
+
+  glm::vec3 point(float s, float t) const {
+    return center + (2.0f * s - 1.0f) * half_u + (2.0f * t - 1.0f) * half_v;
+  }
+  glm::vec3 direction() const { return glm::normalize(target - center); }
+  float width() const { return 2.0f * glm::length(half_u); }
+  float height() const { return 2.0f * glm::length(half_v); }
+};
+
+struct Camera {
+  glm::vec3 eye{0.0f, 5.0f, 10.0f};
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fov_y_degrees = 45.0f;
+  float near_plane = 0.1f;
+  float far_plane = 100.0f;
+
+  glm::mat4 view() const;
+  glm::mat4 projection(float aspect) const;
+};
+
+struct Bounds {
+  glm::vec3 lo{1e30f};
+  glm::vec3 hi{-1e30f};
+  void extend(const glm::vec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  void extend(const Bounds& b) {
+    lo = glm::min(lo, b.lo);
+    hi = glm::max(hi, b.hi);
+  }
+  bool empty() const { return lo.x > hi.x; }
+  glm::vec3 center() const { return 0.5f * (lo + hi); }
+  float radius() const { return 0.5f * glm::length(hi - lo); }
+};
+
+struct Scene {
+  std::string name;
+  std::vector<Mesh> meshes;
+  AreaLight light;
+  Camera camera;
+  glm::vec3 ambient{0.15f};
+
+  size_t triangle_count() const;
+  size_t caster_triangle_count() const;
+  Bounds bounds() const;
+  Bounds caster_bounds() const;
+};
+
+}  // namespace sb

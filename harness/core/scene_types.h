@@ -1,0 +1,28 @@
+#pragma once
+// Scene generators known to the harness, each with its parameters as data.
+// Every scene entry in a config may also override the light and the camera
+// (see docs/config.md); those overrides are applied by the config layer.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/params.h"
+#include "core/scene.h"
+
+namespace sb {
+
+struct SceneType {
+  std::string name;
+  std::string summary;
+  std::vector<ParamSpec> params;
+  std::function<Scene(const Params&)> build;
+};
+
+const std::vector<SceneType>& scene_types();
+const SceneType* find_scene_type(const std::string& name);
+
+// A rectangular light of size width×height at `center`, facing `target`.
+AreaLight make_area_light(const glm::vec3& center, const glm::vec3& target, float width,
+                          float height, float intensity = 1.0f);
+
+}  // namespace sb

@@ -1,0 +1,61 @@
+#pragma once
+// The contract between the harness and a shadow technique.
+//
+// A technique computes VISIBILITY only: for every camera pixel, the fraction
+// of the area light that the pixel's surface point sees, written to an R32F
+// target the harness owns. The surface points are the G-buffer's world
+// positions, the same ones the ray-traced reference uses, so primary
+// visibility never pollutes the error. Shading is shared by all techniques.
+#include <glm/glm.hpp>
+#include <memory>
+#include <string>
+
+#include "core/params.h"
+#include "core/scene.h"
+#include "gl/gl.h"
+#include "gl/pass_timer.h"
+
+namespace sb {
+
+class GpuScene;
+
+// What a technique needs from a scene, read by the planner before any GL
+// context exists. A scene that cannot provide it makes the pair "skipped".
+struct Needs {
+  bool edge_adjacency = false;  // triangle adjacency of the casters
+  bool closed_casters = false;  // every caster is a closed 2-manifold
+};
+
+// Everything a technique may read for one (scene, resolution).
+struct FrameInputs {
+  int width = 0;
+  int height = 0;
+  const Scene* scene = nullptr;
+  const GpuScene* gpu = nullptr;
+  glm::mat4 view{1.0f};
+  glm::mat4 projection{1.0f};
+  glm::mat4 view_projection{1.0f};
+  // G-buffer (camera view): world position (RGBA32F, w = 1 on geometry, 0 on
+  // background) and the triangle's geometric normal (RGBA32F).
+  GLuint gbuffer_position = 0;
+  GLuint gbuffer_normal = 0;
+  // The G-buffer pass's depth-stencil (D24S8) texture, also attached to the
+  // visibility framebuffer, so stencil techniques can test against it.
+  GLuint depth_stencil = 0;
+  // R32F visibility colour + depth_stencil. Techniques must write every pixel
+  // (V = 1 on background).
+  GLuint visibility_framebuffer = 0;
+  GLuint visibility_texture = 0;
+};
+
+class Technique {
+ public:
+  virtual ~Technique() = default;
+  // Once per (scene, resolution), untimed: compile shaders, allocate targets.
+  virtual void prepare(const FrameInputs& in) = 0;
+  // One frame. Every GL command belongs to a named pass of `timer`, e.g.
+  // auto pass = timer.scope("shadow_map");
+  virtual void render(const FrameInputs& in, gl::PassTimer& timer) = 0;
+};
+
+}  // namespace sb

@@ -1,0 +1,86 @@
+#include "gl/objects.h"
+
+#include <string>
+
+#include "core/error.h"
+
+namespace sb::gl {
+
+Texture make_texture_2d(GLenum internal_format, int width, int height) {
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &id);
+  glTextureStorage2D(id, 1, internal_format, width, height);
+  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return Texture(id);
+}
+
+Texture make_depth_texture(GLenum internal_format, int width, int height, bool compare) {
+  Texture t = make_texture_2d(internal_format, width, height);
+  if (compare) {
+    glTextureParameteri(t.get(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTextureParameteri(t.get(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  }
+  // Outside the map counts as lit (depth 1 = farthest).
+  glTextureParameteri(t.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+  glTextureParameteri(t.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+  const float border[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+  glTextureParameterfv(t.get(), GL_TEXTURE_BORDER_COLOR, border);
+  return t;
+}
+
+Framebuffer make_framebuffer(std::initializer_list<GLuint> colors, GLuint depth,
+                             GLenum depth_attachment) {
+  GLuint id = 0;
+  glCreateFramebuffers(1, &id);
+  Framebuffer fb(id);
+  GLenum draw_buffers[8];
+  GLsizei n = 0;
+  for (GLuint c : colors) {
+    const GLenum attachment = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(n);
+    glNamedFramebufferTexture(id, attachment, c, 0);
+    draw_buffers[n++] = attachment;
+  }
+  if (n > 0)
+    glNamedFramebufferDrawBuffers(id, n, draw_buffers);
+  else
+    glNamedFramebufferDrawBuffer(id, GL_NONE);
+  if (depth != 0) glNamedFramebufferTexture(id, depth_attachment, depth, 0);
+  const GLenum status = glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE)
+    throw JobError("framebuffer incomplete (status 0x" + std::to_string(status) + ")");
+  return fb;
+}
+
+Buffer make_buffer(GLsizeiptr bytes, const void* data, GLbitfield flags) {
+  GLuint id = 0;
+  glCreateBuffers(1, &id);
+  glNamedBufferStorage(id, bytes, data, flags);
+  return Buffer(id);
+}
+
+namespace {
+GLuint empty_vao() {
+  static GLuint vao = 0;  // one per process; contexts are used one at a time
+  if (vao == 0 || !glIsVertexArray(vao)) glCreateVertexArrays(1, &vao);
+  return vao;
+}
+}  // namespace
+
+void draw_fullscreen_triangle() {
+  glBindVertexArray(empty_vao());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+const char* const kFullscreenVertexShader = R"(#version 450 core
+out vec2 uv;
+void main() {
+  vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+  uv = p;
+  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+}  // namespace sb::gl

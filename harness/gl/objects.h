@@ -1,0 +1,61 @@
+#pragma once
+// Move-only owners of GL object names.
+#include <utility>
+
+#include "gl/gl.h"
+
+namespace sb::gl {
+
+template <void (*Delete)(GLuint)>
+class Handle {
+ public:
+  Handle() = default;
+  explicit Handle(GLuint id) : id_(id) {}
+  ~Handle() { reset(); }
+  Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, 0)) {}
+  Handle& operator=(Handle&& o) noexcept {
+    if (this != &o) {
+      reset();
+      id_ = std::exchange(o.id_, 0);
+    }
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  GLuint get() const { return id_; }
+  explicit operator bool() const { return id_ != 0; }
+  void reset() {
+    if (id_ != 0) Delete(id_);
+    id_ = 0;
+  }
+
+ private:
+  GLuint id_ = 0;
+};
+
+inline void delete_texture(GLuint id) { glDeleteTextures(1, &id); }
+inline void delete_buffer(GLuint id) { glDeleteBuffers(1, &id); }
+inline void delete_framebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
+inline void delete_vertex_array(GLuint id) { glDeleteVertexArrays(1, &id); }
+inline void delete_program(GLuint id) { glDeleteProgram(id); }
+
+using Texture = Handle<delete_texture>;
+using Buffer = Handle<delete_buffer>;
+using Framebuffer = Handle<delete_framebuffer>;
+using VertexArray = Handle<delete_vertex_array>;
+
+// A 2D texture with immutable storage, nearest filtering, clamped edges.
+Texture make_texture_2d(GLenum internal_format, int width, int height);
+// A depth texture usable as sampler2DShadow (compare mode on) or plain.
+Texture make_depth_texture(GLenum internal_format, int width, int height, bool compare);
+// Framebuffer with the given colour attachments (0 = none) and depth(-stencil).
+Framebuffer make_framebuffer(std::initializer_list<GLuint> colors, GLuint depth,
+                             GLenum depth_attachment = GL_DEPTH_ATTACHMENT);
+Buffer make_buffer(GLsizeiptr bytes, const void* data, GLbitfield flags = 0);
+
+// Draws one triangle covering the viewport (no vertex buffer: uses gl_VertexID).
+void draw_fullscreen_triangle();
+// Vertex shader for draw_fullscreen_triangle(); writes `uv` in [0,1]^2.
+extern const char* const kFullscreenVertexShader;
+
+}  // namespace sb::gl

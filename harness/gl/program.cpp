@@ -1,0 +1,103 @@
+#include "gl/program.h"
+
+#include <glm/gtc/type_ptr.hpp>
+#include <utility>
+#include <vector>
+
+#include "core/error.h"
+
+namespace sb::gl {
+namespace {
+
+GLuint compile(const std::string& program, GLenum stage, const std::string& source) {
+  GLuint s = glCreateShader(stage);
+  const char* src = source.c_str();
+  glShaderSource(s, 1, &src, nullptr);
+  glCompileShader(s);
+  GLint ok = 0;
+  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    GLint len = 0;
+    glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
+    std::vector<char> log(static_cast<size_t>(len) + 1, '\0');
+    glGetShaderInfoLog(s, len, nullptr, log.data());
+    glDeleteShader(s);
+    const char* kind = stage == GL_VERTEX_SHADER     ? "vertex"
+                       : stage == GL_GEOMETRY_SHADER ? "geometry"
+                                                     : "fragment";
+    throw JobError("shader '" + program + "' (" + kind + ") failed to compile: " + log.data());
+  }
+  return s;
+}
+
+}  // namespace
+
+Program::Program(std::string name, const ShaderSources& sources) : name_(std::move(name)) {
+  std::vector<GLuint> shaders;
+  shaders.push_back(compile(name_, GL_VERTEX_SHADER, sources.vertex));
+  if (!sources.geometry.empty())
+    shaders.push_back(compile(name_, GL_GEOMETRY_SHADER, sources.geometry));
+  if (!sources.fragment.empty())
+    shaders.push_back(compile(name_, GL_FRAGMENT_SHADER, sources.fragment));
+  id_ = glCreateProgram();
+  for (GLuint s : shaders) glAttachShader(id_, s);
+  glLinkProgram(id_);
+  for (GLuint s : shaders) {
+    glDetachShader(id_, s);
+    glDeleteShader(s);
+  }
+  GLint ok = 0;
+  glGetProgramiv(id_, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    GLint len = 0;
+    glGetProgramiv(id_, GL_INFO_LOG_LENGTH, &len);
+    std::vector<char> log(static_cast<size_t>(len) + 1, '\0');
+    glGetProgramInfoLog(id_, len, nullptr, log.data());
+    glDeleteProgram(id_);
+    id_ = 0;
+    throw JobError("program '" + name_ + "' failed to link: " + log.data());
+  }
+}
+
+Program::~Program() {
+  if (id_ != 0) glDeleteProgram(id_);
+}
+
+Program::Program(Program&& o) noexcept
+    : name_(std::move(o.name_)),
+      id_(std::exchange(o.id_, 0)),
+      locations_(std::move(o.locations_)) {}
+
+Program& Program::operator=(Program&& o) noexcept {
+  if (this != &o) {
+    if (id_ != 0) glDeleteProgram(id_);
+    name_ = std::move(o.name_);
+    id_ = std::exchange(o.id_, 0);
+    locations_ = std::move(o.locations_);
+  }
+  return *this;
+}
+
+GLint Program::location(const std::string& uniform) const {
+  auto it = locations_.find(uniform);
+  if (it != locations_.end()) return it->second;
+  const GLint loc = glGetUniformLocation(id_, uniform.c_str());
+  if (loc < 0) throw JobError("program '" + name_ + "' has no active uniform '" + uniform + "'");
+  locations_.emplace(uniform, loc);
+  return loc;
+}
+
+void Program::set(const std::string& u, const glm::vec2& v) const {
+  glProgramUniform2fv(id_, location(u), 1, glm::value_ptr(v));
+}
+void Program::set(const std::string& u, const glm::vec3& v) const {
+  glProgramUniform3fv(id_, location(u), 1, glm::value_ptr(v));
+}
+void Program::set(const std::string& u, const glm::vec4& v) const {
+  glProgramUniform4fv(id_, location(u), 1, glm::value_ptr(v));
+}
+void Program::set(const std::string& u, const glm::mat4& m) const {
+  glProgramUniformMatrix4fv(id_, location(u), 1, GL_FALSE, glm::value_ptr(m));
+}
+
+}  // namespace sb::gl

@@ -1,0 +1,45 @@
+#pragma once
+// A linked GLSL program built from sources; compile and link logs become
+// JobErrors that name the program.
+#include <glm/glm.hpp>
+#include <string>
+#include <unordered_map>
+
+#include "gl/gl.h"
+
+namespace sb::gl {
+
+struct ShaderSources {
+  std::string vertex;
+  std::string geometry;  // optional
+  std::string fragment;  // optional (depth-only passes)
+};
+
+class Program {
+ public:
+  Program() = default;
+  Program(std::string name, const ShaderSources& sources);
+  ~Program();
+  Program(Program&& o) noexcept;
+  Program& operator=(Program&& o) noexcept;
+  Program(const Program&) = delete;
+  Program& operator=(const Program&) = delete;
+
+  GLuint id() const { return id_; }
+  void use() const { glUseProgram(id_); }
+  GLint location(const std::string& uniform) const;
+
+  void set(const std::string& u, int v) const { glProgramUniform1i(id_, location(u), v); }
+  void set(const std::string& u, float v) const { glProgramUniform1f(id_, location(u), v); }
+  void set(const std::string& u, const glm::vec2& v) const;
+  void set(const std::string& u, const glm::vec3& v) const;
+  void set(const std::string& u, const glm::vec4& v) const;
+  void set(const std::string& u, const glm::mat4& m) const;
+
+ private:
+  std::string name_;
+  GLuint id_ = 0;
+  mutable std::unordered_map<std::string, GLint> locations_;
+};
+
+}  // namespace sb::gl

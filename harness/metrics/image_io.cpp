@@ -1,0 +1,125 @@
+#include "metrics/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <system_error>
+#include <vector>
+
+#include "core/error.h"
+
+namespace sb::io {
+
+namespace {
+
+std::vector<std::string> channel_names(const std::string& path, int channels) {
+  switch (channels) {
+    case 1:
+      return {"Y"};
+    case 2:
+      return {"Y", "A"};
+    case 3:
+      return {"R", "G", "B"};
+    case 4:
+      return {"R", "G", "B", "A"};
+    default:
+      throw JobError(path + ": cannot write an image with " + std::to_string(channels) +
+                     " channels (1 to 4 supported)");
+  }
+}
+
+OIIO::ImageSpec make_spec(const std::string& path, const ImageF& img, OIIO::TypeDesc type) {
+  if (img.width <= 0 || img.height <= 0 ||
+      img.data.size() != img.pixel_count() * static_cast<size_t>(std::max(img.channels, 0))) {
+    throw JobError(path + ": cannot write an empty or malformed image (" +
+                   std::to_string(img.width) + "x" + std::to_string(img.height) + "x" +
+                   std::to_string(img.channels) + ")");
+  }
+  OIIO::ImageSpec spec(img.width, img.height, img.channels, type);
+  spec.channelnames = channel_names(path, img.channels);
+  spec.alpha_channel = (img.channels == 2 || img.channels == 4) ? img.channels - 1 : -1;
+  return spec;
+}
+
+// Unique per process and call, so concurrent writers of one path never share
+// a temporary file.
+std::string temp_path(const std::string& path) {
+  static std::atomic<unsigned long> counter{0};
+  return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+}
+
+void write_atomic(const std::string& path, const char* format, const OIIO::ImageSpec& spec,
+                  const void* pixels) {
+  const std::string tmp = temp_path(path);
+  // Create by format name: the temporary name has no usable extension.
+  auto out = OIIO::ImageOutput::create(format);
+  if (!out) {
+    throw JobError(path + ": no " + format + " writer: " + OIIO::geterror());
+  }
+  bool ok = out->open(tmp, spec) && out->write_image(spec.format, pixels);
+  std::string err = ok ? std::string() : out->geterror();
+  if (!out->close() && ok) {
+    ok = false;
+    err = out->geterror();
+  }
+  std::error_code ec;
+  if (!ok) {
+    std::filesystem::remove(tmp, ec);
+    throw JobError(path + ": writing " + format + " failed: " + err);
+  }
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw JobError(path + ": cannot rename " + tmp + " into place: " + ec.message());
+  }
+}
+
+}  // namespace
+
+void write_exr(const std::string& path, const ImageF& img) {
+  const OIIO::ImageSpec spec = make_spec(path, img, OIIO::TypeDesc::FLOAT);
+  write_atomic(path, "openexr", spec, img.data.data());
+}
+
+void write_png(const std::string& path, const ImageF& img) {
+  OIIO::ImageSpec spec = make_spec(path, img, OIIO::TypeDesc::UINT8);
+  // Otherwise OIIO treats the pixels as premultiplied and divides by alpha.
+  spec.attribute("oiio:UnassociatedAlpha", 1);
+  std::vector<uint8_t> bytes(img.data.size());
+  for (size_t i = 0; i < bytes.size(); ++i) {
+    const float v = img.data[i];
+    const float c = v > 0.0f ? std::min(v, 1.0f) : 0.0f;  // NaN -> 0
+    bytes[i] = static_cast<uint8_t>(std::lround(c * 255.0f));
+  }
+  write_atomic(path, "png", spec, bytes.data());
+}
+
+ImageF read_image(const std::string& path) {
+  OIIO::ImageSpec config;
+  // Return stored values: no premultiplication of unassociated-alpha formats.
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
+  if (!in) {
+    throw JobError(path + ": cannot open image: " + OIIO::geterror());
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.depth > 1 || spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
+    throw JobError(path + ": unsupported image layout (" + std::to_string(spec.width) + "x" +
+                   std::to_string(spec.height) + "x" + std::to_string(spec.depth) + ", " +
+                   std::to_string(spec.nchannels) + " channels)");
+  }
+  ImageF img(spec.width, spec.height, spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.data.data())) {
+    throw JobError(path + ": cannot read image: " + in->geterror());
+  }
+  in->close();
+  return img;
+}
+
+}  // namespace sb::io

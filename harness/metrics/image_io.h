@@ -1,0 +1,25 @@
+#pragma once
+// Image files: float EXR and 8-bit PNG writers, and a reader for anything
+// OpenImageIO reads. Writers are atomic (temporary file in the target
+// directory, then rename), so readers never see a half-written image. All
+// failures throw sb::JobError naming the path and OpenImageIO's message.
+#include <string>
+
+#include "core/image.h"
+
+namespace sb::io {
+
+// float32 EXR. Channel names: 1 -> Y, 2 -> Y A, 3 -> R G B, 4 -> R G B A;
+// other counts are rejected.
+void write_exr(const std::string& path, const ImageF& img);
+
+// 8-bit PNG: each value clamped to [0,1] (NaN -> 0), times 255, rounded to
+// nearest. No colour transform; 1 channel is grey, 2 grey+alpha, 3 RGB,
+// 4 RGBA (alpha written as given, not un-premultiplied).
+void write_png(const std::string& path, const ImageF& img);
+
+// First subimage of any file OpenImageIO reads, converted to float (8-bit
+// values become v/255), every channel, alpha not premultiplied by OIIO.
+ImageF read_image(const std::string& path);
+
+}  // namespace sb::io

@@ -1,0 +1,86 @@
+#pragma once
+// Image-comparison metrics for shadow images: error statistics that agree with
+// OpenImageIO's ImageBufAlgo::compare / idiff, SSIM that agrees with
+// scikit-image, penumbra masks and error heat maps.
+//
+// All functions take images of the same shape (else std::invalid_argument).
+// A mask, where accepted, has one byte per pixel (row-major, row 0 on top);
+// nonzero means "include" (else std::invalid_argument on a size mismatch).
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/image.h"
+
+namespace sb::metrics {
+
+struct ErrorStats {
+  size_t pixel_count = 0;  // pixels included (mask applied)
+  // Over all channels of the included pixels, as OIIO's compare():
+  // mae = sum|d| / (n*channels), rmse = sqrt(sum d^2 / (n*channels)),
+  // d = |float(test - ref)| accumulated in double.
+  double rmse = 0, mae = 0, max_error = 0;
+  // First (row-major, then channel) value with the largest error; -1 when no
+  // included value differs at all (OIIO reports 0,0,0 there).
+  int max_x = -1, max_y = -1, max_channel = -1;
+  // 20*log10(1/rmse) (data range 1); +inf when rmse == 0. Equal to OIIO's
+  // PSNR while no value exceeds 1 in magnitude (OIIO then uses the largest
+  // absolute value as the peak instead of 1).
+  double psnr = 0;
+  // Mean SSIM (see ssim()); NaN when the image is smaller than the 11x11
+  // window or no included pixel lies in the evaluated region.
+  double ssim = 1;
+  // Share of included PIXELS whose error (max over channels) is > 0.01/0.05/0.1.
+  double frac_over_001 = 0, frac_over_005 = 0, frac_over_01 = 0;
+  // Included values where test and ref are not both finite and equal in kind
+  // (NaN vs number, inf vs number, +inf vs -inf). Such a value counts as an
+  // infinite error for max_error and the fractions but is left out of the
+  // rmse/mae sums (which keep their n*channels divisor), so one stray NaN
+  // does not turn every figure into NaN. NaN==NaN and inf==inf (same sign)
+  // count as exact matches.
+  size_t nonfinite_count = 0;
+};
+
+// Error statistics of test against ref. Every figure, SSIM included, is
+// restricted to the masked pixels when a mask is given.
+ErrorStats compare(const ImageF& test, const ImageF& ref,
+                   const std::vector<uint8_t>* mask = nullptr);
+
+// SSIM constants and window (Wang et al. 2004, as scikit-image's
+// structural_similarity(gaussian_weights=True, sigma=1.5,
+// use_sample_covariance=False)).
+inline constexpr int kSsimRadius = 5;  // int(3.5 * 1.5 + 0.5): 11x11 Gaussian window
+inline constexpr double kSsimSigma = 1.5;
+inline constexpr double kSsimK1 = 0.01;
+inline constexpr double kSsimK2 = 0.03;
+
+// Mean SSIM. Per channel: Gaussian-weighted local means, population
+// variances and covariance (scipy.ndimage 'reflect' borders), the SSIM map,
+// then its mean over the pixels that are at least kSsimRadius away from
+// every border (skimage's crop(S, 5)) and, with a mask, also masked. The
+// result is the mean of those per-channel means (skimage with channel_axis=-1).
+// Computed in double. Returns NaN when the mask leaves no pixel in that
+// interior. Throws std::invalid_argument when width or height < 11 (as
+// skimage does) or data_range <= 0.
+double ssim(const ImageF& a, const ImageF& b, double data_range = 1.0,
+            const std::vector<uint8_t>* mask = nullptr);
+
+// The full SSIM map (same shape as the inputs, one value per channel), border
+// pixels included (computed with reflected borders, as skimage's full=True).
+ImageF ssim_map(const ImageF& a, const ImageF& b, double data_range = 1.0);
+
+// Pixels in the reference penumbra: some channel of the visibility V has
+// eps < V < 1 - eps.
+std::vector<uint8_t> penumbra_mask(const ImageF& reference_visibility, float eps = 1e-6f);
+
+// RGB heat map of the per-pixel error (max over channels of |test - ref|)
+// through an inferno-like ramp: 0 -> black, >= full_scale -> the brightest
+// colour (pale yellow); non-finite errors are shown as full scale. Values are
+// display-encoded (sRGB) in [0,1], meant for write_png. Throws
+// std::invalid_argument when full_scale is not > 0.
+ImageF error_heatmap(const ImageF& test, const ImageF& ref, float full_scale);
+
+// The ramp itself: t in [0,1] (clamped) to display RGB.
+void heatmap_colour(float t, float rgb[3]);
+
+}  // namespace sb::metrics

@@ -1,0 +1,231 @@
+// SSIM (Wang et al. 2004) computed to agree with scikit-image's
+// structural_similarity(gaussian_weights=True, sigma=1.5,
+// use_sample_covariance=False): 11-tap Gaussian (scipy truncate=3.5),
+// scipy.ndimage 'reflect' borders, mean over the map cropped by 5 pixels.
+//
+// Each output row is produced on its own: a vertical 11-tap pass over the
+// input rows gives the five windowed moments (a, b, a^2, b^2, ab) for the
+// whole row, a horizontal 11-tap pass turns them into local means, and the
+// SSIM formula is applied. Rows are independent, so they run under
+// tbb::parallel_for with no shared intermediate images.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "metrics/metrics.h"
+#include "metrics/metrics_detail.h"
+
+namespace sb::metrics {
+
+namespace {
+
+constexpr int kR = kSsimRadius;
+constexpr int kTaps = 2 * kR + 1;
+// Elements per inner-loop chunk: five double accumulators stay in L1.
+constexpr size_t kChunk = 256;
+
+// scipy.ndimage._gaussian_kernel1d: exp(-x^2 / (2 sigma^2)), normalised to sum 1.
+std::array<double, kTaps> gaussian_kernel() {
+  std::array<double, kTaps> w{};
+  double sum = 0;
+  for (int i = 0; i < kTaps; ++i) {
+    const double x = i - kR;
+    w[i] = std::exp(-0.5 * x * x / (kSsimSigma * kSsimSigma));
+    sum += w[i];
+  }
+  for (double& v : w) v /= sum;
+  return w;
+}
+
+// scipy 'reflect' (d c b a | a b c d | d c b a); n > kR so one fold suffices.
+inline int reflect(int i, int n) {
+  if (i < 0) return -i - 1;
+  if (i >= n) return 2 * n - 1 - i;
+  return i;
+}
+
+struct SsimConstants {
+  double c1, c2;
+};
+
+// Computes SSIM rows [y0, y1), columns [x0, x1), all channels, and calls
+// sink(y, row) with row[(x - x0) * channels + c]. sink is called from TBB
+// worker threads, once per row.
+template <class Sink>
+void ssim_rows(const ImageF& a, const ImageF& b, SsimConstants k, int y0, int y1, int x0, int x1,
+               Sink&& sink) {
+  static const std::array<double, kTaps> w = gaussian_kernel();
+  const int width = a.width, height = a.height;
+  const size_t nc = static_cast<size_t>(a.channels);
+  const size_t row_len = static_cast<size_t>(width) * nc;
+  const size_t padded_len = (static_cast<size_t>(width) + 2 * kR) * nc;
+  const size_t out_begin = static_cast<size_t>(x0) * nc;
+  const size_t out_len = static_cast<size_t>(x1 - x0) * nc;
+
+  tbb::parallel_for(tbb::blocked_range<int>(y0, y1, 4), [&](const tbb::blocked_range<int>& r) {
+    // Moments after the vertical pass, with kR reflected pixels on each side.
+    std::vector<double> moments(5 * padded_len);
+    double* const m_a = moments.data();
+    double* const m_b = m_a + padded_len;
+    double* const m_aa = m_b + padded_len;
+    double* const m_bb = m_aa + padded_len;
+    double* const m_ab = m_bb + padded_len;
+    std::vector<double> out(out_len);
+    std::vector<double> mu(5 * kChunk);  // horizontal-pass accumulators
+    std::array<const float*, kTaps> rows_a{}, rows_b{};
+
+    for (int y = r.begin(); y != r.end(); ++y) {
+      for (int t = 0; t < kTaps; ++t) {
+        const size_t src = static_cast<size_t>(reflect(y + t - kR, height)) * row_len;
+        rows_a[t] = a.data.data() + src;
+        rows_b[t] = b.data.data() + src;
+      }
+      // Vertical pass in L1-sized chunks: tap-outer loops vectorise, and the
+      // five accumulators stay in cache.
+      const size_t pad = static_cast<size_t>(kR) * nc;
+      for (size_t i0 = 0; i0 < row_len; i0 += kChunk) {
+        const size_t n = std::min(kChunk, row_len - i0);
+        double* oa = m_a + pad + i0;
+        double* ob = m_b + pad + i0;
+        double* oaa = m_aa + pad + i0;
+        double* obb = m_bb + pad + i0;
+        double* oab = m_ab + pad + i0;
+        std::fill_n(oa, n, 0.0);
+        std::fill_n(ob, n, 0.0);
+        std::fill_n(oaa, n, 0.0);
+        std::fill_n(obb, n, 0.0);
+        std::fill_n(oab, n, 0.0);
+        for (int t = 0; t < kTaps; ++t) {
+          const float* ra = rows_a[t] + i0;
+          const float* rb = rows_b[t] + i0;
+          const double wt = w[t];
+          for (size_t i = 0; i < n; ++i) {
+            const double va = ra[i], vb = rb[i];
+            oa[i] += wt * va;
+            ob[i] += wt * vb;
+            oaa[i] += wt * (va * va);
+            obb[i] += wt * (vb * vb);
+            oab[i] += wt * (va * vb);
+          }
+        }
+      }
+      // Reflected columns, only needed when the output reaches the border.
+      if (x0 < kR || x1 > width - kR) {
+        for (double* m : {m_a, m_b, m_aa, m_bb, m_ab}) {
+          for (int p = 1; p <= kR; ++p) {
+            const size_t left = static_cast<size_t>(kR - p) * nc;
+            const size_t left_src = static_cast<size_t>(kR + reflect(-p, width)) * nc;
+            const size_t right = static_cast<size_t>(kR + width - 1 + p) * nc;
+            const size_t right_src = static_cast<size_t>(kR + reflect(width - 1 + p, width)) * nc;
+            for (size_t c = 0; c < nc; ++c) {
+              m[left + c] = m[left_src + c];
+              m[right + c] = m[right_src + c];
+            }
+          }
+        }
+      }
+      // Horizontal pass + SSIM, again tap-outer over chunks so it vectorises.
+      // Output x reads padded pixels x .. x + 2kR.
+      for (size_t j0 = 0; j0 < out_len; j0 += kChunk) {
+        const size_t n = std::min(kChunk, out_len - j0);
+        std::fill_n(mu.data(), 5 * kChunk, 0.0);
+        double* const ua = mu.data();
+        double* const ub = ua + kChunk;
+        double* const uaa = ub + kChunk;
+        double* const ubb = uaa + kChunk;
+        double* const uab = ubb + kChunk;
+        for (int t = 0; t < kTaps; ++t) {
+          const size_t q = out_begin + j0 + static_cast<size_t>(t) * nc;
+          const double wt = w[t];
+          for (size_t i = 0; i < n; ++i) {
+            ua[i] += wt * m_a[q + i];
+            ub[i] += wt * m_b[q + i];
+            uaa[i] += wt * m_aa[q + i];
+            ubb[i] += wt * m_bb[q + i];
+            uab[i] += wt * m_ab[q + i];
+          }
+        }
+        double* const o = out.data() + j0;
+        for (size_t i = 0; i < n; ++i) {
+          const double va = uaa[i] - ua[i] * ua[i];
+          const double vb = ubb[i] - ub[i] * ub[i];
+          const double cov = uab[i] - ua[i] * ub[i];
+          const double num = (2 * ua[i] * ub[i] + k.c1) * (2 * cov + k.c2);
+          const double den = (ua[i] * ua[i] + ub[i] * ub[i] + k.c1) * (va + vb + k.c2);
+          o[i] = num / den;
+        }
+      }
+      sink(y, out.data());
+    }
+  });
+}
+
+SsimConstants check_and_constants(const ImageF& a, const ImageF& b, double data_range,
+                                  const char* fn) {
+  detail::check_same_shape(a, b, fn);
+  if (a.width < kTaps || a.height < kTaps) {
+    throw std::invalid_argument(std::string(fn) + ": image is " + std::to_string(a.width) + "x" +
+                                std::to_string(a.height) + ", SSIM needs at least " +
+                                std::to_string(kTaps) + "x" + std::to_string(kTaps));
+  }
+  if (!(data_range > 0) || !std::isfinite(data_range)) {
+    throw std::invalid_argument(std::string(fn) + ": data_range must be a positive number");
+  }
+  const double c1 = kSsimK1 * data_range, c2 = kSsimK2 * data_range;
+  return {c1 * c1, c2 * c2};
+}
+
+}  // namespace
+
+double ssim(const ImageF& a, const ImageF& b, double data_range, const std::vector<uint8_t>* mask) {
+  const SsimConstants k = check_and_constants(a, b, data_range, "metrics::ssim");
+  detail::check_mask(a, mask, "metrics::ssim");
+  const int nc = a.channels;
+  const int x0 = kR, x1 = a.width - kR;
+  // Per-row partial results, summed in row order afterwards so the result
+  // does not depend on how TBB split the work.
+  std::vector<double> row_sum(static_cast<size_t>(a.height), 0.0);
+  std::vector<size_t> row_count(static_cast<size_t>(a.height), 0);
+  ssim_rows(a, b, k, kR, a.height - kR, x0, x1, [&](int y, const double* row) {
+    double sum = 0;
+    size_t count = 0;
+    for (int x = x0; x < x1; ++x) {
+      if (mask && (*mask)[static_cast<size_t>(y) * a.width + x] == 0) continue;
+      const double* px = row + static_cast<size_t>(x - x0) * nc;
+      for (int c = 0; c < nc; ++c) sum += px[c];
+      ++count;
+    }
+    row_sum[static_cast<size_t>(y)] = sum;
+    row_count[static_cast<size_t>(y)] = count;
+  });
+  double sum = 0;
+  size_t count = 0;
+  for (size_t y = 0; y < row_sum.size(); ++y) {
+    sum += row_sum[y];
+    count += row_count[y];
+  }
+  // Every channel has the same pixel count, so the plain mean over all values
+  // equals the mean of the per-channel means.
+  if (count == 0) return std::numeric_limits<double>::quiet_NaN();
+  return sum / (static_cast<double>(count) * nc);
+}
+
+ImageF ssim_map(const ImageF& a, const ImageF& b, double data_range) {
+  const SsimConstants k = check_and_constants(a, b, data_range, "metrics::ssim_map");
+  ImageF map(a.width, a.height, a.channels);
+  const size_t row_len = static_cast<size_t>(a.width) * a.channels;
+  ssim_rows(a, b, k, 0, a.height, 0, a.width, [&](int y, const double* row) {
+    float* dst = map.data.data() + static_cast<size_t>(y) * row_len;
+    for (size_t i = 0; i < row_len; ++i) dst[i] = static_cast<float>(row[i]);
+  });
+  return map;
+}
+
+}  // namespace sb::metrics

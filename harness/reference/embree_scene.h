@@ -1,0 +1,84 @@
+#pragma once
+// RAII around an Embree device and a flat triangle scene (internal).
+#include <embree3/rtcore.h>
+
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+
+namespace sb::reference::detail {
+
+// The ISA the device is created with ("avx512", "avx2", ...): the best the CPU
+// has, or SHADOWBENCH_EMBREE_ISA when set. Results differ between ISAs in a
+// few silhouette pixels, so it is part of the cache key; pin it (e.g. to
+// "avx2") when references must match across machines.
+std::string embree_isa();
+
+// Embree reports errors through a callback; they are collected here and
+// turned into sb::JobError by check() after each API call that can fail.
+class Device {
+ public:
+  Device();
+  ~Device();
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+
+  RTCDevice get() const { return device_; }
+  void check(const char* what);  // throws sb::JobError on a pending error
+
+ private:
+  static void on_error(void* self, RTCError code, const char* message);
+  RTCDevice device_ = nullptr;
+  std::mutex mutex_;
+  std::string first_error_;
+};
+
+class FlatScene {
+ public:
+  // Every mesh for which `take(mesh)` is true becomes one triangle geometry
+  // (flattened: no instances). mesh_of_geometry maps geomID to mesh index.
+  template <typename Pred>
+  FlatScene(Device& device, const Scene& scene, Pred take) : device_(device) {
+    begin();
+    try {
+      for (size_t i = 0; i < scene.meshes.size(); ++i)
+        if (take(scene.meshes[i])) add(scene.meshes[i], i);
+      commit();
+    } catch (...) {
+      rtcReleaseScene(scene_);  // the destructor does not run for a throwing constructor
+      throw;
+    }
+  }
+  ~FlatScene();
+  FlatScene(const FlatScene&) = delete;
+  FlatScene& operator=(const FlatScene&) = delete;
+
+  RTCScene get() const { return scene_; }
+  bool empty() const { return mesh_of_geometry.empty(); }
+  std::vector<size_t> mesh_of_geometry;
+
+ private:
+  void begin();
+  void add(const Mesh& mesh, size_t index);
+  void commit();
+  Device& device_;
+  RTCScene scene_ = nullptr;
+};
+
+// Sets flush-to-zero and denormals-are-zero for the current thread (Embree
+// wants them on every thread that traces) and restores the previous mode.
+class FtzDazScope {
+ public:
+  FtzDazScope();
+  ~FtzDazScope();
+  FtzDazScope(const FtzDazScope&) = delete;
+  FtzDazScope& operator=(const FtzDazScope&) = delete;
+
+ private:
+  unsigned int saved_;
+};
+
+}  // namespace sb::reference::detail

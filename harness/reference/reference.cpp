@@ -1,0 +1,462 @@
+#include "reference/reference.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/error.h"
+#include "core/hash.h"
+#include "reference/embree_scene.h"
+#include "reference/stratify.h"
+
+namespace sb::reference {
+
+namespace {
+
+using detail::Device;
+using detail::FlatScene;
+using detail::FtzDazScope;
+
+constexpr const char* kMethod = "embree_stratified_packet16";
+// Bump whenever the estimate changes for the same inputs (sampling, offsets,
+// error estimate): it is part of every cache key.
+constexpr uint32_t kMethodVersion = 2;  // 2: horizon test, viewer-facing normals
+constexpr char kMagic[8] = {'S', 'B', 'R', 'E', 'F', '\r', '\n', '\x1a'};
+constexpr uint32_t kFileVersion = 1;
+
+constexpr float kEpsScene = 1e-4f;     // × scene bounding radius
+constexpr float kEpsPosition = 1e-6f;  // × max |p_i|: ~8 float ulps of p
+constexpr float kTfar = 1.0f - 1e-4f;  // direction = light sample - origin
+
+void check_inputs(const ImageF& positions, const ImageF& normals, const Settings& s) {
+  if (s.spp < 2 || s.spp > (1 << 20))
+    throw std::invalid_argument("reference: spp must be in [2, 2^20], got " +
+                                std::to_string(s.spp));
+  if (positions.channels != 4)
+    throw std::invalid_argument("reference: positions must have 4 channels (xyz, coverage)");
+  if (normals.channels < 3)
+    throw std::invalid_argument("reference: normals must have at least 3 channels");
+  if (positions.width != normals.width || positions.height != normals.height)
+    throw std::invalid_argument("reference: positions and normals differ in size");
+  if (positions.width < 0 || positions.height < 0 ||
+      positions.data.size() != positions.pixel_count() * 4 ||
+      normals.data.size() != normals.pixel_count() * size_t(normals.channels))
+    throw std::invalid_argument("reference: image data does not match its shape");
+}
+
+bool covered(const ImageF& positions, size_t i) { return positions.data[i * 4 + 3] > 0.5f; }
+
+// Offsets must grow with the scene, receivers included (a caster's shadow
+// lands on them).
+float scene_radius(const Scene& scene) {
+  const Bounds b = scene.bounds();
+  return b.empty() ? 1.0f : std::max(b.radius(), 1e-6f);
+}
+
+void summarise(Result& r, const ImageF& positions) {
+  double sum = 0, psum = 0;
+  size_t count = 0, pcount = 0;
+  for (size_t i = 0; i < positions.pixel_count(); ++i) {
+    if (!covered(positions, i)) continue;
+    sum += r.std_error.data[i];
+    ++count;
+    const float v = r.visibility.data[i];
+    if (v > 0.0f && v < 1.0f) {
+      psum += r.std_error.data[i];
+      ++pcount;
+    }
+  }
+  r.mean_std_error = count ? sum / double(count) : 0.0;
+  r.penumbra_mean_std_error = pcount ? psum / double(pcount) : 0.0;
+}
+
+void trace(const Scene& scene, RTCScene rtc, const ImageF& positions, const ImageF& normals,
+           const Settings& s, Result& r) {
+  const detail::Layout layout = detail::make_layout(s.spp);
+  const AreaLight& light = scene.light;
+  const glm::vec3 corner = light.center - light.half_u - light.half_v;
+  const glm::vec3 eu = 2.0f * light.half_u, ev = 2.0f * light.half_v;
+  const float eps_scene = kEpsScene * scene_radius(scene);
+  const int width = positions.width;
+  const size_t nch = size_t(normals.channels);
+  const size_t spp = size_t(s.spp);
+
+  tbb::parallel_for(
+      tbb::blocked_range2d<int>(0, positions.height, 8, 0, width, 8),
+      [&](const tbb::blocked_range2d<int>& tile) {
+        FtzDazScope ftz;
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        RTCRay16 ray;
+        alignas(64) int valid[16];
+        std::vector<uint8_t> visible(spp);
+        for (int j = 0; j < 16; ++j) {
+          ray.tnear[j] = 0.0f;
+          ray.time[j] = 0.0f;
+          ray.mask[j] = 0xffffffffu;
+          ray.id[j] = unsigned(j);
+          ray.flags[j] = 0;
+        }
+        for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
+          for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+            const size_t pix = size_t(y) * size_t(width) + size_t(x);
+            if (!covered(positions, pix)) continue;  // V = 1, error 0 preset
+            const float* pp = &positions.data[pix * 4];
+            const float* np = &normals.data[pix * nch];
+            const glm::vec3 p(pp[0], pp[1], pp[2]);
+            glm::vec3 n(np[0], np[1], np[2]);
+            const glm::vec3 to_light = light.center - p;
+            const float len = glm::length(n);
+            if (len > 0.0f) {
+              n /= len;
+            } else {  // no usable normal: step towards the light instead
+              const float d = glm::length(to_light);
+              n = d > 0.0f ? to_light / d : glm::vec3(0, 1, 0);
+            }
+            // n is the G-buffer's geometric normal, facing the viewer: the side of
+            // the surface that is seen. It is not flipped towards the light: on a
+            // closed mesh that would put the origin inside the solid.
+            const float pmax = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+            const glm::vec3 o = p + (eps_scene + kEpsPosition * pmax) * n;
+            const glm::vec3 base = corner - o;
+            for (int j = 0; j < 16; ++j) {
+              ray.org_x[j] = o.x;
+              ray.org_y[j] = o.y;
+              ray.org_z[j] = o.z;
+            }
+
+            const uint64_t key = detail::pixel_key(s.seed, pix, spp);
+            for (size_t first = 0; first < spp; first += 16) {
+              const size_t lanes = std::min<size_t>(16, spp - first);
+              for (size_t j = 0; j < 16; ++j) {
+                if (j >= lanes) {
+                  valid[j] = 0;
+                  continue;
+                }
+                const detail::Stratum& st = layout.order[first + j];
+                float u, v;
+                detail::sample_uv(key, uint32_t(first + j), u, v);
+                const float ls = st.s0 + u * st.ds, lt = st.t0 + v * st.dt;
+                ray.dir_x[j] = base.x + ls * eu.x + lt * ev.x;
+                ray.dir_y[j] = base.y + ls * eu.y + lt * ev.y;
+                ray.dir_z[j] = base.z + ls * eu.z + lt * ev.z;
+                ray.tfar[j] = kTfar;
+                // Light points below the tangent plane are occluded by the surface
+                // itself, open or closed: no ray needed.
+                const bool above =
+                    n.x * ray.dir_x[j] + n.y * ray.dir_y[j] + n.z * ray.dir_z[j] > 0.0f;
+                valid[j] = above ? -1 : 0;
+              }
+              if (rtc != nullptr) rtcOccluded16(valid, rtc, &context, &ray);
+              for (size_t j = 0; j < lanes; ++j)  // occluded rays come back with tfar = -inf
+                visible[layout.order[first + j].cell] =
+                    valid[j] != 0 && ray.tfar[j] >= 0.0f ? 1 : 0;
+            }
+
+            size_t count = 0;
+            for (uint8_t b : visible) count += b;
+            r.visibility.data[pix] = float(double(count) / double(spp));
+            r.std_error.data[pix] =
+                float(std::sqrt(detail::stratified_variance(visible.data(), layout)));
+          }
+      });
+}
+
+// ---- cache file -----------------------------------------------------------
+
+template <typename T>
+void put(std::string& out, const T& v) {
+  out.append(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+
+class Reader {
+ public:
+  explicit Reader(const std::string& bytes) : bytes_(bytes) {}
+  template <typename T>
+  bool get(T& v) {
+    if (bytes_.size() - pos_ < sizeof(T)) return false;
+    std::memcpy(&v, bytes_.data() + pos_, sizeof(T));
+    pos_ += sizeof(T);
+    return true;
+  }
+  bool get(std::string& s, uint32_t max_len) {
+    uint32_t n = 0;
+    if (!get(n) || n > max_len || bytes_.size() - pos_ < n) return false;
+    s.assign(bytes_.data() + pos_, n);
+    pos_ += n;
+    return true;
+  }
+  bool get(std::vector<float>& v, size_t n) {
+    if ((bytes_.size() - pos_) / sizeof(float) < n) return false;
+    v.resize(n);
+    std::memcpy(v.data(), bytes_.data() + pos_, n * sizeof(float));
+    pos_ += n * sizeof(float);
+    return true;
+  }
+  size_t pos() const { return pos_; }
+
+ private:
+  const std::string& bytes_;
+  size_t pos_ = 0;
+};
+
+std::string serialise(const Result& r) {
+  std::string out(kMagic, sizeof(kMagic));
+  put(out, kFileVersion);
+  put(out, int32_t(r.visibility.width));
+  put(out, int32_t(r.visibility.height));
+  put(out, int32_t(r.spp));
+  put(out, r.seed);
+  put(out, uint32_t(r.method.size()));
+  out += r.method;
+  put(out, uint32_t(r.cache_key.size()));
+  out += r.cache_key;
+  out.append(reinterpret_cast<const char*>(r.visibility.data.data()),
+             r.visibility.data.size() * sizeof(float));
+  out.append(reinterpret_cast<const char*>(r.std_error.data.data()),
+             r.std_error.data.size() * sizeof(float));
+  put(out, fnv1a64(out));
+  return out;
+}
+
+// Returns false for anything that is not exactly the file get() would write.
+bool deserialise(const std::string& bytes, const std::string& key, const ImageF& positions,
+                 const Settings& s, Result& r) {
+  if (bytes.size() < sizeof(kMagic) + sizeof(uint64_t) ||
+      std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
+    return false;
+  uint64_t stored_sum = 0;
+  std::memcpy(&stored_sum, bytes.data() + bytes.size() - sizeof(stored_sum), sizeof(stored_sum));
+  if (stored_sum != fnv1a64(std::string_view(bytes.data(), bytes.size() - sizeof(stored_sum))))
+    return false;
+  Reader in(bytes);
+  char magic[sizeof(kMagic)];
+  uint32_t version = 0;
+  int32_t w = 0, h = 0, spp = 0;
+  uint64_t seed = 0;
+  std::string method, stored_key;
+  if (!in.get(magic) || !in.get(version) || version != kFileVersion || !in.get(w) || !in.get(h) ||
+      !in.get(spp) || !in.get(seed) || !in.get(method, 256) || !in.get(stored_key, 256))
+    return false;
+  if (w != positions.width || h != positions.height || spp != s.spp || seed != s.seed ||
+      method != kMethod || stored_key != key)
+    return false;
+  const size_t n = positions.pixel_count();
+  ImageF vis(w, h, 1), se(w, h, 1);
+  if (!in.get(vis.data, n) || !in.get(se.data, n)) return false;
+  if (in.pos() + sizeof(uint64_t) != bytes.size()) return false;
+  for (size_t i = 0; i < n; ++i)
+    if (!(vis.data[i] >= 0.0f && vis.data[i] <= 1.0f && se.data[i] >= 0.0f && se.data[i] <= 1.0f))
+      return false;
+  r.visibility = std::move(vis);
+  r.std_error = std::move(se);
+  return true;
+}
+
+bool read_file(const std::filesystem::path& path, std::string& bytes) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return false;
+  std::ostringstream ss;
+  ss << f.rdbuf();
+  if (f.bad()) return false;
+  bytes = std::move(ss).str();
+  return true;
+}
+
+void write_atomically(const std::filesystem::path& path, const std::string& bytes) {
+  static std::atomic<uint64_t> counter{0};
+  std::filesystem::path tmp = path;
+  tmp += ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    f.write(bytes.data(), std::streamsize(bytes.size()));
+    f.close();
+    if (!f) {
+      std::error_code ec;
+      std::filesystem::remove(tmp, ec);
+      throw JobError("reference cache: cannot write " + tmp.string());
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw JobError("reference cache: cannot rename " + tmp.string() + " to " + path.string() +
+                   ": " + ec.message());
+  }
+}
+
+void hash_image(Hasher& h, const ImageF& img) {
+  h.add(int32_t(img.width)).add(int32_t(img.height)).add(int32_t(img.channels));
+  h.add(uint64_t(img.data.size()));
+  h.add(img.data.data(), img.data.size() * sizeof(float));
+}
+
+void hash_vec3(Hasher& h, const glm::vec3& v) { h.add(v.x).add(v.y).add(v.z); }
+
+}  // namespace
+
+Result compute(const Scene& scene, const ImageF& positions, const ImageF& geometric_normals,
+               const Settings& s) {
+  check_inputs(positions, geometric_normals, s);
+  for (size_t i = 0; i < positions.pixel_count(); ++i) {
+    if (!covered(positions, i)) continue;
+    const float* p = &positions.data[i * 4];
+    const float* n = &geometric_normals.data[i * size_t(geometric_normals.channels)];
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]) ||
+        !std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2]))
+      throw std::invalid_argument("reference: non-finite position or normal at pixel (" +
+                                  std::to_string(i % size_t(positions.width)) + ", " +
+                                  std::to_string(i / size_t(positions.width)) + ")");
+  }
+
+  Result r;
+  r.visibility = ImageF(positions.width, positions.height, 1, 1.0f);
+  r.std_error = ImageF(positions.width, positions.height, 1, 0.0f);
+  r.spp = s.spp;
+  r.seed = s.seed;
+  r.method = kMethod;
+
+  const auto t0 = std::chrono::steady_clock::now();
+  {
+    Device device;
+    FlatScene casters(device, scene, [](const Mesh& m) { return m.casts_shadow; });
+    // Without casters only the horizon test remains.
+    trace(scene, casters.empty() ? nullptr : casters.get(), positions, geometric_normals, s, r);
+    device.check("rtcOccluded16");
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  summarise(r, positions);
+  return r;
+}
+
+std::string cache_key(const Scene& scene, const ImageF& positions, const ImageF& geometric_normals,
+                      const Settings& s) {
+  Hasher h;
+  h.add("shadowbench.reference").add(kMethod).add(kMethodVersion).add(RTC_VERSION_STRING);
+  h.add(detail::embree_isa());
+  h.add(int32_t(s.spp)).add(s.seed);
+  hash_vec3(h, scene.light.center);
+  hash_vec3(h, scene.light.half_u);
+  hash_vec3(h, scene.light.half_v);
+  h.add(scene_radius(scene));
+  uint64_t casters = 0;
+  for (const Mesh& m : scene.meshes) {
+    if (!m.casts_shadow) continue;
+    ++casters;
+    h.add(uint64_t(m.positions.size()));
+    h.add(m.positions.data(), m.positions.size() * sizeof(glm::vec3));
+    h.add(uint64_t(m.indices.size()));
+    h.add(m.indices.data(), m.indices.size() * sizeof(uint32_t));
+  }
+  h.add(casters);
+  hash_image(h, positions);
+  hash_image(h, geometric_normals);
+  return h.hex();
+}
+
+Result get(const Scene& scene, const ImageF& positions, const ImageF& geometric_normals,
+           const Settings& s, const std::string& cache_dir) {
+  check_inputs(positions, geometric_normals, s);
+  const std::string key = cache_key(scene, positions, geometric_normals, s);
+  const std::filesystem::path path = std::filesystem::path(cache_dir) / (key + ".sbref");
+
+  std::string bytes;
+  Result cached;
+  if (read_file(path, bytes) && deserialise(bytes, key, positions, s, cached)) {
+    cached.spp = s.spp;
+    cached.seed = s.seed;
+    cached.method = kMethod;
+    cached.from_cache = true;
+    cached.cache_key = key;
+    summarise(cached, positions);
+    return cached;
+  }
+
+  Result r = compute(scene, positions, geometric_normals, s);
+  r.cache_key = key;
+  std::error_code ec;
+  std::filesystem::create_directories(cache_dir, ec);
+  if (ec) throw JobError("reference cache: cannot create " + cache_dir + ": " + ec.message());
+  write_atomically(path, serialise(r));
+  return r;
+}
+
+GBuffer trace_gbuffer(const Scene& scene, int width, int height) {
+  if (width <= 0 || height <= 0) throw std::invalid_argument("trace_gbuffer: empty image");
+  GBuffer g{ImageF(width, height, 4, 0.0f), ImageF(width, height, 3, 0.0f)};
+  Device device;
+  FlatScene all(device, scene, [](const Mesh&) { return true; });
+  if (all.empty()) return g;
+
+  const Camera& cam = scene.camera;
+  const glm::mat3 to_world(glm::inverse(cam.view()));
+  const float tan_half = std::tan(glm::radians(cam.fov_y_degrees) * 0.5f);
+  const float aspect = float(width) / float(height);
+  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
+    FtzDazScope ftz;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    for (int y = rows.begin(); y < rows.end(); ++y)
+      for (int x = 0; x < width; ++x) {
+        const float ndc_x = 2.0f * (float(x) + 0.5f) / float(width) - 1.0f;
+        const float ndc_y = 1.0f - 2.0f * (float(y) + 0.5f) / float(height);
+        // z = -1 in view space, so t is the view-space depth.
+        const glm::vec3 d =
+            to_world * glm::vec3(ndc_x * tan_half * aspect, ndc_y * tan_half, -1.0f);
+        RTCRayHit rh;
+        rh.ray.org_x = cam.eye.x;
+        rh.ray.org_y = cam.eye.y;
+        rh.ray.org_z = cam.eye.z;
+        rh.ray.dir_x = d.x;
+        rh.ray.dir_y = d.y;
+        rh.ray.dir_z = d.z;
+        rh.ray.tnear = cam.near_plane;
+        rh.ray.tfar = cam.far_plane;
+        rh.ray.time = 0.0f;
+        rh.ray.mask = 0xffffffffu;
+        rh.ray.id = 0;
+        rh.ray.flags = 0;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(all.get(), &context, &rh);
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+        const Mesh& m = scene.meshes[all.mesh_of_geometry[rh.hit.geomID]];
+        const size_t tri = size_t(rh.hit.primID) * 3;
+        const glm::vec3 v0 = m.positions[m.indices[tri]], v1 = m.positions[m.indices[tri + 1]],
+                        v2 = m.positions[m.indices[tri + 2]];
+        // Interpolate on the triangle rather than org + t*dir: the point lies on it.
+        const glm::vec3 p = (1.0f - rh.hit.u - rh.hit.v) * v0 + rh.hit.u * v1 + rh.hit.v * v2;
+        const glm::vec3 c = glm::cross(v1 - v0, v2 - v0);
+        const float len = glm::length(c);
+        const glm::vec3 n = len > 0.0f ? c / len : glm::vec3(0.0f);
+        float* pp = &g.positions.at(x, y);
+        pp[0] = p.x;
+        pp[1] = p.y;
+        pp[2] = p.z;
+        pp[3] = 1.0f;
+        float* np = &g.normals.at(x, y);
+        np[0] = n.x;
+        np[1] = n.y;
+        np[2] = n.z;
+      }
+  });
+  device.check("rtcIntersect1");
+  return g;
+}
+
+}  // namespace sb::reference

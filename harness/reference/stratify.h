@@ -1,0 +1,62 @@
+#pragma once
+// Light-sample layout and random numbers of the reference (internal, but
+// exposed so the tests can check the stratification itself).
+//
+// N samples stratify the unit square (s,t) of the light into N equal-area
+// cells: k = round(sqrt(N)) rows (at least 2 cells each), row r holding
+// c_r = floor((r+1)N/k) - floor(rN/k) cells of width 1/c_r and height c_r/N.
+// For N = n*n this is exactly the n×n jittered grid; for other N the cells are
+// near-square (c_r differs by at most one between rows), so every N
+// stratifies in both directions. One uniform sample per cell.
+#include <cstdint>
+#include <vector>
+
+namespace sb::reference::detail {
+
+struct Stratum {
+  float s0, ds;   // s = s0 + u*ds
+  float t0, dt;   // t = t0 + v*dt
+  uint32_t cell;  // row-major cell index (rows contiguous)
+};
+
+struct Layout {
+  int spp = 0;
+  int rows = 0;
+  std::vector<int> row_start;  // first cell of each row, plus spp at the end
+  // Trace order: 4×4 blocks of neighbouring cells, so one 16-ray packet sees
+  // one compact patch of the light (coherent traversal).
+  std::vector<Stratum> order;
+  // Collapsed strata for the variance estimate: horizontal neighbour pairs in
+  // each row, the last group a triple when the row is odd. [begin, end).
+  std::vector<uint32_t> group_begin;  // plus spp at the end
+};
+
+Layout make_layout(int spp);
+
+// splitmix64's finaliser: a bijective 64-bit mixer.
+inline uint64_t mix64(uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+// Each pixel draws from its own stream keyed by (seed, pixel, spp), so the
+// result does not depend on how pixels are spread over threads.
+inline uint64_t pixel_key(uint64_t seed, uint64_t pixel, uint64_t spp) {
+  return mix64(mix64(mix64(seed ^ 0x5b3e1f0a2c4d6e87ull) ^ pixel) ^ (spp * 0x9e3779b97f4a7c15ull));
+}
+
+// Counter-based draw (splitmix64 with the pixel key as its state): sample i
+// gets two 24-bit uniforms in [0,1) from one 64-bit output.
+inline void sample_uv(uint64_t key, uint32_t i, float& u, float& v) {
+  const uint64_t z = mix64(key + (uint64_t(i) + 1) * 0x9e3779b97f4a7c15ull);
+  u = float(uint32_t(z >> 40)) * 0x1p-24f;
+  v = float(uint32_t(z >> 8) & 0xffffffu) * 0x1p-24f;
+}
+
+// Variance of the stratified estimator from the collapsed-strata estimate:
+// (1/N^2) * sum over groups g of |g|/(|g|-1) * sum_{i in g} (f_i - mean_g)^2,
+// with f_i = 1 for a visible sample. `visible` is indexed by cell.
+double stratified_variance(const uint8_t* visible, const Layout& layout);
+
+}  // namespace sb::reference::detail

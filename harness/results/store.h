@@ -1,0 +1,41 @@
+#pragma once
+// The results store of one run directory:
+//   records/<job_id>.json   one file per job, written atomically as it finishes
+//   results.jsonl           every record, in plan order, rewritten atomically
+// A rerun into the same directory keeps jobs whose record says "ok" or
+// "skipped" and reruns the rest.
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace sb {
+
+class ResultsStore {
+ public:
+  explicit ResultsStore(std::string run_dir);
+
+  const std::string& dir() const { return dir_; }
+  // A finished record from an earlier run of this directory, or null.
+  const nlohmann::json* finished(const std::string& job_id) const;
+  // Stores the record and rewrites results.jsonl (records ordered by `order`).
+  void put(const std::string& job_id, const nlohmann::json& record);
+  void set_order(std::vector<std::string> job_ids) { order_ = std::move(job_ids); }
+  std::vector<nlohmann::json> records() const;  // in plan order, then the rest
+
+ private:
+  void rewrite_jsonl() const;
+  std::string dir_;
+  std::map<std::string, nlohmann::json> records_;
+  std::vector<std::string> order_;
+};
+
+// Writes `text` to `path` through a temporary file and a rename.
+void write_file_atomically(const std::string& path, const std::string& text);
+// Reads results.jsonl (or a records/ folder) of a run directory.
+std::vector<nlohmann::json> read_run_records(const std::string& run_dir);
+// NaN and ±inf have no JSON spelling: they are stored as the strings "nan",
+// "inf", "-inf" (documented in docs/results.md).
+nlohmann::json json_number(double v);
+
+}  // namespace sb

@@ -1,0 +1,48 @@
+#pragma once
+// Shared passes, never charged to a technique: the G-buffer (camera view) and
+// the shading pass that turns visibility into a picture.
+#include "core/image.h"
+#include "core/technique.h"
+#include "gl/gpu_scene.h"
+#include "gl/objects.h"
+#include "gl/program.h"
+
+namespace sb {
+
+class FrameTargets {
+ public:
+  FrameTargets(int width, int height);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+  // Rasterises the camera view: world position, geometric normal, shading
+  // normal, albedo, depth-stencil.
+  void render_gbuffer(const GpuScene& gpu, const glm::mat4& view_projection);
+  // Shades with the current visibility: linear radiance → display value
+  // (gamma 2.2), written to the RGBA32F shaded target.
+  void render_shading(const Scene& scene);
+
+  FrameInputs inputs(const Scene& scene, const GpuScene& gpu, const glm::mat4& view,
+                     const glm::mat4& projection) const;
+
+  ImageF read_positions() const;          // 4 channels
+  ImageF read_geometric_normals() const;  // 3 channels
+  ImageF read_visibility() const;         // 1 channel
+  ImageF read_shaded() const;             // 3 channels
+  // Overwrites the visibility target (used to shade the reference).
+  void upload_visibility(const ImageF& v);
+
+ private:
+  int width_;
+  int height_;
+  gl::Texture position_, geometric_normal_, shading_normal_, albedo_, depth_stencil_;
+  gl::Texture visibility_, shaded_;
+  gl::Framebuffer gbuffer_fb_, visibility_fb_, shaded_fb_;
+  gl::Program gbuffer_program_, shading_program_;
+};
+
+// Reads a texture's level 0 into an image, flipping rows so row 0 is on top.
+ImageF read_texture(GLuint texture, int width, int height, int channels);
+
+}  // namespace sb

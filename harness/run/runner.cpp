@@ -1,0 +1,482 @@
+#include "run/runner.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <thread>
+
+#include "core/error.h"
+#include "gl/debug.h"
+#include "gl/gpu_scene.h"
+#include "metrics/image_io.h"
+#include "metrics/metrics.h"
+#include "reference/reference.h"
+#include "results/report.h"
+#include "results/store.h"
+#include "results/timing_stats.h"
+#include "run/gbuffer.h"
+#include "scenes/scene_analysis.h"
+
+namespace sb {
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+constexpr int kSchemaVersion = 1;
+constexpr float kHeatmapFullScale = 0.25f;
+
+std::string now_iso8601() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+json vec_json(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
+
+json stats_json(const metrics::ErrorStats& s) {
+  return {{"pixel_count", s.pixel_count},
+          {"rmse", json_number(s.rmse)},
+          {"mae", json_number(s.mae)},
+          {"max_error", json_number(s.max_error)},
+          {"max_pixel", json::array({s.max_x, s.max_y})},
+          {"psnr", json_number(s.psnr)},
+          {"ssim", json_number(s.ssim)},
+          {"frac_over_0.01", s.frac_over_001},
+          {"frac_over_0.05", s.frac_over_005},
+          {"frac_over_0.1", s.frac_over_01},
+          {"nonfinite_count", s.nonfinite_count}};
+}
+
+json compare_json(const ImageF& test, const ImageF& ref, const std::vector<uint8_t>& penumbra) {
+  json j;
+  j["all"] = stats_json(metrics::compare(test, ref));
+  j["penumbra"] = stats_json(metrics::compare(test, ref, &penumbra));
+  return j;
+}
+
+// Pixels whose surface faces away from every point of the light: they are in
+// attached shadow whatever any technique says, and shading ignores V there
+// (N·L <= 0). Visibility is defined as 0 on them for every technique and the
+// reference alike, so the error measures cast shadows only.
+std::vector<uint8_t> attached_shadow_mask(const ImageF& positions, const ImageF& normals,
+                                          const AreaLight& light) {
+  std::vector<uint8_t> mask(positions.pixel_count(), 0);
+  const glm::vec3 corners[4] = {light.point(0, 0), light.point(1, 0), light.point(0, 1),
+                                light.point(1, 1)};
+  for (size_t i = 0; i < mask.size(); ++i) {
+    if (positions.data[i * 4 + 3] == 0.0f) continue;
+    const glm::vec3 p(positions.data[i * 4], positions.data[i * 4 + 1], positions.data[i * 4 + 2]);
+    const glm::vec3 n(normals.data[i * 3], normals.data[i * 3 + 1], normals.data[i * 3 + 2]);
+    bool faces = false;
+    for (const auto& c : corners) faces = faces || glm::dot(n, c - p) > 0.0f;
+    mask[i] = faces ? 0 : 1;
+  }
+  return mask;
+}
+
+void apply_attached_shadow(const std::vector<uint8_t>& mask, ImageF& visibility) {
+  for (size_t i = 0; i < mask.size(); ++i)
+    if (mask[i]) visibility.data[i] = 0.0f;
+}
+
+// Undo whatever state a technique left behind.
+void reset_gl_state() {
+  glDisable(GL_BLEND);
+  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glDisable(GL_DEPTH_CLAMP);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthMask(GL_TRUE);
+  glStencilMask(0xff);
+  glUseProgram(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+struct SceneState {
+  Scene scene;
+  SceneCapabilities caps;
+  std::vector<std::string> skip_reason;  // per technique variant
+};
+
+class Runner {
+ public:
+  Runner(const Experiment& e, const RunOptions& o) : e_(e), o_(o), store_(o.run_dir) {}
+
+  RunSummary run() {
+    std::vector<std::string> order;
+    for (const auto& s : e_.scenes)
+      for (const auto& r : e_.resolutions)
+        for (const auto& t : e_.techniques) order.push_back(job_id(s.name, r.label(), t.name));
+    store_.set_order(order);
+    total_ = order.size();
+
+    context_ = gl::create_context(o_.backend);
+    timing_source_ =
+        context_->is_software() ? gl::TimingSource::CpuFinish : gl::TimingSource::GpuQuery;
+    log("backend " + context_->platform() + ", " + context_->renderer() + ", timing " +
+        gl::to_string(timing_source_));
+
+    for (const auto& sv : e_.scenes) run_scene(sv);
+    write_reports(store_.dir(), store_.records(), e_.name + " (" + o_.run_id + ")");
+    return summary_;
+  }
+
+ private:
+  void log(const std::string& line) const {
+    if (!o_.quiet) std::printf("%s\n", line.c_str()), std::fflush(stdout);
+  }
+
+  json base_record(const SceneVariant& sv, const SceneState* st, const Resolution& res,
+                   const TechniqueVariant& tv) const {
+    json r;
+    r["schema_version"] = kSchemaVersion;
+    r["run_id"] = o_.run_id;
+    r["config"] = e_.file;
+    r["config_hash"] = e_.content_hash;
+    r["experiment"] = e_.name;
+    r["job_id"] = job_id(sv.name, res.label(), tv.name);
+    r["scene_variant"] = sv.name;
+    json scene = {{"type", sv.type}, {"variant", sv.name}, {"params", sv.params.json()}};
+    if (st != nullptr) {
+      scene["triangles"] = st->scene.triangle_count();
+      scene["caster_triangles"] = st->scene.caster_triangle_count();
+      const auto& l = st->scene.light;
+      scene["light"] = {{"center", vec_json(l.center)},
+                        {"target", vec_json(l.target)},
+                        {"size", json::array({l.width(), l.height()})},
+                        {"intensity", l.intensity}};
+      const auto& c = st->scene.camera;
+      scene["camera"] = {
+          {"eye", vec_json(c.eye)}, {"target", vec_json(c.target)}, {"fov_y", c.fov_y_degrees}};
+      scene["derived"] = {{"closedness_checked", st->caps.closedness_checked},
+                          {"adjacency_built", st->caps.adjacency_built}};
+    }
+    r["scene"] = scene;
+    r["technique_variant"] = tv.name;
+    r["technique"] = {{"name", tv.info->name},
+                      {"family", tv.info->family},
+                      {"variant", tv.name},
+                      {"params", tv.params.json()}};
+    r["resolution"] = res.label();
+    r["width"] = res.width;
+    r["height"] = res.height;
+    r["backend"] = gl::to_string(o_.backend);
+    r["gl_platform"] = context_->platform();
+    r["gl_renderer"] = context_->renderer();
+    r["gl_version"] = context_->version();
+    r["timing_source"] = gl::to_string(timing_source_);
+    r["host"] = {{"hardware_threads", std::thread::hardware_concurrency()}};
+    char host[256] = {};
+    if (gethostname(host, sizeof host - 1) == 0) r["host"]["name"] = host;
+    r["build"] = {{"version", SHADOWBENCH_VERSION}};
+    return r;
+  }
+
+  void finish(const std::string& id, json record) {
+    record["finished_at"] = now_iso8601();
+    const std::string status = record["status"];
+    if (status == "ok") ++summary_.ok;
+    if (status == "skipped") ++summary_.skipped;
+    if (status == "failed") ++summary_.failed;
+    store_.put(id, record);
+    ++done_;
+    std::string line = "[" + std::to_string(done_) + "/" + std::to_string(total_) + "] " +
+                       record["scene_variant"].get<std::string>() + " @ " +
+                       record["resolution"].get<std::string>() + "  " +
+                       record["technique_variant"].get<std::string>() + ": " + status;
+    if (status == "ok") {
+      char buf[128];
+      std::snprintf(buf, sizeof buf, "  frame %.2f ms, technique %.2f ms, RMSE %.5f",
+                    record["timing"]["frame"]["median_ms"].get<double>(),
+                    record["timing"]["technique"]["median_ms"].get<double>(),
+                    record["metrics"]["visibility"]["all"]["rmse"].is_number()
+                        ? record["metrics"]["visibility"]["all"]["rmse"].get<double>()
+                        : 0.0);
+      line += buf;
+    } else {
+      line += " (" + record.value("reason", "") + ")";
+    }
+    log(line);
+  }
+
+  void run_scene(const SceneVariant& sv) {
+    SceneState st;
+    std::vector<const TechniqueInfo*> infos;
+    for (const auto& tv : e_.techniques) infos.push_back(tv.info);
+    std::string scene_error;
+    try {
+      st.scene = find_scene_type(sv.type)->build(sv.params);
+      apply_overrides(sv, st.scene);
+      st.scene.name = sv.name;
+      st.caps = check_closedness(st.scene, infos);
+      std::vector<const TechniqueInfo*> running;
+      for (const auto& tv : e_.techniques) {
+        st.skip_reason.push_back(unmet_needs(st.scene, st.caps, *tv.info));
+        if (st.skip_reason.back().empty()) running.push_back(tv.info);
+      }
+      build_adjacency_if_needed(st.scene, running, st.caps);
+      for (const auto& l : st.caps.log) log("scene " + sv.name + ": " + l);
+    } catch (const std::exception& ex) {
+      scene_error = std::string("building the scene failed: ") + ex.what();
+    }
+
+    std::unique_ptr<GpuScene> gpu;
+    for (const auto& res : e_.resolutions) {
+      // Pending jobs of this (scene, resolution); finished ones are kept.
+      std::vector<size_t> pending;
+      for (size_t i = 0; i < e_.techniques.size(); ++i) {
+        const std::string id = job_id(sv.name, res.label(), e_.techniques[i].name);
+        if (store_.finished(id) != nullptr) {
+          ++summary_.resumed;
+          ++done_;
+          continue;
+        }
+        if (!scene_error.empty()) {
+          json r = base_record(sv, nullptr, res, e_.techniques[i]);
+          r["status"] = "failed";
+          r["reason"] = scene_error;
+          finish(id, r);
+          continue;
+        }
+        if (!st.skip_reason[i].empty()) {
+          json r = base_record(sv, &st, res, e_.techniques[i]);
+          r["status"] = "skipped";
+          r["reason"] = st.skip_reason[i];
+          finish(id, r);
+          continue;
+        }
+        pending.push_back(i);
+      }
+      if (pending.empty()) continue;
+      try {
+        if (!gpu) gpu = std::make_unique<GpuScene>(st.scene, st.caps.adjacency);
+        run_resolution(sv, st, *gpu, res, pending);
+      } catch (const std::exception& ex) {
+        // Shared work (G-buffer, reference) failed: every pending job fails.
+        for (size_t i : pending) {
+          const std::string id = job_id(sv.name, res.label(), e_.techniques[i].name);
+          if (store_.finished(id) != nullptr) continue;
+          json r = base_record(sv, &st, res, e_.techniques[i]);
+          r["status"] = "failed";
+          r["reason"] = std::string("shared pass failed: ") + ex.what();
+          finish(id, r);
+        }
+        gl::take_debug_errors();
+        reset_gl_state();
+      }
+    }
+  }
+
+  void run_resolution(const SceneVariant& sv, const SceneState& st, const GpuScene& gpu,
+                      const Resolution& res, const std::vector<size_t>& pending) {
+    reset_gl_state();
+    FrameTargets targets(res.width, res.height);
+    const float aspect = float(res.width) / float(res.height);
+    const glm::mat4 view = st.scene.camera.view();
+    const glm::mat4 projection = st.scene.camera.projection(aspect);
+    const glm::mat4 view_projection = projection * view;
+    targets.render_gbuffer(gpu, view_projection);
+    const ImageF positions = targets.read_positions();
+    const ImageF normals = targets.read_geometric_normals();
+
+    // Reference at the G-buffer's very points.
+    reference::Settings rs;
+    rs.spp = e_.reference.spp;
+    rs.seed = e_.reference.seed;
+    const bool cache = e_.reference.cache && !o_.cache_dir.empty();
+    reference::Result ref = cache ? reference::get(st.scene, positions, normals, rs, o_.cache_dir)
+                                  : reference::compute(st.scene, positions, normals, rs);
+    log("reference " + sv.name + " @ " + res.label() + ": " + std::to_string(ref.spp) + " spp, " +
+        (ref.from_cache ? std::string("from cache") : std::to_string(ref.seconds) + " s") +
+        ", mean std error " + std::to_string(ref.mean_std_error));
+    const std::vector<uint8_t> attached = attached_shadow_mask(positions, normals, st.scene.light);
+    apply_attached_shadow(attached, ref.visibility);
+    const std::vector<uint8_t> penumbra = metrics::penumbra_mask(ref.visibility);
+
+    targets.upload_visibility(ref.visibility);
+    targets.render_shading(st.scene);
+    const ImageF ref_shaded = targets.read_shaded();
+
+    const std::string ref_rel = "reference/" + file_safe(sv.name) + "__" + res.label();
+    json ref_images;
+    if (o_.write_images) {
+      fs::create_directories(fs::path(store_.dir()) / ref_rel);
+      io::write_exr((fs::path(store_.dir()) / ref_rel / "visibility.exr").string(), ref.visibility);
+      io::write_exr((fs::path(store_.dir()) / ref_rel / "std_error.exr").string(), ref.std_error);
+      io::write_png((fs::path(store_.dir()) / ref_rel / "shaded.png").string(), ref_shaded);
+      ref_images = {{"reference_visibility", ref_rel + "/visibility.exr"},
+                    {"reference_std_error", ref_rel + "/std_error.exr"},
+                    {"reference_shaded", ref_rel + "/shaded.png"}};
+    }
+    json ref_json = {
+        {"method", ref.method},
+        {"spp", ref.spp},
+        {"seed", ref.seed},
+        {"mean_std_error", ref.mean_std_error},
+        {"penumbra_mean_std_error", ref.penumbra_mean_std_error},
+        {"penumbra_pixels", std::count(penumbra.begin(), penumbra.end(), uint8_t(1))},
+        {"attached_shadow_pixels", std::count(attached.begin(), attached.end(), uint8_t(1))},
+        {"cache_key", ref.cache_key},
+        {"from_cache", ref.from_cache},
+        {"seconds", ref.seconds}};
+
+    FrameInputs in = targets.inputs(st.scene, gpu, view, projection);
+    for (size_t i : pending) {
+      const TechniqueVariant& tv = e_.techniques[i];
+      const std::string id = job_id(sv.name, res.label(), tv.name);
+      json r = base_record(sv, &st, res, tv);
+      r["started_at"] = now_iso8601();
+      r["reference"] = ref_json;
+      const auto t0 = std::chrono::steady_clock::now();
+      try {
+        run_job(tv, targets, gpu, st.scene, view_projection, in, ref, ref_shaded, penumbra,
+                attached, id, r);
+        for (const auto& [k, v] : ref_images.items()) r["images"][k] = v;
+        r["status"] = "ok";
+      } catch (const std::exception& ex) {
+        r["status"] = "failed";
+        r["reason"] = ex.what();
+        gl::take_debug_errors();
+      }
+      r["duration_s"] =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      reset_gl_state();
+      finish(id, r);
+    }
+  }
+
+  void run_job(const TechniqueVariant& tv, FrameTargets& targets, const GpuScene& gpu,
+               const Scene& scene, const glm::mat4& view_projection, const FrameInputs& in,
+               const reference::Result& ref, const ImageF& ref_shaded,
+               const std::vector<uint8_t>& penumbra, const std::vector<uint8_t>& attached,
+               const std::string& id, json& r) {
+    gl::take_debug_errors();
+    std::unique_ptr<Technique> technique = tv.info->create(tv.params);
+    technique->prepare(in);
+    gl::throw_if_errors(tv.name + " prepare");
+
+    gl::PassTimer timer(timing_source_);
+    std::vector<double> frame_ms, technique_ms;
+    std::map<std::string, std::vector<double>> pass_ms, shared_ms;
+    std::vector<std::string> pass_order;
+    const int frames = e_.warmup_frames + e_.timed_frames;
+    for (int f = 0; f < frames; ++f) {
+      reset_gl_state();
+      timer.begin_frame();
+      {
+        auto p = timer.scope("shared:gbuffer");
+        targets.render_gbuffer(gpu, view_projection);
+      }
+      reset_gl_state();
+      technique->render(in, timer);
+      reset_gl_state();
+      {
+        auto p = timer.scope("shared:shading");
+        targets.render_shading(scene);
+      }
+      const auto frame = timer.end_frame();
+      gl::throw_if_errors(tv.name + " frame " + std::to_string(f));
+      if (f < e_.warmup_frames) continue;
+      frame_ms.push_back(frame.total_ms);
+      double tech = 0.0;
+      for (const auto& [name, ms] : frame.passes) {
+        if (name.rfind("shared:", 0) == 0) {
+          shared_ms[name.substr(7)].push_back(ms);
+          continue;
+        }
+        if (!pass_ms.count(name)) pass_order.push_back(name);
+        pass_ms[name].push_back(ms);
+        tech += ms;
+      }
+      technique_ms.push_back(tech);
+    }
+    json timing;
+    timing["warmup_frames"] = e_.warmup_frames;
+    timing["timed_frames"] = e_.timed_frames;
+    timing["frame"] = to_json(summarize(frame_ms));
+    timing["technique"] = to_json(summarize(technique_ms));
+    timing["passes"] = json::object();
+    for (const auto& name : pass_order) timing["passes"][name] = to_json(summarize(pass_ms[name]));
+    timing["pass_order"] = pass_order;
+    for (const auto& [name, v] : shared_ms) timing["shared"][name] = to_json(summarize(v));
+    r["timing"] = timing;
+
+    ImageF visibility = targets.read_visibility();
+    apply_attached_shadow(attached, visibility);
+    const ImageF shaded = targets.read_shaded();
+    json m;
+    m["visibility"] = compare_json(visibility, ref.visibility, penumbra);
+    m["shaded"] = compare_json(shaded, ref_shaded, penumbra);
+    r["metrics"] = m;
+
+    // A reference whose noise is comparable to the error cannot rank techniques.
+    const double pen_rmse = m["visibility"]["penumbra"]["rmse"].is_number()
+                                ? m["visibility"]["penumbra"]["rmse"].get<double>()
+                                : 0.0;
+    if (ref.penumbra_mean_std_error > 0.0 && pen_rmse > 0.0 &&
+        ref.penumbra_mean_std_error > 0.5 * pen_rmse)
+      r["warnings"].push_back("reference noise (penumbra mean std error " +
+                              std::to_string(ref.penumbra_mean_std_error) +
+                              ") is over half the penumbra RMSE; raise reference.spp");
+
+    if (o_.write_images) {
+      const std::string rel = "jobs/" + id;
+      fs::create_directories(fs::path(store_.dir()) / rel);
+      io::write_exr((fs::path(store_.dir()) / rel / "visibility.exr").string(), visibility);
+      io::write_png((fs::path(store_.dir()) / rel / "shaded.png").string(), shaded);
+      io::write_png((fs::path(store_.dir()) / rel / "error.png").string(),
+                    metrics::error_heatmap(visibility, ref.visibility, kHeatmapFullScale));
+      r["images"] = {{"visibility", rel + "/visibility.exr"},
+                     {"shaded", rel + "/shaded.png"},
+                     {"error_heatmap", rel + "/error.png"},
+                     {"error_heatmap_full_scale", kHeatmapFullScale}};
+    }
+  }
+
+  const Experiment& e_;
+  const RunOptions& o_;
+  ResultsStore store_;
+  std::unique_ptr<gl::Context> context_;
+  gl::TimingSource timing_source_ = gl::TimingSource::CpuFinish;
+  RunSummary summary_;
+  size_t total_ = 0;
+  size_t done_ = 0;
+};
+
+}  // namespace
+
+std::string file_safe(const std::string& name) {
+  std::string out;
+  for (char c : name) {
+    if (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_' || c == '=')
+      out += c;
+    else if (c == '/')
+      out += "--";  // no '@' or '#': oiiotool and idiff read those as frame wildcards
+    else if (c == ',')
+      out += '+';
+    else
+      out += '-';
+  }
+  return out;
+}
+
+std::string job_id(const std::string& scene_variant, const std::string& resolution,
+                   const std::string& technique_variant) {
+  return file_safe(scene_variant) + "__" + resolution + "__" + file_safe(technique_variant);
+}
+
+RunSummary run_experiment(const Experiment& experiment, const RunOptions& options) {
+  return Runner(experiment, options).run();
+}
+
+}  // namespace sb

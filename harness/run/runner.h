@@ -1,0 +1,37 @@
+#pragma once
+// Runs an experiment: scene variants × resolutions × technique variants.
+// Each job's record is stored as soon as it finishes; a failing job is
+// recorded as "failed" and the run goes on.
+#include <functional>
+#include <string>
+
+#include "config/experiment.h"
+#include "core/registry.h"
+#include "gl/context.h"
+
+namespace sb {
+
+struct RunOptions {
+  std::string run_dir;  // created if missing; an existing one is resumed
+  std::string run_id;
+  gl::Backend backend = gl::Backend::OSMesa;
+  std::string cache_dir = "results/cache";  // reference cache ("" = off)
+  bool write_images = true;
+  bool quiet = false;
+};
+
+struct RunSummary {
+  int ok = 0;
+  int skipped = 0;
+  int failed = 0;
+  int resumed = 0;  // finished in an earlier run of the same directory
+};
+
+RunSummary run_experiment(const Experiment& experiment, const RunOptions& options);
+
+// "sphere_grid@light_size=4" → a file-name-safe form.
+std::string file_safe(const std::string& name);
+std::string job_id(const std::string& scene_variant, const std::string& resolution,
+                   const std::string& technique_variant);
+
+}  // namespace sb

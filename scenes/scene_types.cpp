@@ -1,0 +1,36 @@
+#include "core/scene_types.h"
+
+#include <cmath>
+
+#include "scenes/sphere_grid.h"
+
+namespace sb {
+
+const std::vector<SceneType>& scene_types() {
+  static const std::vector<SceneType> types = {sphere_grid_scene_type()};
+  return types;
+}
+
+const SceneType* find_scene_type(const std::string& name) {
+  for (const auto& t : scene_types())
+    if (t.name == name) return &t;
+  return nullptr;
+}
+
+AreaLight make_area_light(const glm::vec3& center, const glm::vec3& target, float width,
+                          float height, float intensity) {
+  AreaLight l;
+  l.center = center;
+  l.target = target;
+  l.intensity = intensity;
+  const glm::vec3 dir = glm::normalize(target - center);
+  // Any up vector not parallel to the direction spans the light's plane.
+  const glm::vec3 up = std::fabs(dir.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  const glm::vec3 u = glm::normalize(glm::cross(dir, up));
+  const glm::vec3 v = glm::normalize(glm::cross(u, dir));
+  l.half_u = 0.5f * width * u;
+  l.half_v = 0.5f * height * v;
+  return l;
+}
+
+}  // namespace sb

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages shadowbench builds and tests with.
+# Skips everything already installed, so it is cheap to call twice.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config ninja-build
+  libosmesa6-dev libegl-dev libegl1-mesa-dev libgl1-mesa-dri
+  python3-glad
+  libopenimageio-dev openimageio-tools
+  libtinygltf-dev libglm-dev nlohmann-json3-dev
+  libembree-dev libtbb-dev
+  libbenchmark-dev libgtest-dev libgmock-dev
+)
+if [[ "${1:-}" == "--test" ]]; then
+  # Test oracles: scikit-image for SSIM.
+  packages+=(python3-skimage python3-numpy)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]} == 0)); then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+sudo_cmd=()
+if [[ $(id -u) -ne 0 ]]; then sudo_cmd=(sudo); fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -q
+"${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"

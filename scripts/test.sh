@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# README command 2: install what is missing, build, and pass every test:
+#   1. clang-format check of the project's sources,
+#   2. the Release build and all of its tests (ctest),
+#   3. an ASan/UBSan build of the tests that do not drive Mesa's JIT
+#      (every test without the label "gl").
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install-deps.sh --test
+
+echo "== clang-format"
+mapfile -t sources < <(git ls-files '*.cpp' '*.h' 2>/dev/null || find harness scenes techniques tests bench -name '*.cpp' -o -name '*.h')
+clang-format --dry-run -Werror "${sources[@]}"
+
+echo "== Release build and tests"
+scripts/build.sh
+ctest --test-dir build --output-on-failure -j2
+
+if [[ "${SHADOWBENCH_SKIP_SANITIZERS:-0}" != 1 ]]; then
+  echo "== ASan/UBSan build, tests without the label 'gl'"
+  generator=()
+  if command -v ninja > /dev/null; then generator=(-G Ninja); fi
+  if [[ ! -f build-asan/CMakeCache.txt ]]; then
+    cmake -S . -B build-asan "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+      -DSHADOWBENCH_SANITIZE=ON -DSHADOWBENCH_BUILD_BENCHMARKS=OFF
+  fi
+  cmake --build build-asan -j"$(nproc)"
+  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    ctest --test-dir build-asan --output-on-failure -LE gl -j2
+fi

@@ -1,0 +1,101 @@
+// accumulation — the rasterised reference of the seeds ("1024-sample
+// shadows"): N hard shadow maps from stratified points on the area light,
+// their 0/1 visibilities averaged (Heckbert & Herf 1997 style).
+//
+// | parameter      | default | meaning                                          |
+// |----------------|---------|--------------------------------------------------|
+// | samples        | 256     | light points; stratified on an m×n grid, m*n = N |
+// | jitter         | true    | jitter each point inside its stratum (seeded)    |
+// | seed           | 1       | jitter seed                                      |
+// | size, constant_bias, slope_bias, cull: as in shadow_map                       |
+#include <cmath>
+#include <memory>
+#include <random>
+
+#include "common/map_lookup.h"
+#include "core/registry.h"
+#include "gl/debug.h"
+#include "gl/objects.h"
+#include "gl/program.h"
+
+namespace sb::shadow {
+namespace {
+
+// The largest m <= sqrt(n) dividing n: an m × (n/m) grid of strata.
+int grid_rows(int n) {
+  int m = static_cast<int>(std::sqrt(static_cast<double>(n)));
+  while (m > 1 && n % m != 0) --m;
+  return m;
+}
+
+class Accumulation final : public Technique {
+ public:
+  explicit Accumulation(const Params& p)
+      : samples_(p.get_int("samples")),
+        jitter_(p.get_bool("jitter")),
+        seed_(static_cast<unsigned>(p.get_int("seed"))),
+        map_settings_(depth_map_settings(p)) {}
+
+  void prepare(const FrameInputs& in) override {
+    map_ = DepthMap(map_settings_.size, /*compare=*/true, /*linear=*/false);
+    const int rows = grid_rows(samples_);
+    const int cols = samples_ / rows;
+    std::mt19937 rng(seed_);
+    std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+    frusta_.clear();
+    for (int r = 0; r < rows; ++r)
+      for (int c = 0; c < cols; ++c) {
+        const float s = (float(c) + (jitter_ ? u01(rng) : 0.5f)) / float(cols);
+        const float t = (float(r) + (jitter_ ? u01(rng) : 0.5f)) / float(rows);
+        frusta_.push_back(fit_light_frustum(*in.scene, in.scene->light.point(s, t)));
+      }
+    accumulate_ = MapLookupPass("accumulation",
+                                "float lit_fraction(vec3 t) { return texture(shadow_map, t); }\n");
+    gl::throw_if_errors("accumulation prepare");
+  }
+
+  void render(const FrameInputs& in, gl::PassTimer& timer) override {
+    {
+      auto pass = timer.scope("accumulate");
+      const float zero[4] = {0, 0, 0, 0};
+      glClearNamedFramebufferfv(in.visibility_framebuffer, GL_COLOR, 0, zero);
+    }
+    const float weight = 1.0f / float(frusta_.size());
+    for (const auto& f : frusta_) {
+      {
+        auto pass = timer.scope("shadow_maps");
+        map_.render(*in.gpu, f, map_settings_.cull, map_settings_.bias);
+      }
+      auto pass = timer.scope("accumulate");
+      glEnable(GL_BLEND);
+      glBlendFunc(GL_ONE, GL_ONE);
+      accumulate_.draw(in, f, map_settings_, map_.texture(), weight);
+      glDisable(GL_BLEND);
+    }
+  }
+
+ private:
+  int samples_;
+  bool jitter_;
+  unsigned seed_;
+  DepthMapSettings map_settings_;
+  DepthMap map_;
+  std::vector<LightFrustum> frusta_;
+  MapLookupPass accumulate_;
+};
+
+}  // namespace
+}  // namespace sb::shadow
+
+SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
+  using namespace sb;
+  auto params = shadow::depth_map_params(1024);
+  params.insert(params.begin(),
+                {int_param("samples", 256, 1, 65536, "light points, stratified on an m×n grid"),
+                 bool_param("jitter", true, "jitter each point inside its stratum"),
+                 int_param("seed", 1, 0, 2147483647, "jitter seed")});
+  registry.add({"accumulation", "accumulation",
+                "average of N hard shadow maps from stratified points on the area light", Needs{},
+                std::move(params),
+                [](const Params& p) { return std::make_unique<shadow::Accumulation>(p); }});
+}

@@ -1,0 +1,7 @@
+#pragma once
+#include "core/registry.h"
+
+namespace sb::shadow {
+TechniqueInfo hard_shadow_map_info();
+TechniqueInfo pcf_box_info();
+}  // namespace sb::shadow

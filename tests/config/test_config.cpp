@@ -1,0 +1,170 @@
+// Every kind of config mistake gives an InputError naming the file, the JSON
+// pointer, what was expected and what was found.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "config/experiment.h"
+#include "core/error.h"
+#include "core/registry.h"
+
+namespace sb {
+namespace {
+
+const Registry& registry() {
+  static Registry r = [] {
+    Registry reg;
+    reg.load_plugins(SHADOWBENCH_PLUGIN_DIR);
+    return reg;
+  }();
+  return r;
+}
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  const auto dir = std::filesystem::temp_directory_path() / "shadowbench_test_config";
+  std::filesystem::create_directories(dir);
+  const auto path = dir / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+const char* const kValid = R"({
+  "name": "t",
+  "scenes": [{"type": "sphere_grid", "params": {"grid": 2}}],
+  "techniques": ["none", {"name": "pcf", "params": {"k": [3, 5], "size": 256}}],
+  "resolutions": [[64, 48], "32x24"],
+  "frames": {"warmup": 0, "timed": 2},
+  "reference": {"spp": 16, "seed": 3}
+})";
+
+TEST(Config, ValidConfigExpandsSweeps) {
+  const Experiment e = load_experiment(write_temp("valid.json", kValid), registry());
+  ASSERT_EQ(e.scenes.size(), 1u);
+  ASSERT_EQ(e.techniques.size(), 3u);
+  EXPECT_EQ(e.techniques[0].name, "none");
+  EXPECT_EQ(e.techniques[1].name, "pcf/k=3,size=256");
+  EXPECT_EQ(e.techniques[2].name, "pcf/k=5,size=256");
+  EXPECT_EQ(e.techniques[2].params.get_int("k"), 5);
+  EXPECT_EQ(e.techniques[2].params.get_string("filter"), "nearest");  // default filled in
+  ASSERT_EQ(e.resolutions.size(), 2u);
+  EXPECT_EQ(e.resolutions[1].width, 32);
+  EXPECT_EQ(e.resolutions[1].height, 24);
+  EXPECT_EQ(e.timed_frames, 2);
+  EXPECT_EQ(e.reference.spp, 16);
+  EXPECT_EQ(e.reference.seed, 3u);
+  EXPECT_EQ(e.content_hash.size(), 16u);
+}
+
+TEST(Config, SweepIsACrossProduct) {
+  const auto v = expand_sweeps(
+      nlohmann::json::parse(R"({"a": [1, 2, 3], "b": [true, false], "c": 7})"), "f", "/p");
+  ASSERT_EQ(v.size(), 6u);
+  for (const auto& combo : v) EXPECT_EQ(combo["c"], 7);
+  EXPECT_EQ(v[0]["a"], 1);
+  EXPECT_EQ(v[0]["b"], true);
+  EXPECT_EQ(v[5]["a"], 3);
+  EXPECT_EQ(v[5]["b"], false);
+}
+
+struct BadCase {
+  const char* name;
+  const char* json;
+  const char* pointer;   // the place the message must name
+  const char* expected;  // a fragment of what was expected/found
+};
+
+// One config per kind of mistake.
+const BadCase kBadCases[] = {
+    {"not_json", "{\"name\": \"x\",, }", "line 1, column 14", "invalid JSON"},
+    {"top_not_object", "[1, 2]", "/", "expected an experiment (an object), found array"},
+    {"unknown_top_key",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "frame": {}})",
+     "/frame", "unknown key 'frame'"},
+    {"missing_scenes", R"({"techniques": ["none"], "resolutions": [[8, 8]]})", "/scenes",
+     "expected a list of scenes, found nothing"},
+    {"unknown_scene",
+     R"({"scenes": [{"type": "spheres"}], "techniques": ["none"], "resolutions": [[8, 8]]})",
+     "/scenes/0/type", "unknown scene type \"spheres\" (known: sphere_grid"},
+    {"unknown_technique",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none", {"name": "pcss2"}], "resolutions": [[8, 8]]})",
+     "/techniques/1/name", "unknown technique \"pcss2\""},
+    {"unknown_param",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "pcf", "params": {"kernel": 3}}], "resolutions": [[8, 8]]})",
+     "/techniques/0/params/kernel", "unknown parameter 'kernel' (known: k, filter"},
+    {"wrong_type",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "pcf", "params": {"k": "five"}}], "resolutions": [[8, 8]]})",
+     "/techniques/0/params/k", "parameter 'k': expected an integer, found string \"five\""},
+    {"out_of_range",
+     R"({"scenes": [{"type": "sphere_grid", "params": {"grid": 0}}], "techniques": ["none"], "resolutions": [[8, 8]]})",
+     "/scenes/0/params/grid", "parameter 'grid': expected an integer in [1, 256], found 0"},
+    {"even_kernel",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "pcf", "params": {"k": [3, 4]}}], "resolutions": [[8, 8]]})",
+     "/techniques/0/params/k", "expected an odd integer, found 4"},
+    {"bad_choice",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "shadow_map", "params": {"cull": "sideways"}}], "resolutions": [[8, 8]]})",
+     "/techniques/0/params/cull",
+     "expected one of \"none\", \"back\", \"front\", found \"sideways\""},
+    {"empty_sweep",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "pcf", "params": {"k": []}}], "resolutions": [[8, 8]]})",
+     "/techniques/0/params/k", "expected a non-empty list to sweep"},
+    {"bad_resolution",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": ["800by600"]})",
+     "/resolutions/0", "expected \"WIDTHxHEIGHT\" or [width, height], found \"800by600\""},
+    {"zero_resolution",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[0, 600]]})",
+     "/resolutions/0/0", "expected an integer in [1, 16384], found 0"},
+    {"bad_frames",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "frames": {"timed": 0}})",
+     "/frames/timed", "expected an integer in [1, 100000], found 0"},
+    {"bad_spp",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "reference": {"spp": 1}})",
+     "/reference/spp", "expected an integer in [2, 1048576], found 1"},
+    {"bad_light",
+     R"({"scenes": [{"type": "sphere_grid", "light": {"center": [0, 1]}}], "techniques": ["none"], "resolutions": [[8, 8]]})",
+     "/scenes/0/light/center", "expected an array of 3 numbers, found array [0,1]"},
+    {"light_target_is_center",
+     R"({"scenes": [{"type": "sphere_grid", "light": {"center": [0, 5, 0], "target": [0, 5, 0]}}], "techniques": ["none"], "resolutions": [[8, 8]]})",
+     "/scenes/0/light/target", "expected a target different from the light's center"},
+    {"bad_camera_key",
+     R"({"scenes": [{"type": "sphere_grid", "camera": {"fov": 40}}], "techniques": ["none"], "resolutions": [[8, 8]]})",
+     "/scenes/0/camera/fov", "unknown key 'fov'"},
+    {"duplicate_variant",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none", "none"], "resolutions": [[8, 8]]})",
+     "/techniques/1", "technique variant \"none\" appears twice"},
+};
+
+class BadConfig : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadConfig, NamesFilePointerAndExpectation) {
+  const BadCase& c = GetParam();
+  const std::string path = write_temp(std::string(c.name) + ".json", c.json);
+  try {
+    load_experiment(path, registry());
+    FAIL() << c.name << ": no error";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(e.file(), path);
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    EXPECT_NE(what.find(std::string("at ") + c.pointer + ":"), std::string::npos)
+        << c.name << ": " << what;
+    EXPECT_NE(what.find(c.expected), std::string::npos) << c.name << ": " << what;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Config, BadConfig, ::testing::ValuesIn(kBadCases),
+                         [](const auto& param_info) { return std::string(param_info.param.name); });
+
+TEST(Config, MissingFileIsAnInputError) {
+  EXPECT_THROW(load_experiment("/nonexistent/quick.json", registry()), InputError);
+}
+
+TEST(Config, ShippedConfigsAreValid) {
+  for (const auto& entry : std::filesystem::directory_iterator(SHADOWBENCH_SOURCE_DIR "/configs")) {
+    if (entry.path().extension() != ".json") continue;
+    EXPECT_NO_THROW(load_experiment(entry.path().string(), registry())) << entry.path();
+  }
+}
+
+}  // namespace
+}  // namespace sb

@@ -1,0 +1,66 @@
+#include "e2e_util.h"
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "config/experiment.h"
+#include "core/registry.h"
+#include "metrics/image_io.h"
+#include "results/store.h"
+
+namespace sb::test {
+namespace fs = std::filesystem;
+
+namespace {
+const Registry& registry() {
+  static Registry r = [] {
+    Registry reg;
+    reg.load_plugins(SHADOWBENCH_PLUGIN_DIR);
+    return reg;
+  }();
+  return r;
+}
+}  // namespace
+
+const nlohmann::json& RunOutput::record(const std::string& technique_variant) const {
+  for (const auto& r : records)
+    if (r["technique_variant"] == technique_variant) return r;
+  throw std::runtime_error("no record for " + technique_variant);
+}
+
+ImageF RunOutput::visibility(const std::string& technique_variant) const {
+  const auto& r = record(technique_variant);
+  if (r["status"] != "ok") throw std::runtime_error(technique_variant + ": " + r.dump());
+  return io::read_image((fs::path(dir) / r["images"]["visibility"].get<std::string>()).string());
+}
+
+ImageF RunOutput::reference_visibility() const {
+  return io::read_image(
+      (fs::path(dir) / records.at(0)["images"]["reference_visibility"].get<std::string>())
+          .string());
+}
+
+RunOutput run_config(const nlohmann::json& config, const std::string& name, gl::Backend backend,
+                     bool fresh) {
+  RunOutput out;
+  out.dir = (fs::temp_directory_path() / ("shadowbench_e2e_" + name)).string();
+  if (fresh) fs::remove_all(out.dir);
+  const Experiment e = parse_experiment(config, name + ".json", registry());
+  RunOptions o;
+  o.run_dir = out.dir;
+  o.run_id = name;
+  o.backend = backend;
+  o.cache_dir = (fs::temp_directory_path() / "shadowbench_e2e_cache").string();
+  o.quiet = true;
+  out.summary = run_experiment(e, o);
+  out.records = read_run_records(out.dir);
+  return out;
+}
+
+nlohmann::json small_scene(double light_size) {
+  return {{"type", "sphere_grid"},
+          {"params", {{"grid", 3}, {"light_size", light_size}}},
+          {"camera", {{"eye", {0.0, 3.5, 5.5}}, {"target", {0.0, 0.6, 0.0}}}}};
+}
+
+}  // namespace sb::test

@@ -1,0 +1,30 @@
+#pragma once
+// Runs small experiments through the real driver code path and reads back
+// what they wrote.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "gl/context.h"
+#include "run/runner.h"
+
+namespace sb::test {
+
+struct RunOutput {
+  std::string dir;
+  RunSummary summary;
+  std::vector<nlohmann::json> records;
+  const nlohmann::json& record(const std::string& technique_variant) const;
+  ImageF visibility(const std::string& technique_variant) const;
+  ImageF reference_visibility() const;  // of the first record
+};
+
+// `config` is an experiment JSON; `name` picks a fresh folder under /tmp.
+RunOutput run_config(const nlohmann::json& config, const std::string& name,
+                     gl::Backend backend = gl::Backend::OSMesa, bool fresh = true);
+
+// A small sphere grid seen from close by, for fast runs.
+nlohmann::json small_scene(double light_size);
+
+}  // namespace sb::test

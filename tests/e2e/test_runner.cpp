@@ -1,0 +1,76 @@
+// The driver's bookkeeping: records, skips with reasons, resumption, outputs.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "e2e_util.h"
+#include "scenes/scene_analysis.h"
+
+namespace sb::test {
+namespace {
+
+using json = nlohmann::json;
+namespace fs = std::filesystem;
+
+json config_with(const json& scene, const json& techniques) {
+  return {{"name", "runner"},
+          {"scenes", json::array({scene})},
+          {"techniques", techniques},
+          {"resolutions", json::array({json::array({64, 48}), json::array({48, 32})})},
+          {"frames", {{"warmup", 1}, {"timed", 3}}},
+          {"reference", {{"spp", 16}}}};
+}
+
+TEST(Runner, WritesEveryOutputWithTimingAndMetrics) {
+  const auto out =
+      run_config(config_with(small_scene(1.0), json::array({"none", "shadow_map"})), "outputs");
+  ASSERT_EQ(out.summary.ok, 4);
+  for (const char* f : {"results.jsonl", "results.csv", "summary.md"})
+    EXPECT_TRUE(fs::exists(fs::path(out.dir) / f)) << f;
+  const auto& r = out.record("shadow_map");
+  EXPECT_EQ(r["schema_version"], 1);
+  EXPECT_EQ(r["timing_source"], "cpu_glfinish");
+  EXPECT_EQ(r["timing"]["timed_frames"], 3);
+  EXPECT_EQ(r["timing"]["frame"]["count"], 3);
+  EXPECT_TRUE(r["timing"]["passes"].contains("shadow_map"));
+  EXPECT_TRUE(r["timing"]["passes"].contains("lookup"));
+  EXPECT_TRUE(r["timing"]["shared"].contains("gbuffer"));
+  EXPECT_GE(r["timing"]["frame"]["median_ms"].get<double>(),
+            r["timing"]["technique"]["median_ms"].get<double>());
+  EXPECT_EQ(r["reference"]["spp"], 16);
+  for (const char* k : {"rmse", "mae", "max_error", "psnr", "ssim", "frac_over_0.01",
+                        "frac_over_0.05", "frac_over_0.1"}) {
+    EXPECT_TRUE(r["metrics"]["visibility"]["all"].contains(k)) << k;
+    EXPECT_TRUE(r["metrics"]["shaded"]["penumbra"].contains(k)) << k;
+  }
+  for (const char* k :
+       {"visibility", "shaded", "error_heatmap", "reference_visibility", "reference_std_error"})
+    EXPECT_TRUE(fs::exists(fs::path(out.dir) / r["images"][k].get<std::string>())) << k;
+}
+
+TEST(Runner, SkipsWithAReasonAndBuildsNoAdjacencyForShadowMapsOnly) {
+  const auto before = derived_data_counters();
+  run_config(config_with(small_scene(1.0), json::array({"shadow_map", "pcf"})), "no_adjacency");
+  EXPECT_EQ(derived_data_counters().adjacency_builds, before.adjacency_builds);
+  EXPECT_EQ(derived_data_counters().closedness_checks, before.closedness_checks);
+
+  const auto out =
+      run_config(config_with(small_scene(1.0), json::array({"shadow_volume"})), "adjacency");
+  EXPECT_GT(derived_data_counters().adjacency_builds, before.adjacency_builds);
+  EXPECT_EQ(out.record("shadow_volume")["scene"]["derived"]["adjacency_built"], true);
+}
+
+TEST(Runner, ResumesFinishedJobsAndRerunsTheRest) {
+  const json config = config_with(small_scene(1.0), json::array({"none", "shadow_map"}));
+  const auto first = run_config(config, "resume");
+  ASSERT_EQ(first.summary.ok, 4);
+  fs::remove(fs::path(first.dir) / "records" /
+             (first.record("shadow_map")["job_id"].get<std::string>() + ".json"));
+  const auto second = run_config(config, "resume", gl::Backend::OSMesa, /*fresh=*/false);
+  EXPECT_EQ(second.summary.resumed, 3);
+  EXPECT_EQ(second.summary.ok, 1);
+  EXPECT_EQ(second.records.size(), 4u);
+}
+
+}  // namespace
+}  // namespace sb::test

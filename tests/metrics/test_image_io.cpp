@@ -1,0 +1,116 @@
+// sb::io writers and reader: round trips, channel naming, atomic replacement
+// and error reporting.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <string>
+
+#include "core/error.h"
+#include "metrics/image_io.h"
+#include "test_util.h"
+
+namespace sb::io {
+namespace {
+
+std::vector<std::string> leftovers(const std::filesystem::path& dir) {
+  std::vector<std::string> tmp;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    if (e.path().filename().string().find(".tmp-") != std::string::npos) {
+      tmp.push_back(e.path().string());
+    }
+  }
+  return tmp;
+}
+
+TEST(metrics_image_io, ExrRoundTripIsExactWithChannelNames) {
+  test::TempDir dir("exr");
+  const char* names[] = {"Y", "YA", "RGB", "RGBA"};
+  for (int c = 1; c <= 4; ++c) {
+    const ImageF img = test::noise_image(19, 7, c, static_cast<uint32_t>(c), -2.0f, 5.0f);
+    const std::string path = dir.file("img" + std::to_string(c) + ".exr");
+    write_exr(path, img);
+    const ImageF back = read_image(path);
+    ASSERT_TRUE(back.same_shape(img));
+    EXPECT_EQ(back.data, img.data);
+
+    auto in = OIIO::ImageInput::open(path);
+    ASSERT_TRUE(in);
+    EXPECT_EQ(std::string(in->format_name()), "openexr");
+    EXPECT_EQ(in->spec().format, OIIO::TypeDesc::FLOAT);
+    std::string joined;
+    for (const auto& n : in->spec().channelnames) joined += n;
+    EXPECT_EQ(joined, names[c - 1]);
+  }
+  EXPECT_TRUE(leftovers(dir.path()).empty());
+}
+
+TEST(metrics_image_io, PngRoundTripClampsAndRounds) {
+  test::TempDir dir("png");
+  for (int c : {1, 3, 4}) {
+    ImageF img(9, 4, c);
+    for (size_t i = 0; i < img.data.size(); ++i) {
+      img.data[i] = static_cast<float>(i % 256) / 255.0f;
+    }
+    img.data[0] = -0.5f;                                    // -> 0
+    img.data[1] = 1.7f;                                     // -> 255
+    img.data[2] = std::numeric_limits<float>::quiet_NaN();  // -> 0
+    img.data[3] = 100.4f / 255.0f;                          // -> 100
+    img.data[4] = 100.6f / 255.0f;                          // -> 101
+    img.data[img.data.size() - 1] = 0.0f;                   // alpha 0 must not wipe colour
+    const std::string path = dir.file("img" + std::to_string(c) + ".png");
+    write_png(path, img);
+    const ImageF back = read_image(path);
+    ASSERT_TRUE(back.same_shape(img));
+    for (size_t i = 0; i < img.data.size(); ++i) {
+      float want = std::isnan(img.data[i]) ? 0.0f : std::fmin(1.0f, std::fmax(0.0f, img.data[i]));
+      want = std::round(want * 255.0f) / 255.0f;
+      ASSERT_NEAR(back.data[i], want, 1e-6) << "channels " << c << " value " << i;
+    }
+    auto in = OIIO::ImageInput::open(path);
+    ASSERT_TRUE(in);
+    EXPECT_EQ(std::string(in->format_name()), "png");
+    EXPECT_EQ(in->spec().format, OIIO::TypeDesc::UINT8);
+    EXPECT_EQ(in->spec().nchannels, c);
+  }
+  EXPECT_TRUE(leftovers(dir.path()).empty());
+}
+
+TEST(metrics_image_io, OverwritesAtomically) {
+  test::TempDir dir("overwrite");
+  const std::string path = dir.file("x.exr");
+  write_exr(path, ImageF(4, 4, 1, 0.25f));
+  write_exr(path, ImageF(6, 2, 3, 0.75f));
+  const ImageF back = read_image(path);
+  EXPECT_EQ(back.width, 6);
+  EXPECT_EQ(back.channels, 3);
+  EXPECT_EQ(back.data[0], 0.75f);
+  EXPECT_TRUE(leftovers(dir.path()).empty());
+}
+
+TEST(metrics_image_io, FailuresThrowJobErrorNamingThePath) {
+  test::TempDir dir("fail");
+  const std::string missing_dir = dir.file("no/such/dir/x.exr");
+  try {
+    write_exr(missing_dir, ImageF(4, 4, 1));
+    FAIL() << "no exception";
+  } catch (const JobError& e) {
+    EXPECT_NE(std::string(e.what()).find(missing_dir), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(write_png(dir.file("five.png"), ImageF(4, 4, 5)), JobError);
+  EXPECT_THROW(write_exr(dir.file("empty.exr"), ImageF()), JobError);
+  const std::string absent = dir.file("absent.exr");
+  try {
+    read_image(absent);
+    FAIL() << "no exception";
+  } catch (const JobError& e) {
+    EXPECT_NE(std::string(e.what()).find(absent), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(leftovers(dir.path()).empty());
+  EXPECT_FALSE(std::filesystem::exists(dir.file("five.png")));
+}
+
+}  // namespace
+}  // namespace sb::io

@@ -1,0 +1,99 @@
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "core/registry.h"
+#include "scenes/scene_analysis.h"
+#include "scenes/sphere_grid.h"
+#include "scenes/topology.h"
+
+namespace sb {
+namespace {
+
+TEST(Topology, SphereIsClosed) {
+  const MeshTopology t = analyse_topology(make_uv_sphere("s", glm::vec3(0), 1.0f, 20, 20));
+  EXPECT_TRUE(t.closed());
+}
+
+TEST(Topology, QuadHasFourBoundaryEdges) {
+  const MeshTopology t = analyse_topology(make_ground_plane("g", glm::vec3(0), 1.0f));
+  EXPECT_EQ(t.boundary_edges, 4u);
+  EXPECT_EQ(t.nonmanifold_edges, 0u);
+  EXPECT_FALSE(t.closed());
+}
+
+TEST(Topology, SplitVerticesAreWelded) {
+  // A tetrahedron with every triangle on its own three vertices is still closed.
+  const glm::vec3 p[4] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const uint32_t tris[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  Mesh m;
+  for (const auto& t : tris)
+    for (uint32_t v : t) {
+      m.indices.push_back(uint32_t(m.positions.size()));
+      m.positions.push_back(p[v]);
+    }
+  EXPECT_TRUE(analyse_topology(m).closed());
+  // Three triangles on one edge: non-manifold.
+  m.positions.insert(m.positions.end(), {p[0], p[1], glm::vec3(0, -1, 0)});
+  m.indices.insert(m.indices.end(), {12, 13, 14});
+  EXPECT_EQ(analyse_topology(m).nonmanifold_edges, 1u);
+}
+
+TEST(Topology, FlippedTriangleIsInconsistent) {
+  Mesh m = make_uv_sphere("s", glm::vec3(0), 1.0f, 6, 4);
+  std::swap(m.indices[0], m.indices[1]);
+  const MeshTopology t = analyse_topology(m);
+  EXPECT_EQ(t.inconsistent_edges, 3u);
+  EXPECT_FALSE(t.closed());
+}
+
+TEST(Adjacency, FarVerticesBelongToTheNeighbours) {
+  const Mesh m = make_uv_sphere("s", glm::vec3(0), 1.0f, 9, 6);
+  const auto adj = build_adjacency_indices(m);
+  ASSERT_EQ(adj.size(), m.indices.size() * 2);
+  for (size_t t = 0; t < m.triangle_count(); ++t)
+    for (size_t e = 0; e < 3; ++e) {
+      const uint32_t a = adj[6 * t + 2 * e], far = adj[6 * t + 2 * e + 1];
+      const uint32_t b = adj[6 * t + (2 * e + 2) % 6];
+      // Find the neighbour (b, a, far) among the triangles, in any rotation.
+      bool found = false;
+      for (size_t u = 0; u < m.triangle_count() && !found; ++u)
+        for (size_t r = 0; r < 3; ++r)
+          found = found || (m.indices[3 * u + r] == b && m.indices[3 * u + (r + 1) % 3] == a &&
+                            m.indices[3 * u + (r + 2) % 3] == far);
+      EXPECT_TRUE(found) << "triangle " << t << " edge " << e;
+    }
+}
+
+TEST(SceneAnalysis, BuildsOnlyWhatTechniquesNeed) {
+  Scene s;
+  s.meshes.push_back(make_uv_sphere("s", glm::vec3(0, 2, 0), 1.0f, 8, 6));
+  s.meshes.push_back(make_ground_plane("g", glm::vec3(0), 5.0f));
+  TechniqueInfo map{"map", "f", "", Needs{}, {}, nullptr};
+  TechniqueInfo volume{"volume", "f",    "", Needs{.edge_adjacency = true, .closed_casters = true},
+                       {},       nullptr};
+
+  const auto before = derived_data_counters();
+  SceneCapabilities caps = check_closedness(s, {&map});
+  build_adjacency_if_needed(s, {&map}, caps);
+  EXPECT_FALSE(caps.closedness_checked);
+  EXPECT_FALSE(caps.adjacency_built);
+  EXPECT_EQ(derived_data_counters().adjacency_builds, before.adjacency_builds);
+  EXPECT_EQ(derived_data_counters().closedness_checks, before.closedness_checks);
+
+  caps = check_closedness(s, {&map, &volume});
+  EXPECT_TRUE(caps.closedness_checked);
+  EXPECT_EQ(unmet_needs(s, caps, volume), "");  // the open ground casts nothing
+  build_adjacency_if_needed(s, {&map, &volume}, caps);
+  EXPECT_TRUE(caps.adjacency_built);
+  EXPECT_EQ(caps.adjacency[0].size(), s.meshes[0].indices.size() * 2);
+  EXPECT_TRUE(caps.adjacency[1].empty());
+
+  s.meshes[1].casts_shadow = true;  // now an open caster
+  caps = check_closedness(s, {&volume});
+  EXPECT_EQ(unmet_needs(s, caps, volume),
+            "volume needs closed casters: mesh 'g' has 4 boundary edges");
+}
+
+}  // namespace
+}  // namespace sb
