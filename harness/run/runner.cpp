@@ -379,6 +379,7 @@ class Runner {
       }
       reset_gl_state();
       technique->render(in, timer);
+      gl::throw_if_errors(tv.name + " frame " + std::to_string(f));
       reset_gl_state();
       {
         auto p = timer.scope("shared:shading");
