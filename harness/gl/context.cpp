@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "gl/debug.h"
 #include "gl/gl.h"
+#include "gl/objects.h"
 
 namespace sb::gl {
 
@@ -33,6 +34,7 @@ void Context::load_gl(void* (*get_proc)(const char*)) {
                              std::to_string(GLAD_VERSION_MAJOR(version)) + "." +
                              std::to_string(GLAD_VERSION_MINOR(version)));
   enable_debug_output();
+  forget_context_objects();
 }
 
 std::string Context::renderer() const {

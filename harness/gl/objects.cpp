@@ -62,12 +62,15 @@ Buffer make_buffer(GLsizeiptr bytes, const void* data, GLbitfield flags) {
 }
 
 namespace {
+// One per context; contexts are used one at a time, and a new one forgets it.
+GLuint g_empty_vao = 0;
 GLuint empty_vao() {
-  static GLuint vao = 0;  // one per process; contexts are used one at a time
-  if (vao == 0 || !glIsVertexArray(vao)) glCreateVertexArrays(1, &vao);
-  return vao;
+  if (g_empty_vao == 0) glCreateVertexArrays(1, &g_empty_vao);
+  return g_empty_vao;
 }
 }  // namespace
+
+void forget_context_objects() { g_empty_vao = 0; }
 
 void draw_fullscreen_triangle() {
   glBindVertexArray(empty_vao());

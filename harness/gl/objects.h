@@ -55,6 +55,8 @@ Buffer make_buffer(GLsizeiptr bytes, const void* data, GLbitfield flags = 0);
 
 // Draws one triangle covering the viewport (no vertex buffer: uses gl_VertexID).
 void draw_fullscreen_triangle();
+// Called when a context is made: drops names that belonged to the last one.
+void forget_context_objects();
 // Vertex shader for draw_fullscreen_triangle(); writes `uv` in [0,1]^2.
 extern const char* const kFullscreenVertexShader;
 

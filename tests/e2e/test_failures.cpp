@@ -33,17 +33,18 @@ class Throws final : public Technique {
 TEST(Failures, AFailingJobLeavesTheOthersIntact) {
   Registry registry;
   registry.load_plugins(SHADOWBENCH_PLUGIN_DIR);
-  registry.add({"gl_error", "test", "makes GL_INVALID_ENUM", Needs{}, {},
-                [](const Params&) { return std::make_unique<MakesAGlError>(); }});
-  registry.add({"throws", "test", "throws in prepare", Needs{}, {},
-                [](const Params&) { return std::make_unique<Throws>(); }});
-  const nlohmann::json config = {
-      {"name", "failures"},
-      {"scenes", {{{"type", "sphere_grid"}, {"params", {{"grid", 2}}}}}},
-      {"techniques", {"none", "gl_error", "throws", "shadow_map"}},
-      {"resolutions", {{32, 24}}},
-      {"frames", {{"warmup", 0}, {"timed", 1}}},
-      {"reference", {{"spp", 4}}}};
+  registry.add({"gl_error", "test", "makes GL_INVALID_ENUM", Needs{}, {}, [](const Params&) {
+                  return std::make_unique<MakesAGlError>();
+                }});
+  registry.add({"throws", "test", "throws in prepare", Needs{}, {}, [](const Params&) {
+                  return std::make_unique<Throws>();
+                }});
+  const nlohmann::json config = {{"name", "failures"},
+                                 {"scenes", {{{"type", "sphere_grid"}, {"params", {{"grid", 2}}}}}},
+                                 {"techniques", {"none", "gl_error", "throws", "shadow_map"}},
+                                 {"resolutions", {{32, 24}}},
+                                 {"frames", {{"warmup", 0}, {"timed", 1}}},
+                                 {"reference", {{"spp", 4}}}};
   const Experiment e = parse_experiment(config, "failures.json", registry);
   RunOptions o;
   o.run_dir = (std::filesystem::temp_directory_path() / "shadowbench_e2e_failures").string();
