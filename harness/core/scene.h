@@ -8,17 +8,36 @@
 
 namespace sb {
 
+// An 8-bit RGBA image. Row 0 is texture coordinate v = 0 (glTF's top row);
+// every sampler in the project reads it nearest-texel with wrap-around, so
+// the rasteriser and the ray tracer see the same holes.
+struct TextureImage {
+  std::string name;
+  int width = 0;
+  int height = 0;
+  std::vector<uint8_t> rgba;  // width * height * 4
+};
+
+enum class AlphaMode { Opaque, Mask };
+
 struct Mesh {
   std::string name;
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  // per vertex, for shading only
+  std::vector<glm::vec2> uvs;      // per vertex, or empty when untextured
   std::vector<uint32_t> indices;   // triangle list, counter-clockwise = front
   glm::vec3 albedo{0.8f};
+  int base_color_texture = -1;  // into Scene::textures; rgb multiplies albedo, a is coverage
+  // Mask: texels whose alpha is below alpha_cutoff are holes, for the camera,
+  // for every shadow pass that honours masks, and for the reference.
+  AlphaMode alpha_mode = AlphaMode::Opaque;
+  float alpha_cutoff = 0.5f;
   // Receivers that never occlude the light (a ground plane under everything)
   // are left out of every caster pass and of the reference's ray tracing.
   bool casts_shadow = true;
 
   size_t triangle_count() const { return indices.size() / 3; }
+  bool alpha_tested() const { return alpha_mode == AlphaMode::Mask && base_color_texture >= 0; }
 };
 
 // A rectangular area light facing `target`. A point on it is
@@ -69,6 +88,7 @@ struct Bounds {
 struct Scene {
   std::string name;
   std::vector<Mesh> meshes;
+  std::vector<TextureImage> textures;
   AreaLight light;
   Camera camera;
   glm::vec3 ambient{0.15f};

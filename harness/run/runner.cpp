@@ -5,8 +5,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
+#include <map>
 #include <thread>
 
 #include "core/error.h"
@@ -133,7 +135,9 @@ class Runner {
 
  private:
   void log(const std::string& line) const {
-    if (!o_.quiet) std::printf("%s\n", line.c_str()), std::fflush(stdout);
+    if (o_.quiet) return;
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
   }
 
   json base_record(const SceneVariant& sv, const SceneState* st, const Resolution& res,
@@ -176,6 +180,8 @@ class Runner {
     r["gl_version"] = context_->version();
     r["timing_source"] = gl::to_string(timing_source_);
     r["host"] = {{"hardware_threads", std::thread::hardware_concurrency()}};
+    // llvmpipe's rasteriser threads (read at context creation; default: cores).
+    if (const char* lp = std::getenv("LP_NUM_THREADS")) r["host"]["lp_num_threads"] = lp;
     char host[256] = {};
     if (gethostname(host, sizeof host - 1) == 0) r["host"]["name"] = host;
     r["build"] = {{"version", SHADOWBENCH_VERSION}};

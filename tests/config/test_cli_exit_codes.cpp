@@ -1,29 +1,15 @@
 // The driver's exit codes: 2 for bad input, with the message on stderr.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "cli_runner.h"
+
 namespace {
 
-struct Result {
-  int exit_code;
-  std::string output;
-};
-
-Result run(const std::string& args) {
-  const std::string cmd = std::string(SHADOWBENCH_EXE) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 512> buf{};
-  while (fgets(buf.data(), int(buf.size()), pipe) != nullptr) out += buf.data();
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using sb::test::run_cli;
 
 std::string write_temp(const std::string& name, const std::string& text) {
   const auto dir = std::filesystem::temp_directory_path() / "shadowbench_test_cli";
@@ -38,7 +24,7 @@ TEST(Cli, BadConfigExitsWithTwo) {
       "bad.json",
       R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "pcf", "params": {"k": 4}}], "resolutions": [[8, 8]]})");
   for (const char* command : {"validate", "run"}) {
-    const Result r = run(std::string(command) + " " + path + " --out " + path + ".out");
+    const auto r = run_cli(std::string(command) + " " + path + " --out " + path + ".out");
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(
         r.output.find(
@@ -50,20 +36,20 @@ TEST(Cli, BadConfigExitsWithTwo) {
 }
 
 TEST(Cli, UnknownOptionAndCommandExitWithTwo) {
-  EXPECT_EQ(run("run --frobnicate").exit_code, 2);
-  EXPECT_EQ(run("frobnicate").exit_code, 2);
-  EXPECT_EQ(run("run").exit_code, 2);
-  EXPECT_EQ(run("run x.json --backend vulkan").exit_code, 2);
+  EXPECT_EQ(run_cli("run --frobnicate").exit_code, 2);
+  EXPECT_EQ(run_cli("frobnicate").exit_code, 2);
+  EXPECT_EQ(run_cli("run").exit_code, 2);
+  EXPECT_EQ(run_cli("run x.json --backend vulkan").exit_code, 2);
 }
 
 TEST(Cli, ValidateAcceptsTheQuickConfig) {
-  const Result r = run("validate " SHADOWBENCH_SOURCE_DIR "/configs/quick.json");
+  const auto r = run_cli("validate " SHADOWBENCH_SOURCE_DIR "/configs/quick.json");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("jobs"), std::string::npos) << r.output;
 }
 
 TEST(Cli, ListShowsTechniquesWithTheirNeeds) {
-  const Result r = run("list");
+  const auto r = run_cli("list");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   for (const char* name :
        {"none", "shadow_map", "pcf", "shadow_volume", "accumulation", "sphere_grid"})

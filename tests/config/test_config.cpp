@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "cli_runner.h"
 #include "config/experiment.h"
 #include "core/error.h"
 #include "core/registry.h"
@@ -150,6 +151,10 @@ TEST_P(BadConfig, NamesFilePointerAndExpectation) {
         << c.name << ": " << what;
     EXPECT_NE(what.find(c.expected), std::string::npos) << c.name << ": " << what;
   }
+  // The driver says the same and exits with 2.
+  const auto cli = test::run_cli("validate " + path);
+  EXPECT_EQ(cli.exit_code, 2) << cli.output;
+  EXPECT_NE(cli.output.find(std::string("at ") + c.pointer + ":"), std::string::npos) << cli.output;
 }
 
 INSTANTIATE_TEST_SUITE_P(Config, BadConfig, ::testing::ValuesIn(kBadCases),
