@@ -1,5 +1,6 @@
 #include "config/experiment.h"
 
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -156,6 +157,19 @@ Resolution parse_resolution(const Reader& r, const json& v, const std::string& p
   return res;
 }
 
+// Path parameters are relative to the config file's folder.
+Params resolve_paths(const std::vector<ParamSpec>& specs, const Params& params,
+                     const std::string& config_file) {
+  json values = params.json();
+  const std::filesystem::path base = std::filesystem::path(config_file).parent_path();
+  for (const auto& s : specs) {
+    if (!s.is_path) continue;
+    const std::filesystem::path given = values[s.name].get<std::string>();
+    if (given.is_relative()) values[s.name] = (base / given).lexically_normal().string();
+  }
+  return Params(std::move(values));
+}
+
 }  // namespace
 
 std::vector<json> expand_sweeps(const json& params, const std::string& file,
@@ -231,6 +245,7 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
       v.type = type;
       v.pointer = p;
       v.params = resolve_params(st->params, combo, file, p + "/params");
+      v.params = resolve_paths(st->params, v.params, file);
       v.name = variant_name(label, st->params, combo);
       for (auto it = given.begin(); it != given.end(); ++it)
         if (it.value().is_array()) v.swept[it.key()] = combo[it.key()];

@@ -8,13 +8,21 @@
 namespace sb {
 
 ParamSpec int_param(std::string name, int def, int min, int max, std::string doc) {
-  return {std::move(name), ParamType::Int, def, double(min), double(max), {}, std::move(doc), {}};
+  return {std::move(name),
+          ParamType::Int,
+          def,
+          double(min),
+          double(max),
+          {},
+          std::move(doc),
+          {},
+          false};
 }
 ParamSpec float_param(std::string name, double def, double min, double max, std::string doc) {
-  return {std::move(name), ParamType::Float, def, min, max, {}, std::move(doc), {}};
+  return {std::move(name), ParamType::Float, def, min, max, {}, std::move(doc), {}, false};
 }
 ParamSpec bool_param(std::string name, bool def, std::string doc) {
-  return {std::move(name), ParamType::Bool, def, 0, 1, {}, std::move(doc), {}};
+  return {std::move(name), ParamType::Bool, def, 0, 1, {}, std::move(doc), {}, false};
 }
 ParamSpec choice_param(std::string name, std::string def, std::vector<std::string> choices,
                        std::string doc) {
@@ -25,7 +33,18 @@ ParamSpec choice_param(std::string name, std::string def, std::vector<std::strin
           0,
           std::move(choices),
           std::move(doc),
-          {}};
+          {},
+          false};
+}
+
+ParamSpec string_param(std::string name, std::string def, std::string doc) {
+  return {std::move(name), ParamType::String, std::move(def), 0, 0, {}, std::move(doc), {}, false};
+}
+
+ParamSpec path_param(std::string name, std::string doc) {
+  ParamSpec s = string_param(std::move(name), "", std::move(doc));
+  s.is_path = true;
+  return s;
 }
 
 ParamSpec odd(ParamSpec spec) {
@@ -44,6 +63,8 @@ std::string to_string(ParamType t) {
     case ParamType::Bool:
       return "boolean";
     case ParamType::Choice:
+      return "choice";
+    case ParamType::String:
       return "string";
   }
   return "?";
@@ -103,6 +124,12 @@ nlohmann::json check_type_and_range(const ParamSpec& spec, const nlohmann::json&
       if (!value.is_boolean())
         throw InputError(file, pointer, where + "expected true or false, found " + describe(value));
       return value;
+    case ParamType::String:
+      if (!value.is_string())
+        throw InputError(file, pointer, where + "expected a string, found " + describe(value));
+      if (spec.is_path && value.get<std::string>().empty())
+        throw InputError(file, pointer, where + "expected a file path, found \"\"");
+      return value;
     case ParamType::Choice: {
       std::string list;
       for (const auto& c : spec.choices) list += (list.empty() ? "" : ", ") + ("\"" + c + "\"");
@@ -154,6 +181,9 @@ Params resolve_params(const std::vector<ParamSpec>& specs, const nlohmann::json&
   for (const auto& s : specs) {
     if (given.is_object() && given.contains(s.name))
       out[s.name] = check_param_value(s, given.at(s.name), file, pointer + "/" + s.name);
+    else if (s.is_path && s.default_value == "")
+      throw InputError(file, pointer + "/" + s.name,
+                       "parameter '" + s.name + "': expected a file path, found nothing");
     else
       out[s.name] = s.default_value;
   }

@@ -9,7 +9,7 @@
 
 namespace sb {
 
-enum class ParamType { Int, Float, Bool, Choice };
+enum class ParamType { Int, Float, Bool, Choice, String };
 
 struct ParamSpec {
   std::string name;
@@ -22,6 +22,9 @@ struct ParamSpec {
   // Optional extra rule on a value that already has the right type and range:
   // returns "" when fine, else what was expected ("an odd integer").
   std::function<std::string(const nlohmann::json&)> rule;
+  // String parameters naming a file: the config layer resolves them relative
+  // to the config file's folder.
+  bool is_path = false;
 };
 
 // Adds the rule "odd integer" to an Int parameter.
@@ -32,6 +35,9 @@ ParamSpec float_param(std::string name, double def, double min, double max, std:
 ParamSpec bool_param(std::string name, bool def, std::string doc);
 ParamSpec choice_param(std::string name, std::string def, std::vector<std::string> choices,
                        std::string doc);
+ParamSpec string_param(std::string name, std::string def, std::string doc);
+// A file path; "" as default means the parameter is required.
+ParamSpec path_param(std::string name, std::string doc);
 
 std::string to_string(ParamType t);
 
