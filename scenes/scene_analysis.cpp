@@ -1,5 +1,8 @@
 #include "scenes/scene_analysis.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace sb {
 
 DerivedDataCounters& derived_data_counters() {
@@ -7,9 +10,58 @@ DerivedDataCounters& derived_data_counters() {
   return counters;
 }
 
+bool find_planar_receiver(const Scene& scene, PlanarReceiver& out) {
+  const Bounds all = scene.bounds();
+  const float eps = 1e-5f * std::max(all.radius(), 1e-6f);
+  for (const auto& m : scene.meshes) {
+    if (m.triangle_count() == 0) continue;
+    // The plane of the largest triangle, then every vertex must lie on it.
+    glm::vec3 n(0.0f);
+    float best = 0.0f;
+    for (size_t t = 0; t < m.triangle_count(); ++t) {
+      const glm::vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+                      c = m.positions[m.indices[3 * t + 2]];
+      const glm::vec3 cr = glm::cross(b - a, c - a);
+      if (glm::length(cr) > best) {
+        best = glm::length(cr);
+        n = cr / best;
+      }
+    }
+    if (best == 0.0f) continue;
+    float d = -glm::dot(n, m.positions[0]);
+    bool planar = true;
+    for (const auto& p : m.positions) planar = planar && std::fabs(glm::dot(n, p) + d) <= eps;
+    if (!planar) continue;
+    if (glm::dot(n, scene.light.center) + d < 0.0f) {  // orient towards the light
+      n = -n;
+      d = -d;
+    }
+    bool below_all = true;
+    for (const auto& c : scene.meshes) {
+      if (!c.casts_shadow || &c == &m) continue;
+      for (const auto& p : c.positions) below_all = below_all && glm::dot(n, p) + d > -eps;
+    }
+    if (!below_all) continue;
+    out.mesh = m.name;
+    out.plane = glm::vec4(n, d);
+    return true;
+  }
+  return false;
+}
+
 SceneCapabilities check_closedness(const Scene& scene,
                                    const std::vector<const TechniqueInfo*>& techniques) {
   SceneCapabilities caps;
+  bool wants_receiver = false;
+  for (const auto* t : techniques) wants_receiver = wants_receiver || t->needs.planar_receiver;
+  if (wants_receiver) {
+    caps.receiver_checked = true;
+    ++derived_data_counters().receiver_searches;
+    caps.has_planar_receiver = find_planar_receiver(scene, caps.receiver);
+    caps.log.push_back(caps.has_planar_receiver
+                           ? "planar receiver: mesh '" + caps.receiver.mesh + "'"
+                           : std::string("no planar receiver"));
+  }
   bool needed = false;
   for (const auto* t : techniques)
     needed = needed || t->needs.closed_casters || t->needs.edge_adjacency;
@@ -21,12 +73,13 @@ SceneCapabilities check_closedness(const Scene& scene,
     if (m.casts_shadow) ++derived_data_counters().closedness_checks;
     if (!caps.topology.back().closed()) ++open;
   }
-  caps.log.push_back("checked closedness of " + std::to_string(scene.meshes.size()) + " meshes (" +
-                     std::to_string(open) + " open)");
+  caps.log.push_back("checked closedness of the casters (" + std::to_string(open) + " open)");
   return caps;
 }
 
 std::string unmet_needs(const Scene& scene, const SceneCapabilities& caps, const TechniqueInfo& t) {
+  if (t.needs.planar_receiver && !caps.has_planar_receiver)
+    return t.name + " needs a planar receiver under every caster; the scene has none";
   if (t.needs.closed_casters) {
     if (!caps.closedness_checked)
       return t.name + " needs closed casters, but closedness was not checked";
@@ -45,6 +98,10 @@ std::string unmet_needs(const Scene& scene, const SceneCapabilities& caps, const
       return t.name + " needs closed casters: mesh '" + m.name + "' has " + what;
     }
   }
+  if (t.needs.opaque_casters)
+    for (const auto& m : scene.meshes)
+      if (m.casts_shadow && m.alpha_tested())
+        return t.name + " cannot honour alpha masks: mesh '" + m.name + "' is alpha-tested";
   return "";
 }
 

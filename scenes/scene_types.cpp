@@ -1,14 +1,29 @@
 #include "core/scene_types.h"
 
 #include <cmath>
+#include <stdexcept>
 
+#include "scenes/foliage.h"
+#include "scenes/gltf_scene_type.h"
+#include "scenes/jeep.h"
 #include "scenes/sphere_grid.h"
 
 namespace sb {
 
-const std::vector<SceneType>& scene_types() {
-  static const std::vector<SceneType> types = {sphere_grid_scene_type()};
+namespace {
+std::vector<SceneType>& registry() {
+  static std::vector<SceneType> types = {sphere_grid_scene_type(), foliage_scene_type(),
+                                         jeep_scene_type(), gltf_scene_type()};
   return types;
+}
+}  // namespace
+
+const std::vector<SceneType>& scene_types() { return registry(); }
+
+void add_scene_type(SceneType type) {
+  if (find_scene_type(type.name) != nullptr)
+    throw std::logic_error("scene type '" + type.name + "' registered twice");
+  registry().push_back(std::move(type));
 }
 
 const SceneType* find_scene_type(const std::string& name) {

@@ -1,9 +1,11 @@
 // shadowbench — the command-line driver.
 //   shadowbench run CONFIG [--out DIR] [--backend osmesa|egl] [--cache-dir DIR]
-//                          [--no-cache] [--no-images] [--plugins DIR] [--quiet]
+//                          [--no-cache] [--no-images] [--gbuffer] [--plugins DIR] [--quiet]
 //   shadowbench validate CONFIG [--plugins DIR]
 //   shadowbench list [--plugins DIR]
 //   shadowbench report RUN_DIR
+//   shadowbench scene export SCENE-SPEC OUT.glb
+//   shadowbench scene info FILE.glb|FILE.gltf|SCENE-SPEC
 // Exit codes: 0 all jobs ok or skipped, 1 some job failed, 2 bad input
 // (config, arguments), 3 environment (no GL context, missing plugins).
 #include <cstdio>
@@ -19,6 +21,9 @@
 #include "results/report.h"
 #include "results/store.h"
 #include "run/runner.h"
+#include "scenes/gltf_export.h"
+#include "scenes/gltf_import.h"
+#include "scenes/scene_spec.h"
 
 namespace {
 
@@ -27,16 +32,20 @@ using namespace sb;
 constexpr const char* kUsage =
     "usage:\n"
     "  shadowbench run CONFIG [--out DIR] [--backend osmesa|egl] [--cache-dir DIR]\n"
-    "                         [--no-cache] [--no-images] [--plugins DIR] [--quiet]\n"
+    "                         [--no-cache] [--no-images] [--gbuffer] [--plugins DIR] [--quiet]\n"
     "  shadowbench validate CONFIG [--plugins DIR]\n"
     "  shadowbench list [--plugins DIR]\n"
-    "  shadowbench report RUN_DIR\n";
+    "  shadowbench report RUN_DIR\n"
+    "  shadowbench scene export SCENE-SPEC OUT.glb\n"
+    "  shadowbench scene info FILE.glb|FILE.gltf|SCENE-SPEC\n"
+    "SCENE-SPEC: sphere_grid:grid=3,light_size=2 or "
+    "'{\"type\":\"sphere_grid\",\"params\":{...}}'\n";
 
 struct Args {
   std::string command;
   std::vector<std::string> positional;
   std::string out, backend = "osmesa", cache_dir = "results/cache", plugins;
-  bool no_cache = false, no_images = false, quiet = false;
+  bool no_cache = false, no_images = false, gbuffer = false, quiet = false;
 };
 
 Args parse_args(int argc, char** argv) {
@@ -106,6 +115,8 @@ int cmd_list(const Args& a) {
     std::string needs;
     if (t.needs.closed_casters) needs += " closed_casters";
     if (t.needs.edge_adjacency) needs += " edge_adjacency";
+    if (t.needs.opaque_casters) needs += " opaque_casters";
+    if (t.needs.planar_receiver) needs += " planar_receiver";
     std::printf("  %-16s [%s] %s%s\n", t.name.c_str(), t.family.c_str(), t.summary.c_str(),
                 needs.empty() ? "" : ("  needs:" + needs).c_str());
     for (const auto& p : t.params) {
@@ -154,6 +165,7 @@ int cmd_run(const Args& a) {
   }
   o.cache_dir = a.no_cache ? "" : a.cache_dir;
   o.write_images = !a.no_images;
+  o.write_gbuffer = a.gbuffer;
   o.quiet = a.quiet;
   RunSummary s;
   try {
@@ -184,6 +196,27 @@ int cmd_report(const Args& a) {
   return kExitOk;
 }
 
+int cmd_scene(const Args& a) {
+  const auto& p = a.positional;
+  const std::string sub = p.empty() ? "" : p[0];
+  if (sub == "export" && p.size() == 3) {
+    const Scene s = build_scene_from_spec(p[1]);
+    export_glb(s, p[2]);
+    std::printf("%s: %zu meshes, %zu triangles, %zu textures\n", p[2].c_str(), s.meshes.size(),
+                s.triangle_count(), s.textures.size());
+    return kExitOk;
+  }
+  if (sub == "info" && p.size() == 2) {
+    const std::string ext = std::filesystem::path(p[1]).extension().string();
+    const bool file = ext == ".glb" || ext == ".gltf" || ext == ".GLB" || ext == ".GLTF";
+    std::printf("%s", describe_scene(file ? load_gltf(p[1]) : build_scene_from_spec(p[1])).c_str());
+    return kExitOk;
+  }
+  throw InputError(
+      "", "command line",
+      "expected 'scene export SCENE-SPEC OUT.glb' or 'scene info FILE'\n" + std::string(kUsage));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -193,6 +226,7 @@ int main(int argc, char** argv) {
     if (a.command == "validate") return cmd_validate(a);
     if (a.command == "list") return cmd_list(a);
     if (a.command == "report") return cmd_report(a);
+    if (a.command == "scene") return cmd_scene(a);
     if (a.command == "--help" || a.command == "help" || a.command == "-h") {
       std::printf("%s", kUsage);
       return kExitOk;

@@ -1,8 +1,19 @@
 #include "core/scene.h"
 
+#include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace sb {
+
+float sample_alpha(const TextureImage& texture, glm::vec2 uv) {
+  if (texture.width <= 0 || texture.height <= 0) return 1.0f;
+  const auto wrap = [](float t, int size) {
+    const auto i = static_cast<long long>(std::floor(double(t) * size));
+    return static_cast<size_t>(((i % size) + size) % size);
+  };
+  const size_t x = wrap(uv.x, texture.width), y = wrap(uv.y, texture.height);
+  return float(texture.rgba[(y * size_t(texture.width) + x) * 4 + 3]) / 255.0f;
+}
 
 glm::mat4 Camera::view() const { return glm::lookAt(eye, target, up); }
 

@@ -20,6 +20,10 @@ struct TextureImage {
 
 enum class AlphaMode { Opaque, Mask };
 
+// The texel alpha (0..1) at `uv`, nearest texel, wrapping: texel index
+// floor(u * width) mod width, as GL_NEAREST + GL_REPEAT computes it.
+float sample_alpha(const TextureImage& texture, glm::vec2 uv);
+
 struct Mesh {
   std::string name;
   std::vector<glm::vec3> positions;
@@ -35,6 +39,8 @@ struct Mesh {
   // Receivers that never occlude the light (a ground plane under everything)
   // are left out of every caster pass and of the reference's ray tracing.
   bool casts_shadow = true;
+  // Thin surfaces seen and casting from both sides (leaves): never culled.
+  bool double_sided = false;
 
   size_t triangle_count() const { return indices.size() / 3; }
   bool alpha_tested() const { return alpha_mode == AlphaMode::Mask && base_color_texture >= 0; }

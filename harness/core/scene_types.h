@@ -20,6 +20,8 @@ struct SceneType {
 
 const std::vector<SceneType>& scene_types();
 const SceneType* find_scene_type(const std::string& name);
+// Adds a scene type (tests, extensions); throws std::logic_error on a duplicate.
+void add_scene_type(SceneType type);
 
 // A rectangular light of size width×height at `center`, facing `target`.
 AreaLight make_area_light(const glm::vec3& center, const glm::vec3& target, float width,

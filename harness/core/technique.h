@@ -22,8 +22,10 @@ class GpuScene;
 // What a technique needs from a scene, read by the planner before any GL
 // context exists. A scene that cannot provide it makes the pair "skipped".
 struct Needs {
-  bool edge_adjacency = false;  // triangle adjacency of the casters
-  bool closed_casters = false;  // every caster is a closed 2-manifold
+  bool edge_adjacency = false;   // triangle adjacency of the casters
+  bool closed_casters = false;   // every caster is a closed 2-manifold
+  bool opaque_casters = false;   // cannot honour alpha-tested casters
+  bool planar_receiver = false;  // a plane that receives every caster's shadow
 };
 
 // Everything a technique may read for one (scene, resolution).

@@ -5,24 +5,41 @@
 namespace sb {
 namespace {
 
+constexpr GLsizei kStride = sizeof(float) * 8;  // position, normal, uv
+
 gl::VertexArray make_vao(GLuint vertices, GLuint indices) {
   GLuint vao = 0;
   glCreateVertexArrays(1, &vao);
-  glVertexArrayVertexBuffer(vao, 0, vertices, 0, sizeof(float) * 6);
-  glEnableVertexArrayAttrib(vao, 0);
-  glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribBinding(vao, 0, 0);
-  glEnableVertexArrayAttrib(vao, 1);
-  glVertexArrayAttribFormat(vao, 1, 3, GL_FLOAT, GL_FALSE, sizeof(float) * 3);
-  glVertexArrayAttribBinding(vao, 1, 0);
+  glVertexArrayVertexBuffer(vao, 0, vertices, 0, kStride);
+  const GLint sizes[3] = {3, 3, 2};
+  GLuint offset = 0;
+  for (GLuint a = 0; a < 3; ++a) {
+    glEnableVertexArrayAttrib(vao, a);
+    glVertexArrayAttribFormat(vao, a, sizes[a], GL_FLOAT, GL_FALSE, offset);
+    glVertexArrayAttribBinding(vao, a, 0);
+    offset += GLuint(sizes[a]) * GLuint(sizeof(float));
+  }
   glVertexArrayElementBuffer(vao, indices);
   return gl::VertexArray(vao);
+}
+
+gl::Texture upload(const TextureImage& t) {
+  gl::Texture tex = gl::make_texture_2d(GL_RGBA8, t.width, t.height);
+  // Nearest and repeat: the same texel the ray tracer's sample_alpha reads.
+  glTextureParameteri(tex.get(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(tex.get(), GL_TEXTURE_WRAP_T, GL_REPEAT);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  // Row 0 of the image is v = 0, which is GL's first row: no flip.
+  glTextureSubImage2D(tex.get(), 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE,
+                      t.rgba.data());
+  return tex;
 }
 
 }  // namespace
 
 GpuScene::GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>& adjacency)
     : scene_(&scene) {
+  for (const auto& t : scene.textures) textures_.push_back(upload(t));
   std::vector<float> vertex_data;
   std::vector<uint32_t> index_data;
   std::vector<uint32_t> adjacency_data;
@@ -31,17 +48,26 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>&
     const Mesh& m = scene.meshes[i];
     if (m.normals.size() != m.positions.size())
       throw std::logic_error("mesh '" + m.name + "' has no per-vertex normals");
+    const bool has_uv = m.uvs.size() == m.positions.size();
     for (size_t v = 0; v < m.positions.size(); ++v) {
       const auto& p = m.positions[v];
       const auto& n = m.normals[v];
-      vertex_data.insert(vertex_data.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
+      const glm::vec2 uv = has_uv ? m.uvs[v] : glm::vec2(0.0f);
+      vertex_data.insert(vertex_data.end(), {p.x, p.y, p.z, n.x, n.y, n.z, uv.x, uv.y});
     }
-    ranges_.push_back({GLsizei(m.indices.size()), GLsizeiptr(index_data.size() * 4), base,
-                       m.casts_shadow, m.albedo});
+    DrawInfo info;
+    info.albedo = m.albedo;
+    if (m.base_color_texture >= 0 && size_t(m.base_color_texture) < textures_.size() && has_uv)
+      info.texture = textures_[size_t(m.base_color_texture)].get();
+    info.alpha_tested = m.alpha_tested() && info.texture != 0;
+    info.alpha_cutoff = m.alpha_cutoff;
+    info.double_sided = m.double_sided;
+    ranges_.push_back(
+        {GLsizei(m.indices.size()), GLsizeiptr(index_data.size() * 4), base, m.casts_shadow, info});
     index_data.insert(index_data.end(), m.indices.begin(), m.indices.end());
     if (i < adjacency.size() && !adjacency[i].empty() && m.casts_shadow) {
-      adjacency_ranges_.push_back({GLsizei(adjacency[i].size()),
-                                   GLsizeiptr(adjacency_data.size() * 4), base, true, m.albedo});
+      adjacency_ranges_.push_back(
+          {GLsizei(adjacency[i].size()), GLsizeiptr(adjacency_data.size() * 4), base, true, info});
       adjacency_data.insert(adjacency_data.end(), adjacency[i].begin(), adjacency[i].end());
     }
     base += GLint(m.positions.size());
@@ -56,29 +82,44 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>&
   }
 }
 
-void GpuScene::draw_all(GLint albedo_location) const {
+bool GpuScene::has_alpha_tested_casters() const {
+  for (const auto& r : ranges_)
+    if (r.casts_shadow && r.info.alpha_tested) return true;
+  return false;
+}
+
+void GpuScene::draw(const Range& r, GLenum mode) const {
+  glDrawElementsBaseVertex(mode, r.count, GL_UNSIGNED_INT,
+                           reinterpret_cast<const void*>(r.first_byte), r.base_vertex);
+}
+
+void GpuScene::draw_all(const std::function<void(const DrawInfo&)>& setup) const {
   glBindVertexArray(vao_.get());
   for (const auto& r : ranges_) {
-    if (albedo_location >= 0) glUniform3f(albedo_location, r.albedo.x, r.albedo.y, r.albedo.z);
-    glDrawElementsBaseVertex(GL_TRIANGLES, r.count, GL_UNSIGNED_INT,
-                             reinterpret_cast<const void*>(r.first_byte), r.base_vertex);
+    setup(r.info);
+    draw(r, GL_TRIANGLES);
   }
+}
+
+void GpuScene::draw_casters(const std::function<void(const DrawInfo&)>& setup) const {
+  glBindVertexArray(vao_.get());
+  for (const auto& r : ranges_)
+    if (r.casts_shadow) {
+      setup(r.info);
+      draw(r, GL_TRIANGLES);
+    }
 }
 
 void GpuScene::draw_casters() const {
   glBindVertexArray(vao_.get());
   for (const auto& r : ranges_)
-    if (r.casts_shadow)
-      glDrawElementsBaseVertex(GL_TRIANGLES, r.count, GL_UNSIGNED_INT,
-                               reinterpret_cast<const void*>(r.first_byte), r.base_vertex);
+    if (r.casts_shadow) draw(r, GL_TRIANGLES);
 }
 
 void GpuScene::draw_casters_adjacency() const {
   if (!has_adjacency()) throw std::logic_error("adjacency was not built for this scene");
   glBindVertexArray(adjacency_vao_.get());
-  for (const auto& r : adjacency_ranges_)
-    glDrawElementsBaseVertex(GL_TRIANGLES_ADJACENCY, r.count, GL_UNSIGNED_INT,
-                             reinterpret_cast<const void*>(r.first_byte), r.base_vertex);
+  for (const auto& r : adjacency_ranges_) draw(r, GL_TRIANGLES_ADJACENCY);
 }
 
 }  // namespace sb

@@ -1,9 +1,10 @@
 #pragma once
 // The scene's geometry on the GPU: one vertex buffer (position at location 0,
-// normal at location 1), one index buffer, one draw range per mesh, and — only
-// when a technique in the plan asked for it — a GL_TRIANGLES_ADJACENCY index
-// buffer of the casters.
+// normal at 1, texture coordinate at 2), one index buffer, one draw range per
+// mesh, the scene's textures, and — only when a technique in the plan asked
+// for it — a GL_TRIANGLES_ADJACENCY index buffer of the casters.
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/scene.h"
@@ -11,14 +12,27 @@
 
 namespace sb {
 
+// What a pass needs to know about one mesh before drawing it.
+struct DrawInfo {
+  glm::vec3 albedo{0.8f};
+  GLuint texture = 0;  // base colour (rgb × albedo, a = coverage), 0 if none
+  bool alpha_tested = false;
+  float alpha_cutoff = 0.5f;
+  bool double_sided = false;
+};
+
 class GpuScene {
  public:
   // adjacency: per mesh, indices from build_adjacency_indices(), or empty.
   GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>& adjacency);
 
   const Scene& scene() const { return *scene_; }
-  // Draws every mesh; `set_albedo(i)` is called before mesh i when given.
-  void draw_all(GLint albedo_location = -1) const;
+  bool has_alpha_tested_casters() const;
+  // Draws every mesh (draw_all) or the casters (draw_casters); `setup` runs
+  // before each mesh so the pass can switch programs, uniforms or culling.
+  void draw_all(const std::function<void(const DrawInfo&)>& setup) const;
+  void draw_casters(const std::function<void(const DrawInfo&)>& setup) const;
+  // Casters only, ignoring materials (for passes that cannot honour masks).
   void draw_casters() const;
   bool has_adjacency() const { return adjacency_count_ > 0; }
   // Casters as GL_TRIANGLES_ADJACENCY (6 indices per triangle).
@@ -30,14 +44,16 @@ class GpuScene {
     GLsizeiptr first_byte;
     GLint base_vertex;
     bool casts_shadow;
-    glm::vec3 albedo;
+    DrawInfo info;
   };
+  void draw(const Range& r, GLenum mode) const;
   const Scene* scene_;
   gl::Buffer vertices_;
   gl::Buffer indices_;
   gl::Buffer adjacency_;
   gl::VertexArray vao_;
   gl::VertexArray adjacency_vao_;
+  std::vector<gl::Texture> textures_;
   std::vector<Range> ranges_;
   std::vector<Range> adjacency_ranges_;
   GLsizei adjacency_count_ = 0;

@@ -33,6 +33,21 @@ const char* error_name(RTCError code) {
   return "unrecognised error";
 }
 
+// Rejects hits on transparent texels of an alpha-tested mesh (both for
+// occlusion and for intersection queries).
+void alpha_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* mask = static_cast<const FlatScene::AlphaMask*>(args->geometryUserPtr);
+  const Mesh& m = *mask->mesh;
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+    const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+    const glm::vec2 uv = (1.0f - u - v) * m.uvs[m.indices[3 * prim]] +
+                         u * m.uvs[m.indices[3 * prim + 1]] + v * m.uvs[m.indices[3 * prim + 2]];
+    if (sample_alpha(*mask->texture, uv) < m.alpha_cutoff) args->valid[i] = 0;
+  }
+}
+
 }  // namespace
 
 std::string embree_isa() {
@@ -136,6 +151,18 @@ void FlatScene::add(const Mesh& mesh, size_t index) {
   }
   std::memcpy(v, mesh.positions.data(), verts * 3 * sizeof(float));
   std::memcpy(t, mesh.indices.data(), tris * 3 * sizeof(uint32_t));
+  if (mesh.alpha_tested()) {
+    if (mesh.uvs.size() != verts || size_t(mesh.base_color_texture) >= source_.textures.size()) {
+      rtcReleaseGeometry(geom);
+      throw InputError("", "mesh '" + mesh.name + "'",
+                       "alpha-tested without per-vertex uvs or with a missing texture");
+    }
+    masks_.push_back(std::make_unique<AlphaMask>(
+        AlphaMask{&mesh, &source_.textures[size_t(mesh.base_color_texture)]}));
+    rtcSetGeometryUserData(geom, masks_.back().get());
+    rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);
+    rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
+  }
   rtcCommitGeometry(geom);
   const unsigned id = rtcAttachGeometry(scene_, geom);
   rtcReleaseGeometry(geom);

@@ -41,7 +41,7 @@ class FlatScene {
   // Every mesh for which `take(mesh)` is true becomes one triangle geometry
   // (flattened: no instances). mesh_of_geometry maps geomID to mesh index.
   template <typename Pred>
-  FlatScene(Device& device, const Scene& scene, Pred take) : device_(device) {
+  FlatScene(Device& device, const Scene& scene, Pred take) : device_(device), source_(scene) {
     begin();
     try {
       for (size_t i = 0; i < scene.meshes.size(); ++i)
@@ -60,12 +60,22 @@ class FlatScene {
   bool empty() const { return mesh_of_geometry.empty(); }
   std::vector<size_t> mesh_of_geometry;
 
+  // What an alpha-tested geometry's filter needs: the mesh (uvs, indices)
+  // and its texture. Hits on texels below the cutoff are rejected, exactly
+  // where the rasteriser discards (sample_alpha, nearest texel).
+  struct AlphaMask {
+    const Mesh* mesh;
+    const TextureImage* texture;
+  };
+
  private:
   void begin();
   void add(const Mesh& mesh, size_t index);
   void commit();
   Device& device_;
+  const Scene& source_;
   RTCScene scene_ = nullptr;
+  std::vector<std::unique_ptr<AlphaMask>> masks_;
 };
 
 // Sets flush-to-zero and denormals-are-zero for the current thread (Embree

@@ -32,7 +32,7 @@ using detail::FtzDazScope;
 constexpr const char* kMethod = "embree_stratified_packet16";
 // Bump whenever the estimate changes for the same inputs (sampling, offsets,
 // error estimate): it is part of every cache key.
-constexpr uint32_t kMethodVersion = 2;  // 2: horizon test, viewer-facing normals
+constexpr uint32_t kMethodVersion = 3;  // 2: horizon test, viewer-facing normals; 3: alpha masks
 constexpr char kMagic[8] = {'S', 'B', 'R', 'E', 'F', '\r', '\n', '\x1a'};
 constexpr uint32_t kFileVersion = 1;
 
@@ -361,6 +361,13 @@ std::string cache_key(const Scene& scene, const ImageF& positions, const ImageF&
     h.add(m.positions.data(), m.positions.size() * sizeof(glm::vec3));
     h.add(uint64_t(m.indices.size()));
     h.add(m.indices.data(), m.indices.size() * sizeof(uint32_t));
+    h.add(m.alpha_tested());
+    if (m.alpha_tested()) {  // the mask decides which rays pass
+      const TextureImage& t = scene.textures.at(size_t(m.base_color_texture));
+      h.add(m.alpha_cutoff).add(int32_t(t.width)).add(int32_t(t.height));
+      h.add(m.uvs.data(), m.uvs.size() * sizeof(glm::vec2));
+      h.add(t.rgba.data(), t.rgba.size());
+    }
   }
   h.add(casters);
   hash_image(h, positions);

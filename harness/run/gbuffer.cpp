@@ -10,12 +10,15 @@ namespace {
 const char* const kGBufferVertex = R"(#version 450 core
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
+layout(location = 2) in vec2 uv;
 uniform mat4 view_projection;
 out vec3 v_world;
 out vec3 v_normal;
+out vec2 v_uv;
 void main() {
   v_world = position;
   v_normal = normal;
+  v_uv = uv;
   gl_Position = view_projection * vec4(position, 1.0);
 }
 )";
@@ -27,14 +30,17 @@ layout(triangles) in;
 layout(triangle_strip, max_vertices = 3) out;
 in vec3 v_world[];
 in vec3 v_normal[];
+in vec2 v_uv[];
 out vec3 g_world;
 out vec3 g_normal;
+out vec2 g_uv;
 flat out vec3 g_face_normal;
 void main() {
   vec3 n = normalize(cross(v_world[1] - v_world[0], v_world[2] - v_world[0]));
   for (int i = 0; i < 3; ++i) {
     g_world = v_world[i];
     g_normal = v_normal[i];
+    g_uv = v_uv[i];
     g_face_normal = n;
     gl_Position = gl_in[i].gl_Position;
     EmitVertex();
@@ -46,19 +52,26 @@ void main() {
 const char* const kGBufferFragment = R"(#version 450 core
 in vec3 g_world;
 in vec3 g_normal;
+in vec2 g_uv;
 flat in vec3 g_face_normal;
+layout(binding = 0) uniform sampler2D base_color;
 uniform vec3 albedo;
+uniform bool textured;
+uniform bool alpha_test;
+uniform float alpha_cutoff;
 layout(location = 0) out vec4 out_position;
 layout(location = 1) out vec4 out_geometric_normal;
 layout(location = 2) out vec4 out_shading_normal;
 layout(location = 3) out vec4 out_albedo;
 void main() {
-  // Seen from behind, a single-sided surface shows its back: flip both normals.
+  vec4 c = textured ? texture(base_color, g_uv) : vec4(1.0);
+  if (alpha_test && c.a < alpha_cutoff) discard;  // the same texel the ray tracer tests
+  // Seen from behind, a surface shows its back: flip both normals.
   float side = gl_FrontFacing ? 1.0 : -1.0;
   out_position = vec4(g_world, 1.0);
   out_geometric_normal = vec4(side * g_face_normal, 0.0);
   out_shading_normal = vec4(side * normalize(g_normal), 0.0);
-  out_albedo = vec4(albedo, 1.0);
+  out_albedo = vec4(albedo * c.rgb, 1.0);
 }
 )";
 
@@ -119,7 +132,14 @@ void FrameTargets::render_gbuffer(const GpuScene& gpu, const glm::mat4& view_pro
   glDisable(GL_CULL_FACE);  // ground planes are single quads seen from either side
   gbuffer_program_.use();
   gbuffer_program_.set("view_projection", view_projection);
-  gpu.draw_all(gbuffer_program_.location("albedo"));
+  const gl::Program& prog = gbuffer_program_;
+  gpu.draw_all([&prog](const DrawInfo& d) {
+    prog.set("albedo", d.albedo);
+    prog.set("textured", d.texture != 0 ? 1 : 0);
+    prog.set("alpha_test", d.alpha_tested ? 1 : 0);
+    prog.set("alpha_cutoff", d.alpha_cutoff);
+    if (d.texture != 0) glBindTextureUnit(0, d.texture);
+  });
   gl::throw_if_errors("G-buffer pass");
 }
 

@@ -323,6 +323,12 @@ class Runner {
       ref_images = {{"reference_visibility", ref_rel + "/visibility.exr"},
                     {"reference_std_error", ref_rel + "/std_error.exr"},
                     {"reference_shaded", ref_rel + "/shaded.png"}};
+      if (o_.write_gbuffer) {
+        io::write_exr((fs::path(store_.dir()) / ref_rel / "positions.exr").string(), positions);
+        io::write_exr((fs::path(store_.dir()) / ref_rel / "normals.exr").string(), normals);
+        ref_images["gbuffer_positions"] = ref_rel + "/positions.exr";
+        ref_images["gbuffer_normals"] = ref_rel + "/normals.exr";
+      }
     }
     json ref_json = {
         {"method", ref.method},

@@ -17,6 +17,7 @@ struct RunOptions {
   gl::Backend backend = gl::Backend::OSMesa;
   std::string cache_dir = "results/cache";  // reference cache ("" = off)
   bool write_images = true;
+  bool write_gbuffer = false;  // also write the G-buffer's positions and normals as EXR
   bool quiet = false;
 };
 

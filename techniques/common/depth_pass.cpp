@@ -11,9 +11,34 @@ namespace {
 
 const char* const kDepthVertex = R"(#version 450 core
 layout(location = 0) in vec3 position;
+layout(location = 2) in vec2 uv;
 uniform mat4 light_view_projection;
-void main() { gl_Position = light_view_projection * vec4(position, 1.0); }
+out vec2 v_uv;
+void main() {
+  v_uv = uv;
+  gl_Position = light_view_projection * vec4(position, 1.0);
+}
 )";
+
+// Alpha-tested casters only: a fragment shader (and its discard) would cost
+// every opaque caster its early depth test.
+const char* const kMaskedDepthFragment = R"(#version 450 core
+in vec2 v_uv;
+layout(binding = 0) uniform sampler2D base_color;
+uniform float alpha_cutoff;
+void main() {
+  if (texture(base_color, v_uv).a < alpha_cutoff) discard;
+}
+)";
+
+void set_cull(CullMode cull, bool double_sided) {
+  if (cull == CullMode::None || double_sided) {
+    glDisable(GL_CULL_FACE);
+  } else {
+    glEnable(GL_CULL_FACE);
+    glCullFace(cull == CullMode::Back ? GL_BACK : GL_FRONT);
+  }
+}
 
 }  // namespace
 
@@ -52,6 +77,7 @@ DepthMap::DepthMap(int size, bool compare, bool linear) : size_(size) {
   }
   framebuffer_ = gl::make_framebuffer({}, texture_.get());
   program_ = gl::Program("shadow_depth", {kDepthVertex, "", ""});
+  masked_program_ = gl::Program("shadow_depth_masked", {kDepthVertex, "", kMaskedDepthFragment});
   gl::throw_if_errors("creating a shadow map");
 }
 
@@ -63,19 +89,25 @@ void DepthMap::render(const GpuScene& gpu, const LightFrustum& f, CullMode cull,
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  if (cull == CullMode::None) {
-    glDisable(GL_CULL_FACE);
-  } else {
-    glEnable(GL_CULL_FACE);
-    glCullFace(cull == CullMode::Back ? GL_BACK : GL_FRONT);
-  }
   if (bias.constant != 0.0f || bias.slope != 0.0f) {
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(bias.slope, bias.constant);
   }
-  program_.use();
   program_.set("light_view_projection", f.view_projection);
-  gpu.draw_casters();
+  masked_program_.set("light_view_projection", f.view_projection);
+  const gl::Program* current = nullptr;
+  gpu.draw_casters([&](const DrawInfo& d) {
+    const gl::Program* wanted = d.alpha_tested ? &masked_program_ : &program_;
+    if (wanted != current) {
+      wanted->use();
+      current = wanted;
+    }
+    if (d.alpha_tested) {
+      masked_program_.set("alpha_cutoff", d.alpha_cutoff);
+      glBindTextureUnit(0, d.texture);
+    }
+    set_cull(cull, d.double_sided);
+  });
   glDisable(GL_POLYGON_OFFSET_FILL);
   glDisable(GL_CULL_FACE);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);

@@ -49,6 +49,7 @@ class DepthMap {
   gl::Texture texture_;
   gl::Framebuffer framebuffer_;
   gl::Program program_;
+  gl::Program masked_program_;
 };
 
 // GLSL helpers for lookup passes: `light_coords(world)` returns the point in

@@ -40,8 +40,13 @@ ImageF RunOutput::reference_visibility() const {
           .string());
 }
 
+ImageF RunOutput::gbuffer_positions() const {
+  return io::read_image(
+      (fs::path(dir) / records.at(0)["images"]["gbuffer_positions"].get<std::string>()).string());
+}
+
 RunOutput run_config(const nlohmann::json& config, const std::string& name, gl::Backend backend,
-                     bool fresh) {
+                     bool fresh, bool write_gbuffer) {
   RunOutput out;
   out.dir = (fs::temp_directory_path() / ("shadowbench_e2e_" + name)).string();
   if (fresh) fs::remove_all(out.dir);
@@ -52,6 +57,7 @@ RunOutput run_config(const nlohmann::json& config, const std::string& name, gl::
   o.backend = backend;
   o.cache_dir = (fs::temp_directory_path() / "shadowbench_e2e_cache").string();
   o.quiet = true;
+  o.write_gbuffer = write_gbuffer;
   out.summary = run_experiment(e, o);
   out.records = read_run_records(out.dir);
   return out;

@@ -18,11 +18,13 @@ struct RunOutput {
   const nlohmann::json& record(const std::string& technique_variant) const;
   ImageF visibility(const std::string& technique_variant) const;
   ImageF reference_visibility() const;  // of the first record
+  ImageF gbuffer_positions() const;     // of the first record (write_gbuffer runs)
 };
 
 // `config` is an experiment JSON; `name` picks a fresh folder under /tmp.
 RunOutput run_config(const nlohmann::json& config, const std::string& name,
-                     gl::Backend backend = gl::Backend::OSMesa, bool fresh = true);
+                     gl::Backend backend = gl::Backend::OSMesa, bool fresh = true,
+                     bool write_gbuffer = false);
 
 // A small sphere grid seen from close by, for fast runs.
 nlohmann::json small_scene(double light_size);

@@ -97,3 +97,52 @@ TEST(SceneAnalysis, BuildsOnlyWhatTechniquesNeed) {
 
 }  // namespace
 }  // namespace sb
+
+namespace sb {
+namespace {
+
+TEST(PlanarReceiver, FoundUnderTheCastersOnly) {
+  Scene s;
+  s.meshes.push_back(make_uv_sphere("s", glm::vec3(0, 2, 0), 1.0f, 8, 6));
+  s.meshes.push_back(make_ground_plane("g", glm::vec3(0), 5.0f));
+  s.light.center = glm::vec3(0, 10, 0);
+  PlanarReceiver r;
+  ASSERT_TRUE(find_planar_receiver(s, r));
+  EXPECT_EQ(r.mesh, "g");
+  EXPECT_NEAR(r.plane.y, 1.0f, 1e-6f);  // facing the casters and the light
+  EXPECT_NEAR(r.plane.w, 0.0f, 1e-6f);
+
+  // A plane cutting through the sphere receives nothing of it.
+  s.meshes[1] = make_ground_plane("g", glm::vec3(0, 2, 0), 5.0f);
+  EXPECT_FALSE(find_planar_receiver(s, r));
+
+  // Only asked for when a technique needs it.
+  TechniqueInfo planar{"planar", "f", "", Needs{.planar_receiver = true}, {}, nullptr};
+  TechniqueInfo map{"map", "f", "", Needs{}, {}, nullptr};
+  const size_t before = derived_data_counters().receiver_searches;
+  SceneCapabilities caps = check_closedness(s, {&map});
+  EXPECT_FALSE(caps.receiver_checked);
+  EXPECT_EQ(derived_data_counters().receiver_searches, before);
+  caps = check_closedness(s, {&planar});
+  EXPECT_TRUE(caps.receiver_checked);
+  EXPECT_EQ(unmet_needs(s, caps, planar),
+            "planar needs a planar receiver under every caster; the scene has none");
+}
+
+TEST(Capabilities, AlphaTestedCastersSkipTechniquesThatCannotHonourThem) {
+  Scene s;
+  s.textures.push_back(TextureImage{"t", 1, 1, {255, 255, 255, 0}});
+  Mesh closed = make_uv_sphere("masked", glm::vec3(0, 2, 0), 1.0f, 8, 6);
+  closed.uvs.assign(closed.positions.size(), glm::vec2(0.5f));
+  closed.base_color_texture = 0;
+  closed.alpha_mode = AlphaMode::Mask;
+  s.meshes.push_back(closed);
+  TechniqueInfo volume{"volume", "f",    "", Needs{.closed_casters = true, .opaque_casters = true},
+                       {},       nullptr};
+  const SceneCapabilities caps = check_closedness(s, {&volume});
+  EXPECT_EQ(unmet_needs(s, caps, volume),
+            "volume cannot honour alpha masks: mesh 'masked' is alpha-tested");
+}
+
+}  // namespace
+}  // namespace sb

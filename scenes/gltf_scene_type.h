@@ -1,0 +1,7 @@
+#pragma once
+#include "core/scene_types.h"
+
+namespace sb {
+// A glTF 2.0 file (.gltf or .glb) as a scene; see docs/scenes.md.
+SceneType gltf_scene_type();
+}  // namespace sb
