@@ -123,7 +123,8 @@ int cmd_list(const Args& a) {
       std::string extra;
       if (!p.choices.empty()) {
         for (const auto& c : p.choices) extra += (extra.empty() ? "" : "|") + c;
-        extra = " {" + extra + "}";
+        extra.insert(0, " {");
+        extra += "}";
       }
       std::printf("      %-14s %-8s default %-8s %s%s\n", p.name.c_str(), to_string(p.type).c_str(),
                   p.default_value.dump().c_str(), p.doc.c_str(), extra.c_str());
@@ -142,6 +143,16 @@ int cmd_list(const Args& a) {
 int cmd_validate(const Args& a) {
   const Registry r = load_registry(a);
   const Experiment e = load_experiment(one_config(a), r);
+  // Build every scene on the CPU too, so that a bad scene file is found now.
+  for (const auto& sv : e.scenes) {
+    try {
+      find_scene_type(sv.type)->build(sv.params);
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& ex) {
+      throw InputError(e.file, sv.pointer, "scene " + sv.name + ": " + ex.what());
+    }
+  }
   std::printf(
       "%s: ok: %zu scene variant(s) × %zu resolution(s) × %zu technique variant(s) = %zu jobs\n",
       e.file.c_str(), e.scenes.size(), e.resolutions.size(), e.techniques.size(),
@@ -182,6 +193,7 @@ int cmd_run(const Args& a) {
   }
   std::printf("%d ok, %d skipped, %d failed, %d resumed; results in %s\n", s.ok, s.skipped,
               s.failed, s.resumed, o.run_dir.c_str());
+  if (s.bad_input > 0) return kExitBadInput;
   return s.failed > 0 ? kExitJobsFailed : kExitOk;
 }
 

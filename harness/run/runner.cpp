@@ -232,6 +232,11 @@ class Runner {
       }
       build_adjacency_if_needed(st.scene, running, st.caps);
       for (const auto& l : st.caps.log) log("scene " + sv.name + ": " + l);
+    } catch (const InputError& ex) {
+      // A bad scene file: its jobs fail, the other scenes still run, and the
+      // run's exit code says "bad input".
+      scene_error = std::string("bad scene input: ") + ex.what();
+      ++summary_.bad_input;
     } catch (const std::exception& ex) {
       scene_error = std::string("building the scene failed: ") + ex.what();
     }

@@ -25,7 +25,8 @@ struct RunSummary {
   int ok = 0;
   int skipped = 0;
   int failed = 0;
-  int resumed = 0;  // finished in an earlier run of the same directory
+  int resumed = 0;    // finished in an earlier run of the same directory
+  int bad_input = 0;  // scene variants whose input (a glTF file, say) was bad
 };
 
 RunSummary run_experiment(const Experiment& experiment, const RunOptions& options);

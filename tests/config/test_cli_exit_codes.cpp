@@ -35,6 +35,22 @@ TEST(Cli, BadConfigExitsWithTwo) {
   EXPECT_FALSE(std::filesystem::exists(path + ".out")) << "nothing may be written for a bad config";
 }
 
+// (Running such a config is tested in tests/e2e: it needs GL.)
+TEST(Cli, BadSceneFileFailsValidation) {
+  const auto dir = std::filesystem::temp_directory_path() / "shadowbench_test_cli";
+  std::filesystem::copy_file(SHADOWBENCH_SOURCE_DIR "/tests/gltf/corpus/index_out_of_range.gltf",
+                             dir / "bad.gltf", std::filesystem::copy_options::overwrite_existing);
+  const std::string path =
+      write_temp("bad_scene.json",
+                 R"({"scenes": [{"type": "gltf", "params": {"file": "bad.gltf"}},
+                     {"type": "sphere_grid", "params": {"grid": 2}}],
+          "techniques": ["none"], "resolutions": [[16, 12]],
+          "frames": {"warmup": 0, "timed": 1}, "reference": {"spp": 4}})");
+  const auto v = run_cli("validate " + path);
+  EXPECT_EQ(v.exit_code, 2) << v.output;
+  EXPECT_NE(v.output.find("bad.gltf: at accessor 1"), std::string::npos) << v.output;
+}
+
 TEST(Cli, UnknownOptionAndCommandExitWithTwo) {
   EXPECT_EQ(run_cli("run --frobnicate").exit_code, 2);
   EXPECT_EQ(run_cli("frobnicate").exit_code, 2);

@@ -7,6 +7,7 @@
 #include "config/experiment.h"
 #include "core/error.h"
 #include "core/registry.h"
+#include "e2e_util.h"
 #include "gl/gl.h"
 #include "results/store.h"
 #include "run/runner.h"
@@ -65,6 +66,26 @@ TEST(Failures, AFailingJobLeavesTheOthersIntact) {
   EXPECT_EQ(records[2]["status"], "failed");
   EXPECT_EQ(records[2]["reason"], "cannot prepare");
   EXPECT_EQ(records[3]["status"], "ok") << records[3].dump();
+}
+
+TEST(Failures, ABadSceneFileFailsItsJobsAndCountsAsBadInput) {
+  const nlohmann::json config = {
+      {"name", "bad_scene"},
+      {"scenes",
+       {{{"type", "gltf"},
+         {"params",
+          {{"file", SHADOWBENCH_SOURCE_DIR "/tests/gltf/corpus/index_out_of_range.gltf"}}}},
+        {{"type", "sphere_grid"}, {"params", {{"grid", 2}}}}}},
+      {"techniques", {"none"}},
+      {"resolutions", {{16, 12}}},
+      {"frames", {{"warmup", 0}, {"timed", 1}}},
+      {"reference", {{"spp", 4}}}};
+  const auto out = run_config(config, "bad_scene");
+  EXPECT_EQ(out.summary.bad_input, 1);
+  EXPECT_EQ(out.summary.failed, 1);
+  EXPECT_EQ(out.summary.ok, 1);
+  const std::string reason = out.records.at(0)["reason"];
+  EXPECT_NE(reason.find("index_out_of_range.gltf: at accessor 1"), std::string::npos) << reason;
 }
 
 }  // namespace
