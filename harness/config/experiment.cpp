@@ -288,6 +288,10 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
       v.info = info;
       v.pointer = p;
       v.params = resolve_params(info->params, combo, file, p + "/params");
+      if (info->check) {
+        const auto [param, problem] = info->check(v.params);
+        if (!problem.empty()) r.fail(p + "/params/" + param, problem);
+      }
       v.name = variant_name(label, info->params, combo);
       if (!names.insert(v.name).second)
         r.fail(p, "technique variant \"" + v.name +

@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/params.h"
@@ -20,6 +21,9 @@ struct TechniqueInfo {
   Needs needs;
   std::vector<ParamSpec> params;
   std::function<std::unique_ptr<Technique>(const Params&)> create;
+  // Optional rule across parameters, checked when a config is loaded: returns
+  // "" when fine, else {parameter to blame, what is wrong}.
+  std::function<std::pair<std::string, std::string>(const Params&)> check = nullptr;
 };
 
 class Registry {

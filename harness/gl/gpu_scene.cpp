@@ -62,6 +62,7 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>&
     info.alpha_tested = m.alpha_tested() && info.texture != 0;
     info.alpha_cutoff = m.alpha_cutoff;
     info.double_sided = m.double_sided;
+    info.casts_shadow = m.casts_shadow;
     ranges_.push_back(
         {GLsizei(m.indices.size()), GLsizeiptr(index_data.size() * 4), base, m.casts_shadow, info});
     index_data.insert(index_data.end(), m.indices.begin(), m.indices.end());

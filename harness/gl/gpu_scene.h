@@ -19,6 +19,7 @@ struct DrawInfo {
   bool alpha_tested = false;
   float alpha_cutoff = 0.5f;
   bool double_sided = false;
+  bool casts_shadow = true;
 };
 
 class GpuScene {

@@ -31,6 +31,23 @@ Texture make_depth_texture(GLenum internal_format, int width, int height, bool c
   return t;
 }
 
+Sampler make_sampler(bool linear, bool compare, float border) {
+  GLuint id = 0;
+  glCreateSamplers(1, &id);
+  const GLint filter = linear ? GL_LINEAR : GL_NEAREST;
+  glSamplerParameteri(id, GL_TEXTURE_MIN_FILTER, filter);
+  glSamplerParameteri(id, GL_TEXTURE_MAG_FILTER, filter);
+  glSamplerParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+  glSamplerParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+  const float b[4] = {border, border, border, border};
+  glSamplerParameterfv(id, GL_TEXTURE_BORDER_COLOR, b);
+  if (compare) {
+    glSamplerParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glSamplerParameteri(id, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  }
+  return Sampler(id);
+}
+
 Framebuffer make_framebuffer(std::initializer_list<GLuint> colors, GLuint depth,
                              GLenum depth_attachment) {
   GLuint id = 0;

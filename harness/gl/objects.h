@@ -37,17 +37,23 @@ inline void delete_texture(GLuint id) { glDeleteTextures(1, &id); }
 inline void delete_buffer(GLuint id) { glDeleteBuffers(1, &id); }
 inline void delete_framebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
 inline void delete_vertex_array(GLuint id) { glDeleteVertexArrays(1, &id); }
+inline void delete_sampler(GLuint id) { glDeleteSamplers(1, &id); }
 inline void delete_program(GLuint id) { glDeleteProgram(id); }
 
 using Texture = Handle<delete_texture>;
 using Buffer = Handle<delete_buffer>;
 using Framebuffer = Handle<delete_framebuffer>;
 using VertexArray = Handle<delete_vertex_array>;
+using Sampler = Handle<delete_sampler>;
 
 // A 2D texture with immutable storage, nearest filtering, clamped edges.
 Texture make_texture_2d(GLenum internal_format, int width, int height);
 // A depth texture usable as sampler2DShadow (compare mode on) or plain.
 Texture make_depth_texture(GLenum internal_format, int width, int height, bool compare);
+// A sampler object: lets one texture be read two ways (e.g. a depth map as
+// sampler2DShadow and as raw depths). `compare` turns on GL_LEQUAL
+// reference comparison; outside the texture reads `border`.
+Sampler make_sampler(bool linear, bool compare, float border);
 // Framebuffer with the given colour attachments (0 = none) and depth(-stencil).
 Framebuffer make_framebuffer(std::initializer_list<GLuint> colors, GLuint depth,
                              GLenum depth_attachment = GL_DEPTH_ATTACHMENT);

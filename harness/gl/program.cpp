@@ -87,6 +87,19 @@ GLint Program::location(const std::string& uniform) const {
   return loc;
 }
 
+void Program::set(const std::string& u, const std::vector<float>& values) const {
+  glProgramUniform1fv(id_, location(u), static_cast<GLsizei>(values.size()), values.data());
+}
+
+void Program::set(const std::string& u, const std::vector<glm::vec2>& values) const {
+  glProgramUniform2fv(id_, location(u), static_cast<GLsizei>(values.size()),
+                      glm::value_ptr(values.front()));
+}
+
+bool Program::has_uniform(const std::string& uniform) const {
+  return locations_.count(uniform) != 0 || glGetUniformLocation(id_, uniform.c_str()) >= 0;
+}
+
 void Program::set(const std::string& u, const glm::vec2& v) const {
   glProgramUniform2fv(id_, location(u), 1, glm::value_ptr(v));
 }

@@ -4,6 +4,7 @@
 #include <glm/glm.hpp>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "gl/gl.h"
 
@@ -28,13 +29,21 @@ class Program {
   GLuint id() const { return id_; }
   void use() const { glUseProgram(id_); }
   GLint location(const std::string& uniform) const;
+  // False for uniforms the compiler removed (unused by this variant's shader).
+  bool has_uniform(const std::string& uniform) const;
 
   void set(const std::string& u, int v) const { glProgramUniform1i(id_, location(u), v); }
   void set(const std::string& u, float v) const { glProgramUniform1f(id_, location(u), v); }
+  void set(const std::string& u, const glm::ivec2& v) const {
+    glProgramUniform2i(id_, location(u), v.x, v.y);
+  }
   void set(const std::string& u, const glm::vec2& v) const;
   void set(const std::string& u, const glm::vec3& v) const;
   void set(const std::string& u, const glm::vec4& v) const;
   void set(const std::string& u, const glm::mat4& m) const;
+  // A `float u[N]` uniform array from its first element on.
+  void set(const std::string& u, const std::vector<float>& values) const;
+  void set(const std::string& u, const std::vector<glm::vec2>& values) const;
 
  private:
   std::string name_;

@@ -84,6 +84,29 @@ std::vector<uint8_t> attached_shadow_mask(const ImageF& positions, const ImageF&
   return mask;
 }
 
+// A technique's visibility must be finite and in [0,1]; float rounding of
+// sums (accumulation, kernels) may overshoot by this much.
+constexpr float kVisibilityTolerance = 1e-5f;
+
+struct VisibilityCheck {
+  size_t nonfinite = 0;
+  size_t below_zero = 0;
+  size_t above_one = 0;
+};
+
+VisibilityCheck check_visibility(const ImageF& v) {
+  VisibilityCheck c;
+  for (float x : v.data) {
+    if (!std::isfinite(x))
+      ++c.nonfinite;
+    else if (x < -kVisibilityTolerance)
+      ++c.below_zero;
+    else if (x > 1.0f + kVisibilityTolerance)
+      ++c.above_one;
+  }
+  return c;
+}
+
 void apply_attached_shadow(const std::vector<uint8_t>& mask, ImageF& visibility) {
   for (size_t i = 0; i < mask.size(); ++i)
     if (mask[i]) visibility.data[i] = 0.0f;
@@ -430,6 +453,11 @@ class Runner {
     r["timing"] = timing;
 
     ImageF visibility = targets.read_visibility();
+    const VisibilityCheck check = check_visibility(visibility);
+    r["visibility_check"] = {{"nonfinite", check.nonfinite},
+                             {"below_0", check.below_zero},
+                             {"above_1", check.above_one},
+                             {"tolerance", kVisibilityTolerance}};
     apply_attached_shadow(attached, visibility);
     const ImageF shaded = targets.read_shaded();
     json m;
@@ -459,6 +487,12 @@ class Runner {
                      {"error_heatmap", rel + "/error.png"},
                      {"error_heatmap_full_scale", kHeatmapFullScale}};
     }
+    // Metrics and images are kept for inspection, but the job fails.
+    if (check.nonfinite + check.below_zero + check.above_one > 0)
+      throw JobError("visibility outside [0,1]: " + std::to_string(check.nonfinite) + " NaN/Inf, " +
+                     std::to_string(check.below_zero) + " below 0, " +
+                     std::to_string(check.above_one) + " above 1 (tolerance " +
+                     json(kVisibilityTolerance).dump() + ")");
   }
 
   const Experiment& e_;

@@ -37,7 +37,7 @@ class Accumulation final : public Technique {
         map_settings_(depth_map_settings(p)) {}
 
   void prepare(const FrameInputs& in) override {
-    map_ = DepthMap(map_settings_.size, /*compare=*/true, /*linear=*/false);
+    map_ = DepthMap(map_settings_.size, map_settings_.depth_format);
     const int rows = grid_rows(samples_);
     const int cols = samples_ / rows;
     std::mt19937 rng(seed_);

@@ -49,39 +49,50 @@ CullMode cull_mode_from_string(const std::string& s) {
   throw std::logic_error("unknown cull mode '" + s + "'");
 }
 
-std::vector<ParamSpec> depth_map_params(int default_size) {
+std::vector<ParamSpec> depth_map_params(int default_size, const std::string& default_cull) {
   return {int_param("size", default_size, 16, 16384, "shadow-map side in texels"),
+          choice_param("depth_format", "32f", {"32f", "24", "16"},
+                       "depth-map format: 32-bit float, 24- or 16-bit normalised"),
           float_param("constant_bias", 4.0, -1e6, 1e6, "glPolygonOffset units (depth pass)"),
           float_param("slope_bias", 2.0, -1e3, 1e3, "glPolygonOffset factor (depth pass)"),
-          choice_param("cull", "front", {"none", "back", "front"},
+          choice_param("cull", default_cull, {"none", "back", "front"},
                        "faces culled when rendering the map (front: render back faces, no acne on "
                        "lit closed surfaces)"),
           float_param("normal_offset", 0.0, 0.0, 64.0,
                       "receiver offset along its normal, in shadow-map texels")};
 }
 
+ParamSpec receiver_plane_param() {
+  return bool_param("receiver_plane_bias", false,
+                    "compare each tap against the receiver's plane extended to the tap "
+                    "(Isidoro 2006)");
+}
+
 DepthMapSettings depth_map_settings(const Params& p) {
   DepthMapSettings s;
   s.size = p.get_int("size");
+  const std::string format = p.get_string("depth_format");
+  s.depth_format = format == "16"   ? GL_DEPTH_COMPONENT16
+                   : format == "24" ? GL_DEPTH_COMPONENT24
+                                    : GL_DEPTH_COMPONENT32F;
+  if (p.json().contains("receiver_plane_bias"))
+    s.receiver_plane = p.get_bool("receiver_plane_bias");
   s.bias = {p.get_float("constant_bias"), p.get_float("slope_bias")};
   s.cull = cull_mode_from_string(p.get_string("cull"));
   s.normal_offset = p.get_float("normal_offset");
   return s;
 }
 
-DepthMap::DepthMap(int size, bool compare, bool linear) : size_(size) {
-  texture_ = gl::make_depth_texture(GL_DEPTH_COMPONENT32F, size, size, compare);
-  if (linear) {
-    glTextureParameteri(texture_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(texture_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  }
+DepthMap::DepthMap(int size, GLenum depth_format) : size_(size) {
+  texture_ = gl::make_depth_texture(depth_format, size, size, /*compare=*/false);
   framebuffer_ = gl::make_framebuffer({}, texture_.get());
   program_ = gl::Program("shadow_depth", {kDepthVertex, "", ""});
   masked_program_ = gl::Program("shadow_depth_masked", {kDepthVertex, "", kMaskedDepthFragment});
   gl::throw_if_errors("creating a shadow map");
 }
 
-void DepthMap::render(const GpuScene& gpu, const LightFrustum& f, CullMode cull, DepthBias bias) {
+void DepthMap::render(const GpuScene& gpu, const LightFrustum& f, CullMode cull, DepthBias bias,
+                      bool receivers_too) {
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
   glViewport(0, 0, size_, size_);
   glClearNamedFramebufferfv(framebuffer_.get(), GL_DEPTH, 0, std::array<float, 1>{1.0f}.data());
@@ -96,7 +107,7 @@ void DepthMap::render(const GpuScene& gpu, const LightFrustum& f, CullMode cull,
   program_.set("light_view_projection", f.view_projection);
   masked_program_.set("light_view_projection", f.view_projection);
   const gl::Program* current = nullptr;
-  gpu.draw_casters([&](const DrawInfo& d) {
+  const auto setup = [&](const DrawInfo& d) {
     const gl::Program* wanted = d.alpha_tested ? &masked_program_ : &program_;
     if (wanted != current) {
       wanted->use();
@@ -106,8 +117,12 @@ void DepthMap::render(const GpuScene& gpu, const LightFrustum& f, CullMode cull,
       masked_program_.set("alpha_cutoff", d.alpha_cutoff);
       glBindTextureUnit(0, d.texture);
     }
-    set_cull(cull, d.double_sided);
-  });
+    set_cull(d.casts_shadow ? cull : CullMode::None, d.double_sided);
+  };
+  if (receivers_too)
+    gpu.draw_all(setup);
+  else
+    gpu.draw_casters(setup);
   glDisable(GL_POLYGON_OFFSET_FILL);
   glDisable(GL_CULL_FACE);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -124,10 +139,40 @@ vec3 light_coords(mat4 light_view_projection, vec3 world) {
 vec3 offset_world(vec3 world, vec3 geometric_normal, vec3 light_point, float normal_offset) {
   return world + geometric_normal * (normal_offset * distance(world, light_point));
 }
+vec3 light_coords_unclamped(mat4 light_view_projection, vec3 world) {
+  vec4 c = light_view_projection * vec4(world, 1.0);
+  return (c.xyz / c.w) * 0.5 + 0.5;
+}
+// Steps along two tangents of the receiver's plane, projects them into the
+// map and inverts the 2×2 Jacobian: how depth changes per unit of uv.
+vec2 receiver_plane_gradient(mat4 light_view_projection, vec3 world, vec3 n) {
+  vec3 a = normalize(cross(n, abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
+  vec3 b = cross(n, a);
+  float e = 1e-3 * max(length(world), 1.0);
+  vec3 t0 = light_coords_unclamped(light_view_projection, world);
+  vec3 ta = light_coords_unclamped(light_view_projection, world + e * a) - t0;
+  vec3 tb = light_coords_unclamped(light_view_projection, world + e * b) - t0;
+  mat2 j = mat2(ta.xy, tb.xy);
+  float det = determinant(j);
+  // Edge-on (the tangents project almost parallel): no usable plane.
+  if (abs(det) < 0.02 * length(ta.xy) * length(tb.xy)) return vec2(0.0);
+  return vec2(ta.z, tb.z) * inverse(j);
+}
 // 1 when the light point lies above the surface's tangent plane; below it the
 // surface itself occludes the light (the reference counts it so too).
 float above_horizon(vec3 geometric_normal, vec3 world, vec3 light_point) {
   return dot(geometric_normal, light_point - world) > 0.0 ? 1.0 : 0.0;
+}
+)";
+
+const char* const kLightDepthGlsl = R"(
+uniform vec2 light_depth_range;
+float view_depth(float window_depth) {
+  float n = light_depth_range.x, f = light_depth_range.y;
+  return n * f / (f - window_depth * (f - n));
+}
+float depth01(float view_z) {
+  return clamp((view_z - light_depth_range.x) / (light_depth_range.y - light_depth_range.x), 0.0, 1.0);
 }
 )";
 

@@ -22,25 +22,38 @@ struct DepthBias {
 // The parameters every depth-map technique shares, declared once.
 struct DepthMapSettings {
   int size = 2048;
+  GLenum depth_format = GL_DEPTH_COMPONENT32F;  // "32f" | "24" | "16"
   DepthBias bias;
   CullMode cull = CullMode::Front;
   float normal_offset = 0.0f;  // texels along the receiver's normal (Holbert 2011)
+  // Compare each filter tap against the receiver's plane extended to the
+  // tap (Isidoro 2006), not against the pixel's own depth.
+  bool receiver_plane = false;
   // The lookup's uniform `normal_offset` for a frustum: world units per unit distance.
   float normal_offset_per_distance(const LightFrustum& f) const {
     return normal_offset * f.texel_per_distance(size);
   }
 };
-std::vector<ParamSpec> depth_map_params(
-    int default_size);  // size, constant_bias, slope_bias, cull, normal_offset
+// size, depth_format, constant_bias, slope_bias, cull, normal_offset
+std::vector<ParamSpec> depth_map_params(int default_size,
+                                        const std::string& default_cull = "front");
+// For variants whose filter taps compare depths away from the pixel.
+ParamSpec receiver_plane_param();
+// Reads depth_map_params (and receiver_plane_bias when declared).
 DepthMapSettings depth_map_settings(const Params& p);
 
 class DepthMap {
  public:
   DepthMap() = default;
-  // A square GL_DEPTH_COMPONENT32F map; compare=true sets it up as a
-  // sampler2DShadow (linear=true gives hardware 2×2 PCF).
-  DepthMap(int size, bool compare, bool linear);
-  void render(const GpuScene& gpu, const LightFrustum& f, CullMode cull, DepthBias bias);
+  // A square depth map in `depth_format`. How it is read (compared or raw,
+  // nearest or linear) is up to the sampler object bound with it.
+  DepthMap(int size, GLenum depth_format);
+  // `receivers_too`: also draw the meshes that cast no shadow (the ground),
+  // unculled. Filtered maps need them: their filters average the occluder
+  // depth with what lies around it, and an empty texel reads as the far
+  // plane, which would drag every average far behind the real receiver.
+  void render(const GpuScene& gpu, const LightFrustum& f, CullMode cull, DepthBias bias,
+              bool receivers_too = false);
   GLuint texture() const { return texture_.get(); }
   int size() const { return size_; }
 
@@ -58,7 +71,14 @@ class DepthMap {
 // `offset_world(world, n, light_point, normal_offset)` moves the receiver
 // along its normal by normal_offset × its distance to the light point;
 // `above_horizon(n, world, light_point)` is 0 for light points below the
-// surface's tangent plane (the surface occludes them itself).
+// surface's tangent plane (the surface occludes them itself);
+// `receiver_plane_gradient(light_view_projection, world, n)` is d(depth)/d(uv)
+// of the receiver's tangent plane in the map's texture space (0 where the
+// plane is seen edge-on from the light).
 extern const char* const kLightLookupGlsl;
+// `uniform vec2 light_depth_range` (near, far) and the conversions from the
+// map's window depth: `view_depth(w)` is the distance along the light's axis,
+// `depth01(z)` maps it linearly to [0,1] (far and beyond: 1).
+extern const char* const kLightDepthGlsl;
 
 }  // namespace sb::shadow

@@ -1,7 +1,6 @@
 #include "common/map_lookup.h"
 
 #include "gl/debug.h"
-#include "gl/objects.h"
 
 namespace sb::shadow {
 namespace {
@@ -11,11 +10,26 @@ in vec2 uv;
 layout(binding = 0) uniform sampler2D position_tex;
 layout(binding = 1) uniform sampler2DShadow shadow_map;
 layout(binding = 2) uniform sampler2D normal_tex;
+layout(binding = 3) uniform sampler2D depth_map;
 uniform mat4 light_view_projection;
+uniform mat4 light_view;
 uniform vec3 light_point;
 uniform float normal_offset;
+uniform bool receiver_plane;
 uniform float weight;
 out float visibility;
+
+// Set by main() before lit_fraction() runs.
+vec3 receiver_world = vec3(0.0);
+vec3 receiver_normal = vec3(0.0, 1.0, 0.0);
+vec2 receiver_gradient = vec2(0.0);
+
+float shadow_tap(vec3 t, vec2 offset) {
+  return texture(shadow_map, vec3(t.xy + offset, min(t.z + dot(receiver_gradient, offset), 1.0)));
+}
+// clamp(v, 0, 1) that lets NaN through to the harness's finiteness check.
+float clamp_unit(float v) { return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v); }
+float receiver_view_depth() { return -(light_view * vec4(receiver_world, 1.0)).z; }
 )";
 
 const char* const kLookupMain = R"(
@@ -23,21 +37,34 @@ void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   vec4 pos = texelFetch(position_tex, p, 0);
   if (pos.w == 0.0) { visibility = weight; return; }
-  vec3 n = texelFetch(normal_tex, p, 0).xyz;
-  vec3 t = light_coords(light_view_projection, offset_world(pos.xyz, n, light_point, normal_offset));
-  visibility = weight * above_horizon(n, pos.xyz, light_point) * lit_fraction(t);
+  receiver_normal = texelFetch(normal_tex, p, 0).xyz;
+  receiver_world = offset_world(pos.xyz, receiver_normal, light_point, normal_offset);
+  vec3 t = light_coords(light_view_projection, receiver_world);
+  // Outside the map's cone nothing stands between the point and the light's
+  // centre: the cone holds every caster.
+  if (any(lessThan(t.xy, vec2(0.0))) || any(greaterThan(t.xy, vec2(1.0)))) {
+    visibility = weight * above_horizon(receiver_normal, pos.xyz, light_point);
+    return;
+  }
+  receiver_gradient = receiver_plane
+      ? receiver_plane_gradient(light_view_projection, receiver_world, receiver_normal)
+      : vec2(0.0);
+  visibility = weight * above_horizon(receiver_normal, pos.xyz, light_point) * lit_fraction(t);
 }
 )";
 
 }  // namespace
 
-MapLookupPass::MapLookupPass(const std::string& name, const std::string& lit_fraction_glsl)
-    : program_(name,
-               {gl::kFullscreenVertexShader, "",
-                std::string(kLookupHead) + kLightLookupGlsl + lit_fraction_glsl + kLookupMain}) {}
+MapLookupPass::MapLookupPass(const std::string& name, const std::string& lit_fraction_glsl,
+                             bool linear_compare)
+    : program_(name, {gl::kFullscreenVertexShader, "",
+                      std::string(kLookupHead) + kLightLookupGlsl + kLightDepthGlsl +
+                          lit_fraction_glsl + kLookupMain}),
+      compare_sampler_(gl::make_sampler(linear_compare, /*compare=*/true, /*border=*/1.0f)),
+      raw_sampler_(gl::make_sampler(/*linear=*/false, /*compare=*/false, /*border=*/1.0f)) {}
 
 void MapLookupPass::draw(const FrameInputs& in, const LightFrustum& frustum,
-                         const DepthMapSettings& settings, GLuint shadow_map, float weight) const {
+                         const DepthMapSettings& settings, GLuint depth_map, float weight) const {
   glBindFramebuffer(GL_FRAMEBUFFER, in.visibility_framebuffer);
   glViewport(0, 0, in.width, in.height);
   glDisable(GL_DEPTH_TEST);
@@ -45,25 +72,36 @@ void MapLookupPass::draw(const FrameInputs& in, const LightFrustum& frustum,
   program_.set("light_view_projection", frustum.view_projection);
   program_.set("light_point", frustum.eye);
   program_.set("normal_offset", settings.normal_offset_per_distance(frustum));
+  // Optimised out by variants that never read receiver_gradient.
+  if (program_.has_uniform("receiver_plane"))
+    program_.set("receiver_plane", settings.receiver_plane ? 1 : 0);
   program_.set("weight", weight);
+  if (program_.has_uniform("light_view")) program_.set("light_view", frustum.view);
+  if (program_.has_uniform("light_depth_range"))
+    program_.set("light_depth_range", glm::vec2(frustum.near_plane, frustum.far_plane));
   glBindTextureUnit(0, in.gbuffer_position);
-  glBindTextureUnit(1, shadow_map);
+  glBindTextureUnit(1, depth_map);
+  glBindSampler(1, compare_sampler_.get());
   glBindTextureUnit(2, in.gbuffer_normal);
+  glBindTextureUnit(3, depth_map);
+  glBindSampler(3, raw_sampler_.get());
   gl::draw_fullscreen_triangle();
+  glBindSampler(1, 0);
+  glBindSampler(3, 0);
 }
 
 SingleMapTechnique::SingleMapTechnique(const Params& p, std::string name,
-                                       std::string lit_fraction_glsl, bool linear_filtering)
+                                       std::string lit_fraction_glsl, bool linear_compare)
     : name_(std::move(name)),
       lit_fraction_glsl_(std::move(lit_fraction_glsl)),
-      linear_filtering_(linear_filtering),
+      linear_compare_(linear_compare),
       settings_(depth_map_settings(p)) {}
 
 void SingleMapTechnique::prepare(const FrameInputs& in) {
-  map_ = DepthMap(settings_.size, /*compare=*/true, linear_filtering_);
+  map_ = DepthMap(settings_.size, settings_.depth_format);
   frustum_ = fit_light_frustum(*in.scene, in.scene->light.center);
-  lookup_ = MapLookupPass(name_ + "_lookup", lit_fraction_glsl_);
-  set_uniforms(lookup_.program());
+  lookup_ = MapLookupPass(name_ + "_lookup", lit_fraction_glsl_, linear_compare_);
+  set_uniforms(lookup_.program(), frustum_, *in.scene);
   gl::throw_if_errors(name_ + " prepare");
 }
 

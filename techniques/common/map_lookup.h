@@ -2,13 +2,27 @@
 // The full-screen pass every depth-map technique ends with: for each G-buffer
 // pixel, find it in the light's map and write visibility
 //   V = weight * above_horizon * lit_fraction(t)
-// where `lit_fraction` is the variant's GLSL (one compare, k×k PCF, ...), `t`
-// the pixel's light-space texture coordinates, and background pixels get
-// V = weight. `weight` < 1 lets accumulation techniques add passes up.
+// where `lit_fraction` is the variant's GLSL (one compare, k×k PCF, a moment
+// reconstruction...), `t` the pixel's light-space texture coordinates, and
+// background pixels get V = weight. `weight` < 1 lets accumulation techniques
+// add passes up. lit_fraction must itself return a value in [0,1]: nothing
+// here clamps, so that NaN or overflow reach the harness's finiteness check.
+//
+// What `lit_fraction` may use besides `t`:
+//   shadow_map        sampler2DShadow on the depth map (unit 1)
+//   depth_map         sampler2D, the same map's raw window depths (unit 3)
+//   shadow_tap(t, o)  one comparison `o` (in uv) away from t, against the
+//                     receiver's plane when receiver_plane_bias is on
+//   receiver_world, receiver_normal   the (normal-offset) point and its normal
+//   view_depth(w)     a window depth of the map as distance along the light axis
+//   receiver_view_depth(), depth01(z)  the same for the receiver; z -> [0,1]
+//   clamp_unit(v)     clamp to [0,1] that keeps NaN (GLSL's clamp may not)
+// Units 4 and up are the variant's own.
 #include <string>
 
 #include "common/depth_pass.h"
 #include "core/technique.h"
+#include "gl/objects.h"
 #include "gl/program.h"
 
 namespace sb::shadow {
@@ -16,37 +30,41 @@ namespace sb::shadow {
 class MapLookupPass {
  public:
   MapLookupPass() = default;
-  // `lit_fraction_glsl` defines `float lit_fraction(vec3 t)`; it may use
-  // `shadow_map` (sampler2DShadow, unit 1) and its own uniforms.
-  MapLookupPass(const std::string& name, const std::string& lit_fraction_glsl);
+  // `linear_compare`: shadow_map comparisons are bilinear (hardware 2×2 PCF).
+  MapLookupPass(const std::string& name, const std::string& lit_fraction_glsl,
+                bool linear_compare = false);
 
   const gl::Program& program() const { return program_; }
   // Draws into in.visibility_framebuffer (blending is the caller's choice).
   void draw(const FrameInputs& in, const LightFrustum& frustum, const DepthMapSettings& settings,
-            GLuint shadow_map, float weight = 1.0f) const;
+            GLuint depth_map, float weight = 1.0f) const;
 
  private:
   gl::Program program_;
+  gl::Sampler compare_sampler_;
+  gl::Sampler raw_sampler_;
 };
 
 // A technique made of one depth map from the light's centre and one lookup:
-// shadow_map, pcf and their kin differ only in `lit_fraction` and uniforms.
+// shadow_map, the PCF kernels, PCSS and their kin differ only in
+// `lit_fraction` and its uniforms.
 class SingleMapTechnique : public Technique {
  public:
   SingleMapTechnique(const Params& p, std::string name, std::string lit_fraction_glsl,
-                     bool linear_filtering);
+                     bool linear_compare);
   void prepare(const FrameInputs& in) override;
   void render(const FrameInputs& in, gl::PassTimer& timer) override;
 
  protected:
   // Sets the variant's own uniforms on the lookup program, once, in prepare().
-  virtual void set_uniforms(const gl::Program& /*lookup*/) const {}
+  virtual void set_uniforms(const gl::Program& /*lookup*/, const LightFrustum& /*frustum*/,
+                            const Scene& /*scene*/) const {}
   const DepthMapSettings& settings() const { return settings_; }
 
  private:
   std::string name_;
   std::string lit_fraction_glsl_;
-  bool linear_filtering_;
+  bool linear_compare_;
   DepthMapSettings settings_;
   DepthMap map_;
   LightFrustum frustum_;

@@ -4,6 +4,7 @@
 // | parameter      | default | meaning                                         |
 // |----------------|---------|-------------------------------------------------|
 // | size           | 2048    | shadow-map side in texels                       |
+// | depth_format   | "32f"   | depth-map format: "32f", "24" or "16"           |
 // | constant_bias  | 4       | glPolygonOffset units in the depth pass         |
 // | slope_bias     | 2       | glPolygonOffset factor in the depth pass        |
 // | cull           | "front" | faces culled in the depth pass (Shypula 2008)   |
@@ -24,7 +25,7 @@ TechniqueInfo hard_shadow_map_info() {
           [](const Params& p) {
             return std::make_unique<SingleMapTechnique>(
                 p, "shadow_map", "float lit_fraction(vec3 t) { return texture(shadow_map, t); }\n",
-                /*linear_filtering=*/false);
+                /*linear_compare=*/false);
           }};
 }
 

@@ -4,4 +4,7 @@
 namespace sb::shadow {
 TechniqueInfo hard_shadow_map_info();
 TechniqueInfo pcf_box_info();
+TechniqueInfo pcf_gauss_info();
+TechniqueInfo pcf_jitter_info();
+TechniqueInfo pcss_info();
 }  // namespace sb::shadow

@@ -22,7 +22,7 @@ std::string write_temp(const std::string& name, const std::string& text) {
 TEST(Cli, BadConfigExitsWithTwo) {
   const std::string path = write_temp(
       "bad.json",
-      R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "pcf", "params": {"k": 4}}], "resolutions": [[8, 8]]})");
+      R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "pcf_box", "params": {"k": 4}}], "resolutions": [[8, 8]]})");
   for (const char* command : {"validate", "run"}) {
     const auto r = run_cli(std::string(command) + " " + path + " --out " + path + ".out");
     EXPECT_EQ(r.exit_code, 2) << r.output;
@@ -68,7 +68,7 @@ TEST(Cli, ListShowsTechniquesWithTheirNeeds) {
   const auto r = run_cli("list");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   for (const char* name :
-       {"none", "shadow_map", "pcf", "shadow_volume", "accumulation", "sphere_grid"})
+       {"none", "shadow_map", "pcf_box", "shadow_volume", "accumulation", "sphere_grid"})
     EXPECT_NE(r.output.find(name), std::string::npos) << name;
   EXPECT_NE(r.output.find("needs: closed_casters edge_adjacency"), std::string::npos) << r.output;
 }

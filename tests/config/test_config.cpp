@@ -33,7 +33,7 @@ std::string write_temp(const std::string& name, const std::string& text) {
 const char* const kValid = R"({
   "name": "t",
   "scenes": [{"type": "sphere_grid", "params": {"grid": 2}}],
-  "techniques": ["none", {"name": "pcf", "params": {"k": [3, 5], "size": 256}}],
+  "techniques": ["none", {"name": "pcf_box", "params": {"k": [3, 5], "size": 256}}],
   "resolutions": [[64, 48], "32x24"],
   "frames": {"warmup": 0, "timed": 2},
   "reference": {"spp": 16, "seed": 3}
@@ -44,8 +44,8 @@ TEST(Config, ValidConfigExpandsSweeps) {
   ASSERT_EQ(e.scenes.size(), 1u);
   ASSERT_EQ(e.techniques.size(), 3u);
   EXPECT_EQ(e.techniques[0].name, "none");
-  EXPECT_EQ(e.techniques[1].name, "pcf/k=3,size=256");
-  EXPECT_EQ(e.techniques[2].name, "pcf/k=5,size=256");
+  EXPECT_EQ(e.techniques[1].name, "pcf_box/k=3,size=256");
+  EXPECT_EQ(e.techniques[2].name, "pcf_box/k=5,size=256");
   EXPECT_EQ(e.techniques[2].params.get_int("k"), 5);
   EXPECT_EQ(e.techniques[2].params.get_string("filter"), "nearest");  // default filled in
   ASSERT_EQ(e.resolutions.size(), 2u);
@@ -91,23 +91,23 @@ const BadCase kBadCases[] = {
      R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none", {"name": "pcss2"}], "resolutions": [[8, 8]]})",
      "/techniques/1/name", "unknown technique \"pcss2\""},
     {"unknown_param",
-     R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "pcf", "params": {"kernel": 3}}], "resolutions": [[8, 8]]})",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "pcf_box", "params": {"kernel": 3}}], "resolutions": [[8, 8]]})",
      "/techniques/0/params/kernel", "unknown parameter 'kernel' (known: k, filter"},
     {"wrong_type",
-     R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "pcf", "params": {"k": "five"}}], "resolutions": [[8, 8]]})",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "pcf_box", "params": {"k": "five"}}], "resolutions": [[8, 8]]})",
      "/techniques/0/params/k", "parameter 'k': expected an integer, found string \"five\""},
     {"out_of_range",
      R"({"scenes": [{"type": "sphere_grid", "params": {"grid": 0}}], "techniques": ["none"], "resolutions": [[8, 8]]})",
      "/scenes/0/params/grid", "parameter 'grid': expected an integer in [1, 256], found 0"},
     {"even_kernel",
-     R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "pcf", "params": {"k": [3, 4]}}], "resolutions": [[8, 8]]})",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "pcf_box", "params": {"k": [3, 4]}}], "resolutions": [[8, 8]]})",
      "/techniques/0/params/k", "expected an odd integer, found 4"},
     {"bad_choice",
      R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "shadow_map", "params": {"cull": "sideways"}}], "resolutions": [[8, 8]]})",
      "/techniques/0/params/cull",
      "expected one of \"none\", \"back\", \"front\", found \"sideways\""},
     {"empty_sweep",
-     R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "pcf", "params": {"k": []}}], "resolutions": [[8, 8]]})",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "pcf_box", "params": {"k": []}}], "resolutions": [[8, 8]]})",
      "/techniques/0/params/k", "expected a non-empty list to sweep"},
     {"bad_resolution",
      R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": ["800by600"]})",

@@ -13,7 +13,7 @@ TEST(Backends, OSMesaAndEglRenderIdenticalFrames) {
   const json config = {
       {"name", "backends"},
       {"scenes", json::array({small_scene(1.0)})},
-      {"techniques", json::array({json{{"name", "pcf"}, {"params", {{"size", 512}}}}})},
+      {"techniques", json::array({json{{"name", "pcf_box"}, {"params", {{"size", 512}}}}})},
       {"resolutions", json::array({json::array({128, 96})})},
       {"frames", {{"warmup", 0}, {"timed", 1}}},
       {"reference", {{"spp", 16}}}};
@@ -22,8 +22,8 @@ TEST(Backends, OSMesaAndEglRenderIdenticalFrames) {
   ASSERT_EQ(osmesa.summary.failed, 0);
   ASSERT_EQ(egl.summary.failed, 0) << egl.records[0].dump();
   EXPECT_EQ(egl.records[0]["gl_platform"].get<std::string>().rfind("egl", 0), 0u);
-  const ImageF a = osmesa.visibility("pcf/size=512");
-  const ImageF b = egl.visibility("pcf/size=512");
+  const ImageF a = osmesa.visibility("pcf_box/size=512");
+  const ImageF b = egl.visibility("pcf_box/size=512");
   ASSERT_TRUE(a.same_shape(b));
   EXPECT_EQ(a.data, b.data);
 }

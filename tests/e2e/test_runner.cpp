@@ -50,7 +50,7 @@ TEST(Runner, WritesEveryOutputWithTimingAndMetrics) {
 
 TEST(Runner, SkipsWithAReasonAndBuildsNoAdjacencyForShadowMapsOnly) {
   const auto before = derived_data_counters();
-  run_config(config_with(small_scene(1.0), json::array({"shadow_map", "pcf"})), "no_adjacency");
+  run_config(config_with(small_scene(1.0), json::array({"shadow_map", "pcf_box"})), "no_adjacency");
   EXPECT_EQ(derived_data_counters().adjacency_builds, before.adjacency_builds);
   EXPECT_EQ(derived_data_counters().closedness_checks, before.closedness_checks);
 

@@ -56,12 +56,12 @@ TEST(Techniques, PcfBeatsHardShadowMapForALargeLight) {
   const auto out = run_config(
       experiment(small_scene(3.0),
                  json::array({json{{"name", "shadow_map"}, {"params", {{"size", 1024}}}},
-                              json{{"name", "pcf"}, {"params", {{"size", 1024}, {"k", 7}}}}}),
+                              json{{"name", "pcf_box"}, {"params", {{"size", 1024}, {"k", 7}}}}}),
                  256),
       "pcf_large_light");
   ASSERT_EQ(out.summary.failed, 0);
   const double hard = out.record("shadow_map/size=1024")["metrics"]["visibility"]["all"]["rmse"];
-  const double pcf = out.record("pcf/k=7,size=1024")["metrics"]["visibility"]["all"]["rmse"];
+  const double pcf = out.record("pcf_box/k=7,size=1024")["metrics"]["visibility"]["all"]["rmse"];
   EXPECT_LT(pcf, hard);
 }
 

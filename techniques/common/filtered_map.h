@@ -1,0 +1,81 @@
+#pragma once
+// The filterable shadow maps (VSM, ESM, EVSM, MSM, convolution maps) share
+// one pipeline; each variant supplies only its GLSL:
+//   1. "shadow_map": a depth map from the light's centre (DepthMap);
+//   2. "moments":    every texel's occluder depth z (linear, in [0,1]) turned
+//                    into the variant's basis values (z, z²; exp(c·z); ...),
+//                    stored in 16- or 32-bit float layers;
+//   3. "prefilter":  an optional separable box or Gaussian filter over them;
+//   4. "lookup":     visibility reconstructed from the bilinearly filtered
+//                    basis values at the receiver's depth.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/depth_pass.h"
+#include "common/kernel.h"
+#include "common/map_lookup.h"
+#include "common/separable_filter.h"
+
+namespace sb::shadow {
+
+struct FilteredMapSettings {
+  DepthMapSettings depth;
+  bool half_float = false;               // "16f" storage of the basis values
+  std::optional<KernelShape> prefilter;  // none, box or gauss
+  int k = 1;
+  float sigma = 0.0f;
+};
+
+// depth_map_params + format (from `formats`, the first the default),
+// prefilter, k, sigma. Mean-based reconstructions want the light-facing
+// surfaces in the map (cull "back"): with back faces the occluder depth sits
+// just above the receiver, and exp/Chebyshev bounds leak light in umbrae.
+std::vector<ParamSpec> filtered_map_params(int default_size,
+                                           const std::vector<std::string>& formats,
+                                           const std::string& default_cull = "back");
+FilteredMapSettings filtered_map_settings(const Params& p);
+
+struct BasisShader {
+  int channels = 1;  // basis values per texel, 1..32 (layers of 4 beyond 4)
+  // Defines `vec4 basis(float z, int layer)`: the values stored for an
+  // occluder at depth z in [0,1] (1: nothing, the far plane), layer by layer.
+  std::string basis_glsl;
+  // Defines `float lit_fraction(vec3 t)` (see map_lookup.h); it may read
+  // `moments` (sampler2DArray, bilinear, unit 4) and `receiver_depth01()`.
+  std::string lit_fraction_glsl;
+  SeparableFilter::Mode filter_mode = SeparableFilter::Mode::Linear;
+  float filter_exponent = 0.0f;  // for LogSumExp
+  // Draw the non-casters (the ground) into the map too. Reconstructions from
+  // a mean (Chebyshev, exp) assume the receiver is the farthest surface under
+  // the filter; an empty texel reads as the far plane and breaks that.
+  // Convolution maps filter the step itself and need no receiver.
+  bool receivers_in_map = true;
+};
+
+class FilteredMapTechnique : public Technique {
+ public:
+  FilteredMapTechnique(const Params& p, std::string name, BasisShader shader);
+  void prepare(const FrameInputs& in) override;
+  void render(const FrameInputs& in, gl::PassTimer& timer) override;
+
+ protected:
+  // The variant's own uniforms, set once in prepare().
+  virtual void set_uniforms(const gl::Program& /*basis*/, const gl::Program& /*lookup*/) const {}
+  const FilteredMapSettings& settings() const { return settings_; }
+
+ private:
+  std::string name_;
+  BasisShader shader_;
+  FilteredMapSettings settings_;
+  int layers_ = 1;
+  DepthMap map_;
+  LightFrustum frustum_;
+  gl::Texture moments_;
+  std::vector<gl::Framebuffer> moment_layers_;
+  gl::Program basis_;
+  std::optional<SeparableFilter> filter_;
+  MapLookupPass lookup_;
+};
+
+}  // namespace sb::shadow

@@ -1,0 +1,29 @@
+#pragma once
+// Filter kernels shared by the PCF variants and the separable prefilters:
+// a k-tap 1D kernel whose outer product is the 2D one, so box and Gaussian
+// PCF and the box and Gaussian prefilters read the same weights.
+#include <string>
+#include <vector>
+
+#include "core/params.h"
+
+namespace sb::shadow {
+
+enum class KernelShape { Box, Gauss };
+KernelShape kernel_shape_from_string(const std::string& s);  // "box" | "gauss"
+
+// The Gaussian's σ in texels; sigma <= 0 picks OpenCV getGaussianKernel's
+// default for k taps, 0.3·((k−1)/2 − 1) + 0.8.
+float gaussian_sigma(int k, float sigma);
+
+// k (odd) weights summing to 1.
+std::vector<float> kernel_weights(KernelShape shape, int k, float sigma);
+
+// The largest k a kernel may have: the GLSL weight arrays hold this many.
+constexpr int kMaxKernelTaps = 63;
+
+// `k` (odd kernel side) and, for Gaussian kernels, `sigma`.
+ParamSpec kernel_size_param(int default_k, const std::string& doc);
+ParamSpec kernel_sigma_param();
+
+}  // namespace sb::shadow

@@ -1,0 +1,90 @@
+// esm — exponential shadow maps (Annen et al. 2008, Salvi 2008): the lit
+// fraction is approximated by exp(c·(z_occluder − z_receiver)), clamped to
+// 1, and exp(c·z_occluder) filters linearly. Stored as exp(c·z) it overflows
+// fp32 once c·z > 88.7 (c = 200: every depth over 0.44). With `log_space`
+// (the default) the map keeps z itself and the prefilter works on
+// log-sum-exp (separable_filter.h), so no exponential is ever formed above 1.
+//
+// | parameter           | default | meaning                                          |
+// |---------------------|---------|--------------------------------------------------|
+// | exponent            | 80      | c; larger is sharper and leaks less near contact |
+// | log_space           | true    | store and filter z (log space), not exp(c·z)     |
+// | prefilter, k, sigma | none, 5 | separable prefilter                              |
+// | format              | "32f"   | "32f" or "16f"                                   |
+// | size, depth_format, constant_bias, slope_bias, cull, normal_offset: as in shadow_map |
+#include <memory>
+
+#include "common/filtered_map.h"
+#include "filtered_map/filtered_map_variants.h"
+
+namespace sb::shadow {
+namespace {
+
+const char* const kLogSpace = R"(
+uniform float exponent;
+vec4 basis(float z, int layer) { return vec4(z); }
+)";
+
+const char* const kLogSpaceLookup = R"(
+uniform float exponent;
+float lit_fraction(vec3 t) {
+  float z = texture(moments, vec3(t.xy, 0.0)).r;
+  return exp(min(exponent * (z - receiver_depth01()), 0.0));
+}
+)";
+
+const char* const kLinear = R"(
+uniform float exponent;
+vec4 basis(float z, int layer) { return vec4(exp(exponent * z)); }
+)";
+
+// No min() or clamp(): an overflowed map must show as NaN, not as light.
+const char* const kLinearLookup = R"(
+uniform float exponent;
+float lit_fraction(vec3 t) {
+  float v = texture(moments, vec3(t.xy, 0.0)).r / exp(exponent * receiver_depth01());
+  return v >= 1.0 ? 1.0 : v;
+}
+)";
+
+BasisShader esm_shader(bool log_space, float exponent) {
+  if (log_space) return {1, kLogSpace, kLogSpaceLookup, SeparableFilter::Mode::LogSumExp, exponent};
+  return {1, kLinear, kLinearLookup, SeparableFilter::Mode::Linear, 0.0f};
+}
+
+class Esm final : public FilteredMapTechnique {
+ public:
+  explicit Esm(const Params& p)
+      : FilteredMapTechnique(p, "esm",
+                             esm_shader(p.get_bool("log_space"), p.get_float("exponent"))),
+        exponent_(p.get_float("exponent")) {}
+
+ protected:
+  void set_uniforms(const gl::Program& basis, const gl::Program& lookup) const override {
+    if (basis.has_uniform("exponent")) basis.set("exponent", exponent_);
+    lookup.set("exponent", exponent_);
+  }
+
+ private:
+  float exponent_;
+};
+
+}  // namespace
+
+TechniqueInfo esm_info() {
+  auto params = filtered_map_params(2048, {"32f", "16f"});
+  params.insert(params.begin(),
+                {float_param("exponent", 80.0, 0.1, 10000.0,
+                             "c in exp(c·(z_occluder − z_receiver)), depths in [0,1]"),
+                 bool_param("log_space", true,
+                            "store z and filter in log space; false stores exp(c·z) "
+                            "(overflows fp32 for c·z > 88.7)")});
+  return {"esm",
+          "filtered_map",
+          "exponential shadow map, log-space filtered (Annen et al. 2008, Salvi 2008)",
+          Needs{},
+          std::move(params),
+          [](const Params& p) { return std::make_unique<Esm>(p); }};
+}
+
+}  // namespace sb::shadow

@@ -1,0 +1,14 @@
+#pragma once
+#include <vector>
+
+#include "core/registry.h"
+
+namespace sb::shadow {
+TechniqueInfo vsm_info();
+TechniqueInfo esm_info();
+TechniqueInfo evsm_info();
+TechniqueInfo msm_info();
+TechniqueInfo csm_convolution_info();
+// light_bleeding_reduction and min_variance, shared by vsm and evsm.
+std::vector<ParamSpec> bleeding_params(double default_min_variance);
+}  // namespace sb::shadow

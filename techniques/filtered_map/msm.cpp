@@ -1,0 +1,92 @@
+// msm — moment shadow maps, Hamburger 4-moment variant (Peters & Klein 2015):
+// the map stores (z, z², z³, z⁴); the lookup biases the filtered moments
+// towards those of a uniform depth, b' = (1 − α)·b + α·(½, ⅓, ¼, ⅕), finds
+// the three-point distribution whose moments they are (a 3×3 Cholesky
+// solve and a quadratic) and returns the lit fraction it implies at the
+// receiver's depth. Four moments need fp32 here (no 16-bit quantisation).
+//
+// | parameter           | default | meaning                                         |
+// |---------------------|---------|-------------------------------------------------|
+// | moment_bias         | 3e-5    | α; larger trades light leaks for stability      |
+// | prefilter, k, sigma | none, 5 | separable prefilter of the moments              |
+// | size, depth_format, constant_bias, slope_bias, cull, normal_offset: as in shadow_map |
+#include <memory>
+
+#include "common/filtered_map.h"
+#include "filtered_map/filtered_map_variants.h"
+
+namespace sb::shadow {
+namespace {
+
+const char* const kMsmBasis = R"(
+vec4 basis(float z, int layer) {
+  float z2 = z * z;
+  return vec4(z, z2, z2 * z, z2 * z2);
+}
+)";
+
+const char* const kMsmLookup = R"(
+uniform float moment_bias;
+float lit_fraction(vec3 t) {
+  // Biased towards the moments of the uniform distribution on [0,1], which
+  // keep B positive definite (a point mass at z = 1 mixed with (½,½,½,½)
+  // would not: its Hankel matrix is singular, and the solve divides by 0).
+  vec4 b = mix(texture(moments, vec3(t.xy, 0.0)), vec4(1.0 / 2.0, 1.0 / 3.0, 1.0 / 4.0, 1.0 / 5.0),
+               moment_bias);
+  float zf = receiver_depth01();
+  // B = [[1, b1, b2], [b1, b2, b3], [b2, b3, b4]] = L·D·Lᵀ; solve B·c = (1, zf, zf²).
+  float d2 = b.y - b.x * b.x;
+  float l32 = (b.z - b.x * b.y) / d2;
+  float d3 = b.w - b.y * b.y - l32 * l32 * d2;
+  float y2 = zf - b.x;
+  float y3 = zf * zf - b.y - l32 * y2;
+  float c3 = y3 / d3;
+  float c2 = y2 / d2 - l32 * c3;
+  float c1 = 1.0 - b.x * c2 - b.y * c3;
+  // The other two support points: roots of c3·z² + c2·z + c1.
+  float root = sqrt(max(c2 * c2 - 4.0 * c3 * c1, 0.0));
+  float za = (-c2 - root) / (2.0 * c3);
+  float zb = (-c2 + root) / (2.0 * c3);
+  float z2 = min(za, zb), z3 = max(za, zb);
+  float shadow;
+  if (zf <= z2) {
+    shadow = 0.0;
+  } else if (zf <= z3) {
+    shadow = (zf * z3 - b.x * (zf + z3) + b.y) / ((z3 - z2) * (zf - z2));
+  } else {
+    shadow = 1.0 - (z2 * z3 - b.x * (z2 + z3) + b.y) / ((zf - z2) * (zf - z3));
+  }
+  return clamp_unit(1.0 - shadow);
+}
+)";
+
+class Msm final : public FilteredMapTechnique {
+ public:
+  explicit Msm(const Params& p)
+      : FilteredMapTechnique(p, "msm", {4, kMsmBasis, kMsmLookup}),
+        moment_bias_(p.get_float("moment_bias")) {}
+
+ protected:
+  void set_uniforms(const gl::Program& /*basis*/, const gl::Program& lookup) const override {
+    lookup.set("moment_bias", moment_bias_);
+  }
+
+ private:
+  float moment_bias_;
+};
+
+}  // namespace
+
+TechniqueInfo msm_info() {
+  auto params = filtered_map_params(2048, {"32f"});
+  params.insert(params.begin(), float_param("moment_bias", 3e-5, 0.0, 0.5,
+                                            "alpha: moments are biased towards a uniform depth"));
+  return {"msm",
+          "filtered_map",
+          "moment shadow map, Hamburger 4-moment reconstruction (Peters & Klein 2015)",
+          Needs{},
+          std::move(params),
+          [](const Params& p) { return std::make_unique<Msm>(p); }};
+}
+
+}  // namespace sb::shadow

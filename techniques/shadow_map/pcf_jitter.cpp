@@ -1,0 +1,121 @@
+// pcf_jitter — percentage-closer filtering with N jittered taps over a disk
+// (Shypula 2008: 32 random taps, an 8-tap early-out). The outermost taps go
+// first: when all of them agree the pixel is far from any edge and their
+// verdict stands; only pixels near an edge pay for every tap. A per-pixel
+// rotation (interleaved gradient noise, Jimenez 2014) trades banding for
+// noise.
+//
+// | parameter           | default | meaning                                          |
+// |---------------------|---------|--------------------------------------------------|
+// | taps                | 32      | taps on the disk, at most 64                     |
+// | early_out_taps      | 8       | outermost taps tried first; 0: no early-out      |
+// | radius              | 4.5     | disk radius in texels (4.5: the 9×9 box's reach) |
+// | rotate              | true    | rotate the pattern per pixel                     |
+// | seed                | 1       | jitter of the tap positions                      |
+// | receiver_plane_bias | false   | taps compare against the receiver's plane        |
+// | size, depth_format, constant_bias, slope_bias, cull, normal_offset: as in shadow_map |
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <random>
+
+#include "common/map_lookup.h"
+#include "shadow_map/shadow_map_variants.h"
+
+namespace sb::shadow {
+namespace {
+
+const char* const kJitteredPcf = R"(
+uniform int taps;
+uniform int early_out_taps;
+uniform vec2 offsets[64];
+uniform float radius_texels;
+uniform bool rotate;
+float interleaved_gradient_noise(vec2 p) {
+  return fract(52.9829189 * fract(dot(p, vec2(0.06711056, 0.00583715))));
+}
+float lit_fraction(vec3 t) {
+  vec2 scale = radius_texels / vec2(textureSize(shadow_map, 0));
+  float a = rotate ? 6.28318531 * interleaved_gradient_noise(gl_FragCoord.xy) : 0.0;
+  mat2 r = mat2(cos(a), sin(a), -sin(a), cos(a));
+  float sum = 0.0;
+  for (int i = 0; i < early_out_taps; ++i) sum += shadow_tap(t, r * offsets[i] * scale);
+  if (early_out_taps > 0 && (sum == 0.0 || sum == float(early_out_taps)))
+    return sum / float(early_out_taps);
+  for (int i = early_out_taps; i < taps; ++i) sum += shadow_tap(t, r * offsets[i] * scale);
+  return sum / float(taps);
+}
+)";
+
+// N points on the unit disk: a golden-angle (Vogel) spiral with each radius
+// jittered inside its equal-area ring, ordered outermost first.
+std::vector<glm::vec2> jittered_disk(int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+  const float golden = std::numbers::pi_v<float> * (3.0f - std::sqrt(5.0f));
+  std::vector<glm::vec2> points;
+  for (int i = 0; i < n; ++i) {
+    const float r = std::sqrt((float(i) + u01(rng)) / float(n));
+    const float phi = float(i) * golden;
+    points.emplace_back(r * std::cos(phi), r * std::sin(phi));
+  }
+  std::reverse(points.begin(), points.end());
+  return points;
+}
+
+class JitteredPcf final : public SingleMapTechnique {
+ public:
+  explicit JitteredPcf(const Params& p)
+      : SingleMapTechnique(p, "pcf_jitter", kJitteredPcf, /*linear_compare=*/false),
+        offsets_(jittered_disk(p.get_int("taps"), unsigned(p.get_int("seed")))),
+        early_out_(p.get_int("early_out_taps")),
+        radius_(p.get_float("radius")),
+        rotate_(p.get_bool("rotate")) {}
+
+ protected:
+  void set_uniforms(const gl::Program& lookup, const LightFrustum& /*frustum*/,
+                    const Scene& /*scene*/) const override {
+    lookup.set("taps", int(offsets_.size()));
+    lookup.set("early_out_taps", early_out_);
+    lookup.set("offsets", offsets_);
+    lookup.set("radius_texels", radius_);
+    lookup.set("rotate", rotate_ ? 1 : 0);
+  }
+
+ private:
+  std::vector<glm::vec2> offsets_;
+  int early_out_;
+  float radius_;
+  bool rotate_;
+};
+
+}  // namespace
+
+TechniqueInfo pcf_jitter_info() {
+  std::vector<ParamSpec> params = {
+      int_param("taps", 32, 2, 64, "jittered taps on a disk"),
+      int_param("early_out_taps", 8, 0, 63,
+                "outermost taps tried first; if they agree, the pixel is done (0: off)"),
+      float_param("radius", 4.5, 0.0, 256.0, "disk radius in texels"),
+      bool_param("rotate", true, "rotate the tap pattern per pixel"),
+      int_param("seed", 1, 0, 2147483647, "jitter of the tap positions"),
+      receiver_plane_param()};
+  for (auto& p : depth_map_params(2048)) params.push_back(std::move(p));
+  TechniqueInfo info{"pcf_jitter",
+                     "shadow_map",
+                     "jittered-disk percentage-closer filtering with an early-out (Shypula 2008)",
+                     Needs{},
+                     std::move(params),
+                     [](const Params& p) { return std::make_unique<JitteredPcf>(p); }};
+  info.check = [](const Params& p) -> std::pair<std::string, std::string> {
+    const int taps = p.get_int("taps"), early = p.get_int("early_out_taps");
+    if (early >= taps)
+      return {"early_out_taps", "expected fewer early-out taps than taps (" + std::to_string(taps) +
+                                    "), found " + std::to_string(early)};
+    return {};
+  };
+  return info;
+}
+
+}  // namespace sb::shadow

@@ -1,0 +1,118 @@
+// pcss — percentage-closer soft shadows (Fernando 2005), the variable-width
+// PCF of Shypula 2008: a blocker search over the part of the map through
+// which the receiver sees the light, then a PCF whose width is the penumbra
+// the average blocker depth predicts for a light of the scene's size:
+//   search width (near plane) = L · (z_r − n) / z_r
+//   penumbra width (receiver) = L · (z_r − z_b) / z_b
+// with L the light's side, n the near plane, z_r and z_b the receiver's and
+// the blockers' distances along the light's axis.
+//
+// | parameter           | default | meaning                                           |
+// |---------------------|---------|---------------------------------------------------|
+// | search_taps         | 3       | blocker-search grid side (odd)                    |
+// | search_texels       | 0       | search width in texels; 0: from the light's size  |
+// | filter_taps         | 5       | PCF grid side (odd), spread over the penumbra     |
+// | min_filter_texels   | 1       | smallest PCF radius, in texels                    |
+// | receiver_plane_bias | true    | taps compare against the receiver's plane         |
+// | size, depth_format, constant_bias, slope_bias, cull, normal_offset: as in shadow_map |
+#include <memory>
+
+#include "common/map_lookup.h"
+#include "shadow_map/shadow_map_variants.h"
+
+namespace sb::shadow {
+namespace {
+
+const char* const kPcss = R"(
+uniform int search_radius;
+uniform int filter_radius;
+uniform float light_size;     // world units
+uniform float tan_half_fov;   // of the light's frustum
+uniform float search_texels;  // 0: derived
+uniform float min_filter_texels;
+float lit_fraction(vec3 t) {
+  vec2 texel = 1.0 / vec2(textureSize(depth_map, 0));
+  float zr = receiver_view_depth();
+  float n = light_depth_range.x;
+  // The map's uv spans 2·d·tan_half_fov world units at distance d.
+  float search_uv = search_texels > 0.0 ? search_texels * texel.x
+                                        : light_size * (zr - n) / (zr * 2.0 * n * tan_half_fov);
+  vec2 search_step = vec2(0.5 * search_uv / float(max(search_radius, 1)));
+  float blockers = 0.0, blocker_depth = 0.0;
+  for (int y = -search_radius; y <= search_radius; ++y)
+    for (int x = -search_radius; x <= search_radius; ++x) {
+      vec2 o = vec2(x, y) * search_step;
+      float w = texture(depth_map, t.xy + o).r;
+      if (w < t.z + dot(receiver_gradient, o)) {
+        blocker_depth += view_depth(w);
+        blockers += 1.0;
+      }
+    }
+  if (blockers == 0.0) return 1.0;
+  float zb = blocker_depth / blockers;
+  float penumbra_uv = light_size * max(zr - zb, 0.0) / (zb * 2.0 * zr * tan_half_fov);
+  float radius_uv = max(0.5 * penumbra_uv, min_filter_texels * texel.x);
+  vec2 filter_step = vec2(radius_uv / float(max(filter_radius, 1)));
+  float sum = 0.0;
+  for (int y = -filter_radius; y <= filter_radius; ++y)
+    for (int x = -filter_radius; x <= filter_radius; ++x)
+      sum += shadow_tap(t, vec2(x, y) * filter_step);
+  int taps = 2 * filter_radius + 1;
+  return sum / float(taps * taps);
+}
+)";
+
+class Pcss final : public SingleMapTechnique {
+ public:
+  explicit Pcss(const Params& p)
+      : SingleMapTechnique(p, "pcss", kPcss, /*linear_compare=*/true),
+        search_radius_(p.get_int("search_taps") / 2),
+        filter_radius_(p.get_int("filter_taps") / 2),
+        search_texels_(p.get_float("search_texels")),
+        min_filter_texels_(p.get_float("min_filter_texels")) {}
+
+ protected:
+  void set_uniforms(const gl::Program& lookup, const LightFrustum& frustum,
+                    const Scene& scene) const override {
+    lookup.set("search_radius", search_radius_);
+    lookup.set("filter_radius", filter_radius_);
+    // A rectangular light: the mean of its sides (the scenes' lights are square).
+    lookup.set("light_size", 0.5f * (scene.light.width() + scene.light.height()));
+    lookup.set("tan_half_fov", frustum.tan_half_fov);
+    lookup.set("search_texels", search_texels_);
+    lookup.set("min_filter_texels", min_filter_texels_);
+  }
+
+ private:
+  int search_radius_;
+  int filter_radius_;
+  float search_texels_;
+  float min_filter_texels_;
+};
+
+}  // namespace
+
+TechniqueInfo pcss_info() {
+  std::vector<ParamSpec> params = {
+      odd(int_param("search_taps", 3, 1, 31, "blocker-search grid side (odd)")),
+      float_param("search_texels", 0.0, 0.0, 4096.0,
+                  "blocker-search width in texels; 0: from the light's size and the receiver's "
+                  "depth"),
+      odd(int_param("filter_taps", 5, 1, 31, "PCF grid side (odd), spread over the penumbra")),
+      float_param("min_filter_texels", 1.0, 0.0, 64.0, "smallest PCF radius, in texels"),
+      receiver_plane_param()};
+  // On by default: PCSS filters reach far more texels than a small PCF, and
+  // without it the wide kernels shadow lit receivers (sphere grid, light 2,
+  // 1024² map: penumbra RMSE 0.194 without, 0.155 with).
+  params.back().default_value = true;
+  for (auto& p : depth_map_params(2048)) params.push_back(std::move(p));
+  return {"pcss",
+          "shadow_map",
+          "percentage-closer soft shadows: blocker search, then PCF as wide as the penumbra "
+          "(Fernando 2005)",
+          Needs{},
+          std::move(params),
+          [](const Params& p) { return std::make_unique<Pcss>(p); }};
+}
+
+}  // namespace sb::shadow
