@@ -86,7 +86,7 @@ std::vector<uint8_t> attached_shadow_mask(const ImageF& positions, const ImageF&
 
 // A technique's visibility must be finite and in [0,1]; float rounding of
 // sums (accumulation, kernels) may overshoot by this much.
-constexpr float kVisibilityTolerance = 1e-5f;
+constexpr float kVisibilityTolerance = 1e-5f;  // the failure message says 1e-5
 
 struct VisibilityCheck {
   size_t nonfinite = 0;
@@ -491,8 +491,7 @@ class Runner {
     if (check.nonfinite + check.below_zero + check.above_one > 0)
       throw JobError("visibility outside [0,1]: " + std::to_string(check.nonfinite) + " NaN/Inf, " +
                      std::to_string(check.below_zero) + " below 0, " +
-                     std::to_string(check.above_one) + " above 1 (tolerance " +
-                     json(kVisibilityTolerance).dump() + ")");
+                     std::to_string(check.above_one) + " above 1 (tolerance 1e-5)");
   }
 
   const Experiment& e_;

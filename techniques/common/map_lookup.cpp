@@ -27,8 +27,10 @@ vec2 receiver_gradient = vec2(0.0);
 float shadow_tap(vec3 t, vec2 offset) {
   return texture(shadow_map, vec3(t.xy + offset, min(t.z + dot(receiver_gradient, offset), 1.0)));
 }
-// clamp(v, 0, 1) that lets NaN through to the harness's finiteness check.
-float clamp_unit(float v) { return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v); }
+// clamp(v, 0, 1) that lets NaN and Inf through to the harness's finiteness
+// check. Written with isnan/isinf: NIR turns `v > 1.0 ? 1.0 : v` into
+// fmin(v, 1.0), which maps NaN to 1.
+float clamp_unit(float v) { return (isnan(v) || isinf(v)) ? v : clamp(v, 0.0, 1.0); }
 float receiver_view_depth() { return -(light_view * vec4(receiver_world, 1.0)).z; }
 )";
 

@@ -33,23 +33,30 @@ float lit_fraction(vec3 t) {
 }
 )";
 
-const char* const kLinear = R"(
-uniform float exponent;
-vec4 basis(float z, int layer) { return vec4(exp(exponent * z)); }
+// IEEE exp overflows to +Inf above ln(FLT_MAX) = 88.72; llvmpipe's exp()
+// saturates at FLT_MAX instead, which would hide the overflow as a silently
+// wrong shadow. Overflow explicitly, so every driver shows the same failure.
+const char* const kIeeeExp = R"(
+float ieee_exp(float x) { return x > 88.72 ? uintBitsToFloat(0x7f800000u) : exp(x); }
 )";
 
-// No min() or clamp(): an overflowed map must show as NaN, not as light.
+const char* const kLinear = R"(
+uniform float exponent;
+vec4 basis(float z, int layer) { return vec4(ieee_exp(exponent * z)); }
+)";
+
+// clamp_unit, not min(): an overflowed map must show as NaN, not as light.
 const char* const kLinearLookup = R"(
 uniform float exponent;
 float lit_fraction(vec3 t) {
-  float v = texture(moments, vec3(t.xy, 0.0)).r / exp(exponent * receiver_depth01());
-  return v >= 1.0 ? 1.0 : v;
+  return clamp_unit(texture(moments, vec3(t.xy, 0.0)).r / ieee_exp(exponent * receiver_depth01()));
 }
 )";
 
 BasisShader esm_shader(bool log_space, float exponent) {
   if (log_space) return {1, kLogSpace, kLogSpaceLookup, SeparableFilter::Mode::LogSumExp, exponent};
-  return {1, kLinear, kLinearLookup, SeparableFilter::Mode::Linear, 0.0f};
+  return {1, std::string(kIeeeExp) + kLinear, std::string(kIeeeExp) + kLinearLookup,
+          SeparableFilter::Mode::Linear, 0.0f};
 }
 
 class Esm final : public FilteredMapTechnique {
