@@ -35,9 +35,10 @@ float lit_fraction(vec3 t) {
                moment_bias);
   float zf = receiver_depth01();
   // B = [[1, b1, b2], [b1, b2, b3], [b2, b3, b4]] = L·D·Lᵀ; solve B·c = (1, zf, zf²).
-  float d2 = b.y - b.x * b.x;
+  // The bias keeps d2, d3 > 0 in exact arithmetic; fp32 cancellation may not.
+  float d2 = max(b.y - b.x * b.x, 1e-9);
   float l32 = (b.z - b.x * b.y) / d2;
-  float d3 = b.w - b.y * b.y - l32 * l32 * d2;
+  float d3 = max(b.w - b.y * b.y - l32 * l32 * d2, 1e-12);
   float y2 = zf - b.x;
   float y3 = zf * zf - b.y - l32 * y2;
   float c3 = y3 / d3;
@@ -48,13 +49,17 @@ float lit_fraction(vec3 t) {
   float za = (-c2 - root) / (2.0 * c3);
   float zb = (-c2 + root) / (2.0 * c3);
   float z2 = min(za, zb), z3 = max(za, zb);
+  // Each branch divides by differences that are positive there but may
+  // round to 0 (foliage: 2 pixels of 480 000 gave Inf); floor them, and let
+  // the final clamp absorb the overshoot.
+  const float tiny = 1e-7;
   float shadow;
   if (zf <= z2) {
     shadow = 0.0;
   } else if (zf <= z3) {
-    shadow = (zf * z3 - b.x * (zf + z3) + b.y) / ((z3 - z2) * (zf - z2));
+    shadow = (zf * z3 - b.x * (zf + z3) + b.y) / (max(z3 - z2, tiny) * max(zf - z2, tiny));
   } else {
-    shadow = 1.0 - (z2 * z3 - b.x * (z2 + z3) + b.y) / ((zf - z2) * (zf - z3));
+    shadow = 1.0 - (z2 * z3 - b.x * (z2 + z3) + b.y) / (max(zf - z2, tiny) * max(zf - z3, tiny));
   }
   return clamp_unit(1.0 - shadow);
 }

@@ -78,6 +78,20 @@ TEST(ShadowMapFamily, EveryVariantGivesFiniteVisibilityInUnitRangeOnEveryScene) 
   }
 }
 
+// The stiff case that once broke MSM: dense alpha-tested foliage at full
+// size, where a handful of the 480 000 pixels had filtered moments whose
+// reconstruction divided by a difference that rounded to 0 (2 pixels Inf).
+TEST(ShadowMapFamily, MomentReconstructionStaysFiniteOnDenseFoliage) {
+  const auto out = run_config(
+      experiment(json::array({json{{"type", "foliage"}}}),
+                 json::array({technique("msm", {{"size", 2048}, {"prefilter", "box"}, {"k", 9}})}),
+                 800, 600, 4),
+      "family_msm_foliage");
+  const auto& r = out.record("msm/size=2048,prefilter=box,k=9");
+  EXPECT_EQ(r["status"], "ok") << r.value("reason", "");
+  EXPECT_EQ(r["visibility_check"]["nonfinite"], 0);
+}
+
 // Sphere grid, light side 2, 320×240, 1024² maps, 256-spp reference.
 // Penumbra RMSE measured on 2026-11-22 (llvmpipe, OSMesa; deterministic):
 //   shadow_map 0.252 | pcf_box k7 0.216 | pcf_gauss k9 0.223 | pcf_jitter 0.212
