@@ -64,6 +64,10 @@ Scene build_scene_from_spec(const std::string& spec) {
                      "unknown scene type '" + type.get<std::string>() + "' (known: " + known + ")");
   }
   Params params = resolve_params(t->params, doc.value("params", json::object()), kFile, "/params");
+  if (t->check) {
+    const auto [param, problem] = t->check(params);
+    if (!problem.empty()) throw InputError(kFile, "/params/" + param, problem);
+  }
   json values = params.json();
   for (const auto& s : t->params)
     if (s.is_path)

@@ -6,6 +6,7 @@
 #include "scenes/foliage.h"
 #include "scenes/gltf_scene_type.h"
 #include "scenes/jeep.h"
+#include "scenes/plates.h"
 #include "scenes/sphere_grid.h"
 
 namespace sb {
@@ -13,7 +14,7 @@ namespace sb {
 namespace {
 std::vector<SceneType>& registry() {
   static std::vector<SceneType> types = {sphere_grid_scene_type(), foliage_scene_type(),
-                                         jeep_scene_type(), gltf_scene_type()};
+                                         jeep_scene_type(), plates_scene_type(), gltf_scene_type()};
   return types;
 }
 }  // namespace

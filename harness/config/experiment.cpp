@@ -246,6 +246,10 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
       v.pointer = p;
       v.params = resolve_params(st->params, combo, file, p + "/params");
       v.params = resolve_paths(st->params, v.params, file);
+      if (st->check) {
+        const auto [param, problem] = st->check(v.params);
+        if (!problem.empty()) r.fail(p + "/params/" + param, problem);
+      }
       v.name = variant_name(label, st->params, combo);
       for (auto it = given.begin(); it != given.end(); ++it)
         if (it.value().is_array()) v.swept[it.key()] = combo[it.key()];

@@ -4,6 +4,7 @@
 // (see docs/config.md); those overrides are applied by the config layer.
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/params.h"
@@ -16,6 +17,9 @@ struct SceneType {
   std::string summary;
   std::vector<ParamSpec> params;
   std::function<Scene(const Params&)> build;
+  // Optional rule across parameters, checked when a config or a scene spec is
+  // loaded: returns "" when fine, else {parameter to blame, what is wrong}.
+  std::function<std::pair<std::string, std::string>(const Params&)> check = nullptr;
 };
 
 const std::vector<SceneType>& scene_types();
