@@ -45,6 +45,10 @@ ImageF RunOutput::gbuffer_positions() const {
       (fs::path(dir) / records.at(0)["images"]["gbuffer_positions"].get<std::string>()).string());
 }
 
+ImageF RunOutput::image(const nlohmann::json& record, const std::string& key) const {
+  return io::read_image((fs::path(dir) / record["images"][key].get<std::string>()).string());
+}
+
 RunOutput run_config(const nlohmann::json& config, const std::string& name, gl::Backend backend,
                      bool fresh, bool write_gbuffer) {
   RunOutput out;

@@ -19,6 +19,8 @@ struct RunOutput {
   ImageF visibility(const std::string& technique_variant) const;
   ImageF reference_visibility() const;  // of the first record
   ImageF gbuffer_positions() const;     // of the first record (write_gbuffer runs)
+  // Any image a record names under "images" (e.g. "visibility", "gbuffer_positions").
+  ImageF image(const nlohmann::json& record, const std::string& key) const;
 };
 
 // `config` is an experiment JSON; `name` picks a fresh folder under /tmp.
