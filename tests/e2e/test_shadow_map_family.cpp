@@ -62,11 +62,12 @@ TEST(ShadowMapFamily, EveryVariantGivesFiniteVisibilityInUnitRangeOnEveryScene) 
       small_scene(1.0),
       json{{"type", "jeep"}, {"params", {{"count", 2}, {"tessellation", 8}}}},
       json{{"type", "foliage"}, {"params", {{"trees", 1}, {"depth", 2}}}},
+      json{{"type", "plates"}, {"params", {{"layout", json::array({"edge", "stacked"})}}}},
   });
   const auto out = run_config(experiment(scenes, every_variant(256), 96, 72, 4), "family_finite");
   EXPECT_EQ(out.summary.failed, 0);
   EXPECT_EQ(out.summary.skipped, 0);
-  EXPECT_EQ(out.records.size(), 3u * 19u);
+  EXPECT_EQ(out.records.size(), 5u * 19u);
   for (const auto& r : out.records) {
     SCOPED_TRACE(r["job_id"].get<std::string>());
     ASSERT_EQ(r["status"], "ok") << r.value("reason", "");
