@@ -230,8 +230,8 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
     const SceneType* st = find_scene_type(type);
     if (st == nullptr) {
       std::string known;
-      for (const auto& t : scene_types()) known += (known.empty() ? "" : ", ") + t.name;
-      r.fail(p + "/type", "unknown scene type \"" + type + "\" (known: " + known + ")");
+      for (const auto& t : scene_types()) (known += known.empty() ? "" : ", ") += t.name;
+      r.fail(p + "/type", ((("unknown scene type \"" + type) += "\" (known: ") += known) += ")");
     }
     json light = entry.value("light", json::object());
     json camera = entry.value("camera", json::object());
@@ -248,7 +248,7 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
       v.params = resolve_paths(st->params, v.params, file);
       if (st->check) {
         const auto [param, problem] = st->check(v.params);
-        if (!problem.empty()) r.fail(p + "/params/" + param, problem);
+        if (!problem.empty()) r.fail(p + "/params/" += param, problem);
       }
       v.name = variant_name(label, st->params, combo);
       for (auto it = given.begin(); it != given.end(); ++it)
@@ -280,9 +280,9 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
     const TechniqueInfo* info = registry.find(name);
     if (info == nullptr) {
       std::string known;
-      for (const auto& t : registry.all()) known += (known.empty() ? "" : ", ") + t.name;
+      for (const auto& t : registry.all()) (known += known.empty() ? "" : ", ") += t.name;
       r.fail(p + (techniques[i].is_string() ? "" : "/name"),
-             "unknown technique \"" + name + "\" (registered: " + known + ")");
+             ((("unknown technique \"" + name) += "\" (registered: ") += known) += ")");
     }
     const std::string label =
         entry.contains("label") ? r.string(entry["label"], p + "/label") : name;
@@ -294,7 +294,7 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
       v.params = resolve_params(info->params, combo, file, p + "/params");
       if (info->check) {
         const auto [param, problem] = info->check(v.params);
-        if (!problem.empty()) r.fail(p + "/params/" + param, problem);
+        if (!problem.empty()) r.fail(p + "/params/" += param, problem);
       }
       v.name = variant_name(label, info->params, combo);
       if (!names.insert(v.name).second)

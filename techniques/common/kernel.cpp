@@ -23,7 +23,8 @@ std::vector<float> kernel_weights(KernelShape shape, int k, float sigma) {
   if (shape == KernelShape::Gauss) {
     const double s = gaussian_sigma(k, sigma);
     for (int i = 0; i < k; ++i) {
-      const double x = i - k / 2;
+      const int offset = i - k / 2;  // taps are whole texels from the centre
+      const double x = offset;
       w[size_t(i)] = float(std::exp(-0.5 * x * x / (s * s)));
     }
   }
