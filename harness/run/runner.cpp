@@ -444,12 +444,19 @@ class Runner {
     json timing;
     timing["warmup_frames"] = e_.warmup_frames;
     timing["timed_frames"] = e_.timed_frames;
-    timing["frame"] = to_json(summarize(frame_ms));
-    timing["technique"] = to_json(summarize(technique_ms));
+    // Statistics plus the raw per-frame samples, in frame order: comparisons
+    // between runs test the samples themselves (shadowbench compare).
+    const auto with_samples = [](const std::vector<double>& v) {
+      json j = to_json(summarize(v));
+      j["samples_ms"] = v;
+      return j;
+    };
+    timing["frame"] = with_samples(frame_ms);
+    timing["technique"] = with_samples(technique_ms);
     timing["passes"] = json::object();
-    for (const auto& name : pass_order) timing["passes"][name] = to_json(summarize(pass_ms[name]));
+    for (const auto& name : pass_order) timing["passes"][name] = with_samples(pass_ms[name]);
     timing["pass_order"] = pass_order;
-    for (const auto& [name, v] : shared_ms) timing["shared"][name] = to_json(summarize(v));
+    for (const auto& [name, v] : shared_ms) timing["shared"][name] = with_samples(v);
     r["timing"] = timing;
 
     ImageF visibility = targets.read_visibility();

@@ -1,6 +1,7 @@
 // The driver's bookkeeping: records, skips with reasons, resumption, outputs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "e2e_util.h"
@@ -32,6 +33,12 @@ TEST(Runner, WritesEveryOutputWithTimingAndMetrics) {
   EXPECT_EQ(r["timing_source"], "cpu_glfinish");
   EXPECT_EQ(r["timing"]["timed_frames"], 3);
   EXPECT_EQ(r["timing"]["frame"]["count"], 3);
+  // The raw samples are kept, in frame order, and agree with the statistics.
+  const auto frames = r["timing"]["frame"]["samples_ms"].get<std::vector<double>>();
+  ASSERT_EQ(frames.size(), 3u);
+  EXPECT_DOUBLE_EQ(*std::min_element(frames.begin(), frames.end()),
+                   r["timing"]["frame"]["min_ms"].get<double>());
+  EXPECT_EQ(r["timing"]["passes"]["lookup"]["samples_ms"].size(), 3u);
   EXPECT_TRUE(r["timing"]["passes"].contains("shadow_map"));
   EXPECT_TRUE(r["timing"]["passes"].contains("lookup"));
   EXPECT_TRUE(r["timing"]["shared"].contains("gbuffer"));
