@@ -21,6 +21,7 @@
 #include "results/store.h"
 #include "results/timing_stats.h"
 #include "run/gbuffer.h"
+#include "run/progress.h"
 #include "scenes/scene_analysis.h"
 
 namespace sb {
@@ -135,7 +136,8 @@ struct SceneState {
 
 class Runner {
  public:
-  Runner(const Experiment& e, const RunOptions& o) : e_(e), o_(o), store_(o.run_dir) {}
+  Runner(const Experiment& e, const RunOptions& o)
+      : e_(e), o_(o), store_(o.run_dir), progress_(stderr, !o.quiet && isatty(fileno(stderr)), 0) {}
 
   RunSummary run() {
     std::vector<std::string> order;
@@ -144,6 +146,7 @@ class Runner {
         for (const auto& t : e_.techniques) order.push_back(job_id(s.name, r.label(), t.name));
     store_.set_order(order);
     total_ = order.size();
+    progress_ = Progress(stderr, !o_.quiet && isatty(fileno(stderr)), total_);
 
     context_ = gl::create_context(o_.backend);
     timing_source_ =
@@ -152,6 +155,7 @@ class Runner {
         gl::to_string(timing_source_));
 
     for (const auto& sv : e_.scenes) run_scene(sv);
+    progress_.clear();
     write_reports(store_.dir(), store_.records(), e_.name + " (" + o_.run_id + ")");
     return summary_;
   }
@@ -159,8 +163,10 @@ class Runner {
  private:
   void log(const std::string& line) const {
     if (o_.quiet) return;
+    progress_.clear();
     std::printf("%s\n", line.c_str());
     std::fflush(stdout);
+    progress_.draw();
   }
 
   json base_record(const SceneVariant& sv, const SceneState* st, const Resolution& res,
@@ -219,6 +225,11 @@ class Runner {
     if (status == "failed") ++summary_.failed;
     store_.put(id, record);
     ++done_;
+    // Jobs that rendered carry their duration; the rest took no time.
+    if (record.contains("duration_s"))
+      progress_.finish_job();
+    else
+      progress_.add_done_without_running(1);
     std::string line = "[" + std::to_string(done_) + "/" + std::to_string(total_) + "] " +
                        record["scene_variant"].get<std::string>() + " @ " +
                        record["resolution"].get<std::string>() + "  " +
@@ -273,6 +284,7 @@ class Runner {
         if (store_.finished(id) != nullptr) {
           ++summary_.resumed;
           ++done_;
+          progress_.add_done_without_running(1);
           continue;
         }
         if (!scene_error.empty()) {
@@ -328,6 +340,7 @@ class Runner {
     rs.spp = e_.reference.spp;
     rs.seed = e_.reference.seed;
     const bool cache = e_.reference.cache && !o_.cache_dir.empty();
+    progress_.start_job(sv.name, res.label(), "(reference)");
     reference::Result ref = cache ? reference::get(st.scene, positions, normals, rs, o_.cache_dir)
                                   : reference::compute(st.scene, positions, normals, rs);
     log("reference " + sv.name + " @ " + res.label() + ": " + std::to_string(ref.spp) + " spp, " +
@@ -374,6 +387,7 @@ class Runner {
     for (size_t i : pending) {
       const TechniqueVariant& tv = e_.techniques[i];
       const std::string id = job_id(sv.name, res.label(), tv.name);
+      progress_.start_job(sv.name, res.label(), tv.name);
       json r = base_record(sv, &st, res, tv);
       r["started_at"] = now_iso8601();
       r["reference"] = ref_json;
@@ -509,6 +523,7 @@ class Runner {
   RunSummary summary_;
   size_t total_ = 0;
   size_t done_ = 0;
+  mutable Progress progress_;  // drawn around log lines, which are const
 };
 
 }  // namespace
