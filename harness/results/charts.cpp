@@ -1,0 +1,464 @@
+#include "results/charts.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/error.h"
+#include "results/pareto.h"
+#include "results/store.h"
+#include "run/runner.h"
+
+extern char** environ;
+
+namespace sb {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+constexpr const char* kPython = "/usr/bin/python3";
+constexpr const char* kScript = "plot_charts.py";
+constexpr const char* kInstall = "apt-get install python3-matplotlib";
+constexpr int kExitNoMatplotlib = 3;  // plot_charts.py's exit code when the import fails
+
+// ---------------------------------------------------------------- metrics
+
+// The keys every record's metrics have (docs/results.md); a path resolving in
+// some ok record is accepted too, so a new metric needs no edit here.
+std::vector<std::string> known_metric_paths() {
+  std::vector<std::string> out;
+  for (const char* image : {"visibility", "shaded"})
+    for (const char* region : {"all", "penumbra"})
+      for (const char* key : {"rmse", "mae", "max_error", "psnr", "ssim", "frac_over_0.01",
+                              "frac_over_0.05", "frac_over_0.1", "pixel_count", "nonfinite_count"})
+        out.push_back(std::string(image) + "." + region + "." + key);
+  return out;
+}
+
+std::vector<std::string> split_dots(const std::string& s) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(s);
+  while (std::getline(in, part, '.')) parts.push_back(part);
+  return parts;
+}
+
+// Follows parts[i..] into `node`; a key may itself hold dots (frac_over_0.05).
+const json* resolve(const json& node, const std::vector<std::string>& parts, std::size_t i) {
+  if (i == parts.size()) return &node;
+  if (!node.is_object()) return nullptr;
+  std::string key;
+  for (std::size_t j = i; j < parts.size(); ++j) {
+    key += (j > i ? "." : "") + parts[j];
+    if (const auto it = node.find(key); it != node.end())
+      if (const json* r = resolve(*it, parts, j + 1)) return r;
+  }
+  return nullptr;
+}
+
+// A stored number ("nan"/"inf"/"-inf" strings included), NaN if absent.
+double as_number(const json* v) {
+  if (v == nullptr) return std::nan("");
+  if (v->is_number()) return v->get<double>();
+  if (v->is_string()) {
+    const std::string s = v->get<std::string>();
+    if (s == "inf" || s == "-inf") return s == "inf" ? INFINITY : -INFINITY;
+  }
+  return std::nan("");
+}
+
+double metric_of(const json& record, const std::vector<std::string>& parts) {
+  const auto m = record.find("metrics");
+  return m == record.end() ? std::nan("") : as_number(resolve(*m, parts, 0));
+}
+
+void check_metric(const std::string& metric, const std::vector<const json*>& ok) {
+  const auto known = known_metric_paths();
+  if (std::find(known.begin(), known.end(), metric) != known.end()) return;
+  const auto parts = split_dots(metric);
+  for (const json* r : ok)
+    if (r->contains("metrics") && resolve(r->at("metrics"), parts, 0) != nullptr &&
+        !std::isnan(metric_of(*r, parts)))
+      return;
+  throw InputError("", "--metric",
+                   "unknown error metric \"" + metric +
+                       "\": expected a dotted path into a record's \"metrics\", "
+                       "<visibility|shaded>.<all|penumbra>.<key> with key one of rmse, mae, "
+                       "max_error, psnr, ssim, frac_over_0.01, frac_over_0.05, frac_over_0.1");
+}
+
+bool higher_is_better(const std::string& metric) {
+  const auto parts = split_dots(metric);
+  return !parts.empty() && (parts.back() == "psnr" || parts.back() == "ssim");
+}
+
+// ---------------------------------------------------------------- records
+
+struct Timing {
+  double median = std::nan(""), p10 = std::nan(""), p90 = std::nan("");
+};
+
+Timing timing_of(const json& r, const std::string& pointer) {
+  const json::json_pointer p(pointer);
+  if (!r.contains(p)) return {};
+  const json& t = r.at(p);
+  auto get = [&](const char* k) { return t.contains(k) ? as_number(&t.at(k)) : std::nan(""); };
+  return {get("median_ms"), get("p10_ms"), get("p90_ms")};
+}
+
+std::string str(const json& r, const char* key) { return r.value(key, std::string()); }
+
+// Records grouped by a key, groups and members in first-appearance order.
+template <class Key>
+std::vector<std::pair<std::string, std::vector<const json*>>> group_by(
+    const std::vector<const json*>& records, Key key) {
+  std::vector<std::pair<std::string, std::vector<const json*>>> groups;
+  std::map<std::string, std::size_t> index;
+  for (const json* r : records) {
+    const std::string k = key(*r);
+    const auto [it, added] = index.emplace(k, groups.size());
+    if (added) groups.push_back({k, {}});
+    groups[it->second].second.push_back(r);
+  }
+  return groups;
+}
+
+// Ordinal of each name in first-appearance order (stable colours and markers
+// for a technique variant or a pass across every chart).
+class Palette {
+ public:
+  int operator()(const std::string& name) {
+    return index_.emplace(name, static_cast<int>(index_.size())).first->second;
+  }
+
+ private:
+  std::map<std::string, int> index_;
+};
+
+bool spans_decade(const std::vector<double>& values) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (double v : values)
+    if (std::isfinite(v) && v > 0) lo = std::min(lo, v), hi = std::max(hi, v);
+  return std::isfinite(lo) && hi > 10.0 * lo;
+}
+
+json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json timed_point(double x, const Timing& t) {
+  return {
+      {"x", x}, {"y", t.median}, {"ylo", finite_or_null(t.p10)}, {"yhi", finite_or_null(t.p90)}};
+}
+
+struct Chart {
+  ChartFile file;
+  json data;
+};
+
+Chart make_chart(const std::string& kind, const std::string& stem, const std::string& title,
+                 const std::string& out_dir) {
+  Chart c;
+  c.file.kind = kind;
+  c.file.title = title;
+  c.file.svg = (fs::path(out_dir) / (stem + ".svg")).string();
+  c.file.png = (fs::path(out_dir) / (stem + ".png")).string();
+  c.data = {{"kind", kind}, {"title", title}, {"svg", c.file.svg}, {"png", c.file.png}};
+  return c;
+}
+
+// Charts of one (scene variant, resolution): <kind>__<scene>__<WxH>.
+auto by_scene_and_resolution(const std::vector<const json*>& ok) {
+  return group_by(
+      ok, [](const json& r) { return str(r, "scene_variant") + "\n" + str(r, "resolution"); });
+}
+
+Chart scene_chart(const std::string& kind, const std::string& what, const json& r,
+                  const std::string& out_dir) {
+  const std::string scene = str(r, "scene_variant"), res = str(r, "resolution");
+  return make_chart(kind, kind + "__" + file_safe(scene) + "__" + res,
+                    what + ": " + scene + " @ " + res, out_dir);
+}
+
+constexpr const char* kTimeLabel = "median frame time (ms; bars p10–p90)";
+
+// Error against frame time per (scene variant, resolution).
+void error_time_charts(const std::vector<const json*>& ok, const std::string& metric,
+                       Palette& styles, const std::string& out_dir, std::vector<Chart>& out) {
+  const auto parts = split_dots(metric);
+  const bool higher = higher_is_better(metric);
+  for (const auto& [key, records] : by_scene_and_resolution(ok)) {
+    Chart c = scene_chart("error_time", metric + " vs frame time", *records[0], out_dir);
+    json points = json::array(), missing = json::array();
+    std::vector<ParetoPoint> pp;
+    std::vector<double> xs;
+    for (const json* r : records) {
+      const std::string label = str(*r, "technique_variant");
+      const Timing t = timing_of(*r, "/timing/frame");
+      const double e = metric_of(*r, parts);
+      if (!std::isfinite(t.median) || !std::isfinite(e)) {
+        missing.push_back(label);
+        continue;
+      }
+      c.file.series.push_back(label);
+      points.push_back({{"label", label},
+                        {"style", styles(label)},
+                        {"x", t.median},
+                        {"xlo", finite_or_null(t.p10)},
+                        {"xhi", finite_or_null(t.p90)},
+                        {"y", e}});
+      pp.push_back({t.median, higher ? -e : e, label});
+      xs.push_back(t.median);
+    }
+    json front = json::array();
+    for (const ParetoPoint& p : pareto_front(pp)) {
+      c.file.pareto.push_back(p.label);
+      front.push_back({{"label", p.label}, {"x", p.time}, {"y", higher ? -p.error : p.error}});
+    }
+    c.data.update({{"xlabel", kTimeLabel},
+                   {"ylabel", metric + (higher ? " (higher is better)" : " (lower is better)")},
+                   {"xlog", spans_decade(xs)},
+                   {"ylog", false},
+                   {"higher_is_better", higher},
+                   {"points", points},
+                   {"front", front},
+                   {"missing", missing}});
+    if (!points.empty()) out.push_back(std::move(c));
+  }
+}
+
+// One series per technique variant of (x, frame time) over `records`.
+json time_series(const std::vector<const json*>& records,
+                 const std::function<double(const json&)>& x, Palette& styles, Chart& c) {
+  json series = json::array();
+  std::vector<double> ys;
+  for (const auto& [label, rs] :
+       group_by(records, [](const json& r) { return str(r, "technique_variant"); })) {
+    std::vector<std::pair<double, Timing>> pts;
+    for (const json* r : rs) {
+      const Timing t = timing_of(*r, "/timing/frame");
+      if (std::isfinite(t.median) && std::isfinite(x(*r))) pts.push_back({x(*r), t});
+    }
+    if (pts.empty()) continue;
+    std::stable_sort(pts.begin(), pts.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    json p = json::array();
+    for (const auto& [xv, t] : pts) {
+      p.push_back(timed_point(xv, t));
+      ys.push_back(t.median);
+    }
+    c.file.series.push_back(label);
+    series.push_back({{"label", label}, {"style", styles(label)}, {"points", p}});
+  }
+  c.data["ylog"] = spans_decade(ys);
+  return series;
+}
+
+double triangles_of(const json& r) {
+  const json::json_pointer p("/scene/triangles");
+  return r.contains(p) ? as_number(&r.at(p)) : std::nan("");
+}
+
+double pixels_of(const json& r) {
+  return static_cast<double>(r.value("width", 0)) * static_cast<double>(r.value("height", 0));
+}
+
+// Frame time against scene.triangles per (scene type, resolution).
+void time_triangles_charts(const std::vector<const json*>& ok, Palette& styles,
+                           const std::string& out_dir, std::vector<Chart>& out) {
+  const auto groups = group_by(ok, [](const json& r) {
+    return r.value(json::json_pointer("/scene/type"), std::string()) + "\n" + str(r, "resolution");
+  });
+  for (const auto& [key, records] : groups) {
+    std::set<double> counts;
+    for (const json* r : records)
+      if (std::isfinite(triangles_of(*r))) counts.insert(triangles_of(*r));
+    if (counts.size() < 2) continue;
+    const std::string type = records[0]->value(json::json_pointer("/scene/type"), std::string());
+    const std::string res = str(*records[0], "resolution");
+    Chart c = make_chart("time_triangles", "time_triangles__" + file_safe(type) + "__" + res,
+                         "frame time vs triangles: " + type + " @ " + res, out_dir);
+    c.data["series"] = time_series(records, triangles_of, styles, c);
+    c.data.update({{"xlabel", "triangles (scene.triangles)"},
+                   {"ylabel", kTimeLabel},
+                   {"xlog", spans_decade({counts.begin(), counts.end()})}});
+    out.push_back(std::move(c));
+  }
+}
+
+// Frame time against width×height per scene variant.
+void time_resolution_charts(const std::vector<const json*>& ok, Palette& styles,
+                            const std::string& out_dir, std::vector<Chart>& out) {
+  for (const auto& [scene, records] :
+       group_by(ok, [](const json& r) { return str(r, "scene_variant"); })) {
+    std::map<double, std::string> sizes;  // pixels → "WxH"
+    for (const json* r : records)
+      if (pixels_of(*r) > 0) sizes.emplace(pixels_of(*r), str(*r, "resolution"));
+    if (sizes.size() < 2) continue;
+    Chart c = make_chart("time_resolution", "time_resolution__" + file_safe(scene),
+                         "frame time vs resolution: " + scene, out_dir);
+    c.data["series"] = time_series(records, pixels_of, styles, c);
+    json ticks = json::array();
+    std::vector<double> xs;
+    for (const auto& [px, label] : sizes) {
+      ticks.push_back({{"value", px}, {"label", label}});
+      xs.push_back(px);
+    }
+    c.data.update({{"xlabel", "pixels (width × height)"},
+                   {"ylabel", kTimeLabel},
+                   {"xlog", spans_decade(xs)},
+                   {"xticks", ticks}});
+    out.push_back(std::move(c));
+  }
+}
+
+// Stacked bars of median pass times per (scene variant, resolution).
+void passes_charts(const std::vector<const json*>& ok, Palette& pass_colours,
+                   const std::string& out_dir, std::vector<Chart>& out) {
+  for (const auto& [key, records] : by_scene_and_resolution(ok)) {
+    Chart c = scene_chart("passes", "time per pass", *records[0], out_dir);
+    json bars = json::array();
+    for (const json* r : records) {
+      json segments = json::array();
+      auto add = [&](const std::string& name, const std::string& pointer, bool shared) {
+        const double ms = timing_of(*r, pointer).median;
+        if (!std::isfinite(ms)) return;
+        segments.push_back({{"name", shared ? name + " (shared)" : name},
+                            {"ms", ms},
+                            {"shared", shared},
+                            {"style", shared ? -1 : pass_colours(name)}});
+      };
+      add("gbuffer", "/timing/shared/gbuffer", true);
+      add("shading", "/timing/shared/shading", true);
+      for (const auto& name : r->value(json::json_pointer("/timing/pass_order"), json::array()))
+        if (name.is_string())
+          add(name.get<std::string>(), "/timing/passes/" + name.get<std::string>(), false);
+      if (segments.empty()) continue;
+      c.file.series.push_back(str(*r, "technique_variant"));
+      bars.push_back({{"label", str(*r, "technique_variant")}, {"segments", segments}});
+    }
+    c.data.update({{"ylabel", "median time (ms)"}, {"bars", bars}});
+    if (!bars.empty()) out.push_back(std::move(c));
+  }
+}
+
+// ---------------------------------------------------------------- python
+
+// Runs argv without a shell; stdout and stderr end up in *output.
+int run_process(const std::vector<std::string>& argv, std::string* output) {
+  std::string tmpl = (fs::temp_directory_path() / "shadowbench_plot_XXXXXX").string();
+  const int fd = ::mkstemp(tmpl.data());
+  if (fd < 0) throw std::runtime_error("cannot create a temporary file for python's output");
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fd, STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, fd, STDERR_FILENO);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = 0;
+  const int err = posix_spawn(&pid, argv[0].c_str(), &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(fd);
+  int status = 0;
+  if (err == 0)
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+  {
+    std::ifstream in(tmpl, std::ios::binary);
+    output->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  ::unlink(tmpl.c_str());
+  if (err != 0) throw std::runtime_error("cannot run " + argv[0] + ": " + std::strerror(err));
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+void require_python() {
+  if (::access(kPython, X_OK) != 0)
+    throw std::runtime_error(std::string("charts need ") + kPython +
+                             " with matplotlib, and it is missing: " + kInstall);
+}
+
+}  // namespace
+
+std::string find_plot_script() {
+  std::vector<fs::path> dirs;
+  std::error_code ec;
+  const auto exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) dirs.push_back(exe.parent_path() / "share" / "shadowbench");
+  if (const char* env = std::getenv("SHADOWBENCH_SHARE_DIR"); env != nullptr && *env != '\0')
+    dirs.push_back(env);
+#ifdef SHADOWBENCH_CHARTS_SOURCE_DIR
+  dirs.push_back(SHADOWBENCH_CHARTS_SOURCE_DIR);
+#endif
+  std::string tried;
+  for (const auto& d : dirs) {
+    if (fs::is_regular_file(d / kScript, ec)) return (d / kScript).string();
+    tried += (tried.empty() ? "" : ", ") + d.string();
+  }
+  throw std::runtime_error(std::string("cannot find ") + kScript + " (looked in " + tried +
+                           "; set SHADOWBENCH_SHARE_DIR to its folder)");
+}
+
+std::string charts_unavailable_reason() {
+  if (::access(kPython, X_OK) != 0) return std::string(kPython) + " is missing: " + kInstall;
+  std::string output;
+  if (run_process({kPython, "-c", "import matplotlib"}, &output) != 0)
+    return std::string(kPython) + " cannot import matplotlib: " + kInstall;
+  return "";
+}
+
+std::vector<ChartFile> write_charts(const std::vector<json>& records, const std::string& out_dir,
+                                    const ChartOptions& options) {
+  std::vector<const json*> ok;
+  for (const json& r : records)
+    if (r.value("status", std::string()) == "ok") ok.push_back(&r);
+  check_metric(options.error_metric, ok);
+
+  Palette styles, pass_colours;  // in plan order, failed jobs included: stable across reruns
+  for (const json& r : records) styles(str(r, "technique_variant"));
+  std::vector<Chart> charts;
+  error_time_charts(ok, options.error_metric, styles, out_dir, charts);
+  time_triangles_charts(ok, styles, out_dir, charts);
+  time_resolution_charts(ok, styles, out_dir, charts);
+  passes_charts(ok, pass_colours, out_dir, charts);
+  if (charts.empty()) return {};
+
+  require_python();
+  const std::string script = find_plot_script();
+  fs::create_directories(out_dir);
+  std::vector<std::string> argv = {kPython, script};
+  for (const Chart& c : charts) {
+    const std::string data = fs::path(c.file.svg).replace_extension(".json").string();
+    write_file_atomically(data, c.data.dump(1) + "\n");
+    argv.push_back(data);
+  }
+  std::string output;
+  const int rc = run_process(argv, &output);
+  if (rc == kExitNoMatplotlib)
+    throw std::runtime_error(std::string(kPython) + " cannot import matplotlib: " + kInstall +
+                             "\n" + output);
+  if (rc != 0)
+    throw std::runtime_error(script + " failed (exit " + std::to_string(rc) + "):\n" + output);
+
+  std::vector<ChartFile> out;
+  for (Chart& c : charts) out.push_back(std::move(c.file));
+  return out;
+}
+
+}  // namespace sb

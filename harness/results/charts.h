@@ -1,0 +1,56 @@
+#pragma once
+// Comparison charts of a run's records, drawn by matplotlib (Debian's
+// python3-matplotlib) as SVG and PNG. The data are prepared here; one JSON
+// data file per chart (<name>.json) goes into the output folder, and
+// plot_charts.py draws all of them in one python3 process.
+//
+// Charts (only records with status "ok"; times are the frame's median, with
+// p10–p90 error bars):
+//  - error_time:      error against frame time, per (scene variant,
+//                     resolution); the Pareto front as a step line, labelled;
+//  - time_triangles:  frame time against scene.triangles, per (scene type,
+//                     resolution), when the type has >= 2 triangle counts;
+//  - time_resolution: frame time against width×height, per scene variant,
+//                     when it ran at >= 2 resolutions;
+//  - passes:          per-pass stacked bars per (scene variant, resolution):
+//                     timing.passes.<name>.median_ms in pass_order, over the
+//                     shared G-buffer and shading passes in grey.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace sb {
+
+struct ChartOptions {
+  // A dotted path into record["metrics"]: <visibility|shaded>.<all|penumbra>.<key>,
+  // e.g. visibility.penumbra.rmse, shaded.all.ssim, visibility.all.frac_over_0.05.
+  // For psnr and ssim higher is better, and the Pareto front follows that.
+  std::string error_metric = "visibility.all.rmse";
+};
+
+struct ChartFile {
+  std::string kind;   // error_time, time_triangles, time_resolution, passes
+  std::string title;  // as drawn above the chart
+  std::string svg;    // paths of the written files (out_dir/<name>.svg, .png)
+  std::string png;
+  std::vector<std::string> series;  // technique variants drawn (legend or bar labels)
+  std::vector<std::string> pareto;  // error_time only: the labelled front, by time
+};
+
+// Writes every chart the records support into out_dir (created if missing)
+// and returns them, in a stable order. Throws InputError for an unknown
+// error metric (naming it), std::runtime_error when python3 or matplotlib is
+// missing (saying what to install) or when the plotting script fails (with
+// its stderr). No ok records: no charts, and python is not run.
+std::vector<ChartFile> write_charts(const std::vector<nlohmann::json>& records,
+                                    const std::string& out_dir, const ChartOptions& options = {});
+
+// Empty if /usr/bin/python3 can import matplotlib, else why not (and what to
+// install). Runs python3 once.
+std::string charts_unavailable_reason();
+
+// The plotting script found as write_charts() looks for it:
+// <executable's folder>/share/shadowbench/, $SHADOWBENCH_SHARE_DIR, the source tree.
+std::string find_plot_script();
+
+}  // namespace sb

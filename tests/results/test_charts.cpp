@@ -1,0 +1,230 @@
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "../metrics/test_util.h"
+#include "core/error.h"
+#include "results/charts.h"
+
+namespace sb {
+namespace {
+
+using json = nlohmann::json;
+
+json timing(double median) {
+  return {{"median_ms", median}, {"p10_ms", median * 0.9}, {"p90_ms", median * 1.2}};
+}
+
+struct Technique {
+  std::string variant;
+  double ms;    // technique time at 320x240 with 10k triangles
+  double rmse;  // visibility.all.rmse
+  std::vector<std::string> passes;
+};
+
+// Four technique variants: none, shadow_map and accumulation are on the
+// error-time front; pcf_box is slower than shadow_map and worse.
+const std::vector<Technique> kTechniques = {
+    {"none", 0.1, 0.30, {"clear"}},
+    {"shadow_map/size=1024", 5.0, 0.10, {"shadow_map", "lookup"}},
+    {"pcf_box/k=3,size=1024", 10.0, 0.12, {"shadow_map", "lookup"}},
+    {"accumulation/samples=16", 190.0, 0.01, {"accumulate", "shadow_maps"}},
+};
+
+json record(const std::string& scene, int triangles, int w, int h, const Technique& t) {
+  const double scale = (triangles / 10000.0) * (w * h / 76800.0);
+  const double gbuffer = 9.0 * scale, shading = 1.0 * scale, tech = t.ms * scale;
+  json passes = json::object();
+  for (std::size_t i = 0; i < t.passes.size(); ++i)
+    passes[t.passes[i]] = timing(tech * (i == 0 ? 0.7 : 0.3));
+  const std::string res = std::to_string(w) + "x" + std::to_string(h);
+  const json stats = {{"rmse", t.rmse},
+                      {"psnr", t.rmse > 0 ? -20 * std::log10(t.rmse) : 0.0},
+                      {"ssim", 1.0 - t.rmse},
+                      {"frac_over_0.05", t.rmse / 2}};
+  return {{"status", "ok"},
+          {"scene_variant", scene},
+          {"technique_variant", t.variant},
+          {"resolution", res},
+          {"width", w},
+          {"height", h},
+          {"job_id", scene + "__" + res + "__" + t.variant},
+          {"scene", {{"type", "jeep"}, {"variant", scene}, {"triangles", triangles}}},
+          {"timing",
+           {{"frame", timing(gbuffer + shading + tech)},
+            {"technique", timing(tech)},
+            {"pass_order", t.passes},
+            {"passes", passes},
+            {"shared", {{"gbuffer", timing(gbuffer)}, {"shading", timing(shading)}}}}},
+          {"metrics",
+           {{"visibility", {{"all", stats}, {"penumbra", stats}}},
+            {"shaded", {{"all", stats}, {"penumbra", stats}}}}}};
+}
+
+std::vector<json> synthetic_records() {
+  std::vector<json> out;
+  for (const auto& [scene, triangles] :
+       std::vector<std::pair<std::string, int>>{{"jeep/count=1", 10000}, {"jeep/count=4", 40000}})
+    for (const auto& [w, h] : std::vector<std::pair<int, int>>{{320, 240}, {640, 480}})
+      for (const auto& t : kTechniques) out.push_back(record(scene, triangles, w, h, t));
+  // Not drawn: failed and skipped jobs.
+  out.push_back({{"status", "failed"},
+                 {"scene_variant", "jeep/count=1"},
+                 {"technique_variant", "broken_technique"},
+                 {"resolution", "320x240"},
+                 {"reason", "GL error"}});
+  out.push_back({{"status", "skipped"},
+                 {"scene_variant", "jeep/count=1"},
+                 {"technique_variant", "skipped_technique"},
+                 {"resolution", "320x240"}});
+  return out;
+}
+
+std::string read(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// How often `text` is an SVG <text> element's whole content.
+int text_count(const std::string& svg, const std::string& text) {
+  int n = 0;
+  const std::string needle = ">" + text + "<";
+  for (auto pos = svg.find(needle); pos != std::string::npos; pos = svg.find(needle, pos + 1)) ++n;
+  return n;
+}
+
+#define SKIP_WITHOUT_MATPLOTLIB()                                        \
+  if (const std::string why = charts_unavailable_reason(); !why.empty()) \
+  GTEST_SKIP() << "charts cannot be drawn here: " << why
+
+TEST(Charts, EveryChartIsWrittenWithItsSeries) {
+  SKIP_WITHOUT_MATPLOTLIB();
+  test::TempDir dir("charts");
+  const auto charts = write_charts(synthetic_records(), dir.file("charts"), {});
+
+  std::map<std::string, int> kinds;
+  for (const auto& c : charts) ++kinds[c.kind];
+  EXPECT_EQ(kinds["error_time"], 4);       // 2 scenes × 2 resolutions
+  EXPECT_EQ(kinds["time_triangles"], 2);   // jeep at 2 resolutions
+  EXPECT_EQ(kinds["time_resolution"], 2);  // per scene
+  EXPECT_EQ(kinds["passes"], 4);
+
+  for (const auto& c : charts) {
+    SCOPED_TRACE(c.kind + ": " + c.title);
+    ASSERT_TRUE(std::filesystem::exists(c.svg)) << c.svg;
+    ASSERT_TRUE(std::filesystem::exists(c.png)) << c.png;
+    EXPECT_GT(std::filesystem::file_size(c.svg), 1000u);
+    const std::string png = read(c.png);
+    ASSERT_GT(png.size(), 1000u);
+    EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << c.png;
+    const std::string svg = read(c.svg);
+    EXPECT_NE(svg.find("<svg"), std::string::npos);
+    EXPECT_GE(text_count(svg, c.title), 1) << "title missing";
+    ASSERT_EQ(c.series.size(), kTechniques.size());
+    for (const auto& t : kTechniques) {
+      EXPECT_NE(std::find(c.series.begin(), c.series.end(), t.variant), c.series.end());
+      EXPECT_GE(text_count(svg, t.variant), 1) << t.variant << " missing from " << c.svg;
+    }
+    EXPECT_EQ(svg.find("broken_technique"), std::string::npos);
+    EXPECT_EQ(svg.find("skipped_technique"), std::string::npos);
+    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(c.svg).replace_extension(".json")));
+    if (c.kind == "error_time") {
+      EXPECT_NE(svg.find("visibility.all.rmse"), std::string::npos) << "axis names the metric";
+      const std::vector<std::string> front = {"none", "shadow_map/size=1024",
+                                              "accumulation/samples=16"};
+      EXPECT_EQ(c.pareto, front);
+      // Front points are labelled beside the point as well as in the legend.
+      for (const auto& name : front) EXPECT_EQ(text_count(svg, name), 2) << name;
+      EXPECT_EQ(text_count(svg, "pcf_box/k=3,size=1024"), 1);
+      EXPECT_EQ(text_count(svg, "Pareto front"), 1);
+    }
+    if (c.kind == "passes") {
+      for (const char* pass : {"gbuffer (shared)", "shading (shared)", "shadow_map", "lookup",
+                               "accumulate", "shadow_maps", "clear"})
+        EXPECT_EQ(text_count(svg, pass), 1) << pass;
+    }
+  }
+  // Stable, file-system-safe names.
+  EXPECT_EQ(charts.front().svg, dir.file("charts") + "/error_time__jeep--count=1__320x240.svg");
+}
+
+TEST(Charts, HigherIsBetterMetricsFlipTheFront) {
+  SKIP_WITHOUT_MATPLOTLIB();
+  test::TempDir dir("charts_ssim");
+  ChartOptions o;
+  o.error_metric = "shaded.all.ssim";
+  std::vector<json> records;  // one scene at one resolution: quicker
+  for (const json& r : synthetic_records())
+    if (r["scene_variant"] == "jeep/count=1" && r["resolution"] == "320x240") records.push_back(r);
+  const auto charts = write_charts(records, dir.path().string(), o);
+  ASSERT_EQ(charts.size(), 2u);  // error_time and passes
+  EXPECT_EQ(charts.front().kind, "error_time");
+  EXPECT_EQ(charts.front().pareto,
+            (std::vector<std::string>{"none", "shadow_map/size=1024", "accumulation/samples=16"}));
+  EXPECT_NE(read(charts.front().svg).find("shaded.all.ssim (higher is better)"), std::string::npos);
+}
+
+TEST(Charts, UnknownMetricIsAnInputErrorNamingIt) {
+  test::TempDir dir("charts_bad");
+  ChartOptions o;
+  o.error_metric = "visibility.all.nope";
+  try {
+    write_charts(synthetic_records(), dir.path().string(), o);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("visibility.all.nope"), std::string::npos) << e.what();
+  }
+  o.error_metric = "visibility";  // an object, not a number
+  EXPECT_THROW(write_charts(synthetic_records(), dir.path().string(), o), InputError);
+}
+
+// A stand-in plot_charts.py found through $SHADOWBENCH_SHARE_DIR.
+class FakeScript {
+ public:
+  FakeScript(const test::TempDir& dir, const std::string& body) {
+    std::ofstream(dir.file("plot_charts.py")) << body;
+    ::setenv("SHADOWBENCH_SHARE_DIR", dir.path().c_str(), 1);
+  }
+  ~FakeScript() { ::unsetenv("SHADOWBENCH_SHARE_DIR"); }
+};
+
+TEST(Charts, ScriptFailureCarriesItsStderr) {
+  if (!std::filesystem::exists("/usr/bin/python3")) GTEST_SKIP() << "no /usr/bin/python3";
+  test::TempDir dir("charts_fail");
+  FakeScript script(dir, "import sys\nprint('boom: no such axis', file=sys.stderr)\nsys.exit(1)\n");
+  EXPECT_EQ(find_plot_script(), dir.file("plot_charts.py"));
+  try {
+    write_charts(synthetic_records(), dir.file("out"), {});
+    FAIL() << "expected runtime_error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("boom: no such axis"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Charts, MissingMatplotlibSaysWhatToInstall) {
+  if (!std::filesystem::exists("/usr/bin/python3")) GTEST_SKIP() << "no /usr/bin/python3";
+  test::TempDir dir("charts_nompl");
+  FakeScript script(dir, "import sys\nsys.exit(3)\n");  // plot_charts.py's "import failed"
+  try {
+    write_charts(synthetic_records(), dir.file("out"), {});
+    FAIL() << "expected runtime_error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("apt-get install python3-matplotlib"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(Charts, NoOkRecordsNoCharts) {
+  test::TempDir dir("charts_none");
+  std::vector<json> records = synthetic_records();
+  for (auto& r : records) r["status"] = "failed";
+  EXPECT_TRUE(write_charts(records, dir.path().string(), {}).empty());
+}
+
+}  // namespace
+}  // namespace sb
