@@ -1,0 +1,38 @@
+#pragma once
+// The HTML report of a run (index.html in the report folder): the summary
+// tables (sortable), the charts and an image grid per scene variant and
+// resolution (reference, each technique's shaded image and error heat map,
+// with a colour legend). It works offline from the file system: inline CSS
+// and JS, no network, images linked by paths relative to the report folder.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace sb {
+
+// A chart made by the caller. Paths are relative to out_dir; an absolute one,
+// or one relative to the working directory that names an existing file (as
+// write_charts returns them), is made relative to out_dir.
+struct ReportChart {
+  std::string title;
+  std::string svg;  // shown (as <img>); the PNG when empty
+  std::string png;  // linked from the chart
+};
+
+// The legend image written next to index.html: the heat-map colour ramp
+// (metrics::heatmap_colour) from 0 on the left to full scale on the right.
+inline constexpr const char* kHeatmapLegendFile = "heatmap_legend.png";
+
+// Writes out_dir/index.html (atomically) and out_dir/heatmap_legend.png,
+// creating out_dir. Images named by the records ("images": paths relative to
+// run_dir) are linked relative to out_dir, not copied. After loading, the
+// page's script sets <body data-images-ok="true|false" data-missing="...">
+// and logs console.error for each image that did not load.
+void write_html_report(const std::vector<nlohmann::json>& records, const std::string& run_dir,
+                       const std::string& out_dir, const std::vector<ReportChart>& charts,
+                       const std::string& title);
+
+// & < > " ' as character references: safe in text and in quoted attributes.
+std::string html_escape(const std::string& s);
+
+}  // namespace sb

@@ -1,0 +1,148 @@
+#pragma once
+// A synthetic run directory for the HTML report tests: records as the runner
+// writes them (two scene/resolution groups; ok, skipped and failed jobs; a
+// reason with <&>"' in it; file names with '=', '+' and ','), tiny PNGs for
+// their images, and one chart (SVG + PNG) in the report folder.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "metrics/image_io.h"
+#include "metrics/metrics.h"
+#include "results/html_report.h"
+
+namespace sb::test {
+
+inline constexpr const char* kNastyReason = "GL error <GL_INVALID_ENUM> & \"bad\" 'enum'";
+
+struct SyntheticRun {
+  std::filesystem::path run_dir, out_dir;
+  std::vector<nlohmann::json> records;
+  std::vector<ReportChart> charts;
+};
+
+// A small image with a gradient and a disc, so a screenshot of it is not flat.
+inline ImageF synthetic_image(int w, int h, float shift) {
+  const float fw = static_cast<float>(w), fh = static_cast<float>(h);
+  ImageF img(w, h, 3);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const float fx = static_cast<float>(x), fy = static_cast<float>(y);
+      const float dx = fx - fw * (0.3f + shift), dy = fy - fh * 0.5f;
+      const float v = dx * dx + dy * dy < fh * fh / 9.0f ? 0.15f : 0.4f + 0.5f * fx / fw;
+      for (int c = 0; c < 3; ++c) img.at(x, y, c) = v * (0.8f + 0.1f * static_cast<float>(c));
+    }
+  }
+  return img;
+}
+
+// Writes the run into root/run; the report goes to `out_dir` (root/report
+// unless given).
+inline SyntheticRun make_synthetic_run(const std::filesystem::path& root,
+                                       std::filesystem::path out_dir = {}) {
+  namespace fs = std::filesystem;
+  using nlohmann::json;
+  SyntheticRun run;
+  run.run_dir = root / "run";
+  run.out_dir = out_dir.empty() ? root / "report" : out_dir;
+  fs::create_directories(run.run_dir);
+  fs::create_directories(run.out_dir / "charts");
+  const float full_scale = 0.25f;
+  struct Job {
+    const char* technique;
+    const char* status;
+    std::string reason;
+    double frame_ms;  // in an order that text sorting would get wrong
+  };
+  const Job jobs[] = {{"none", "ok", "", 2.5},
+                      {"shadow_map/size=1024", "ok", "", 12.0},
+                      {"pcf_box/k=3,size=1024", "ok", "", 9.0},
+                      {"shadow_volume/mode=zpass", "skipped", "casters are not closed", 0.0},
+                      {"vsm/k=9,prefilter=gauss", "failed", kNastyReason, 120.0}};
+  const std::pair<int, int> sizes[] = {{64, 48}, {96, 72}};
+  for (const auto& [w, h] : sizes) {
+    const std::string res = std::to_string(w) + "x" + std::to_string(h);
+    const std::string scene = "plates/layout=edge";
+    const std::string ref_rel = "reference/plates--layout=edge__" + res;
+    fs::create_directories(run.run_dir / ref_rel);
+    const ImageF ref = synthetic_image(w, h, 0.0f);
+    io::write_png((run.run_dir / ref_rel / "shaded.png").string(), ref);
+    float shift = 0.0f;
+    for (const auto& j : jobs) {
+      std::string safe = j.technique;
+      for (char& c : safe) c = c == '/' ? '-' : c == ',' ? '+' : c;
+      const std::string id = "plates--layout=edge__" + res + "__" + safe;
+      json r = {{"schema_version", 1},
+                {"run_id", "synthetic"},
+                {"experiment", "synthetic"},
+                {"job_id", id},
+                {"scene_variant", scene},
+                {"technique_variant", j.technique},
+                {"resolution", res},
+                {"width", w},
+                {"height", h},
+                {"backend", "osmesa"},
+                {"gl_renderer", "llvmpipe <test>"},
+                {"timing_source", "cpu_glfinish"},
+                {"status", j.status},
+                {"reference", {{"method", "embree_stratified_packet16"}, {"spp", 256}}}};
+      if (!j.reason.empty()) r["reason"] = j.reason;
+      if (std::string(j.status) != "skipped") {
+        shift += 0.05f;
+        const std::string rel = "jobs/" + id;
+        fs::create_directories(run.run_dir / rel);
+        const ImageF test = synthetic_image(w, h, shift);
+        io::write_png((run.run_dir / rel / "shaded.png").string(), test);
+        io::write_png((run.run_dir / rel / "error.png").string(),
+                      metrics::error_heatmap(test, ref, full_scale));
+        r["images"] = {{"shaded", rel + "/shaded.png"},
+                       {"error_heatmap", rel + "/error.png"},
+                       {"error_heatmap_full_scale", full_scale},
+                       {"reference_shaded", ref_rel + "/shaded.png"}};
+        r["timing"]["frame"]["median_ms"] = j.frame_ms;
+        r["timing"]["technique"]["median_ms"] = 0.5 + shift * 10.0;
+        r["metrics"]["visibility"]["all"] = {{"rmse", 0.2 - shift}, {"mae", 0.1},
+                                             {"max_error", 1.0},    {"psnr", "inf"},
+                                             {"ssim", 0.9},         {"frac_over_0.05", 0.01}};
+        r["metrics"]["visibility"]["penumbra"]["rmse"] = 0.3 - shift;
+      }
+      run.records.push_back(r);
+    }
+  }
+  // A chart as the caller makes it: files in the report folder.
+  const std::string svg =
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"400\" height=\"200\" "
+      "viewBox=\"0 0 400 200\"><rect width=\"400\" height=\"200\" fill=\"#fff\"/>"
+      "<polyline points=\"20,180 120,90 220,120 380,20\" fill=\"none\" stroke=\"#c33\" "
+      "stroke-width=\"3\"/></svg>\n";
+  {
+    std::FILE* f = std::fopen((run.out_dir / "charts" / "error_vs_time.svg").c_str(), "wb");
+    std::fputs(svg.c_str(), f);
+    std::fclose(f);
+  }
+  io::write_png((run.out_dir / "charts" / "error_vs_time.png").string(),
+                synthetic_image(40, 20, 0.1f));
+  run.charts.push_back(
+      {"Error against frame time <all>", "charts/error_vs_time.svg", "charts/error_vs_time.png"});
+  return run;
+}
+
+// The whole of a file (empty when it cannot be read).
+inline std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+inline void write_synthetic_report(const SyntheticRun& run) {
+  write_html_report(run.records, run.run_dir.string(), run.out_dir.string(), run.charts,
+                    "synthetic <report> & co");
+}
+
+}  // namespace sb::test

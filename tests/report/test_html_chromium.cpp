@@ -1,0 +1,225 @@
+// The HTML report as a person sees it: Debian's headless Chromium loads
+// index.html from the file system (no network), runs its script, dumps the
+// DOM and takes a screenshot. Fails on console messages or images that did
+// not load; skipped where Chromium is not installed.
+//
+// Chromium 156 prints every console message of the page to stderr (with
+// --enable-logging=stderr) as `INFO:CONSOLE:<line>] "text", source: URL`,
+// console.error and uncaught exceptions included, with no level of its own.
+// The report logs nothing unless an image is missing, so any such line
+// counts as an error.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../metrics/test_util.h"
+#include "report_fixture.h"
+
+namespace sb {
+namespace {
+
+namespace fs = std::filesystem;
+
+// `chromium` on PATH, else /usr/bin/chromium; empty when neither exists.
+std::string find_chromium() {
+  if (const char* path = std::getenv("PATH")) {
+    std::stringstream dirs(path);
+    for (std::string d; std::getline(dirs, d, ':');) {
+      if (d.empty()) continue;
+      const fs::path p = fs::path(d) / "chromium";
+      if (::access(p.c_str(), X_OK) == 0) return p.string();
+    }
+  }
+  return ::access("/usr/bin/chromium", X_OK) == 0 ? "/usr/bin/chromium" : "";
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+struct BrowserRun {
+  int exit_code = -1;
+  std::string dom;                   // --dump-dom output (empty for a screenshot)
+  std::vector<std::string> console;  // the page's console messages
+  std::string log;                   // the whole of stderr, for failure messages
+};
+
+// One headless Chromium run on `page` with `mode` (--dump-dom or
+// --screenshot=...). Everything that could reach a network is off, and host
+// names resolve to nothing.
+BrowserRun run_chromium(const std::string& chromium, const fs::path& work, const fs::path& page,
+                        const std::string& mode) {
+  const fs::path out = work / "chromium.out", err = work / "chromium.err";
+  const std::string cmd =
+      "timeout 120 " + shell_quote(chromium) +
+      " --headless --no-sandbox --disable-gpu --no-first-run --no-default-browser-check"
+      " --disable-extensions --disable-sync --disable-background-networking"
+      " --disable-component-update --disable-default-apps --disable-domain-reliability"
+      " --no-proxy-server --host-resolver-rules='MAP * ~NOTFOUND' --mute-audio"
+      " --user-data-dir=" +
+      shell_quote((work / "profile").string()) +
+      " --enable-logging=stderr --v=0 --virtual-time-budget=5000 " + mode + " " +
+      shell_quote("file://" + fs::absolute(page).string()) + " > " + shell_quote(out.string()) +
+      " 2> " + shell_quote(err.string()) + " < /dev/null";
+  BrowserRun r;
+  const int status = std::system(cmd.c_str());
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.dom = test::read_text(out);
+  r.log = test::read_text(err);
+  std::stringstream lines(r.log);
+  for (std::string line; std::getline(lines, line);)
+    if (line.find(":CONSOLE") != std::string::npos) r.console.push_back(line);
+  return r;
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const auto& l : lines) s += l + "\n";
+  return s;
+}
+
+class report_chromium : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    chromium_ = find_chromium();
+    if (chromium_.empty())
+      GTEST_SKIP() << "no Chromium (neither `chromium` on PATH nor /usr/bin/chromium): "
+                      "install Debian's chromium package (scripts/install-deps.sh --test) "
+                      "to check the HTML report in a browser";
+  }
+  std::string chromium_;
+};
+
+TEST_F(report_chromium, PageLoadsEveryImageWithoutConsoleErrorsAndRenders) {
+  test::TempDir dir("html_chromium");
+  const auto run = test::make_synthetic_run(dir.path());
+  test::write_synthetic_report(run);
+  const fs::path index = run.out_dir / "index.html";
+
+  const BrowserRun dom = run_chromium(chromium_, dir.path(), index, "--dump-dom");
+  ASSERT_EQ(dom.exit_code, 0) << dom.log;
+  ASSERT_NE(dom.dom.find("<body"), std::string::npos) << "no DOM dumped:\n" << dom.log;
+  EXPECT_NE(dom.dom.find("data-images-ok=\"true\""), std::string::npos)
+      << "images did not all load; the body tag says:\n"
+      << dom.dom.substr(dom.dom.find("<body"), 400);
+  EXPECT_TRUE(dom.console.empty()) << "console messages:\n" << joined(dom.console);
+  // The script ran: the tables are sortable.
+  EXPECT_NE(dom.dom.find("tabindex=\"0\""), std::string::npos);
+
+  const fs::path shot = dir.path() / "report.png";
+  const BrowserRun s =
+      run_chromium(chromium_, dir.path(), index,
+                   "--window-size=1280,2000 --screenshot=" + shell_quote(shot.string()));
+  ASSERT_EQ(s.exit_code, 0) << s.log;
+  EXPECT_TRUE(s.console.empty()) << "console messages:\n" << joined(s.console);
+  ASSERT_TRUE(fs::is_regular_file(shot)) << s.log;
+  EXPECT_GT(fs::file_size(shot), 20u * 1024u);
+  const ImageF img = io::read_image(shot.string());
+  EXPECT_EQ(img.width, 1280);
+  EXPECT_EQ(img.height, 2000);
+  // Not a blank page: many distinct colours (text, tables, images).
+  std::set<uint32_t> colours;
+  for (size_t p = 0; p < img.pixel_count(); p += 7) {
+    uint32_t key = 0;
+    for (int c = 0; c < 3; ++c)
+      key = key * 256 + static_cast<uint32_t>(img.data[p * img.channels + c] * 255.0f + 0.5f);
+    colours.insert(key);
+  }
+  EXPECT_GT(colours.size(), 100u);
+}
+
+TEST_F(report_chromium, MissingImageIsDetected) {
+  test::TempDir dir("html_chromium_missing");
+  const auto run = test::make_synthetic_run(dir.path());
+  test::write_synthetic_report(run);
+  const std::string gone = run.records[2]["images"]["error_heatmap"].get<std::string>();
+  ASSERT_TRUE(fs::remove(run.run_dir / gone));
+
+  const BrowserRun dom =
+      run_chromium(chromium_, dir.path(), run.out_dir / "index.html", "--dump-dom");
+  ASSERT_EQ(dom.exit_code, 0) << dom.log;
+  EXPECT_NE(dom.dom.find("data-images-ok=\"false\""), std::string::npos) << dom.dom.substr(0, 2000);
+  const size_t missing = dom.dom.find("data-missing=\"");
+  ASSERT_NE(missing, std::string::npos);
+  EXPECT_NE(dom.dom.substr(missing, 400).find("pcf_box-k=3+size=1024/error.png"), std::string::npos)
+      << dom.dom.substr(missing, 400);
+  ASSERT_EQ(dom.console.size(), 1u) << joined(dom.console);
+  EXPECT_NE(dom.console[0].find("missing image"), std::string::npos) << dom.console[0];
+}
+
+// Clicking a header sorts its table: a copy of the page with a script that
+// clicks "rmse" (ascending), again (descending), "technique" and "frame_ms"
+// (2.5, 12, 9, 120: text order would differ), writing each
+// resulting order of the first table into the body's data attributes.
+TEST_F(report_chromium, ClickingAHeaderSortsNumericallyAndToggles) {
+  test::TempDir dir("html_chromium_sort");
+  const auto run = test::make_synthetic_run(dir.path());
+  test::write_synthetic_report(run);
+  std::string html = test::read_text(run.out_dir / "index.html");
+  const std::string probe = R"(<script>
+window.addEventListener('load', function () {
+  var table = document.querySelector('table.sortable');
+  function header(name) {
+    return Array.prototype.find.call(table.tHead.rows[0].cells,
+                                     function (th) { return th.textContent === name; });
+  }
+  function order() {
+    return Array.prototype.map.call(table.tBodies[0].rows,
+                                    function (r) { return r.cells[0].textContent; }).join('|');
+  }
+  header('rmse').click();
+  document.body.dataset.rmseAsc = order();
+  header('rmse').click();
+  document.body.dataset.rmseDesc = order();
+  header('technique').click();
+  document.body.dataset.techniqueAsc = order();
+  header('frame_ms').click();
+  document.body.dataset.frameAsc = order();
+});
+</script>
+</body>)";
+  const size_t end = html.rfind("</body>");
+  ASSERT_NE(end, std::string::npos);
+  html.replace(end, 7, probe);
+  const fs::path page = run.out_dir / "sort_probe.html";
+  {
+    std::ofstream out(page, std::ios::binary);
+    out << html;
+  }
+  const BrowserRun dom = run_chromium(chromium_, dir.path(), page, "--dump-dom");
+  ASSERT_EQ(dom.exit_code, 0) << dom.log;
+  EXPECT_TRUE(dom.console.empty()) << joined(dom.console);
+  // rmse: vsm 0.00000 (rounded from a tiny negative), pcf 0.05, shadow_map
+  // 0.10, none 0.15; the skipped job has no rmse and stays last both ways.
+  const std::pair<const char*, const char*> expected[] = {
+      {"rmse-asc",
+       "vsm/k=9,prefilter=gauss|pcf_box/k=3,size=1024|shadow_map/size=1024|none|"
+       "shadow_volume/mode=zpass"},
+      {"rmse-desc",
+       "none|shadow_map/size=1024|pcf_box/k=3,size=1024|vsm/k=9,prefilter=gauss|"
+       "shadow_volume/mode=zpass"},
+      {"technique-asc",
+       "none|pcf_box/k=3,size=1024|shadow_map/size=1024|shadow_volume/mode=zpass|"
+       "vsm/k=9,prefilter=gauss"},
+      {"frame-asc",
+       "none|pcf_box/k=3,size=1024|shadow_map/size=1024|vsm/k=9,prefilter=gauss|"
+       "shadow_volume/mode=zpass"}};
+  const std::string body = dom.dom.substr(dom.dom.find("<body"), 800);
+  for (const auto& [attr, order] : expected)
+    EXPECT_NE(body.find("data-" + std::string(attr) + "=\"" + order + "\""), std::string::npos)
+        << attr << "\n"
+        << body;
+}
+
+}  // namespace
+}  // namespace sb
