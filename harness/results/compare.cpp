@@ -1,0 +1,281 @@
+#include "results/compare.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <set>
+
+#include "core/error.h"
+#include "results/mann_whitney.h"
+#include "results/timing_stats.h"
+
+namespace sb {
+namespace {
+
+using nlohmann::json;
+
+std::optional<double> number(const json& v) {
+  if (v.is_number()) return v.get<double>();
+  if (v.is_string()) {
+    const std::string s = v.get<std::string>();
+    if (s == "nan") return std::numeric_limits<double>::quiet_NaN();
+    if (s == "inf") return std::numeric_limits<double>::infinity();
+    if (s == "-inf") return -std::numeric_limits<double>::infinity();
+  }
+  return std::nullopt;
+}
+
+// timing.<key>.samples_ms: "frame" or "technique".
+std::vector<double> time_samples(const json& record, const std::string& key) {
+  std::vector<double> out;
+  const json* s = nullptr;
+  if (record.contains("timing") && record["timing"].is_object() && record["timing"].contains(key) &&
+      record["timing"][key].is_object() && record["timing"][key].contains("samples_ms"))
+    s = &record["timing"][key]["samples_ms"];
+  if (s == nullptr || !s->is_array()) return out;
+  for (const auto& v : *s) {
+    const auto d = number(v);
+    if (d && std::isfinite(*d)) out.push_back(*d);
+  }
+  return out;
+}
+
+// Metrics where a larger value is better: an increase is an improvement.
+bool higher_is_better(const std::string& path) {
+  const std::string last = path.substr(path.find_last_of('.') + 1);
+  return last == "psnr" || last == "ssim";
+}
+
+std::string metric_label(const std::string& path) {
+  return path.substr(path.find_last_of('.') + 1);
+}
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string error_text(const std::optional<double>& v) {
+  if (!v) return "-";
+  if (std::isnan(*v)) return "nan";
+  if (std::isinf(*v)) return *v > 0 ? "inf" : "-inf";
+  return fmt("%.5f", *v);
+}
+
+}  // namespace
+
+const char* to_string(Verdict v) {
+  switch (v) {
+    case Verdict::kUnchanged:
+      return "unchanged";
+    case Verdict::kRegression:
+      return "REGRESSION";
+    case Verdict::kImprovement:
+      return "improvement";
+    case Verdict::kNotCompared:
+      break;
+  }
+  return "-";
+}
+
+bool JobComparison::regressed() const {
+  return time == Verdict::kRegression || error == Verdict::kRegression ||
+         (base_status == "ok" && new_status == "failed");
+}
+
+std::optional<double> metric_value(const json& record, const std::string& dotted_path) {
+  std::string path = dotted_path;
+  if (path.rfind("metrics.", 0) == 0) path = path.substr(8);
+  if (!record.contains("metrics")) return std::nullopt;
+  const json* node = &record["metrics"];
+  size_t start = 0;
+  while (start <= path.size()) {
+    const size_t dot = path.find('.', start);
+    const std::string key = path.substr(start, dot == std::string::npos ? dot : dot - start);
+    if (!node->is_object() || !node->contains(key)) return std::nullopt;
+    node = &(*node)[key];
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  return number(*node);
+}
+
+void check_options(const CompareOptions& o) {
+  if (!(o.alpha > 0 && o.alpha < 1))
+    throw InputError("", "--alpha", "expected a value in (0, 1), found " + fmt("%g", o.alpha));
+  if (!(o.time_threshold >= 0) || !std::isfinite(o.time_threshold))
+    throw InputError(
+        "", "--time-threshold",
+        "expected a relative change >= 0 (0.10 is 10 %), found " + fmt("%g", o.time_threshold));
+  if (!(o.error_threshold >= 0) || !std::isfinite(o.error_threshold))
+    throw InputError("", "--error-threshold",
+                     "expected an absolute change >= 0, found " + fmt("%g", o.error_threshold));
+  if (o.timing != "frame" && o.timing != "technique")
+    throw InputError("", "--timing", "expected frame or technique, found '" + o.timing + "'");
+  if (o.metric.empty() || o.metric.front() == '.' || o.metric.back() == '.')
+    throw InputError("", "--metric",
+                     "expected a dotted path under a record's metrics, e.g. visibility.all.rmse");
+}
+
+CompareResult compare_runs(const std::vector<json>& base, const std::vector<json>& fresh,
+                           const CompareOptions& o) {
+  check_options(o);
+  auto index = [](const std::vector<json>& records, std::vector<std::string>& order) {
+    std::map<std::string, const json*> m;
+    for (const auto& r : records) {
+      if (!r.contains("job_id") || !r["job_id"].is_string()) continue;
+      const std::string id = r["job_id"].get<std::string>();
+      if (m.emplace(id, &r).second) order.push_back(id);
+    }
+    return m;
+  };
+  std::vector<std::string> base_order, new_order;
+  const auto b = index(base, base_order);
+  const auto n = index(fresh, new_order);
+
+  CompareResult out;
+  bool metric_seen = false;
+  for (const auto& id : base_order) {
+    const auto it = n.find(id);
+    if (it == n.end()) {
+      out.only_base.push_back(id);
+      continue;
+    }
+    const json& rb = *b.at(id);
+    const json& rn = *it->second;
+    JobComparison c;
+    c.job_id = id;
+    c.base_status = rb.value("status", "");
+    c.new_status = rn.value("status", "");
+    if (c.base_status != "ok" || c.new_status != "ok") {
+      if (c.base_status == "ok" && c.new_status == "failed")
+        c.note = "failed in NEW: " + rn.value("reason", "");
+      else
+        c.note = "status " + c.base_status + " -> " + c.new_status;
+      out.jobs.push_back(std::move(c));
+      continue;
+    }
+
+    // Time.
+    const std::vector<double> sbase = time_samples(rb, o.timing), sn = time_samples(rn, o.timing);
+    c.base_samples = sbase.size();
+    c.new_samples = sn.size();
+    if (!sbase.empty() && !sn.empty()) {
+      c.base_median_ms = summarize(sbase).median;
+      c.new_median_ms = summarize(sn).median;
+      c.change = c.base_median_ms > 0 ? c.new_median_ms / c.base_median_ms - 1 : 0;
+      c.p = mann_whitney_u(sbase, sn).p;
+      if (*c.p < o.alpha && c.change > o.time_threshold)
+        c.time = Verdict::kRegression;
+      else if (*c.p < o.alpha && c.change < -o.time_threshold)
+        c.time = Verdict::kImprovement;
+      else
+        c.time = Verdict::kUnchanged;
+    } else {
+      c.note = "no " + o.timing + " samples (timing." + o.timing + ".samples_ms) in " +
+               std::string(sbase.empty() ? "BASE" : "NEW");
+    }
+
+    // Error.
+    c.base_error = metric_value(rb, o.metric);
+    c.new_error = metric_value(rn, o.metric);
+    metric_seen = metric_seen || c.base_error || c.new_error;
+    if (c.base_error && c.new_error) {
+      const double eb = *c.base_error, en = *c.new_error;
+      if (std::isnan(eb) && std::isnan(en)) {
+        c.error = Verdict::kUnchanged;
+      } else if (std::isnan(en)) {
+        c.error = Verdict::kRegression;  // lost a finite error
+      } else if (std::isnan(eb)) {
+        c.error = Verdict::kImprovement;
+      } else {
+        double worse = en - eb;
+        if (higher_is_better(o.metric)) worse = -worse;
+        if (std::isinf(eb) && std::isinf(en) && eb == en) worse = 0;
+        c.error = worse > o.error_threshold    ? Verdict::kRegression
+                  : worse < -o.error_threshold ? Verdict::kImprovement
+                                               : Verdict::kUnchanged;
+      }
+    }
+    out.jobs.push_back(std::move(c));
+  }
+  for (const auto& id : new_order)
+    if (!b.count(id)) out.only_new.push_back(id);
+
+  bool any_ok = false;
+  for (const auto& c : out.jobs) any_ok = any_ok || (c.base_status == "ok" && c.new_status == "ok");
+  if (any_ok && !metric_seen)
+    throw InputError("", "--metric",
+                     "no record has metrics." + o.metric +
+                         " (try visibility.all.rmse, visibility.penumbra.rmse, shaded.all.ssim)");
+  for (const auto& c : out.jobs) {
+    if (c.regressed())
+      ++out.regressions;
+    else if (c.time == Verdict::kImprovement || c.error == Verdict::kImprovement)
+      ++out.improvements;
+  }
+  return out;
+}
+
+std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
+  size_t w = 3;
+  for (const auto& c : r.jobs) w = std::max(w, c.job_id.size());
+  const std::string label = metric_label(o.metric);
+  std::string s;
+  char line[1024];
+  std::snprintf(line, sizeof line,
+                "time: Mann-Whitney U on %s times, alpha %g, threshold %.1f %%; "
+                "error: %s, threshold %g (absolute)\n\n",
+                o.timing.c_str(), o.alpha, o.time_threshold * 100, o.metric.c_str(),
+                o.error_threshold);
+  s += line;
+  std::snprintf(line, sizeof line, "%-*s %10s %10s %8s %8s  %-11s %10s %10s  %s\n", int(w), "job",
+                "base ms", "new ms", "change", "p", "time", (label + " base").c_str(),
+                (label + " new").c_str(), "error");
+  s += line;
+  for (const auto& c : r.jobs) {
+    const bool timed = c.time != Verdict::kNotCompared;
+    std::snprintf(
+        line, sizeof line, "%-*s %10s %10s %8s %8s  %-11s %10s %10s  %s\n", int(w),
+        c.job_id.c_str(), timed ? fmt("%.3f", c.base_median_ms).c_str() : "-",
+        timed ? fmt("%.3f", c.new_median_ms).c_str() : "-",
+        timed ? fmt("%+.1f%%", std::fabs(c.change) < 5e-4 ? 0.0 : c.change * 100).c_str() : "-",
+        c.p ? fmt(*c.p < 1e-3 ? "%.1e" : "%.4f", *c.p).c_str() : "-", to_string(c.time),
+        error_text(c.base_error).c_str(), error_text(c.new_error).c_str(), to_string(c.error));
+    s += line;
+  }
+  bool notes = false;
+  for (const auto& c : r.jobs) {
+    if (c.note.empty() && !c.regressed()) continue;
+    if (!notes) s += "\n";
+    notes = true;
+    s += "  " + c.job_id + ": " + (c.note.empty() ? "" : c.note);
+    if (c.regressed()) {
+      std::string what;
+      if (c.time == Verdict::kRegression)
+        what += fmt("frame time %+.1f %%", c.change * 100) + fmt(" (p = %.2g)", c.p.value_or(1));
+      if (c.error == Verdict::kRegression)
+        what += std::string(what.empty() ? "" : ", ") + label + " " + error_text(c.base_error) +
+                " -> " + error_text(c.new_error);
+      if (!what.empty()) s += (c.note.empty() ? "" : "; ") + std::string("regression: ") + what;
+    }
+    s += "\n";
+  }
+  if (!r.only_base.empty()) {
+    s += "\nonly in BASE (" + std::to_string(r.only_base.size()) + "):\n";
+    for (const auto& id : r.only_base) s += "  " + id + "\n";
+  }
+  if (!r.only_new.empty()) {
+    s += "\nonly in NEW (" + std::to_string(r.only_new.size()) + "):\n";
+    for (const auto& id : r.only_new) s += "  " + id + "\n";
+  }
+  std::snprintf(line, sizeof line, "\n%zu job(s) compared: %d regression(s), %d improvement(s)\n",
+                r.jobs.size(), r.regressions, r.improvements);
+  s += line;
+  return s;
+}
+
+}  // namespace sb
