@@ -6,15 +6,18 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config ninja-build
   libosmesa6-dev libegl-dev libegl1-mesa-dev libgl1-mesa-dri
-  python3-glad
+  python3-glad python3-matplotlib
   libopenimageio-dev openimageio-tools
   libtinygltf-dev libglm-dev nlohmann-json3-dev
   libembree-dev libtbb-dev
   libbenchmark-dev libgtest-dev libgmock-dev
 )
 if [[ "${1:-}" == "--test" ]]; then
-  # Test oracles: scikit-image for SSIM.
-  packages+=(python3-skimage python3-numpy)
+  # Test oracles: scikit-image for SSIM; Google Benchmark's compare.py (and
+  # the scipy it needs) reads our --benchmark-out JSON.
+  packages+=(python3-skimage python3-numpy libbenchmark-tools python3-scipy)
+  # Headless Chromium opens the HTML report (tests/report).
+  packages+=(chromium)
 fi
 
 missing=()

@@ -1,13 +1,18 @@
 // shadowbench — the command-line driver.
 //   shadowbench run CONFIG [--out DIR] [--backend osmesa|egl] [--cache-dir DIR]
 //                          [--no-cache] [--no-images] [--gbuffer] [--plugins DIR] [--quiet]
+//                          [--benchmark-out FILE] [--bencher-out FILE]
 //   shadowbench validate CONFIG [--plugins DIR]
 //   shadowbench list [--plugins DIR]
-//   shadowbench report RUN_DIR
+//   shadowbench report RUN_DIR [--out DIR] [--metric PATH]
+//                             [--benchmark-out FILE] [--bencher-out FILE]
+//   shadowbench compare BASE_DIR NEW_DIR [--alpha A] [--time-threshold R]
+//                       [--error-threshold E] [--metric PATH] [--timing frame|technique]
 //   shadowbench scene export SCENE-SPEC OUT.glb
 //   shadowbench scene info FILE.glb|FILE.gltf|SCENE-SPEC
 // Exit codes: 0 all jobs ok or skipped, 1 some job failed, 2 bad input
-// (config, arguments), 3 environment (no GL context, missing plugins).
+// (config, arguments), 3 environment (no GL context, missing plugins),
+// 4 (compare) a significant regression over threshold.
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -18,6 +23,11 @@
 #include "core/error.h"
 #include "core/registry.h"
 #include "core/scene_types.h"
+#include "results/bencher_json.h"
+#include "results/benchmark_json.h"
+#include "results/charts.h"
+#include "results/compare.h"
+#include "results/html_report.h"
 #include "results/report.h"
 #include "results/store.h"
 #include "run/runner.h"
@@ -35,7 +45,12 @@ constexpr const char* kUsage =
     "                         [--no-cache] [--no-images] [--gbuffer] [--plugins DIR] [--quiet]\n"
     "  shadowbench validate CONFIG [--plugins DIR]\n"
     "  shadowbench list [--plugins DIR]\n"
-    "  shadowbench report RUN_DIR\n"
+    "  shadowbench report RUN_DIR [--out DIR] [--metric visibility.all.rmse]\n"
+    "  (run and report also take --benchmark-out FILE (Google Benchmark JSON)\n"
+    "   and --bencher-out FILE (Bencher Metric Format JSON))\n"
+    "  shadowbench compare BASE_DIR NEW_DIR [--alpha 0.05] [--time-threshold 0.10]\n"
+    "                      [--error-threshold 0.005] [--metric visibility.all.rmse]\n"
+    "                      [--timing frame|technique]\n"
     "  shadowbench scene export SCENE-SPEC OUT.glb\n"
     "  shadowbench scene info FILE.glb|FILE.gltf|SCENE-SPEC\n"
     "SCENE-SPEC: sphere_grid:grid=3,light_size=2 or "
@@ -46,7 +61,24 @@ struct Args {
   std::vector<std::string> positional;
   std::string out, backend = "osmesa", cache_dir = "results/cache", plugins;
   bool no_cache = false, no_images = false, gbuffer = false, quiet = false;
+  std::string benchmark_out, bencher_out;  // run, report: CI outputs
+  CompareOptions compare;                  // compare
+  bool compare_options_given = false;
+  bool metric_given = false;
 };
+
+double parse_number(const std::string& option, const std::string& text) {
+  size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size())
+    throw InputError("", option, "expected a number, found '" + text + "'");
+  return v;
+}
 
 Args parse_args(int argc, char** argv) {
   Args a;
@@ -66,7 +98,23 @@ Args parse_args(int argc, char** argv) {
       a.cache_dir = value("--cache-dir");
     else if (s == "--plugins")
       a.plugins = value("--plugins");
-    else if (s == "--no-cache")
+    else if (s == "--benchmark-out")
+      a.benchmark_out = value("--benchmark-out");
+    else if (s == "--bencher-out")
+      a.bencher_out = value("--bencher-out");
+    else if (s == "--alpha" || s == "--time-threshold" || s == "--error-threshold") {
+      const double v = parse_number(s, value(s.c_str()));
+      (s == "--alpha"            ? a.compare.alpha
+       : s == "--time-threshold" ? a.compare.time_threshold
+                                 : a.compare.error_threshold) = v;
+      a.compare_options_given = true;
+    } else if (s == "--metric") {
+      a.compare.metric = value("--metric");  // compare's error check, report's charts
+      a.metric_given = true;
+    } else if (s == "--timing") {
+      a.compare.timing = value("--timing");
+      a.compare_options_given = true;
+    } else if (s == "--no-cache")
       a.no_cache = true;
     else if (s == "--no-images")
       a.no_images = true;
@@ -106,6 +154,18 @@ std::string default_run_id(const std::string& name) {
   char buf[32];
   std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", &tm);
   return name + "-" + buf;
+}
+
+// --benchmark-out and --bencher-out of run and report.
+void write_ci_outputs(const Args& a, const std::vector<nlohmann::json>& records) {
+  if (!a.benchmark_out.empty()) {
+    write_benchmark_json(a.benchmark_out, records);
+    std::printf("Google Benchmark JSON: %s\n", a.benchmark_out.c_str());
+  }
+  if (!a.bencher_out.empty()) {
+    write_bencher_json(a.bencher_out, records);
+    std::printf("Bencher Metric Format JSON: %s\n", a.bencher_out.c_str());
+  }
 }
 
 int cmd_list(const Args& a) {
@@ -193,6 +253,8 @@ int cmd_run(const Args& a) {
   }
   std::printf("%d ok, %d skipped, %d failed, %d resumed; results in %s\n", s.ok, s.skipped,
               s.failed, s.resumed, o.run_dir.c_str());
+  if (!a.benchmark_out.empty() || !a.bencher_out.empty())
+    write_ci_outputs(a, read_run_records(o.run_dir));
   if (s.bad_input > 0) return kExitBadInput;
   return s.failed > 0 ? kExitJobsFailed : kExitOk;
 }
@@ -203,8 +265,50 @@ int cmd_report(const Args& a) {
   const std::string title = records.empty() ? "shadowbench"
                                             : records[0].value("experiment", "shadowbench") + " (" +
                                                   records[0].value("run_id", "") + ")";
-  write_reports(a.positional[0], records, title);
+  const std::string& run_dir = a.positional[0];
+  write_reports(run_dir, records, title);
   std::printf("%s", make_markdown(records, title).c_str());
+  // Charts and index.html go to --out, by default RUN_DIR/report.
+  const std::string out =
+      a.out.empty() ? (std::filesystem::path(run_dir) / "report").string() : a.out;
+  std::filesystem::create_directories(out);
+  ChartOptions chart_options;
+  chart_options.error_metric = a.compare.metric;
+  std::vector<ReportChart> charts;
+  for (const ChartFile& c : write_charts(records, out, chart_options)) {
+    charts.push_back({c.title, c.svg, c.png});
+    std::printf("chart: %s (.png)\n", c.svg.c_str());
+  }
+  write_html_report(records, run_dir, out, charts, title);
+  std::printf("report: %s\n", (std::filesystem::path(out) / "index.html").string().c_str());
+  write_ci_outputs(a, records);
+  return kExitOk;
+}
+
+int cmd_compare(const Args& a) {
+  if (a.positional.size() != 2)
+    throw InputError("", "command line", "expected BASE_DIR NEW_DIR\n" + std::string(kUsage));
+  std::vector<nlohmann::json> runs[2];
+  for (int i = 0; i < 2; ++i) {
+    const std::string& dir = a.positional[size_t(i)];
+    if (!std::filesystem::is_directory(dir)) throw InputError(dir, "", "no such run directory");
+    runs[i] = read_run_records(dir);
+    if (runs[i].empty()) throw InputError(dir + "/results.jsonl", "", "no records");
+  }
+  const CompareResult r = compare_runs(runs[0], runs[1], a.compare);
+  if (r.jobs.empty())
+    throw InputError(a.positional[1], "", "no job in common with " + a.positional[0]);
+  auto describe = [](const std::vector<nlohmann::json>& records, const std::string& dir) {
+    const std::string id = records[0].value("run_id", "");
+    return dir + (id.empty() ? "" : " (" + id + ")");
+  };
+  std::printf("BASE %s\nNEW  %s\n", describe(runs[0], a.positional[0]).c_str(),
+              describe(runs[1], a.positional[1]).c_str());
+  std::printf("%s", format_comparison(r, a.compare).c_str());
+  if (r.regressions > 0) {
+    std::fprintf(stderr, "shadowbench: %d job(s) regressed\n", r.regressions);
+    return kExitRegression;
+  }
   return kExitOk;
 }
 
@@ -234,6 +338,16 @@ int cmd_scene(const Args& a) {
 int main(int argc, char** argv) {
   try {
     const Args a = parse_args(argc, argv);
+    if ((!a.benchmark_out.empty() || !a.bencher_out.empty()) && a.command != "run" &&
+        a.command != "report")
+      throw InputError("", "command line",
+                       "--benchmark-out and --bencher-out go with run or report");
+    if (a.compare_options_given && a.command != "compare")
+      throw InputError("", "command line",
+                       "--alpha, --time-threshold, --error-threshold and --timing go with compare");
+    if (a.metric_given && a.command != "compare" && a.command != "report")
+      throw InputError("", "command line", "--metric goes with compare or report");
+    if (a.command == "compare") return cmd_compare(a);
     if (a.command == "run") return cmd_run(a);
     if (a.command == "validate") return cmd_validate(a);
     if (a.command == "list") return cmd_list(a);
