@@ -78,12 +78,18 @@ Program& Program::operator=(Program&& o) noexcept {
   return *this;
 }
 
-GLint Program::location(const std::string& uniform) const {
+// Looked up once per name, absent ones too (-1): lookups run in timed passes.
+GLint Program::cached_location(const std::string& uniform) const {
   auto it = locations_.find(uniform);
   if (it != locations_.end()) return it->second;
   const GLint loc = glGetUniformLocation(id_, uniform.c_str());
-  if (loc < 0) throw JobError("program '" + name_ + "' has no active uniform '" + uniform + "'");
   locations_.emplace(uniform, loc);
+  return loc;
+}
+
+GLint Program::location(const std::string& uniform) const {
+  const GLint loc = cached_location(uniform);
+  if (loc < 0) throw JobError("program '" + name_ + "' has no active uniform '" + uniform + "'");
   return loc;
 }
 
@@ -97,7 +103,7 @@ void Program::set(const std::string& u, const std::vector<glm::vec2>& values) co
 }
 
 bool Program::has_uniform(const std::string& uniform) const {
-  return locations_.count(uniform) != 0 || glGetUniformLocation(id_, uniform.c_str()) >= 0;
+  return cached_location(uniform) >= 0;
 }
 
 void Program::set(const std::string& u, const glm::vec2& v) const {

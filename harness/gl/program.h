@@ -46,6 +46,7 @@ class Program {
   void set(const std::string& u, const std::vector<glm::vec2>& values) const;
 
  private:
+  GLint cached_location(const std::string& uniform) const;
   std::string name_;
   GLuint id_ = 0;
   mutable std::unordered_map<std::string, GLint> locations_;
