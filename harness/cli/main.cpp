@@ -1,7 +1,7 @@
 // shadowbench — the command-line driver.
 //   shadowbench run CONFIG [--out DIR] [--backend osmesa|egl] [--cache-dir DIR]
 //                          [--no-cache] [--no-images] [--gbuffer] [--plugins DIR] [--quiet]
-//                          [--benchmark-out FILE] [--bencher-out FILE]
+//                          [--benchmark-out FILE] [--bencher-out FILE] [--embree-config CFG]
 //   shadowbench validate CONFIG [--plugins DIR]
 //   shadowbench list [--plugins DIR]
 //   shadowbench report RUN_DIR [--out DIR] [--metric PATH]
@@ -23,6 +23,7 @@
 #include "core/error.h"
 #include "core/registry.h"
 #include "core/scene_types.h"
+#include "reference/embree_isa.h"
 #include "results/bencher_json.h"
 #include "results/benchmark_json.h"
 #include "results/charts.h"
@@ -43,6 +44,7 @@ constexpr const char* kUsage =
     "usage:\n"
     "  shadowbench run CONFIG [--out DIR] [--backend osmesa|egl] [--cache-dir DIR]\n"
     "                         [--no-cache] [--no-images] [--gbuffer] [--plugins DIR] [--quiet]\n"
+    "                         [--embree-config isa=avx2|max_isa=avx2]\n"
     "  shadowbench validate CONFIG [--plugins DIR]\n"
     "  shadowbench list [--plugins DIR]\n"
     "  shadowbench report RUN_DIR [--out DIR] [--metric visibility.all.rmse]\n"
@@ -62,6 +64,7 @@ struct Args {
   std::string out, backend = "osmesa", cache_dir = "results/cache", plugins;
   bool no_cache = false, no_images = false, gbuffer = false, quiet = false;
   std::string benchmark_out, bencher_out;  // run, report: CI outputs
+  std::string embree_config;               // run: the reference's Embree ISA
   CompareOptions compare;                  // compare
   bool compare_options_given = false;
   bool metric_given = false;
@@ -102,7 +105,14 @@ Args parse_args(int argc, char** argv) {
       a.benchmark_out = value("--benchmark-out");
     else if (s == "--bencher-out")
       a.bencher_out = value("--bencher-out");
-    else if (s == "--alpha" || s == "--time-threshold" || s == "--error-threshold") {
+    else if (s == "--embree-config") {
+      a.embree_config = value("--embree-config");
+      try {
+        reference::check_embree_config(a.embree_config);
+      } catch (const std::invalid_argument& ex) {
+        throw InputError("", "--embree-config", ex.what());
+      }
+    } else if (s == "--alpha" || s == "--time-threshold" || s == "--error-threshold") {
       const double v = parse_number(s, value(s.c_str()));
       (s == "--alpha"            ? a.compare.alpha
        : s == "--time-threshold" ? a.compare.time_threshold
@@ -238,6 +248,7 @@ int cmd_run(const Args& a) {
   o.write_images = !a.no_images;
   o.write_gbuffer = a.gbuffer;
   o.quiet = a.quiet;
+  o.embree_config = a.embree_config;
   RunSummary s;
   try {
     s = run_experiment(e, o);

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/hash.h"
+#include "reference/embree_isa.h"
 
 namespace sb {
 namespace {
@@ -321,12 +322,20 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
   }
   if (doc.contains("reference")) {
     const json& ref = r.object(doc["reference"], "/reference", "reference settings");
-    r.only_keys(ref, "/reference", {"spp", "seed", "cache"});
-    if (ref.contains("spp")) e.reference.spp = r.integer(ref["spp"], "/reference/spp", 2, 1 << 20);
+    r.only_keys(ref, "/reference", {"spp", "seed", "cache", "embree_config"});
+    if (ref.contains("spp")) e.reference.spp = r.integer(ref["spp"], "/reference/spp", 1, 1 << 20);
     if (ref.contains("seed"))
       e.reference.seed =
           static_cast<uint64_t>(r.integer(ref["seed"], "/reference/seed", 0, 2147483647));
     if (ref.contains("cache")) e.reference.cache = r.boolean(ref["cache"], "/reference/cache");
+    if (ref.contains("embree_config")) {
+      e.reference.embree_config = r.string(ref["embree_config"], "/reference/embree_config");
+      try {  // syntax only: whether this CPU has the ISA is the run's question
+        reference::check_embree_config(e.reference.embree_config);
+      } catch (const std::invalid_argument& ex) {
+        r.fail("/reference/embree_config", ex.what());
+      }
+    }
   }
   return e;
 }

@@ -40,6 +40,7 @@ struct ReferenceConfig {
   int spp = 256;
   uint64_t seed = 1;
   bool cache = true;
+  std::string embree_config;  // "" (environment or best ISA), "isa=avx2", "max_isa=avx2"
 };
 
 struct Experiment {

@@ -50,42 +50,29 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
 
 }  // namespace
 
-std::string embree_isa() {
-  // Embree's own choice (the best the CPU has), made explicit so that the
-  // cache key can name it.
-  static const char* const kIsas[] = {"sse2", "sse4.2", "avx", "avx2", "avx512"};
-  __builtin_cpu_init();
-  int best = 0;
-  if (__builtin_cpu_supports("sse4.2")) best = 1;
-  if (__builtin_cpu_supports("avx")) best = 2;
-  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
-      __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2"))
-    best = 3;
-  if (best == 3 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-      __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512bw") &&
-      __builtin_cpu_supports("avx512vl"))
-    best = 4;
-  const char* pinned = std::getenv("SHADOWBENCH_EMBREE_ISA");
-  if (!pinned || !*pinned) return kIsas[best];
-  // Embree quietly falls back on names it does not know or the CPU lacks.
-  for (int i = 0; i <= 4; ++i)
-    if (std::string(pinned) == kIsas[i]) {
-      if (i > best)
-        throw JobError(std::string("SHADOWBENCH_EMBREE_ISA=") + pinned +
-                       ": this CPU supports at most " + kIsas[best]);
-      return kIsas[i];
-    }
-  throw JobError(std::string("SHADOWBENCH_EMBREE_ISA=") + pinned +
-                 ": expected sse2, sse4.2, avx, avx2 or avx512");
-}
-
-Device::Device() {
-  const std::string config = "isa=" + embree_isa();
+Device::Device(const std::string& isa) {
+  const std::string config = "isa=" + isa;
   device_ = rtcNewDevice(config.c_str());
   if (!device_)
     throw JobError("Embree: rtcNewDevice(\"" + config +
                    "\") failed: " + error_name(rtcGetDeviceError(nullptr)));
   rtcSetDeviceErrorFunction(device_, &Device::on_error, this);
+  // Embree has no query for its ISA, but the native packet widths follow it
+  // (4 lanes from sse2, 8 from avx, 16 from avx512): check the device really
+  // took the ISA the record and the cache key will name.
+  const bool native8 =
+      rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED) != 0;
+  const bool native16 =
+      rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0;
+  const bool want8 = isa == "avx" || isa == "avx2" || isa == "avx512", want16 = isa == "avx512";
+  if (native8 != want8 || native16 != want16) {
+    rtcReleaseDevice(device_);
+    throw JobError("Embree: asked for " + config + " but the device's native packets are " +
+                   (native16  ? "16"
+                    : native8 ? "8"
+                              : "4") +
+                   " wide");
+  }
   // With back-face culling, rays leaving a closed caster from inside would
   // pass through it and light would leak onto its dark side.
   if (rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_BACKFACE_CULLING_ENABLED) != 0) {

@@ -11,17 +11,14 @@
 
 namespace sb::reference::detail {
 
-// The ISA the device is created with ("avx512", "avx2", ...): the best the CPU
-// has, or SHADOWBENCH_EMBREE_ISA when set. Results differ between ISAs in a
-// few silhouette pixels, so it is part of the cache key; pin it (e.g. to
-// "avx2") when references must match across machines.
-std::string embree_isa();
-
 // Embree reports errors through a callback; they are collected here and
 // turned into sb::JobError by check() after each API call that can fail.
 class Device {
  public:
-  Device();
+  // A device on exactly `isa` (one of embree_isas(), resolved by
+  // resolve_isa). Throws sb::JobError if Embree's kernels turn out to be of
+  // another width than that ISA's.
+  explicit Device(const std::string& isa);
   ~Device();
   Device(const Device&) = delete;
   Device& operator=(const Device&) = delete;

@@ -18,7 +18,9 @@
 
 #include "core/error.h"
 #include "core/hash.h"
+#include "reference/embree_isa.h"
 #include "reference/embree_scene.h"
+#include "reference/shadow_packet.h"
 #include "reference/stratify.h"
 
 namespace sb::reference {
@@ -40,10 +42,16 @@ constexpr float kEpsScene = 1e-4f;     // × scene bounding radius
 constexpr float kEpsPosition = 1e-6f;  // × max |p_i|: ~8 float ulps of p
 constexpr float kTfar = 1.0f - 1e-4f;  // direction = light sample - origin
 
+// The settings' device config, or the environment's when they leave it empty.
+std::string embree_config_of(const Settings& s) {
+  return s.embree_config.empty() ? default_embree_config() : s.embree_config;
+}
+
 void check_inputs(const ImageF& positions, const ImageF& normals, const Settings& s) {
-  if (s.spp < 2 || s.spp > (1 << 20))
-    throw std::invalid_argument("reference: spp must be in [2, 2^20], got " +
+  if (s.spp < 1 || s.spp > (1 << 20))
+    throw std::invalid_argument("reference: spp must be in [1, 2^20], got " +
                                 std::to_string(s.spp));
+  check_embree_config(embree_config_of(s));
   if (positions.channels != 4)
     throw std::invalid_argument("reference: positions must have 4 channels (xyz, coverage)");
   if (normals.channels < 3)
@@ -82,6 +90,21 @@ void summarise(Result& r, const ImageF& positions) {
   r.penumbra_mean_std_error = pcount ? psum / double(pcount) : 0.0;
 }
 
+// Embree's ray.valid() bound holds for every ray of a pixel when the origin's
+// and the farthest light corner's coordinates stay under it; a G-buffer point
+// out there (a glTF in light-years, say) fails its job instead of tripping
+// Embree's asserts.
+void check_ray_range(const glm::vec3& o, const glm::vec3& base, const glm::vec3& eu,
+                     const glm::vec3& ev, size_t pix, int width) {
+  const glm::vec3 reach = glm::abs(base) + glm::abs(eu) + glm::abs(ev);
+  const float largest =
+      std::max({std::fabs(o.x), std::fabs(o.y), std::fabs(o.z), reach.x, reach.y, reach.z});
+  if (!(largest <= detail::ShadowPacket::kLargest))
+    throw JobError("reference: the shadow rays of pixel (" + std::to_string(pix % size_t(width)) +
+                   ", " + std::to_string(pix / size_t(width)) + ") reach coordinate " +
+                   std::to_string(largest) + ", beyond what Embree traces (1.8e18)");
+}
+
 void trace(const Scene& scene, RTCScene rtc, const ImageF& positions, const ImageF& normals,
            const Settings& s, Result& r) {
   const detail::Layout layout = detail::make_layout(s.spp);
@@ -92,6 +115,7 @@ void trace(const Scene& scene, RTCScene rtc, const ImageF& positions, const Imag
   const int width = positions.width;
   const size_t nch = size_t(normals.channels);
   const size_t spp = size_t(s.spp);
+  constexpr size_t kLanes = detail::ShadowPacket::kLanes;
 
   tbb::parallel_for(
       tbb::blocked_range2d<int>(0, positions.height, 8, 0, width, 8),
@@ -99,16 +123,8 @@ void trace(const Scene& scene, RTCScene rtc, const ImageF& positions, const Imag
         FtzDazScope ftz;
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
-        RTCRay16 ray;
-        alignas(64) int valid[16];
+        detail::ShadowPacket packet;
         std::vector<uint8_t> visible(spp);
-        for (int j = 0; j < 16; ++j) {
-          ray.tnear[j] = 0.0f;
-          ray.time[j] = 0.0f;
-          ray.mask[j] = 0xffffffffu;
-          ray.id[j] = unsigned(j);
-          ray.flags[j] = 0;
-        }
         for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
           for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
             const size_t pix = size_t(y) * size_t(width) + size_t(x);
@@ -131,38 +147,35 @@ void trace(const Scene& scene, RTCScene rtc, const ImageF& positions, const Imag
             const float pmax = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
             const glm::vec3 o = p + (eps_scene + kEpsPosition * pmax) * n;
             const glm::vec3 base = corner - o;
-            for (int j = 0; j < 16; ++j) {
-              ray.org_x[j] = o.x;
-              ray.org_y[j] = o.y;
-              ray.org_z[j] = o.z;
-            }
+            check_ray_range(o, base, eu, ev, pix, width);
+            packet.reset(o);
 
             const uint64_t key = detail::pixel_key(s.seed, pix, spp);
-            for (size_t first = 0; first < spp; first += 16) {
-              const size_t lanes = std::min<size_t>(16, spp - first);
-              for (size_t j = 0; j < 16; ++j) {
-                if (j >= lanes) {
-                  valid[j] = 0;
+            for (size_t first = 0; first < spp; first += kLanes) {
+              const size_t lanes = std::min(kLanes, spp - first);
+              bool any = false;
+              for (size_t j = 0; j < kLanes; ++j) {
+                if (j >= lanes) {  // past the last sample
+                  packet.deactivate(int(j));
                   continue;
                 }
                 const detail::Stratum& st = layout.order[first + j];
                 float u, v;
                 detail::sample_uv(key, uint32_t(first + j), u, v);
                 const float ls = st.s0 + u * st.ds, lt = st.t0 + v * st.dt;
-                ray.dir_x[j] = base.x + ls * eu.x + lt * ev.x;
-                ray.dir_y[j] = base.y + ls * eu.y + lt * ev.y;
-                ray.dir_z[j] = base.z + ls * eu.z + lt * ev.z;
-                ray.tfar[j] = kTfar;
+                const glm::vec3 d = base + ls * eu + lt * ev;
                 // Light points below the tangent plane are occluded by the surface
-                // itself, open or closed: no ray needed.
-                const bool above =
-                    n.x * ray.dir_x[j] + n.y * ray.dir_y[j] + n.z * ray.dir_z[j] > 0.0f;
-                valid[j] = above ? -1 : 0;
+                // itself, open or closed: no ray is traced for them.
+                if (glm::dot(n, d) > 0.0f) {
+                  packet.activate(int(j), d, kTfar);
+                  any = true;
+                } else {
+                  packet.deactivate(int(j));
+                }
               }
-              if (rtc != nullptr) rtcOccluded16(valid, rtc, &context, &ray);
-              for (size_t j = 0; j < lanes; ++j)  // occluded rays come back with tfar = -inf
-                visible[layout.order[first + j].cell] =
-                    valid[j] != 0 && ray.tfar[j] >= 0.0f ? 1 : 0;
+              if (rtc != nullptr && any) rtcOccluded16(packet.valid, rtc, &context, &packet.ray);
+              for (size_t j = 0; j < lanes; ++j)
+                visible[layout.order[first + j].cell] = packet.reached_light(int(j)) ? 1 : 0;
             }
 
             size_t count = 0;
@@ -329,10 +342,11 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
   r.spp = s.spp;
   r.seed = s.seed;
   r.method = kMethod;
+  r.isa = resolve_isa(embree_config_of(s));
 
   const auto t0 = std::chrono::steady_clock::now();
   {
-    Device device;
+    Device device(r.isa);
     FlatScene casters(device, scene, [](const Mesh& m) { return m.casts_shadow; });
     // Without casters only the horizon test remains.
     trace(scene, casters.empty() ? nullptr : casters.get(), positions, geometric_normals, s, r);
@@ -347,7 +361,7 @@ std::string cache_key(const Scene& scene, const ImageF& positions, const ImageF&
                       const Settings& s) {
   Hasher h;
   h.add("shadowbench.reference").add(kMethod).add(kMethodVersion).add(RTC_VERSION_STRING);
-  h.add(detail::embree_isa());
+  h.add(resolve_isa(embree_config_of(s)));
   h.add(int32_t(s.spp)).add(s.seed);
   hash_vec3(h, scene.light.center);
   hash_vec3(h, scene.light.half_u);
@@ -387,6 +401,7 @@ Result get(const Scene& scene, const ImageF& positions, const ImageF& geometric_
     cached.spp = s.spp;
     cached.seed = s.seed;
     cached.method = kMethod;
+    cached.isa = resolve_isa(embree_config_of(s));
     cached.from_cache = true;
     cached.cache_key = key;
     summarise(cached, positions);
@@ -405,7 +420,7 @@ Result get(const Scene& scene, const ImageF& positions, const ImageF& geometric_
 GBuffer trace_gbuffer(const Scene& scene, int width, int height) {
   if (width <= 0 || height <= 0) throw std::invalid_argument("trace_gbuffer: empty image");
   GBuffer g{ImageF(width, height, 4, 0.0f), ImageF(width, height, 3, 0.0f)};
-  Device device;
+  Device device(resolve_isa(default_embree_config()));
   FlatScene all(device, scene, [](const Mesh&) { return true; });
   if (all.empty()) return g;
 

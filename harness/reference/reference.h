@@ -11,10 +11,11 @@
 // Sampling: `spp` stratified samples on the light (n×n jittered grid when
 // spp = n*n, near-square equal-area cells otherwise; see stratify.h), drawn
 // from a counter-based RNG keyed by (seed, pixel index, spp): results are
-// bit-identical for any thread count and across calls. Across CPUs they can
-// differ by single rays in a few silhouette pixels, as Embree's ISA differs;
-// set SHADOWBENCH_EMBREE_ISA=avx2 (say) to pin it. 16 neighbouring strata of
-// one pixel go into one rtcOccluded16 packet.
+// bit-identical for any thread count and across calls. Across Embree's ISAs
+// they can differ by single rays in a few silhouette pixels: Settings::
+// embree_config pins the ISA (embree_isa.h). 16 neighbouring strata of one
+// pixel go into one rtcOccluded16 packet (shadow_packet.h says how its unused
+// lanes are kept out of every ISA's kernels).
 //
 // Shadow rays: origin p + eps*n, n the G-buffer's geometric normal, which
 // faces the viewer (the seen side of the surface; never flipped towards the
@@ -34,6 +35,7 @@
 // true penumbra RMSE is 0.6-0.7× the RMS of the stated error at 16-256 spp.
 #include <cstdint>
 #include <string>
+#include <utility>
 
 #include "core/image.h"
 #include "core/scene.h"
@@ -41,8 +43,13 @@
 namespace sb::reference {
 
 struct Settings {
-  int spp = 256;  // at least 2 (the error estimate needs a pair)
-  uint64_t seed = 1;
+  Settings(int spp_ = 256, uint64_t seed_ = 1, std::string embree_config_ = "")
+      : spp(spp_), seed(seed_), embree_config(std::move(embree_config_)) {}
+  int spp;  // at least 1; with 1 there is no pair to estimate the error from
+  uint64_t seed;
+  // Embree's device config: "isa=NAME" or "max_isa=NAME" (embree_isa.h);
+  // empty: default_embree_config(), i.e. the environment's or the best ISA.
+  std::string embree_config;
 };
 
 struct Result {
@@ -53,14 +60,18 @@ struct Result {
   int spp = 0;
   uint64_t seed = 0;
   std::string method;  // "embree_stratified_packet16"
+  std::string isa;     // the Embree ISA that traced it ("avx2"), from Settings::embree_config
   double seconds = 0;  // wall time of BVH build + ray tracing (0 if loaded from cache)
   bool from_cache = false;
   std::string cache_key;
 };
 
 // positions: RGBA32F (w = 1 where a surface was hit); geometric_normals: 3 or 4
-// channels, same size. Throws std::invalid_argument on bad shapes/settings,
-// sb::InputError on broken caster geometry, sb::JobError on Embree failures.
+// channels, same size. Throws std::invalid_argument on bad shapes/settings
+// (a malformed embree_config included) or a non-finite covered pixel,
+// UnsupportedIsa when the CPU lacks the ISA asked for, sb::InputError on
+// broken caster geometry, sb::JobError on Embree failures and on points so far
+// out that Embree cannot trace their rays.
 Result compute(const Scene& scene, const ImageF& positions, const ImageF& geometric_normals,
                const Settings& s);
 

@@ -7,7 +7,7 @@
 namespace sb::reference::detail {
 
 Layout make_layout(int spp) {
-  if (spp < 2) throw std::invalid_argument("reference: spp must be at least 2");
+  if (spp < 1) throw std::invalid_argument("reference: spp must be at least 1");
   Layout l;
   l.spp = spp;
   const int64_t n = spp;
@@ -46,6 +46,9 @@ Layout make_layout(int spp) {
 }
 
 double stratified_variance(const uint8_t* visible, const Layout& layout) {
+  // One sample has no neighbour to compare with: report the largest variance
+  // a 0/1 sample can have (p = 1/2), so a 1-spp reference is never trusted.
+  if (layout.spp == 1) return 0.25;
   int64_t sum = 0;  // sum of m(g-m)/(g-1) scaled by 2 to stay integral (g is 2 or 3)
   for (size_t gi = 0; gi + 1 < layout.group_begin.size(); ++gi) {
     const uint32_t b = layout.group_begin[gi], e = layout.group_begin[gi + 1];

@@ -4,7 +4,8 @@
 //
 // N samples stratify the unit square (s,t) of the light into N equal-area
 // cells: k = round(sqrt(N)) rows (at least 2 cells each), row r holding
-// c_r = floor((r+1)N/k) - floor(rN/k) cells of width 1/c_r and height c_r/N.
+// c_r = floor((r+1)N/k) - floor(rN/k) cells of width 1/c_r and height c_r/N
+// (N = 1: one cell, the whole light).
 // For N = n*n this is exactly the n×n jittered grid; for other N the cells are
 // near-square (c_r differs by at most one between rows), so every N
 // stratifies in both directions. One uniform sample per cell.
@@ -56,7 +57,8 @@ inline void sample_uv(uint64_t key, uint32_t i, float& u, float& v) {
 
 // Variance of the stratified estimator from the collapsed-strata estimate:
 // (1/N^2) * sum over groups g of |g|/(|g|-1) * sum_{i in g} (f_i - mean_g)^2,
-// with f_i = 1 for a visible sample. `visible` is indexed by cell.
+// with f_i = 1 for a visible sample. `visible` is indexed by cell. For N = 1
+// (no pair) it is 1/4, the largest variance of one 0/1 sample.
 double stratified_variance(const uint8_t* visible, const Layout& layout);
 
 }  // namespace sb::reference::detail

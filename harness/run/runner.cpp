@@ -16,6 +16,7 @@
 #include "gl/gpu_scene.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
+#include "reference/embree_isa.h"
 #include "reference/reference.h"
 #include "results/report.h"
 #include "results/store.h"
@@ -147,6 +148,13 @@ class Runner {
     store_.set_order(order);
     total_ = order.size();
     progress_ = Progress(stderr, !o_.quiet && isatty(fileno(stderr)), total_);
+
+    // The reference's ISA, once for the run: a CPU without it is the
+    // environment's problem, found before any job runs.
+    embree_config_ = !o_.embree_config.empty()             ? o_.embree_config
+                     : !e_.reference.embree_config.empty() ? e_.reference.embree_config
+                                                           : reference::default_embree_config();
+    embree_isa_ = reference::resolve_isa(embree_config_);
 
     context_ = gl::create_context(o_.backend);
     timing_source_ =
@@ -339,6 +347,7 @@ class Runner {
     reference::Settings rs;
     rs.spp = e_.reference.spp;
     rs.seed = e_.reference.seed;
+    rs.embree_config = embree_config_;
     const bool cache = e_.reference.cache && !o_.cache_dir.empty();
     progress_.start_job(sv.name, res.label(), "(reference)");
     reference::Result ref = cache ? reference::get(st.scene, positions, normals, rs, o_.cache_dir)
@@ -375,6 +384,8 @@ class Runner {
         {"method", ref.method},
         {"spp", ref.spp},
         {"seed", ref.seed},
+        {"embree_isa", ref.isa},
+        {"embree_config", embree_config_},
         {"mean_std_error", ref.mean_std_error},
         {"penumbra_mean_std_error", ref.penumbra_mean_std_error},
         {"penumbra_pixels", std::count(penumbra.begin(), penumbra.end(), uint8_t(1))},
@@ -520,6 +531,8 @@ class Runner {
   ResultsStore store_;
   std::unique_ptr<gl::Context> context_;
   gl::TimingSource timing_source_ = gl::TimingSource::CpuFinish;
+  std::string embree_config_;  // as chosen: option, experiment, environment or ""
+  std::string embree_isa_;     // what it resolves to on this CPU
   RunSummary summary_;
   size_t total_ = 0;
   size_t done_ = 0;

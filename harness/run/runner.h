@@ -19,6 +19,8 @@ struct RunOptions {
   bool write_images = true;
   bool write_gbuffer = false;  // also write the G-buffer's positions and normals as EXR
   bool quiet = false;
+  // Overrides the experiment's reference.embree_config ("isa=avx2", ...).
+  std::string embree_config;
 };
 
 struct RunSummary {

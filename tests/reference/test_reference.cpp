@@ -189,7 +189,8 @@ TEST(reference, LightBelowTheTangentPlaneIsOccludedByTheSurface) {
 TEST(reference, RejectsBadInput) {
   EdgeScene es;
   auto [pos, nrm] = ground_gbuffer(4, 3);
-  EXPECT_THROW(ref::compute(es.scene, pos, nrm, {1, 1}), std::invalid_argument);
+  EXPECT_THROW(ref::compute(es.scene, pos, nrm, {0, 1}), std::invalid_argument);
+  EXPECT_THROW(ref::compute(es.scene, pos, nrm, {16, 1, "isa=avx9"}), std::invalid_argument);
   EXPECT_THROW(ref::compute(es.scene, ImageF(4, 3, 3), nrm, {16, 1}), std::invalid_argument);
   EXPECT_THROW(ref::compute(es.scene, pos, ImageF(5, 3, 3), {16, 1}), std::invalid_argument);
   ImageF bad = pos;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "reference/embree_isa.h"
 #include "reference/reference.h"
 #include "test_scenes.h"
 
@@ -140,7 +141,7 @@ TEST_F(referenceCache, DamagedFilesAreIgnoredAndReplaced) {
   expect_same(a, b);
 }
 
-// Sets an environment variable for one scope.
+// Sets (or, with nullptr, unsets) an environment variable for one scope.
 class ScopedEnv {
  public:
   ScopedEnv(const char* name, const char* value) : name_(name) {
@@ -148,7 +149,10 @@ class ScopedEnv {
       old_ = old;
       had_ = true;
     }
-    ::setenv(name, value, 1);
+    if (value != nullptr)
+      ::setenv(name, value, 1);
+    else
+      ::unsetenv(name);
   }
   ~ScopedEnv() {
     if (had_)
@@ -163,22 +167,30 @@ class ScopedEnv {
   bool had_ = false;
 };
 
-TEST_F(referenceCache, PinnedIsaIsPartOfTheKey) {
-  const std::string k = key(scene_);
-  std::string pinned;
+TEST_F(referenceCache, EnvironmentPinsTheIsaWhenTheSettingsDoNot) {
+  const std::string sse2 = key(scene_, {16, 1, "isa=sse2"});
   {
-    ScopedEnv env("SHADOWBENCH_EMBREE_ISA", "sse2");  // every x86-64 has it
-    pinned = key(scene_);
-    const ref::Result r = ref::compute(scene_, g_.positions, g_.normals, {16, 1});
-    EXPECT_GT(r.mean_std_error, 0.0);
+    ScopedEnv config("SHADOWBENCH_EMBREE_CONFIG", nullptr);
+    ScopedEnv isa("SHADOWBENCH_EMBREE_ISA", "sse2");  // the older name; every x86-64 has it
+    EXPECT_EQ(sse2, key(scene_));
+    EXPECT_EQ(ref::compute(scene_, g_.positions, g_.normals, {16, 1}).isa, "sse2");
   }
-  EXPECT_EQ(k, key(scene_));
   {
-    ScopedEnv env("SHADOWBENCH_EMBREE_ISA", "avx-9000");
-    EXPECT_THROW(ref::compute(scene_, g_.positions, g_.normals, {16, 1}), sb::JobError);
+    ScopedEnv config("SHADOWBENCH_EMBREE_CONFIG", "max_isa=sse2");
+    EXPECT_EQ(sse2, key(scene_));
+    // The settings win over the environment.
+    if (ref::cpu_supports_isa("avx")) {
+      EXPECT_NE(sse2, key(scene_, {16, 1, "isa=avx"}));
+    }
   }
-  if (__builtin_cpu_supports("sse4.2")) {  // the best ISA is not sse2
-    EXPECT_NE(k, pinned);
+  {
+    ScopedEnv config("SHADOWBENCH_EMBREE_CONFIG", "isa=avx-9000");
+    EXPECT_THROW(ref::compute(scene_, g_.positions, g_.normals, {16, 1}), std::invalid_argument);
+  }
+  if (ref::best_cpu_isa() != "sse2") {
+    ScopedEnv config("SHADOWBENCH_EMBREE_CONFIG", nullptr);
+    ScopedEnv isa("SHADOWBENCH_EMBREE_ISA", nullptr);
+    EXPECT_NE(sse2, key(scene_));
   }
 }
 

@@ -64,9 +64,18 @@ TEST(referenceLayout, SquareCountsAreTheJitteredGrid) {
   }
 }
 
-TEST(referenceLayout, RejectsFewerThanTwoSamples) {
-  EXPECT_THROW(make_layout(1), std::invalid_argument);
+TEST(referenceLayout, OneSampleCoversTheWholeLightAndZeroIsRejected) {
   EXPECT_THROW(make_layout(0), std::invalid_argument);
+  EXPECT_THROW(make_layout(-1), std::invalid_argument);
+  const Layout l = make_layout(1);
+  ASSERT_EQ(l.order.size(), 1u);
+  EXPECT_EQ(l.order[0].s0, 0.0f);
+  EXPECT_EQ(l.order[0].t0, 0.0f);
+  EXPECT_EQ(l.order[0].ds, 1.0f);
+  EXPECT_EQ(l.order[0].dt, 1.0f);
+  // No pair to compare: the largest variance one 0/1 sample can have.
+  for (uint8_t v : {uint8_t(0), uint8_t(1)})
+    EXPECT_EQ(sb::reference::detail::stratified_variance(&v, l), 0.25);
 }
 
 TEST(referenceLayout, VarianceOfPairs) {
