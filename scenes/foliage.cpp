@@ -21,6 +21,7 @@
 #include "scenes/leaf.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/sphere_grid.h"
+#include "scenes/triangle_budget.h"
 
 namespace sb {
 namespace {
@@ -153,6 +154,20 @@ Scene build_foliage(const Params& p) {
 
 }  // namespace
 
+// Per tree: sum_{d<=depth} branches^d cylinders of at most 4*segments
+// triangles, and branches^depth outermost branches with two triangles a leaf.
+std::pair<std::string, std::string> check_foliage(const Params& p) {
+  const uint64_t b = uint64_t(p.get_int("branches"));
+  uint64_t cylinders = 0, outermost = 1;
+  for (int d = 0; d <= p.get_int("depth"); ++d) {
+    if (d > 0) outermost = budget_mul(outermost, b);
+    cylinders += outermost;
+  }
+  const uint64_t per_tree = budget_mul(cylinders, 4 * uint64_t(p.get_int("segments"))) +
+                            budget_mul(outermost, 2 * uint64_t(p.get_int("leaves_per_branch")));
+  return triangle_budget(budget_mul(per_tree, uint64_t(p.get_int("trees"))), "trees");
+}
+
 SceneType foliage_scene_type() {
   return {"foliage",
           "seeded trees: closed tapered-cylinder wood, alpha-tested double-sided leaf quads",
@@ -164,7 +179,8 @@ SceneType foliage_scene_type() {
            int_param("segments", 8, 3, 64, "sides of each trunk/branch cylinder"),
            int_param("seed", 1, 0, 2147483647, "generator seed"),
            float_param("light_size", 1.0, 0.0, 1e4, "side of the square area light")},
-          build_foliage};
+          build_foliage,
+          check_foliage};
 }
 
 }  // namespace sb

@@ -190,7 +190,8 @@ void append_mesh(Mesh& dst, const Mesh& src) {
     else
       dst.uvs.resize(dst.positions.size(), glm::vec2(0.0f));
   }
-  dst.indices.reserve(dst.indices.size() + src.indices.size());
+  // No reserve(size + n) here: called once per part, an exact reserve would
+  // reallocate every time (quadratic); push_back grows geometrically.
   for (const uint32_t i : src.indices) dst.indices.push_back(i + offset);
 }
 

@@ -1,7 +1,10 @@
 #include "scenes/sphere_grid.h"
 
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+
+#include "scenes/triangle_budget.h"
 
 namespace sb {
 
@@ -96,6 +99,14 @@ Scene build_sphere_grid(const Params& p) {
 
 }  // namespace
 
+// 2*slices*(stacks-1) per sphere, grid² spheres per layer, and the ground.
+std::pair<std::string, std::string> check_sphere_grid(const Params& p) {
+  const uint64_t grid = uint64_t(p.get_int("grid"));
+  const uint64_t per_sphere = 2 * uint64_t(p.get_int("slices")) * uint64_t(p.get_int("stacks") - 1);
+  return triangle_budget(
+      budget_mul(budget_mul(grid * grid, uint64_t(p.get_int("layers"))), per_sphere), "grid");
+}
+
 SceneType sphere_grid_scene_type() {
   return {"sphere_grid",
           "grid×grid UV spheres (× layers) over a ground plane, square area light "
@@ -111,7 +122,8 @@ SceneType sphere_grid_scene_type() {
            float_param("light_size", 2.0, 0.0, 1e4, "side of the square area light"),
            float_param("light_height", 10.0, 1e-2, 1e5,
                        "distance scale of the light (placed at light_height*(0.35,1,0.25))")},
-          build_sphere_grid};
+          build_sphere_grid,
+          check_sphere_grid};
 }
 
 }  // namespace sb

@@ -2,7 +2,8 @@
 //   shadowbench run CONFIG [--out DIR] [--backend osmesa|egl] [--cache-dir DIR]
 //                          [--no-cache] [--no-images] [--gbuffer] [--plugins DIR] [--quiet]
 //                          [--benchmark-out FILE] [--bencher-out FILE] [--embree-config CFG]
-//   shadowbench validate CONFIG [--plugins DIR]
+//                          [--max-jobs N]
+//   shadowbench validate CONFIG [--plugins DIR] [--max-jobs N]
 //   shadowbench list [--plugins DIR]
 //   shadowbench report RUN_DIR [--out DIR] [--metric PATH]
 //                             [--benchmark-out FILE] [--bencher-out FILE]
@@ -13,6 +14,7 @@
 // Exit codes: 0 all jobs ok or skipped, 1 some job failed, 2 bad input
 // (config, arguments), 3 environment (no GL context, missing plugins),
 // 4 (compare) a significant regression over threshold.
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -44,8 +46,8 @@ constexpr const char* kUsage =
     "usage:\n"
     "  shadowbench run CONFIG [--out DIR] [--backend osmesa|egl] [--cache-dir DIR]\n"
     "                         [--no-cache] [--no-images] [--gbuffer] [--plugins DIR] [--quiet]\n"
-    "                         [--embree-config isa=avx2|max_isa=avx2]\n"
-    "  shadowbench validate CONFIG [--plugins DIR]\n"
+    "                         [--embree-config isa=avx2|max_isa=avx2] [--max-jobs 10000]\n"
+    "  shadowbench validate CONFIG [--plugins DIR] [--max-jobs 10000]\n"
     "  shadowbench list [--plugins DIR]\n"
     "  shadowbench report RUN_DIR [--out DIR] [--metric visibility.all.rmse]\n"
     "  (run and report also take --benchmark-out FILE (Google Benchmark JSON)\n"
@@ -65,6 +67,7 @@ struct Args {
   bool no_cache = false, no_images = false, gbuffer = false, quiet = false;
   std::string benchmark_out, bencher_out;  // run, report: CI outputs
   std::string embree_config;               // run: the reference's Embree ISA
+  ExperimentLimits limits;                 // run, validate
   CompareOptions compare;                  // compare
   bool compare_options_given = false;
   bool metric_given = false;
@@ -105,7 +108,12 @@ Args parse_args(int argc, char** argv) {
       a.benchmark_out = value("--benchmark-out");
     else if (s == "--bencher-out")
       a.bencher_out = value("--bencher-out");
-    else if (s == "--embree-config") {
+    else if (s == "--max-jobs") {
+      const double v = parse_number(s, value("--max-jobs"));
+      if (!(v >= 1 && v <= 1e12 && v == std::floor(v)))
+        throw InputError("", "--max-jobs", "expected a whole number in [1, 1e12]");
+      a.limits.max_jobs = uint64_t(v);
+    } else if (s == "--embree-config") {
       a.embree_config = value("--embree-config");
       try {
         reference::check_embree_config(a.embree_config);
@@ -126,6 +134,8 @@ Args parse_args(int argc, char** argv) {
       a.compare_options_given = true;
     } else if (s == "--no-cache")
       a.no_cache = true;
+    else if (s == "--gbuffer")
+      a.gbuffer = true;
     else if (s == "--no-images")
       a.no_images = true;
     else if (s == "--quiet")
@@ -212,11 +222,11 @@ int cmd_list(const Args& a) {
 
 int cmd_validate(const Args& a) {
   const Registry r = load_registry(a);
-  const Experiment e = load_experiment(one_config(a), r);
+  const Experiment e = load_experiment(one_config(a), r, a.limits);
   // Build every scene on the CPU too, so that a bad scene file is found now.
   for (const auto& sv : e.scenes) {
     try {
-      find_scene_type(sv.type)->build(sv.params);
+      (void)build_scene(sv, e.file);
     } catch (const InputError&) {
       throw;
     } catch (const std::exception& ex) {
@@ -232,7 +242,7 @@ int cmd_validate(const Args& a) {
 
 int cmd_run(const Args& a) {
   const Registry r = load_registry(a);
-  const Experiment e = load_experiment(one_config(a), r);
+  const Experiment e = load_experiment(one_config(a), r, a.limits);
   RunOptions o;
   o.backend = gl::backend_from_string(a.backend);
   if (a.out.empty()) {

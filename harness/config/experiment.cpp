@@ -1,12 +1,19 @@
 #include "config/experiment.h"
 
+#include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
+#include "config/json_file.h"
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/names.h"
+#include "core/scene_setup_check.h"
 #include "reference/embree_isa.h"
 
 namespace sb {
@@ -55,6 +62,16 @@ class Reader {
     if (!v.is_string()) fail(pointer, "expected a string, found " + describe(v));
     return v.get<std::string>();
   }
+  // A label names variants in tables and charts: short, printable.
+  std::string label(const json& v, const std::string& pointer) const {
+    const std::string s = string(v, pointer);
+    if (s.empty() || s.size() > 200)
+      fail(pointer, "expected a label of 1 to 200 bytes, found " + std::to_string(s.size()));
+    for (char c : s)
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+        fail(pointer, "expected a label without control characters, found " + describe(v));
+    return s;
+  }
   bool boolean(const json& v, const std::string& pointer) const {
     if (!v.is_boolean()) fail(pointer, "expected true or false, found " + describe(v));
     return v.get<bool>();
@@ -71,9 +88,20 @@ class Reader {
     }
     return out;
   }
+  // A point or direction: finite as a float, and within what can be traced.
+  glm::vec3 coordinates(const json& v, const std::string& pointer) const {
+    const glm::vec3 out = vec3(v, pointer);
+    for (int i = 0; i < 3; ++i)
+      if (!(std::fabs(out[i]) <= kLargestCoordinate))
+        fail(pointer + "/" + std::to_string(i),
+             "expected a coordinate within ±1e15, found " + describe(v[size_t(i)]));
+    return out;
+  }
   float positive(const json& v, const std::string& pointer, bool allow_zero) const {
     if (!v.is_number()) fail(pointer, "expected a number, found " + describe(v));
     const double d = v.get<double>();
+    if (!std::isfinite(static_cast<float>(d)))
+      fail(pointer, "expected a number within float range, found " + v.dump());
     if (allow_zero ? d < 0.0 : d <= 0.0)
       fail(pointer, std::string("expected a ") + (allow_zero ? "non-negative" : "positive") +
                         " number, found " + v.dump());
@@ -100,8 +128,8 @@ std::string variant_name(const std::string& base, const std::vector<ParamSpec>& 
 void check_light(const Reader& r, const json& light, const std::string& p) {
   r.object(light, p, "a light override");
   r.only_keys(light, p, {"center", "target", "size", "intensity"});
-  if (light.contains("center")) r.vec3(light["center"], p + "/center");
-  if (light.contains("target")) r.vec3(light["target"], p + "/target");
+  if (light.contains("center")) r.coordinates(light["center"], p + "/center");
+  if (light.contains("target")) r.coordinates(light["target"], p + "/target");
   if (light.contains("intensity")) r.positive(light["intensity"], p + "/intensity", true);
   if (light.contains("size")) {
     const json& s = light["size"];
@@ -123,14 +151,30 @@ void check_camera(const Reader& r, const json& camera, const std::string& p) {
   r.object(camera, p, "a camera override");
   r.only_keys(camera, p, {"eye", "target", "up", "fov_y", "near", "far"});
   for (const char* k : {"eye", "target", "up"})
-    if (camera.contains(k)) r.vec3(camera[k], p + "/" + k);
+    if (camera.contains(k)) r.coordinates(camera[k], p + "/" + k);
   if (camera.contains("fov_y")) {
     const float f = r.positive(camera["fov_y"], p + "/fov_y", false);
-    if (f >= 180.0f)
-      r.fail(p + "/fov_y", "expected degrees in (0, 180), found " + camera["fov_y"].dump());
+    if (!(f >= 1e-3f && f < 180.0f))
+      r.fail(p + "/fov_y", "expected degrees in [0.001, 180), found " + camera["fov_y"].dump());
   }
   if (camera.contains("near")) r.positive(camera["near"], p + "/near", false);
   if (camera.contains("far")) r.positive(camera["far"], p + "/far", false);
+  // What the overrides alone can tell; the built scene's camera is checked
+  // again whole (core/scene_setup_check.h).
+  if (camera.contains("near") && camera.contains("far") &&
+      !(camera["far"].get<double>() > camera["near"].get<double>()))
+    r.fail(p + "/far", "expected far greater than near (" + camera["near"].dump() + "), found " +
+                           camera["far"].dump());
+  if (camera.contains("up") && r.vec3(camera["up"], p + "/up") == glm::vec3(0.0f))
+    r.fail(p + "/up", "expected a non-zero up vector");
+  if (camera.contains("eye") && camera.contains("target")) {
+    Camera c;
+    c.eye = r.vec3(camera["eye"], p + "/eye");
+    c.target = r.vec3(camera["target"], p + "/target");
+    if (camera.contains("up")) c.up = r.vec3(camera["up"], p + "/up");
+    const std::string problem = camera_problem(c);
+    if (!problem.empty()) r.fail(p + (camera.contains("up") ? "" : "/target"), problem);
+  }
 }
 
 Resolution parse_resolution(const Reader& r, const json& v, const std::string& p) {
@@ -171,6 +215,57 @@ Params resolve_paths(const std::vector<ParamSpec>& specs, const Params& params,
   return Params(std::move(values));
 }
 
+// How many variants an entry's parameters sweep to (the product of its
+// lists' lengths), saturating instead of overflowing; malformed parameters
+// count as one (expand_sweeps reports them).
+uint64_t sweep_count(const json& params) {
+  uint64_t n = 1;
+  if (!params.is_object()) return n;
+  for (const auto& v : params) {
+    const uint64_t k = v.is_array() ? std::max<uint64_t>(v.size(), 1) : 1;
+    n = n > UINT64_MAX / k ? UINT64_MAX : n * k;
+  }
+  return n;
+}
+
+uint64_t saturating_mul(uint64_t a, uint64_t b) {
+  return b != 0 && a > UINT64_MAX / b ? UINT64_MAX : a * b;
+}
+
+// Jobs = scene variants × technique variants × resolutions, from the lists'
+// lengths alone: a sweep too big to run is refused before it is expanded.
+void check_job_count(const Reader& r, const json& doc, const ExperimentLimits& limits) {
+  uint64_t scenes = 0, techniques = 0, resolutions = 1;
+  std::string biggest;  // the entry with the most variants, for the message
+  uint64_t biggest_n = 0;
+  const auto count = [&](const char* list, uint64_t& total) {
+    if (!doc.contains(list) || !doc[list].is_array()) return;
+    for (size_t i = 0; i < doc[list].size(); ++i) {
+      const json& entry = doc[list][i];
+      const uint64_t n =
+          entry.is_object() && entry.contains("params") ? sweep_count(entry["params"]) : 1;
+      total = total > UINT64_MAX - n ? UINT64_MAX : total + n;
+      if (n > biggest_n) {
+        biggest_n = n;
+        biggest = std::string("/") + list + "/" + std::to_string(i) + "/params";
+      }
+    }
+  };
+  count("scenes", scenes);
+  count("techniques", techniques);
+  if (doc.contains("resolutions") && doc["resolutions"].is_array())
+    resolutions = std::max<uint64_t>(doc["resolutions"].size(), 1);
+  const uint64_t jobs = saturating_mul(saturating_mul(scenes, techniques), resolutions);
+  if (jobs > limits.max_jobs)
+    r.fail(biggest.empty() ? "/" : biggest,
+           "the experiment has " +
+               (jobs == UINT64_MAX ? std::string("more than 2^64") : std::to_string(jobs)) +
+               " jobs (" + std::to_string(scenes) + " scene variants × " +
+               std::to_string(techniques) + " technique variants × " + std::to_string(resolutions) +
+               " resolutions), over the limit of " + std::to_string(limits.max_jobs) +
+               "; raise it with --max-jobs");
+}
+
 }  // namespace
 
 std::vector<json> expand_sweeps(const json& params, const std::string& file,
@@ -179,6 +274,9 @@ std::vector<json> expand_sweeps(const json& params, const std::string& file,
   if (params.is_null()) return out;
   if (!params.is_object())
     throw InputError(file, pointer, "expected an object of parameters, found " + describe(params));
+  // Counted before anything is expanded.
+  if (sweep_count(params) > 100000)
+    throw InputError(file, pointer, "the sweep expands to more than 100000 variants");
   for (auto it = params.begin(); it != params.end(); ++it) {
     std::vector<json> values;
     if (it.value().is_array()) {
@@ -197,23 +295,31 @@ std::vector<json> expand_sweeps(const json& params, const std::string& file,
         next.push_back(std::move(p));
       }
     out = std::move(next);
-    if (out.size() > 100000)
-      throw InputError(file, pointer, "the sweep expands to more than 100000 variants");
   }
   return out;
 }
 
-Experiment parse_experiment(const json& doc, const std::string& file, const Registry& registry) {
+Experiment parse_experiment(const json& doc, const std::string& file, const Registry& registry,
+                            const ExperimentLimits& limits) {
   Reader r(file);
   r.object(doc, "", "an experiment");
   r.only_keys(
       doc, "",
       {"name", "description", "scenes", "techniques", "resolutions", "frames", "reference"});
+  check_job_count(r, doc, limits);
   Experiment e;
   e.file = file;
   e.name = doc.contains("name") ? r.string(doc["name"], "/name") : "experiment";
-  if (e.name.empty() || e.name.find_first_of("/\\ ") != std::string::npos)
-    r.fail("/name", "expected a name without spaces or slashes, found \"" + e.name + "\"");
+  // It names the run folder: a plain file name.
+  const bool plain_name = !e.name.empty() && e.name.size() <= 100 && e.name[0] != '.' &&
+                          std::all_of(e.name.begin(), e.name.end(), [](char c) {
+                            return std::isalnum(static_cast<unsigned char>(c)) || c == '.' ||
+                                   c == '-' || c == '_' || c == '=' || c == '+';
+                          });
+  if (!plain_name)
+    r.fail("/name",
+           "expected at most 100 letters, digits and . _ - = + (not starting with '.'), found " +
+               describe(doc["name"]));
   if (doc.contains("description")) e.description = r.string(doc["description"], "/description");
 
   // Scenes.
@@ -240,7 +346,7 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
     check_camera(r, camera, p + "/camera");
     const json given = entry.value("params", json::object());
     const std::string label =
-        entry.contains("label") ? r.string(entry["label"], p + "/label") : type;
+        entry.contains("label") ? r.label(entry["label"], p + "/label") : type;
     for (const json& combo : expand_sweeps(given, file, p + "/params")) {
       SceneVariant v;
       v.type = type;
@@ -286,7 +392,7 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
              ((("unknown technique \"" + name) += "\" (registered: ") += known) += ")");
     }
     const std::string label =
-        entry.contains("label") ? r.string(entry["label"], p + "/label") : name;
+        entry.contains("label") ? r.label(entry["label"], p + "/label") : name;
     const json given = entry.value("params", json::object());
     for (const json& combo : expand_sweeps(given, file, p + "/params")) {
       TechniqueVariant v;
@@ -311,8 +417,25 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
   const json& res = doc["resolutions"];
   if (!res.is_array() || res.empty())
     r.fail("/resolutions", "expected a non-empty list of resolutions, found " + describe(res));
-  for (size_t i = 0; i < res.size(); ++i)
-    e.resolutions.push_back(parse_resolution(r, res[i], "/resolutions/" + std::to_string(i)));
+  for (size_t i = 0; i < res.size(); ++i) {
+    const std::string p = "/resolutions/" + std::to_string(i);
+    const Resolution parsed = parse_resolution(r, res[i], p);
+    if (std::find(e.resolutions.begin(), e.resolutions.end(), parsed) != e.resolutions.end())
+      r.fail(p, "resolution " + parsed.label() + " appears twice");
+    e.resolutions.push_back(parsed);
+  }
+
+  // One record file per job: two jobs must never share an id.
+  std::map<std::string, std::string> ids;
+  for (const auto& sv : e.scenes)
+    for (const auto& res_ : e.resolutions)
+      for (const auto& tv : e.techniques) {
+        const std::string what = sv.name + " @ " + res_.label() + " / " + tv.name;
+        const auto [it, fresh] = ids.emplace(job_id(sv.name, res_.label(), tv.name), what);
+        if (!fresh)
+          r.fail(tv.pointer, "the jobs \"" + it->second + "\" and \"" + what +
+                                 "\" would share the job id \"" + it->first + "\"");
+      }
 
   if (doc.contains("frames")) {
     const json& f = r.object(doc["frames"], "/frames", "frame counts");
@@ -340,36 +463,24 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
   return e;
 }
 
-Experiment load_experiment(const std::string& path, const Registry& registry) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open the config file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
-  json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::parse_error& e) {
-    // Turn the byte offset into line:column.
-    size_t line = 1, col = 1;
-    for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        col = 1;
-      } else {
-        ++col;
-      }
-    }
-    std::string what = e.what();
-    const auto cut = what.find("syntax error");
-    throw InputError(path, "line " + std::to_string(line) + ", column " + std::to_string(col),
-                     "invalid JSON: " + (cut == std::string::npos ? what : what.substr(cut)));
-  }
-  Experiment e = parse_experiment(doc, path, registry);
+Experiment load_experiment(const std::string& path, const Registry& registry,
+                           const ExperimentLimits& limits) {
+  const std::string text = read_input_file(path, JsonLimits{}.max_bytes, "config file");
+  Experiment e = parse_experiment(parse_json_text(text, path), path, registry, limits);
   Hasher h;
   h.add(text);
   e.content_hash = h.hex();
   return e;
+}
+
+Scene build_scene(const SceneVariant& v, const std::string& config_file) {
+  Scene scene = find_scene_type(v.type)->build(v.params);
+  apply_overrides(v, scene);
+  scene.name = v.name;
+  const std::string problem = scene_setup_problem(scene);
+  if (!problem.empty())
+    throw InputError(config_file, v.pointer, "scene " + v.name + ": " + problem);
+  return scene;
 }
 
 void apply_overrides(const SceneVariant& v, Scene& scene) {

@@ -34,6 +34,7 @@ struct Resolution {
   int width = 0;
   int height = 0;
   std::string label() const { return std::to_string(width) + "x" + std::to_string(height); }
+  bool operator==(const Resolution&) const = default;
 };
 
 struct ReferenceConfig {
@@ -56,14 +57,28 @@ struct Experiment {
   std::string content_hash;  // of the file's bytes
 };
 
+// Caps checked before anything is expanded or built (docs/config.md).
+struct ExperimentLimits {
+  // scene variants × technique variants × resolutions, counted by
+  // multiplying the sweeps' lengths before any is expanded (--max-jobs).
+  uint64_t max_jobs = 10000;
+};
+
 // Throws InputError naming the file, the JSON pointer, what was expected and
 // what was found.
-Experiment load_experiment(const std::string& path, const Registry& registry);
+Experiment load_experiment(const std::string& path, const Registry& registry,
+                           const ExperimentLimits& limits = {});
 Experiment parse_experiment(const nlohmann::json& doc, const std::string& file,
-                            const Registry& registry);
+                            const Registry& registry, const ExperimentLimits& limits = {});
 
 // Applies a scene entry's "light" and "camera" overrides (already validated).
 void apply_overrides(const SceneVariant& variant, Scene& scene);
+
+// Builds a variant as a run does: the generator (or glTF file), the
+// overrides, then core/scene_setup_check.h. A setup that cannot be measured
+// (a degenerate camera, coordinates out of range, no proper triangle) throws
+// InputError naming `config_file` and the entry's pointer.
+Scene build_scene(const SceneVariant& variant, const std::string& config_file);
 
 // Cross product of list-valued entries of `params` (an object). Each result
 // maps every key to a scalar; `swept` lists the keys that were lists.

@@ -189,7 +189,7 @@ auto by_scene_and_resolution(const std::vector<const json*>& ok) {
 Chart scene_chart(const std::string& kind, const std::string& what, const json& r,
                   const std::string& out_dir) {
   const std::string scene = str(r, "scene_variant"), res = str(r, "resolution");
-  return make_chart(kind, kind + "__" + file_safe(scene) + "__" + res,
+  return make_chart(kind, kind + "__" + file_safe(scene) + "__" + file_safe(res),
                     what + ": " + scene + " @ " + res, out_dir);
 }
 
@@ -289,8 +289,9 @@ void time_triangles_charts(const std::vector<const json*>& ok, Palette& styles,
     if (counts.size() < 2) continue;
     const std::string type = records[0]->value(json::json_pointer("/scene/type"), std::string());
     const std::string res = str(*records[0], "resolution");
-    Chart c = make_chart("time_triangles", "time_triangles__" + file_safe(type) + "__" + res,
-                         "frame time vs triangles: " + type + " @ " + res, out_dir);
+    Chart c =
+        make_chart("time_triangles", "time_triangles__" + file_safe(type) + "__" + file_safe(res),
+                   "frame time vs triangles: " + type + " @ " + res, out_dir);
     c.data["series"] = time_series(records, triangles_of, styles, c);
     c.data.update({{"xlabel", "triangles (scene.triangles)"},
                    {"ylabel", kTimeLabel},

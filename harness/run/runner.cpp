@@ -263,9 +263,7 @@ class Runner {
     for (const auto& tv : e_.techniques) infos.push_back(tv.info);
     std::string scene_error;
     try {
-      st.scene = find_scene_type(sv.type)->build(sv.params);
-      apply_overrides(sv, st.scene);
-      st.scene.name = sv.name;
+      st.scene = build_scene(sv, e_.file);
       st.caps = check_closedness(st.scene, infos);
       std::vector<const TechniqueInfo*> running;
       for (const auto& tv : e_.techniques) {
@@ -540,26 +538,6 @@ class Runner {
 };
 
 }  // namespace
-
-std::string file_safe(const std::string& name) {
-  std::string out;
-  for (char c : name) {
-    if (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_' || c == '=')
-      out += c;
-    else if (c == '/')
-      out += "--";  // no '@' or '#': oiiotool and idiff read those as frame wildcards
-    else if (c == ',')
-      out += '+';
-    else
-      out += '-';
-  }
-  return out;
-}
-
-std::string job_id(const std::string& scene_variant, const std::string& resolution,
-                   const std::string& technique_variant) {
-  return file_safe(scene_variant) + "__" + resolution + "__" + file_safe(technique_variant);
-}
 
 RunSummary run_experiment(const Experiment& experiment, const RunOptions& options) {
   return Runner(experiment, options).run();

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "config/experiment.h"
+#include "core/names.h"
 #include "core/registry.h"
 #include "gl/context.h"
 
@@ -32,10 +33,5 @@ struct RunSummary {
 };
 
 RunSummary run_experiment(const Experiment& experiment, const RunOptions& options);
-
-// "sphere_grid@light_size=4" → a file-name-safe form.
-std::string file_safe(const std::string& name);
-std::string job_id(const std::string& scene_variant, const std::string& resolution,
-                   const std::string& technique_variant);
 
 }  // namespace sb
