@@ -247,7 +247,8 @@ class GlbWriter {
   }
 
   std::vector<uint8_t> assemble() const {
-    std::string text = doc_.dump();
+    // Names may carry non-UTF-8 bytes from an imported file: replace, never throw.
+    std::string text = doc_.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     while (text.size() % 4 != 0) text.push_back(' ');
     const size_t bin_size = (bin_.size() + 3) / 4 * 4;
     const size_t total = 12 + 8 + text.size() + (bin_size == 0 ? 0 : 8 + bin_size);

@@ -725,16 +725,18 @@ class Importer {
       fail(where, "normalized is only allowed for 8- and 16-bit integer components");
     check_count(a, where);
     const size_t element = size_t(csize) * size_t(comps);
+    // The bounds first: a 1 KB file may claim 3e8 elements.
+    const Span s = a.bufferView >= 0
+                       ? locate(a.bufferView, a.byteOffset, a.count, element, true, where)
+                       : Span{nullptr, 0};
     std::vector<float> out(a.count * size_t(comps), 0.0f);
     const auto decode = [&](size_t i, const unsigned char* p) {
       for (int c = 0; c < comps; ++c)
         out[i * size_t(comps) + size_t(c)] =
             static_cast<float>(read_component(p + c * csize, a.componentType, a.normalized));
     };
-    if (a.bufferView >= 0) {
-      const Span s = locate(a.bufferView, a.byteOffset, a.count, element, true, where);
+    if (s.data != nullptr)
       for (size_t i = 0; i < a.count; ++i) decode(i, s.data + i * s.stride);
-    }
     if (a.sparse.isSparse) apply_sparse(a, element, where, decode);
     for (float v : out)
       if (!std::isfinite(v)) fail(where, "contains a non-finite value (NaN or infinity)");
@@ -756,12 +758,13 @@ class Importer {
            "componentType " +
                std::to_string(a.componentType) + (a.normalized ? " (normalized)" : ""));
     check_count(a, where);
+    const Span s = a.bufferView >= 0
+                       ? locate(a.bufferView, a.byteOffset, a.count, uint64_t(isize), false, where)
+                       : Span{nullptr, 0};
     std::vector<uint32_t> out(a.count, 0u);
     const auto decode = [&](size_t i, const unsigned char* p) { out[i] = read_index(p, isize); };
-    if (a.bufferView >= 0) {
-      const Span s = locate(a.bufferView, a.byteOffset, a.count, uint64_t(isize), false, where);
+    if (s.data != nullptr)
       for (size_t i = 0; i < a.count; ++i) decode(i, s.data + i * s.stride);
-    }
     if (a.sparse.isSparse) apply_sparse(a, size_t(isize), where, decode);
     for (size_t i = 0; i < out.size(); ++i)
       if (out[i] >= vertices)
@@ -795,7 +798,7 @@ class Importer {
     return sb_index;
   }
 
-  TextureImage decode_image(size_t index) const {
+  TextureImage decode_image(size_t index) {
     const tg::Image& img = model_.images[index];
     const std::string where = named("image", img.name, index);
     const std::vector<unsigned char>& bytes = img.image;
@@ -829,6 +832,11 @@ class Importer {
     if (channels < 1 || channels > 4)
       fail(where, std::to_string(channels) + " channels (expected 1 to 4)");
     const size_t texels = size_t(spec.width) * size_t(spec.height);
+    // Checked on the header, before decoding: small files can unpack to gigabytes.
+    decoded_texels_ += texels;
+    if (decoded_texels_ > kGltfMaxDecodedTexels)
+      fail(where, "decoding it would bring the scene's textures to " + str(decoded_texels_) +
+                      " texels, over the limit of " + str(kGltfMaxDecodedTexels));
     std::vector<uint8_t> raw(texels * size_t(channels));
     if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, raw.data()))
       fail(where, "cannot decode the " + ext + " image: " + first_line(in->geterror()));
@@ -1442,6 +1450,7 @@ class Importer {
   Scene scene_;
   std::map<size_t, std::vector<LoadedPrimitive>> loaded_;
   std::map<int, int> image_to_texture_;
+  size_t decoded_texels_ = 0;  // of every image decoded so far
   size_t total_triangles_ = 0;
   PendingCamera camera_;
   PendingLight light_;

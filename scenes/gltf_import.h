@@ -26,5 +26,7 @@ Scene load_gltf(const std::string& path, const GltfImportOptions& options = {});
 inline constexpr size_t kGltfMaxTriangles = 100'000'000;  // whole scene, after instancing
 inline constexpr size_t kGltfMaxElements = 300'000'000;   // per accessor
 inline constexpr int kGltfMaxTextureSide = 16384;         // texels
+// All decoded textures of one file together (one 8192² texture; 256 MiB as RGBA8).
+inline constexpr size_t kGltfMaxDecodedTexels = size_t(1) << 26;
 
 }  // namespace sb

@@ -240,6 +240,18 @@ int cmd_validate(const Args& a) {
   return kExitOk;
 }
 
+// report and compare read run folders that anyone may have written: a record
+// with a field of the wrong type is bad input, not an internal error.
+int on_records(const Args& a, int (*command)(const Args&)) {
+  try {
+    return command(a);
+  } catch (const nlohmann::json::exception& e) {
+    std::string dirs;
+    for (const auto& p : a.positional) dirs += (dirs.empty() ? "" : ", ") + p;
+    throw InputError(dirs, "", std::string("a record is malformed: ") + e.what());
+  }
+}
+
 int cmd_run(const Args& a) {
   const Registry r = load_registry(a);
   const Experiment e = load_experiment(one_config(a), r, a.limits);
@@ -272,8 +284,10 @@ int cmd_run(const Args& a) {
     const auto md = make_markdown(read_run_records(o.run_dir), e.name + " (" + o.run_id + ")");
     std::printf("\n%s\n", md.c_str());
   }
-  std::printf("%d ok, %d skipped, %d failed, %d resumed; results in %s\n", s.ok, s.skipped,
-              s.failed, s.resumed, o.run_dir.c_str());
+  std::printf("%d ok, %d skipped, %d failed, %d resumed", s.ok, s.skipped, s.failed, s.resumed);
+  if (s.respecified > 0)
+    std::printf(" (%d earlier records had other settings and were rerun)", s.respecified);
+  std::printf("; results in %s\n", o.run_dir.c_str());
   if (!a.benchmark_out.empty() || !a.bencher_out.empty())
     write_ci_outputs(a, read_run_records(o.run_dir));
   if (s.bad_input > 0) return kExitBadInput;
@@ -368,11 +382,11 @@ int main(int argc, char** argv) {
                        "--alpha, --time-threshold, --error-threshold and --timing go with compare");
     if (a.metric_given && a.command != "compare" && a.command != "report")
       throw InputError("", "command line", "--metric goes with compare or report");
-    if (a.command == "compare") return cmd_compare(a);
+    if (a.command == "compare") return on_records(a, cmd_compare);
     if (a.command == "run") return cmd_run(a);
     if (a.command == "validate") return cmd_validate(a);
     if (a.command == "list") return cmd_list(a);
-    if (a.command == "report") return cmd_report(a);
+    if (a.command == "report") return on_records(a, cmd_report);
     if (a.command == "scene") return cmd_scene(a);
     if (a.command == "--help" || a.command == "help" || a.command == "-h") {
       std::printf("%s", kUsage);

@@ -83,7 +83,10 @@ void write_atomic(const std::string& path, const char* format, const OIIO::Image
 }  // namespace
 
 void write_exr(const std::string& path, const ImageF& img) {
-  const OIIO::ImageSpec spec = make_spec(path, img, OIIO::TypeDesc::FLOAT);
+  OIIO::ImageSpec spec = make_spec(path, img, OIIO::TypeDesc::FLOAT);
+  // OIIO stamps the current time unless told otherwise; a fixed stamp keeps
+  // identical runs byte-identical (the record says when the job ran).
+  spec.attribute("DateTime", "1970:01:01 00:00:00");
   write_atomic(path, "openexr", spec, img.data.data());
 }
 

@@ -46,7 +46,7 @@ json make_bencher_json(const std::vector<json>& records) {
 }
 
 void write_bencher_json(const std::string& path, const std::vector<json>& records) {
-  write_file_atomically(path, make_bencher_json(records).dump(2) + "\n");
+  write_file_atomically(path, json_text(make_bencher_json(records), 2) + "\n");
 }
 
 }  // namespace sb

@@ -161,7 +161,8 @@ json make_benchmark_json(const std::vector<json>& records, const json& context) 
 }
 
 void write_benchmark_json(const std::string& path, const std::vector<json>& records) {
-  write_file_atomically(path, make_benchmark_json(records, benchmark_context()).dump(2) + "\n");
+  write_file_atomically(path,
+                        json_text(make_benchmark_json(records, benchmark_context()), 2) + "\n");
 }
 
 }  // namespace sb

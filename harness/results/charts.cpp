@@ -446,7 +446,7 @@ std::vector<ChartFile> write_charts(const std::vector<json>& records, const std:
   std::vector<std::string> argv = {kPython, script};
   for (const Chart& c : charts) {
     const std::string data = fs::path(c.file.svg).replace_extension(".json").string();
-    write_file_atomically(data, c.data.dump(1) + "\n");
+    write_file_atomically(data, json_text(c.data, 1) + "\n");
     argv.push_back(data);
   }
   std::string output;

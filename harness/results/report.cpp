@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <string_view>
 
 #include "results/store.h"
 
@@ -74,8 +75,29 @@ std::string make_csv(const std::vector<json>& records) {
   return out;
 }
 
+namespace {
+
+// Text from records (labels, reasons) inside a Markdown table or heading:
+// the characters that end a cell, open code, links, emphasis or HTML are
+// escaped and line breaks become spaces, so a label cannot break the table or
+// inject markup. ('_' inside words is not emphasis in CommonMark.)
+std::string md_text(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '\n' || c == '\r' || c == '\t')
+      out += ' ';
+    else if (std::string_view("\\`*[]<>|").find(c) != std::string_view::npos)
+      (out += '\\') += c;
+    else
+      out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string make_markdown(const std::vector<json>& records, const std::string& title) {
-  std::string out = "# " + title + "\n\n";
+  std::string out = "# " + md_text(title) + "\n\n";
   if (!records.empty()) {
     const json& r0 = records.front();
     out += "Backend `" + r0.value("backend", "") + "`, renderer `" + r0.value("gl_renderer", "") +
@@ -92,7 +114,7 @@ std::string make_markdown(const std::vector<json>& records, const std::string& t
     groups[key].push_back(&r);
   }
   for (const auto& key : order) {
-    out += "\n## " + key + "\n\n| technique | status |";
+    out += "\n## " + md_text(key) + "\n\n| technique | status |";
     for (const auto& c : kColumns) out += std::string(" ") + c.header + " |";
     out += "\n|---|---|";
     for (size_t i = 0; i < std::size(kColumns); ++i) out += "---:|";
@@ -100,7 +122,7 @@ std::string make_markdown(const std::vector<json>& records, const std::string& t
     for (const json* r : groups[key]) {
       std::string status = r->value("status", "");
       if (status != "ok") status += ": " + r->value("reason", "");
-      out += "| " + r->value("technique_variant", "") + " | " + status + " |";
+      out += "| " + md_text(r->value("technique_variant", "")) + " | " + md_text(status) + " |";
       for (const auto& c : kColumns)
         out += " " + fmt(number_at(*r, json::json_pointer(c.pointer)), c.format) + " |";
       out += "\n";

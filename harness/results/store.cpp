@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "config/json_file.h"
 #include "core/error.h"
 
 namespace sb {
@@ -26,6 +27,10 @@ void write_file_atomically(const std::string& path, const std::string& text) {
   if (ec) throw JobError("cannot rename " + tmp + " to " + path + ": " + ec.message());
 }
 
+std::string json_text(const nlohmann::json& value, int indent) {
+  return value.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 nlohmann::json json_number(double v) {
   if (std::isnan(v)) return "nan";
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
@@ -36,9 +41,8 @@ ResultsStore::ResultsStore(std::string run_dir) : dir_(std::move(run_dir)) {
   fs::create_directories(fs::path(dir_) / "records");
   for (const auto& e : fs::directory_iterator(fs::path(dir_) / "records")) {
     if (e.path().extension() != ".json") continue;
-    std::ifstream in(e.path());
     try {
-      nlohmann::json r = nlohmann::json::parse(in);
+      nlohmann::json r = read_json_file(e.path().string());
       if (!r.contains("job_id") || !r["job_id"].is_string()) continue;
       // Key first: json's operator= takes its argument by value, and C++17
       // evaluates the right side first, which would empty `r` before the key is read.
@@ -59,7 +63,7 @@ const nlohmann::json* ResultsStore::finished(const std::string& job_id) const {
 
 void ResultsStore::put(const std::string& job_id, const nlohmann::json& record) {
   write_file_atomically((fs::path(dir_) / "records" / (job_id + ".json")).string(),
-                        record.dump(2) + "\n");
+                        json_text(record, 2) + "\n");
   records_[job_id] = record;
   rewrite_jsonl();
 }
@@ -78,26 +82,24 @@ std::vector<nlohmann::json> ResultsStore::records() const {
 
 void ResultsStore::rewrite_jsonl() const {
   std::string text;
-  for (const auto& r : records()) text += r.dump() + "\n";
+  for (const auto& r : records()) text += json_text(r) + "\n";
   write_file_atomically((fs::path(dir_) / "results.jsonl").string(), text);
 }
 
 std::vector<nlohmann::json> read_run_records(const std::string& run_dir) {
+  // Records are input like any other: someone else's run folder, or a
+  // crafted one. Every line is parsed with the config's limits.
   std::vector<nlohmann::json> out;
   const fs::path jsonl = fs::path(run_dir) / "results.jsonl";
-  std::ifstream in(jsonl);
-  if (!in) throw InputError(jsonl.string(), "", "cannot open the results file");
-  std::string line;
-  size_t n = 0;
-  while (std::getline(in, line)) {
+  const std::string text = read_input_file(jsonl.string(), size_t(1) << 30, "results file");
+  size_t n = 0, begin = 0;
+  while (begin < text.size()) {
+    size_t end = text.find('\n', begin);
+    if (end == std::string::npos) end = text.size();
     ++n;
-    if (line.empty()) continue;
-    try {
-      out.push_back(nlohmann::json::parse(line));
-    } catch (const nlohmann::json::parse_error& e) {
-      throw InputError(jsonl.string(), "line " + std::to_string(n),
-                       std::string("invalid JSON: ") + e.what());
-    }
+    if (end > begin)
+      out.push_back(parse_json_text(text.substr(begin, end - begin), jsonl.string(), {}, n - 1));
+    begin = end + 1;
   }
   return out;
 }

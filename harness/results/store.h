@@ -34,6 +34,10 @@ class ResultsStore {
 void write_file_atomically(const std::string& path, const std::string& text);
 // Reads results.jsonl (or a records/ folder) of a run directory.
 std::vector<nlohmann::json> read_run_records(const std::string& run_dir);
+// JSON text for output. Strings may hold bytes that are not UTF-8 (a file
+// name, a glTF URI, a driver message): they are written as U+FFFD instead of
+// making nlohmann throw and the run lose its records.
+std::string json_text(const nlohmann::json& value, int indent = -1);
 // NaN and ±inf have no JSON spelling: they are stored as the strings "nan",
 // "inf", "-inf" (documented in docs/results.md).
 nlohmann::json json_number(double v);

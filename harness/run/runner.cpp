@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "core/error.h"
+#include "core/hash.h"
 #include "gl/debug.h"
 #include "gl/gpu_scene.h"
 #include "metrics/image_io.h"
@@ -19,6 +20,7 @@
 #include "reference/embree_isa.h"
 #include "reference/reference.h"
 #include "results/report.h"
+#include "results/run_lock.h"
 #include "results/store.h"
 #include "results/timing_stats.h"
 #include "run/gbuffer.h"
@@ -138,7 +140,11 @@ struct SceneState {
 class Runner {
  public:
   Runner(const Experiment& e, const RunOptions& o)
-      : e_(e), o_(o), store_(o.run_dir), progress_(stderr, !o.quiet && isatty(fileno(stderr)), 0) {}
+      : e_(e),
+        o_(o),
+        lock_(o.run_dir),
+        store_(o.run_dir),
+        progress_(stderr, !o.quiet && isatty(fileno(stderr)), 0) {}
 
   RunSummary run() {
     std::vector<std::string> order;
@@ -186,6 +192,7 @@ class Runner {
     r["config_hash"] = e_.content_hash;
     r["experiment"] = e_.name;
     r["job_id"] = job_id(sv.name, res.label(), tv.name);
+    r["spec_hash"] = spec_hash(sv, res, tv);
     r["scene_variant"] = sv.name;
     json scene = {{"type", sv.type}, {"variant", sv.name}, {"params", sv.params.json()}};
     if (st != nullptr) {
@@ -223,6 +230,36 @@ class Runner {
     if (gethostname(host, sizeof host - 1) == 0) r["host"]["name"] = host;
     r["build"] = {{"version", SHADOWBENCH_VERSION}};
     return r;
+  }
+
+  // Everything in the config that decides a job's numbers. A rerun into the
+  // same folder keeps a finished record only when its hash is the same.
+  std::string spec_hash(const SceneVariant& sv, const Resolution& res,
+                        const TechniqueVariant& tv) const {
+    const json spec = {{"scene",
+                        {{"type", sv.type},
+                         {"params", sv.params.json()},
+                         {"light", sv.light},
+                         {"camera", sv.camera}}},
+                       {"resolution", res.label()},
+                       {"technique", {{"name", tv.info->name}, {"params", tv.params.json()}}},
+                       {"frames", {e_.warmup_frames, e_.timed_frames}},
+                       {"reference", {e_.reference.spp, e_.reference.seed, embree_isa_}},
+                       {"backend", gl::to_string(o_.backend)}};
+    Hasher h;
+    h.add(json_text(spec));
+    return h.hex();
+  }
+
+  bool resumable(const std::string& id, const std::string& hash) {
+    const json* done = store_.finished(id);
+    if (done == nullptr) return false;
+    const json stored = done->value("spec_hash", json());
+    if (stored.is_string() && stored.get<std::string>() == hash) return true;
+    ++summary_.respecified;
+    log("job " + id +
+        ": its settings changed since the earlier run in this folder; running it again");
+    return false;
   }
 
   void finish(const std::string& id, json record) {
@@ -287,7 +324,7 @@ class Runner {
       std::vector<size_t> pending;
       for (size_t i = 0; i < e_.techniques.size(); ++i) {
         const std::string id = job_id(sv.name, res.label(), e_.techniques[i].name);
-        if (store_.finished(id) != nullptr) {
+        if (resumable(id, spec_hash(sv, res, e_.techniques[i]))) {
           ++summary_.resumed;
           ++done_;
           progress_.add_done_without_running(1);
@@ -317,7 +354,6 @@ class Runner {
         // Shared work (G-buffer, reference) failed: every pending job fails.
         for (size_t i : pending) {
           const std::string id = job_id(sv.name, res.label(), e_.techniques[i].name);
-          if (store_.finished(id) != nullptr) continue;
           json r = base_record(sv, &st, res, e_.techniques[i]);
           r["status"] = "failed";
           r["reason"] = std::string("shared pass failed: ") + ex.what();
@@ -526,6 +562,7 @@ class Runner {
 
   const Experiment& e_;
   const RunOptions& o_;
+  RunFolderLock lock_;  // before store_: nothing is read until the folder is ours
   ResultsStore store_;
   std::unique_ptr<gl::Context> context_;
   gl::TimingSource timing_source_ = gl::TimingSource::CpuFinish;

@@ -28,8 +28,9 @@ struct RunSummary {
   int ok = 0;
   int skipped = 0;
   int failed = 0;
-  int resumed = 0;    // finished in an earlier run of the same directory
-  int bad_input = 0;  // scene variants whose input (a glTF file, say) was bad
+  int resumed = 0;      // finished in an earlier run of the same directory
+  int respecified = 0;  // finished earlier, but with other settings: run again
+  int bad_input = 0;    // scene variants whose input (a glTF file, say) was bad
 };
 
 RunSummary run_experiment(const Experiment& experiment, const RunOptions& options);
