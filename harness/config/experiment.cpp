@@ -177,6 +177,8 @@ void check_camera(const Reader& r, const json& camera, const std::string& p) {
   }
 }
 
+constexpr uint64_t kMaxPixels = uint64_t(1) << 24;
+
 Resolution parse_resolution(const Reader& r, const json& v, const std::string& p) {
   Resolution res;
   if (v.is_array() && v.size() == 2) {
@@ -199,6 +201,10 @@ Resolution parse_resolution(const Reader& r, const json& v, const std::string& p
   } else {
     r.fail(p, "expected \"WIDTHxHEIGHT\" or [width, height], found " + describe(v));
   }
+  // Every pixel costs the G-buffer, the reference and the images about 100 bytes.
+  if (uint64_t(res.width) * uint64_t(res.height) > kMaxPixels)
+    r.fail(p, "expected at most " + std::to_string(kMaxPixels) + " pixels (4096x4096), found " +
+                  res.label());
   return res;
 }
 

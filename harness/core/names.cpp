@@ -45,9 +45,13 @@ std::string file_safe(const std::string& name) {
   if (readable(name)) return out;
   if (out.size() > kPrefixMax) out.resize(kPrefixMax);
   while (!out.empty() && out[0] == '.') out[0] = '-';  // no hidden files, no ".."
-  Hasher h;
-  h.add(name);
-  return out + "~" + h.hex().substr(0, 12);
+  // FNV-1a's last bytes barely spread ("α" and "β" differ in one digit):
+  // a splitmix64 finaliser makes every input byte move every output digit.
+  uint64_t z = Hasher().add(name).value();
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  z ^= z >> 31;
+  return out + "~" + to_hex(z).substr(0, 12);
 }
 
 std::string job_id(const std::string& scene_variant, const std::string& resolution,

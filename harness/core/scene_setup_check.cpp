@@ -46,10 +46,8 @@ std::string camera_problem(const Camera& c) {
 }
 
 std::string scene_setup_problem(const Scene& scene) {
-  if (std::string p = camera_problem(scene.camera); !p.empty()) return p;
-  const AreaLight& l = scene.light;
-  if (!in_range(l.center) || !finite(l.half_u) || !finite(l.half_v) || !finite(l.target))
-    return "light: centre " + str(l.center) + " or its size is not finite or too far out";
+  // Geometry first: a generator or importer derives the camera and the light
+  // from it, so their problems usually start here.
   size_t proper = 0;
   for (const Mesh& m : scene.meshes) {
     for (const glm::vec3& p : m.positions)
@@ -62,7 +60,10 @@ std::string scene_setup_problem(const Scene& scene) {
     }
   }
   if (proper == 0) return "the scene has no triangle of non-zero area";
-  return "";
+  const AreaLight& l = scene.light;
+  if (!in_range(l.center) || !finite(l.half_u) || !finite(l.half_v) || !finite(l.target))
+    return "light: centre " + str(l.center) + " or its size is not finite or too far out";
+  return camera_problem(scene.camera);
 }
 
 }  // namespace sb

@@ -45,7 +45,10 @@ std::string now_iso8601() {
   return buf;
 }
 
-json vec_json(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
+// Non-finite components are written as strings, like every number of a record.
+json vec_json(const glm::vec3& v) {
+  return json::array({json_number(v.x), json_number(v.y), json_number(v.z)});
+}
 
 json stats_json(const metrics::ErrorStats& s) {
   return {{"pixel_count", s.pixel_count},
@@ -314,6 +317,9 @@ class Runner {
       // run's exit code says "bad input".
       scene_error = std::string("bad scene input: ") + ex.what();
       ++summary_.bad_input;
+      // Said even with --quiet: it decides the exit code.
+      progress_.clear();
+      std::fprintf(stderr, "shadowbench: error: %s\n", ex.what());
     } catch (const std::exception& ex) {
       scene_error = std::string("building the scene failed: ") + ex.what();
     }
