@@ -124,9 +124,9 @@ Scene build_foliage(const Params& p) {
     Mesh wood;
     wood.name = "tree_" + std::to_string(t) + "/wood";
     wood.albedo = glm::vec3(0.36f, 0.25f, 0.15f);
+    const int row = t / per_row;  // whole rows: the grid cell's row index
     const glm::vec3 root(-0.5f * extent + float(t % per_row) * spacing + rng.uniform(-0.5f, 0.5f),
-                         0.0f,
-                         -0.5f * extent + float(t / per_row) * spacing + rng.uniform(-0.5f, 0.5f));
+                         0.0f, -0.5f * extent + float(row) * spacing + rng.uniform(-0.5f, 0.5f));
     const glm::vec3 up =
         glm::normalize(glm::vec3(rng.uniform(-0.08f, 0.08f), 1.0f, rng.uniform(-0.08f, 0.08f)));
     Grower g{p, rng, wood, leaves, p.get_int("segments")};

@@ -64,7 +64,7 @@ class Reader {
   }
   // A label names variants in tables and charts: short, printable.
   std::string label(const json& v, const std::string& pointer) const {
-    const std::string s = string(v, pointer);
+    std::string s = string(v, pointer);
     if (s.empty() || s.size() > 200)
       fail(pointer, "expected a label of 1 to 200 bytes, found " + std::to_string(s.size()));
     for (char c : s)

@@ -33,7 +33,7 @@ std::vector<std::string> channel_names(const std::string& path, int channels) {
   }
 }
 
-OIIO::ImageSpec make_spec(const std::string& path, const ImageF& img, OIIO::TypeDesc type) {
+OIIO::ImageSpec make_spec(const std::string& path, const ImageF& img, const OIIO::TypeDesc& type) {
   if (img.width <= 0 || img.height <= 0 ||
       img.data.size() != img.pixel_count() * static_cast<size_t>(std::max(img.channels, 0))) {
     throw JobError(path + ": cannot write an empty or malformed image (" +

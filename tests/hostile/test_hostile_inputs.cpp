@@ -96,6 +96,7 @@ Outcome run_limited(const std::vector<std::string>& args, const std::string& log
     const rlimit as{kAddressSpace, kAddressSpace};
     ::setrlimit(RLIMIT_AS, &as);
     std::vector<char*> argv;
+    argv.reserve(args.size() + 1);
     for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
     ::execv(argv[0], argv.data());
