@@ -34,10 +34,12 @@ size_t Scene::caster_triangle_count() const {
   return n;
 }
 
+// Only vertices a triangle references count: glTF primitives may share one
+// POSITION accessor and each index a subset of it.
 Bounds Scene::bounds() const {
   Bounds b;
   for (const auto& m : meshes)
-    for (const auto& p : m.positions) b.extend(p);
+    for (const uint32_t i : m.indices) b.extend(m.positions.at(i));
   return b;
 }
 
@@ -45,7 +47,7 @@ Bounds Scene::caster_bounds() const {
   Bounds b;
   for (const auto& m : meshes)
     if (m.casts_shadow)
-      for (const auto& p : m.positions) b.extend(p);
+      for (const uint32_t i : m.indices) b.extend(m.positions.at(i));
   return b;
 }
 

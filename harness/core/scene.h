@@ -101,6 +101,7 @@ struct Scene {
 
   size_t triangle_count() const;
   size_t caster_triangle_count() const;
+  // Of the vertices some triangle references (unreferenced ones are ignored).
   Bounds bounds() const;
   Bounds caster_bounds() const;
 };

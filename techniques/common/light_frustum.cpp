@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <limits>
+#include <string>
 
 #include "core/error.h"
 
@@ -74,30 +76,71 @@ float farthest_depth_in_cone(const Bounds& box, const glm::mat4& view, float tan
 }  // namespace
 
 LightFrustum fit_light_frustum(const Scene& scene, const glm::vec3& eye) {
-  const Bounds casters = scene.caster_bounds();
-  const Bounds all = scene.bounds();
   LightFrustum f;
   f.eye = eye;
-  if (casters.empty()) {  // nothing casts: any frustum will do, every point is lit
+  // The image plane is parallel to the light's rectangle (looking along its
+  // axis), so one texel covers the same solid angle of every map technique
+  // and PCSS's similar triangles hold across the whole map.
+  const glm::vec3 axis = scene.light.direction();
+  const glm::vec3 up = std::fabs(axis.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  f.view = glm::lookAt(eye, eye + axis, up);
+
+  // The casters' extent seen from the eye, from every vertex a caster
+  // triangle references: x/z and y/z in light view space, and the nearest
+  // depth. Each vertex's extent grows by how far the rest of the light's
+  // rectangle moves it (|L|/z for a light point L off the eye): receivers in
+  // the outer penumbra must be inside the map, or a filtering technique would
+  // call them lit by construction, not by its filter.
+  const glm::mat3 rotate(f.view);
+  const glm::vec3 hu = rotate * scene.light.half_u, hv = rotate * scene.light.half_v;
+  const glm::vec3 centre_offset = rotate * (scene.light.center - eye);
+  const glm::vec2 reach(std::fabs(hu.x) + std::fabs(hv.x) + std::fabs(centre_offset.x),
+                        std::fabs(hu.y) + std::fabs(hv.y) + std::fabs(centre_offset.y));
+  const float scale = std::max(scene.bounds().radius(), 1e-6f);
+  float near_depth = std::numeric_limits<float>::max();
+  glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (const Mesh& m : scene.meshes) {
+    if (!m.casts_shadow) continue;
+    for (const uint32_t i : m.indices) {
+      const glm::vec3 v(f.view * glm::vec4(m.positions[i], 1.0f));
+      const float depth = -v.z;
+      if (!(depth > 1e-4f * scale))
+        throw JobError("caster mesh '" + m.name +
+                       "' reaches the light's plane or behind it (a vertex at depth " +
+                       std::to_string(depth) +
+                       " along the light's axis): one perspective shadow map cannot cover it");
+      near_depth = std::min(near_depth, depth);
+      const glm::vec2 t(v.x / depth, v.y / depth);
+      lo = glm::min(lo, t - reach / depth);
+      hi = glm::max(hi, t + reach / depth);
+    }
+  }
+  if (near_depth == std::numeric_limits<float>::max()) {  // nothing casts: every point is lit
     f.view_projection = glm::mat4(1.0f);
     return f;
   }
-  const glm::vec3 c = casters.center();
-  const float r = casters.radius() * 1.01f;
-  const float d = glm::length(c - eye);
-  if (d <= r) throw JobError("the light lies inside the casters' bounding sphere");
-  const glm::vec3 dir = (c - eye) / d;
-  const glm::vec3 up = std::fabs(dir.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-  f.view = glm::lookAt(eye, c, up);
-  const float half_angle = std::asin(std::min(r / d, 0.999f));
-  f.near_plane = std::max(d - r, 1e-3f * d);
-  f.tan_half_fov = std::tan(half_angle);
-  // The far plane reaches the farthest receiver inside the map's cone, so
+  // A square map (square texels), off-axis: centred on the casters' extent.
+  const glm::vec2 centre = 0.5f * (lo + hi);
+  const float half = 0.5f * std::max(hi.x - lo.x, hi.y - lo.y) * 1.01f + 1e-6f;
+  constexpr float kWidest = 20.0f;  // tan of a half-angle of 87°
+  if (!(half <= kWidest))
+    throw JobError("the casters span more than 174 degrees seen from the light (tangent extent " +
+                   std::to_string(2.0f * half) + "): one perspective shadow map cannot cover them");
+  f.tan_half_fov = half;
+  f.near_plane = near_depth * 0.99f;
+  // The far plane reaches the farthest receiver inside the map's frustum, so
   // that every receiver the map covers has a depth in [0, 1] and the depth
   // range is no larger than it must be (filtered maps work on depth in that
   // range: a huge ground plane must not squeeze the casters into 1% of it).
-  f.far_plane = std::max(d + r, farthest_depth_in_cone(all, f.view, f.tan_half_fov)) * 1.01f;
-  f.projection = glm::perspective(2.0f * half_angle, 1.0f, f.near_plane, f.far_plane);
+  // The shear makes the off-axis frustum the symmetric cone the search needs.
+  glm::mat4 shear(1.0f);
+  shear[2][0] = centre.x;  // x' = x + cx·z: |x'| <= half·(−z) is the frustum
+  shear[2][1] = centre.y;
+  const float farthest = farthest_depth_in_cone(scene.bounds(), shear * f.view, half);
+  f.far_plane = std::max(farthest, near_depth * 1.01f) * 1.01f;
+  f.projection = glm::frustum((centre.x - half) * f.near_plane, (centre.x + half) * f.near_plane,
+                              (centre.y - half) * f.near_plane, (centre.y + half) * f.near_plane,
+                              f.near_plane, f.far_plane);
   f.view_projection = f.projection * f.view;
   return f;
 }

@@ -1,7 +1,10 @@
 #pragma once
-// A perspective light view from one point of the area light, fitted to the
-// casters' bounding sphere: receivers outside it cannot be shadowed from that
-// point, so they are lit by construction (the map's border reads "far").
+// A perspective light view from one point of the area light, looking along
+// the light's axis, fitted off-axis to the casters' projected extent (every
+// vertex a caster triangle references) with the near plane at the nearest
+// caster: receivers outside it cannot be shadowed from that point, so they
+// are lit by construction (the map's border reads "far"). The map is square
+// with square texels; tan_half_fov is its half-extent in x/z (and y/z).
 #include <glm/glm.hpp>
 
 #include "core/scene.h"
@@ -20,8 +23,9 @@ struct LightFrustum {
   float texel_per_distance(int size) const { return 2.0f * tan_half_fov / float(size); }
 };
 
-// Throws sb::JobError when `eye` lies inside the casters' bounding sphere
-// (a single perspective map cannot cover it).
+// Throws sb::JobError, naming the mesh, when a caster reaches the plane of the
+// light through `eye` or behind it, or when the casters span nearly 180°
+// from `eye`: a single perspective map cannot cover them.
 LightFrustum fit_light_frustum(const Scene& scene, const glm::vec3& eye);
 
 }  // namespace sb::shadow
