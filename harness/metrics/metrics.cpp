@@ -64,10 +64,10 @@ ErrorStats compare(const ImageF& test, const ImageF& ref, const std::vector<uint
   ErrorStats s;
   const int nc = test.channels;
   size_t over001 = 0, over005 = 0, over01 = 0;
-  double sum_abs = 0, sum_sq = 0;
+  double sum_abs = 0, sum_sq = 0, sum_signed = 0;
   for (int y = 0; y < test.height; ++y) {
     // Per-row partial sums limit the cancellation error, as OIIO's batches.
-    double row_abs = 0, row_sq = 0;
+    double row_abs = 0, row_sq = 0, row_signed = 0;
     for (int x = 0; x < test.width; ++x) {
       const size_t p = static_cast<size_t>(y) * test.width + x;
       if (mask && (*mask)[p] == 0) continue;
@@ -79,6 +79,7 @@ ErrorStats compare(const ImageF& test, const ImageF& ref, const std::vector<uint
         if (value_error(test.data[i], ref.data[i], f)) {
           row_abs += f;
           row_sq += f * f;
+          if (std::isfinite(test.data[i])) row_signed += double(test.data[i]) - double(ref.data[i]);
         } else {
           ++s.nonfinite_count;
         }
@@ -97,16 +98,18 @@ ErrorStats compare(const ImageF& test, const ImageF& ref, const std::vector<uint
     }
     sum_abs += row_abs;
     sum_sq += row_sq;
+    sum_signed += row_signed;
   }
   if (s.pixel_count == 0) {
     // Nothing to measure: every figure is undefined.
-    s.rmse = s.mae = s.max_error = s.psnr = s.ssim = kNaN;
+    s.rmse = s.mae = s.max_error = s.psnr = s.ssim = s.mean_signed = kNaN;
     s.frac_over_001 = s.frac_over_005 = s.frac_over_01 = kNaN;
     return s;
   }
   const double nvals = static_cast<double>(s.pixel_count) * nc;
   const double npix = static_cast<double>(s.pixel_count);
   s.mae = sum_abs / nvals;
+  s.mean_signed = sum_signed / nvals;
   s.rmse = std::sqrt(sum_sq / nvals);
   s.psnr = s.rmse == 0 ? kInf : 20.0 * std::log10(1.0 / s.rmse);
   s.frac_over_001 = static_cast<double>(over001) / npix;
@@ -129,6 +132,14 @@ std::vector<uint8_t> penumbra_mask(const ImageF& v, float eps) {
       }
     }
   }
+  return mask;
+}
+
+std::vector<uint8_t> soft_union_mask(const ImageF& a, const ImageF& b, float eps) {
+  detail::check_same_shape(a, b, "metrics::soft_union_mask");
+  std::vector<uint8_t> mask = penumbra_mask(a, eps);
+  const std::vector<uint8_t> other = penumbra_mask(b, eps);
+  for (size_t p = 0; p < mask.size(); ++p) mask[p] = uint8_t(mask[p] | other[p]);
   return mask;
 }
 

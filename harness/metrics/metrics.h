@@ -20,6 +20,9 @@ struct ErrorStats {
   // mae = sum|d| / (n*channels), rmse = sqrt(sum d^2 / (n*channels)),
   // d = |float(test - ref)| accumulated in double.
   double rmse = 0, mae = 0, max_error = 0;
+  // mean(test - ref) over the same values: its sign tells over-darkening
+  // (negative for visibility) from leaking light (positive).
+  double mean_signed = 0;
   // First (row-major, then channel) value with the largest error; -1 when no
   // included value differs at all (OIIO reports 0,0,0 there).
   int max_x = -1, max_y = -1, max_channel = -1;
@@ -72,6 +75,11 @@ ImageF ssim_map(const ImageF& a, const ImageF& b, double data_range = 1.0);
 // Pixels in the reference penumbra: some channel of the visibility V has
 // eps < V < 1 - eps.
 std::vector<uint8_t> penumbra_mask(const ImageF& reference_visibility, float eps = 1e-6f);
+
+// The soft pixels of either image: penumbra_mask(a) OR penumbra_mask(b). With
+// a technique and the reference, it adds what the reference's penumbra
+// misses: light bleeding into a true umbra and blur outside the true penumbra.
+std::vector<uint8_t> soft_union_mask(const ImageF& a, const ImageF& b, float eps = 1e-6f);
 
 // RGB heat map of the per-pixel error (max over channels of |test - ref|)
 // through an inferno-like ramp: 0 -> black, >= full_scale -> the brightest

@@ -61,13 +61,19 @@ json stats_json(const metrics::ErrorStats& s) {
           {"frac_over_0.01", s.frac_over_001},
           {"frac_over_0.05", s.frac_over_005},
           {"frac_over_0.1", s.frac_over_01},
-          {"nonfinite_count", s.nonfinite_count}};
+          {"nonfinite_count", s.nonfinite_count},
+          {"mean_signed", json_number(s.mean_signed)}};
 }
 
-json compare_json(const ImageF& test, const ImageF& ref, const std::vector<uint8_t>& penumbra) {
+// Three regions: every pixel; the reference's penumbra; and the soft pixels
+// of either the technique or the reference (`soft_union`), which also sees
+// light bleeding into a true umbra and blur outside the true penumbra.
+json compare_json(const ImageF& test, const ImageF& ref, const std::vector<uint8_t>& penumbra,
+                  const std::vector<uint8_t>& soft_union) {
   json j;
   j["all"] = stats_json(metrics::compare(test, ref));
   j["penumbra"] = stats_json(metrics::compare(test, ref, &penumbra));
+  j["soft_union"] = stats_json(metrics::compare(test, ref, &soft_union));
   return j;
 }
 
@@ -533,8 +539,9 @@ class Runner {
     apply_attached_shadow(attached, visibility);
     const ImageF shaded = targets.read_shaded();
     json m;
-    m["visibility"] = compare_json(visibility, ref.visibility, penumbra);
-    m["shaded"] = compare_json(shaded, ref_shaded, penumbra);
+    const std::vector<uint8_t> soft_union = metrics::soft_union_mask(visibility, ref.visibility);
+    m["visibility"] = compare_json(visibility, ref.visibility, penumbra, soft_union);
+    m["shaded"] = compare_json(shaded, ref_shaded, penumbra, soft_union);
     r["metrics"] = m;
 
     // A reference whose noise is comparable to the error cannot rank techniques.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "e2e_util.h"
+#include "metrics/metrics.h"
 
 namespace sb::test {
 namespace {
@@ -143,6 +144,24 @@ TEST(ShadowMapEdges, VsmBleedsUnderStackedOccludersAndReductionCutsIt) {
   EXPECT_GT(vsm.max, 0.2);                  // VSM lets light through the umbra...
   EXPECT_LT(reduced.mean, 0.5 * vsm.mean);  // ...and the reduction cuts it
   EXPECT_LT(reduced.max, vsm.max);
+  // The record's soft-union region is the union of both images' soft pixels
+  // (recomputed here), and it holds umbra pixels the reference's penumbra
+  // leaves out: where V_ref = 0 every error is light that leaked, so the
+  // signed error over them is the bleeding itself, positive.
+  const std::string name = "vsm/prefilter=gauss,k=9,light_bleeding_reduction=0";
+  const json& m = out.record(name)["metrics"];
+  const ImageF v = out.visibility(name);
+  const std::vector<uint8_t> u = metrics::soft_union_mask(v, ref);
+  EXPECT_EQ(m["visibility"]["soft_union"]["pixel_count"].get<size_t>(),
+            size_t(std::count(u.begin(), u.end(), uint8_t(1))));
+  EXPECT_GT(m["visibility"]["soft_union"]["pixel_count"].get<double>(),
+            m["visibility"]["penumbra"]["pixel_count"].get<double>());
+  std::vector<uint8_t> umbra_in_union(u.size(), 0);
+  for (size_t i = 0; i < u.size(); ++i) umbra_in_union[i] = u[i] && ref.data[i] == 0.0f;
+  const metrics::ErrorStats bled = metrics::compare(v, ref, &umbra_in_union);
+  ASSERT_GT(bled.pixel_count, 0u);
+  EXPECT_GT(bled.mean_signed, 0.0);
+  EXPECT_NEAR(bled.mean_signed, bled.mae, 1e-9);
 }
 
 }  // namespace

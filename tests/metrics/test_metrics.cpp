@@ -40,6 +40,35 @@ TEST(metrics_compare, ConstantOffset) {
   EXPECT_EQ(s.nonfinite_count, 0u);
 }
 
+TEST(metrics_compare, SignedErrorKeepsTheSign) {
+  // Half the pixels 0.2 darker, the other half 0.1 lighter: mean -0.05, and
+  // each half alone has its own sign.
+  ImageF ref(4, 2, 1, 0.5f), test = ref;
+  std::vector<uint8_t> dark(8, 0), light(8, 0);
+  for (size_t i = 0; i < 8; ++i) {
+    const bool d = i < 4;
+    test.data[i] += d ? -0.2f : 0.1f;
+    (d ? dark : light)[i] = 1;
+  }
+  EXPECT_NEAR(compare(test, ref).mean_signed, -0.05, 1e-6);
+  EXPECT_NEAR(compare(test, ref, &dark).mean_signed, -0.2, 1e-6);
+  EXPECT_NEAR(compare(test, ref, &light).mean_signed, 0.1, 1e-6);
+  EXPECT_NEAR(compare(test, ref, &light).mae, 0.1, 1e-6);
+}
+
+TEST(metrics_penumbra, SoftUnionAddsTheTechniquesSoftPixels) {
+  // ref: umbra, penumbra, lit, lit; technique: bleeding umbra, penumbra,
+  // blurred lit, lit.
+  ImageF ref(4, 1, 1), tech(4, 1, 1);
+  ref.data = {0.0f, 0.5f, 1.0f, 1.0f};
+  tech.data = {0.2f, 0.5f, 0.9f, 1.0f};
+  EXPECT_EQ(penumbra_mask(ref), (std::vector<uint8_t>{0, 1, 0, 0}));
+  EXPECT_EQ(soft_union_mask(tech, ref), (std::vector<uint8_t>{1, 1, 1, 0}));
+  const std::vector<uint8_t> u = soft_union_mask(tech, ref);
+  // Bleeding (+0.2) and blur (-0.1) keep their signs apart in the region.
+  EXPECT_NEAR(compare(tech, ref, &u).mean_signed, (0.2 + 0.0 - 0.1) / 3.0, 1e-6);
+}
+
 TEST(metrics_compare, SingleDifferingPixel) {
   const int w = 20, h = 15;
   const ImageF ref(w, h, 3, 0.5f);
