@@ -74,7 +74,7 @@ float scene_radius(const Scene& scene) {
 }
 
 void summarise(Result& r, const ImageF& positions) {
-  double sum = 0, psum = 0;
+  double sum = 0, psum = 0, psum2 = 0;
   size_t count = 0, pcount = 0;
   for (size_t i = 0; i < positions.pixel_count(); ++i) {
     if (!covered(positions, i)) continue;
@@ -83,11 +83,13 @@ void summarise(Result& r, const ImageF& positions) {
     const float v = r.visibility.data[i];
     if (v > 0.0f && v < 1.0f) {
       psum += r.std_error.data[i];
+      psum2 += double(r.std_error.data[i]) * double(r.std_error.data[i]);
       ++pcount;
     }
   }
   r.mean_std_error = count ? sum / double(count) : 0.0;
   r.penumbra_mean_std_error = pcount ? psum / double(pcount) : 0.0;
+  r.penumbra_rms_std_error = pcount ? std::sqrt(psum2 / double(pcount)) : 0.0;
 }
 
 // Embree's ray.valid() bound holds for every ray of a pixel when the origin's
@@ -465,7 +467,9 @@ GBuffer trace_gbuffer(const Scene& scene, int width, int height) {
         const glm::vec3 p = (1.0f - rh.hit.u - rh.hit.v) * v0 + rh.hit.u * v1 + rh.hit.v * v2;
         const glm::vec3 c = glm::cross(v1 - v0, v2 - v0);
         const float len = glm::length(c);
-        const glm::vec3 n = len > 0.0f ? c / len : glm::vec3(0.0f);
+        glm::vec3 n = len > 0.0f ? c / len : glm::vec3(0.0f);
+        // Facing the viewer, as the rasterised G-buffer's (the seen side).
+        if (glm::dot(n, d) > 0.0f) n = -n;
         float* pp = &g.positions.at(x, y);
         pp[0] = p.x;
         pp[1] = p.y;

@@ -57,6 +57,9 @@ struct Result {
   ImageF std_error;                    // 1 channel, per-pixel standard error of the estimate
   double mean_std_error = 0;           // over covered pixels
   double penumbra_mean_std_error = 0;  // over pixels with 0<V<1
+  // sqrt(mean of std_error²) over pixels with 0<V<1: the noise's RMS, the
+  // figure an RMSE is comparable with (the mean of σ understates it).
+  double penumbra_rms_std_error = 0;
   int spp = 0;
   uint64_t seed = 0;
   std::string method;  // "embree_stratified_packet16"
@@ -92,7 +95,8 @@ std::string cache_key(const Scene& scene, const ImageF& positions, const ImageF&
 // A G-buffer made by primary ray casting with Embree (all meshes, casters and
 // receivers) through scene.camera, pixel centres, row 0 on top, the view-space
 // depth limited to [near, far]: positions RGBA32F (w = 1 on a hit), geometric
-// normals RGB32F = normalize(cross(v1-v0, v2-v0)) (counter-clockwise front).
+// normals RGB32F = ±normalize(cross(v1-v0, v2-v0)), the sign that faces the
+// camera (as the rasterised G-buffer's: the side that is seen).
 // For tests and benchmarks that need the reference without GL.
 struct GBuffer {
   ImageF positions;

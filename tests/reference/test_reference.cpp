@@ -133,6 +133,18 @@ TEST(reference, MatchesTheExactAnswerWithinItsStdError) {
   RecordProperty("true_over_stated", std::to_string(rmse / rms_se));
   RecordProperty("outliers", std::to_string(outliers) + "/" + std::to_string(penumbra));
   EXPECT_GT(r.penumbra_mean_std_error, r.mean_std_error);
+  // The noise figure the RMSE warning uses: sqrt(mean σ²) over the estimate's
+  // own soft pixels, never below the mean σ (Jensen).
+  double own2 = 0;
+  int own = 0;
+  for (size_t i = 0; i < r.visibility.data.size(); ++i)
+    if (r.visibility.data[i] > 0.0f && r.visibility.data[i] < 1.0f) {
+      own2 += double(r.std_error.data[i]) * double(r.std_error.data[i]);
+      ++own;
+    }
+  ASSERT_GT(own, 0);
+  EXPECT_NEAR(r.penumbra_rms_std_error, std::sqrt(own2 / own), 1e-9);
+  EXPECT_GE(r.penumbra_rms_std_error, r.penumbra_mean_std_error);
 }
 
 TEST(reference, BackgroundIsLitWithoutError) {
@@ -222,6 +234,18 @@ TEST(reference, TraceGBufferSeesTheGround) {
   while (g.positions.at(16, top, 3) == 0.0f) ++top;
   while (g.positions.at(16, bottom, 3) == 0.0f) --bottom;
   EXPECT_LT(g.positions.at(16, top, 2), g.positions.at(16, bottom, 2));
+}
+
+TEST(reference, TraceGBufferNormalsFaceTheCameraOnBackFaces) {
+  // The same ground wound clockwise from above: its cross product points
+  // down, away from the camera; the G-buffer's normal must still face it.
+  sb::Scene s;
+  s.meshes.push_back(sbtest::quad("ground", {-1, 0, -1}, {1, 0, -1}, {1, 0, 1}, {-1, 0, 1}, false));
+  s.camera.eye = {0, 5, 5};
+  s.camera.target = {0, 0, 0};
+  const ref::GBuffer g = ref::trace_gbuffer(s, 33, 33);
+  ASSERT_EQ(g.positions.at(16, 16, 3), 1.0f);
+  EXPECT_FLOAT_EQ(g.normals.at(16, 16, 1), 1.0f);
 }
 
 // RMS of v - v_ref over the penumbra of `mask` (default: of v_ref).
