@@ -1,5 +1,7 @@
 #include "e2e_util.h"
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <stdexcept>
 
@@ -65,6 +67,15 @@ RunOutput run_config(const nlohmann::json& config, const std::string& name, gl::
   out.summary = run_experiment(e, o);
   out.records = read_run_records(out.dir);
   return out;
+}
+
+std::string fresh_test_folder(const std::string& prefix) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() /
+      (prefix + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
 }
 
 nlohmann::json small_scene(double light_size) {

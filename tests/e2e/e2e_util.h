@@ -31,4 +31,7 @@ RunOutput run_config(const nlohmann::json& config, const std::string& name,
 // A small sphere grid seen from close by, for fast runs.
 nlohmann::json small_scene(double light_size);
 
+// An empty folder named for the running test (ctest runs tests in parallel).
+std::string fresh_test_folder(const std::string& prefix);
+
 }  // namespace sb::test

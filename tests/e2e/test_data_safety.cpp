@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "../config/cli_runner.h"
+#include "e2e_util.h"
 #include "results/run_lock.h"
 #include "results/store.h"
 
@@ -23,13 +24,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 struct Folder {
-  fs::path dir =
-      fs::temp_directory_path() / (std::string("shadowbench_test_safety_") +
-                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  Folder() {
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
+  fs::path dir = fresh_test_folder("shadowbench_test_safety_");
   std::string config(const std::string& name, const json& techniques, int spp = 4) const {
     const json c = {{"name", "safety"},
                     {"scenes", {{{"type", "sphere_grid"}, {"params", {{"grid", 2}}}}}},

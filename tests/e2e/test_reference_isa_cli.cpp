@@ -11,6 +11,7 @@
 #include <string>
 
 #include "../config/cli_runner.h"
+#include "e2e_util.h"
 #include "reference/embree_isa.h"
 
 namespace sb::test {
@@ -18,15 +19,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// One folder per test: ctest runs the tests in parallel.
 struct Folder {
-  fs::path dir =
-      fs::temp_directory_path() / (std::string("shadowbench_test_isa_cli_") +
-                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  Folder() {
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
+  fs::path dir = fresh_test_folder("shadowbench_test_isa_cli_");
   std::string config(const std::string& spp, const std::string& extra = "") const {
     const fs::path p = dir / ("avx_" + spp + ".json");
     std::ofstream(p) << R"({"name":"avx","scenes":[{"type":"sphere_grid","params":{"grid":2}}],)"
