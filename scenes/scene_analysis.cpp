@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scenes/receiver_inference.h"
+
 namespace sb {
 
 DerivedDataCounters& derived_data_counters() {
@@ -15,23 +17,10 @@ bool find_planar_receiver(const Scene& scene, PlanarReceiver& out) {
   const float eps = 1e-5f * std::max(all.radius(), 1e-6f);
   for (const auto& m : scene.meshes) {
     if (m.triangle_count() == 0) continue;
-    // The plane of the largest triangle, then every vertex must lie on it.
-    glm::vec3 n(0.0f);
-    float best = 0.0f;
-    for (size_t t = 0; t < m.triangle_count(); ++t) {
-      const glm::vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
-                      c = m.positions[m.indices[3 * t + 2]];
-      const glm::vec3 cr = glm::cross(b - a, c - a);
-      if (glm::length(cr) > best) {
-        best = glm::length(cr);
-        n = cr / best;
-      }
-    }
-    if (best == 0.0f) continue;
-    float d = -glm::dot(n, m.positions[0]);
-    bool planar = true;
-    for (const auto& p : m.positions) planar = planar && std::fabs(glm::dot(n, p) + d) <= eps;
-    if (!planar) continue;
+    const auto plane = mesh_plane(m, double(eps));
+    if (!plane) continue;
+    glm::vec3 n(*plane);
+    auto d = float(plane->w);
     if (glm::dot(n, scene.light.center) + d < 0.0f) {  // orient towards the light
       n = -n;
       d = -d;
@@ -64,7 +53,8 @@ SceneCapabilities check_closedness(const Scene& scene,
   }
   bool needed = false;
   for (const auto* t : techniques)
-    needed = needed || t->needs.closed_casters || t->needs.edge_adjacency;
+    needed =
+        needed || t->needs.closed_casters || t->needs.edge_adjacency || t->needs.caster_closedness;
   if (!needed) return caps;
   caps.closedness_checked = true;
   size_t open = 0;

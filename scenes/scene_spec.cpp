@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/scene_types.h"
+#include "scenes/receiver_inference.h"
 #include "scenes/topology.h"
 
 namespace sb {
@@ -85,13 +86,19 @@ std::string describe_scene(const Scene& s) {
     std::snprintf(line, sizeof line, fmt, args...);
     out += line;
   };
-  size_t closed = 0;
+  size_t closed = 0, inferred = 0;
   std::string meshes;
-  for (const auto& m : s.meshes) {
+  for (size_t i = 0; i < s.meshes.size(); ++i) {
+    const Mesh& m = s.meshes[i];
     const MeshTopology t = analyse_topology(m);
     closed += t.closed() ? 1 : 0;
+    const bool infer = m.casts_shadow && can_shadow_nothing(s, i);
+    inferred += infer ? 1 : 0;
     std::snprintf(line, sizeof line, "  %-24s %9zu tris  %-8s %-6s %s%s\n", m.name.c_str(),
-                  m.triangle_count(), m.casts_shadow ? "caster" : "receiver",
+                  m.triangle_count(),
+                  infer            ? "inferred"
+                  : m.casts_shadow ? "caster"
+                                   : "receiver",
                   t.closed() ? "closed" : "open", m.alpha_tested() ? "alpha-mask " : "",
                   m.double_sided ? "double-sided" : "");
     meshes += line;
@@ -108,7 +115,12 @@ std::string describe_scene(const Scene& s) {
   const Camera& c = s.camera;
   add("camera: eye [%g %g %g] target [%g %g %g] fov_y %g near %g far %g\n", c.eye.x, c.eye.y,
       c.eye.z, c.target.x, c.target.y, c.target.z, c.fov_y_degrees, c.near_plane, c.far_plane);
-  return out + "meshes:\n" + meshes;
+  out += "meshes:\n" + meshes;
+  if (inferred > 0)
+    out +=
+        "inferred: casts in the file but can shadow nothing; a run makes it a receiver "
+        "(\"infer_receivers\": false keeps it a caster)\n";
+  return out;
 }
 
 }  // namespace sb

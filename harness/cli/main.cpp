@@ -2,7 +2,7 @@
 //   shadowbench run CONFIG [--out DIR] [--backend osmesa|egl] [--cache-dir DIR]
 //                          [--no-cache] [--no-images] [--gbuffer] [--plugins DIR] [--quiet]
 //                          [--benchmark-out FILE] [--bencher-out FILE] [--embree-config CFG]
-//                          [--max-jobs N]
+//                          [--max-jobs N] [--pass-timing coarse|fine]
 //   shadowbench validate CONFIG [--plugins DIR] [--max-jobs N]
 //   shadowbench list [--plugins DIR]
 //   shadowbench report RUN_DIR [--out DIR] [--metric PATH]
@@ -47,6 +47,7 @@ constexpr const char* kUsage =
     "  shadowbench run CONFIG [--out DIR] [--backend osmesa|egl] [--cache-dir DIR]\n"
     "                         [--no-cache] [--no-images] [--gbuffer] [--plugins DIR] [--quiet]\n"
     "                         [--embree-config isa=avx2|max_isa=avx2] [--max-jobs 10000]\n"
+    "                         [--pass-timing coarse|fine]\n"
     "  shadowbench validate CONFIG [--plugins DIR] [--max-jobs 10000]\n"
     "  shadowbench list [--plugins DIR]\n"
     "  shadowbench report RUN_DIR [--out DIR] [--metric visibility.all.rmse]\n"
@@ -65,10 +66,11 @@ struct Args {
   std::vector<std::string> positional;
   std::string out, backend = "osmesa", cache_dir = "results/cache", plugins;
   bool no_cache = false, no_images = false, gbuffer = false, quiet = false;
-  std::string benchmark_out, bencher_out;  // run, report: CI outputs
-  std::string embree_config;               // run: the reference's Embree ISA
-  ExperimentLimits limits;                 // run, validate
-  CompareOptions compare;                  // compare
+  std::string benchmark_out, bencher_out;               // run, report: CI outputs
+  std::string embree_config;                            // run: the reference's Embree ISA
+  gl::PassDetail pass_detail = gl::PassDetail::Coarse;  // run
+  ExperimentLimits limits;                              // run, validate
+  CompareOptions compare;                               // compare
   bool compare_options_given = false;
   bool metric_given = false;
 };
@@ -119,6 +121,12 @@ Args parse_args(int argc, char** argv) {
         reference::check_embree_config(a.embree_config);
       } catch (const std::invalid_argument& ex) {
         throw InputError("", "--embree-config", ex.what());
+      }
+    } else if (s == "--pass-timing") {
+      try {
+        a.pass_detail = gl::pass_detail_from_string(value("--pass-timing"));
+      } catch (const std::invalid_argument& ex) {
+        throw InputError("", "--pass-timing", ex.what());
       }
     } else if (s == "--alpha" || s == "--time-threshold" || s == "--error-threshold") {
       const double v = parse_number(s, value(s.c_str()));
@@ -271,6 +279,7 @@ int cmd_run(const Args& a) {
   o.write_gbuffer = a.gbuffer;
   o.quiet = a.quiet;
   o.embree_config = a.embree_config;
+  o.pass_detail = a.pass_detail;
   RunSummary s;
   try {
     s = run_experiment(e, o);

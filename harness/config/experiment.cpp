@@ -337,7 +337,7 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
   for (size_t i = 0; i < scenes.size(); ++i) {
     const std::string p = "/scenes/" + std::to_string(i);
     const json& entry = r.object(scenes[i], p, "a scene");
-    r.only_keys(entry, p, {"type", "params", "light", "camera", "label"});
+    r.only_keys(entry, p, {"type", "params", "light", "camera", "label", "infer_receivers"});
     if (!entry.contains("type")) r.fail(p + "/type", "expected a scene type, found nothing");
     const std::string type = r.string(entry["type"], p + "/type");
     const SceneType* st = find_scene_type(type);
@@ -350,6 +350,13 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
     json camera = entry.value("camera", json::object());
     check_light(r, light, p + "/light");
     check_camera(r, camera, p + "/camera");
+    bool infer = true;
+    if (entry.contains("infer_receivers")) {
+      if (!entry["infer_receivers"].is_boolean())
+        r.fail(p + "/infer_receivers",
+               "expected true or false, found " + describe(entry["infer_receivers"]));
+      infer = entry["infer_receivers"].get<bool>();
+    }
     const json given = entry.value("params", json::object());
     const std::string label =
         entry.contains("label") ? r.label(entry["label"], p + "/label") : type;
@@ -368,6 +375,7 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
         if (it.value().is_array()) v.swept[it.key()] = combo[it.key()];
       v.light = light;
       v.camera = camera;
+      v.infer_receivers = infer;
       if (!names.insert(v.name).second)
         r.fail(p,
                "scene variant \"" + v.name + "\" appears twice; give entries distinct \"label\"s");
@@ -518,6 +526,8 @@ void apply_overrides(const SceneVariant& v, Scene& scene) {
   if (cam.contains("target")) scene.camera.target = vec(cam["target"]);
   if (cam.contains("up")) scene.camera.up = vec(cam["up"]);
   if (cam.contains("fov_y")) scene.camera.fov_y_degrees = cam["fov_y"].get<float>();
+  // A moved camera keeps the scene in its depth range, unless told otherwise.
+  if (cam.contains("eye") || cam.contains("target")) fit_clip_planes(scene.camera, scene.bounds());
   if (cam.contains("near")) scene.camera.near_plane = cam["near"].get<float>();
   if (cam.contains("far")) scene.camera.far_plane = cam["far"].get<float>();
 }

@@ -21,6 +21,9 @@ struct SceneVariant {
   nlohmann::json swept = nlohmann::json::object();  // the parameters this variant fixed by sweep
   nlohmann::json light = nlohmann::json::object();  // overrides (validated)
   nlohmann::json camera = nlohmann::json::object();
+  // Planar meshes that can shadow nothing become non-casters
+  // (scenes/receiver_inference.h); "infer_receivers": false keeps them.
+  bool infer_receivers = true;
 };
 
 struct TechniqueVariant {

@@ -1,5 +1,6 @@
 #include "core/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -49,6 +50,23 @@ Bounds Scene::caster_bounds() const {
     if (m.casts_shadow)
       for (const uint32_t i : m.indices) b.extend(m.positions.at(i));
   return b;
+}
+
+}  // namespace sb
+
+namespace sb {
+
+void fit_clip_planes(Camera& camera, const Bounds& bounds) {
+  if (bounds.empty()) return;
+  float farthest = 0.0f;
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec3 corner((i & 1) ? bounds.hi.x : bounds.lo.x, (i & 2) ? bounds.hi.y : bounds.lo.y,
+                           (i & 4) ? bounds.hi.z : bounds.lo.z);
+    farthest = std::max(farthest, glm::distance(camera.eye, corner));
+  }
+  const float nearest = glm::distance(camera.eye, glm::clamp(camera.eye, bounds.lo, bounds.hi));
+  camera.far_plane = 1.05f * farthest;
+  camera.near_plane = std::max(0.5f * nearest, 1e-4f * camera.far_plane);
 }
 
 }  // namespace sb

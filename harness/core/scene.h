@@ -106,4 +106,10 @@ struct Scene {
   Bounds caster_bounds() const;
 };
 
+// Near and far planes that hold `bounds` seen from the camera's eye: far just
+// past the farthest corner, near half way to the box (or far / 10^4 from
+// inside it). For a camera moved by a config, whose file's planes were
+// fitted to another eye.
+void fit_clip_planes(Camera& camera, const Bounds& bounds);
+
 }  // namespace sb

@@ -26,6 +26,8 @@ struct Needs {
   bool closed_casters = false;   // every caster is a closed 2-manifold
   bool opaque_casters = false;   // cannot honour alpha-tested casters
   bool planar_receiver = false;  // a plane that receives every caster's shadow
+  // Which casters are closed (no skip): depth passes cull closed ones only.
+  bool caster_closedness = false;
 };
 
 // Everything a technique may read for one (scene, resolution).

@@ -37,7 +37,8 @@ gl::Texture upload(const TextureImage& t) {
 
 }  // namespace
 
-GpuScene::GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>& adjacency)
+GpuScene::GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>& adjacency,
+                   const std::vector<MeshDrawFlags>& flags)
     : scene_(&scene) {
   for (const auto& t : scene.textures) textures_.push_back(upload(t));
   std::vector<float> vertex_data;
@@ -63,6 +64,10 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>&
     info.alpha_cutoff = m.alpha_cutoff;
     info.double_sided = m.double_sided;
     info.casts_shadow = m.casts_shadow;
+    if (i < flags.size()) {
+      info.cullable = m.casts_shadow && flags[i].closed;
+      info.in_receiver_maps = !m.casts_shadow && flags[i].nothing_behind;
+    }
     ranges_.push_back(
         {GLsizei(m.indices.size()), GLsizeiptr(index_data.size() * 4), base, m.casts_shadow, info});
     index_data.insert(index_data.end(), m.indices.begin(), m.indices.end());
@@ -100,6 +105,16 @@ void GpuScene::draw_all(const std::function<void(const DrawInfo&)>& setup) const
     setup(r.info);
     draw(r, GL_TRIANGLES);
   }
+}
+
+void GpuScene::draw_casters_and_map_receivers(
+    const std::function<void(const DrawInfo&)>& setup) const {
+  glBindVertexArray(vao_.get());
+  for (const auto& r : ranges_)
+    if (r.casts_shadow || r.info.in_receiver_maps) {
+      setup(r.info);
+      draw(r, GL_TRIANGLES);
+    }
 }
 
 void GpuScene::draw_casters(const std::function<void(const DrawInfo&)>& setup) const {

@@ -20,12 +20,27 @@ struct DrawInfo {
   float alpha_cutoff = 0.5f;
   bool double_sided = false;
   bool casts_shadow = true;
+  // A closed caster: a depth pass may cull its front or back faces. Culling
+  // an open one (a roof quad) would drop the faces that make its shadow.
+  bool cullable = false;
+  // A receiver with nothing behind it from the light: filtered maps may draw
+  // it to give their filters a floor (filtered_map.h). Any other receiver in
+  // a map would occlude what lies behind it, which it does not.
+  bool in_receiver_maps = false;
+};
+
+// What the plan derived about each mesh; empty: nothing culled, no receiver
+// in maps.
+struct MeshDrawFlags {
+  bool closed = false;
+  bool nothing_behind = false;
 };
 
 class GpuScene {
  public:
   // adjacency: per mesh, indices from build_adjacency_indices(), or empty.
-  GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>& adjacency);
+  GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>& adjacency,
+           const std::vector<MeshDrawFlags>& flags = {});
 
   const Scene& scene() const { return *scene_; }
   bool has_alpha_tested_casters() const;
@@ -33,6 +48,8 @@ class GpuScene {
   // before each mesh so the pass can switch programs, uniforms or culling.
   void draw_all(const std::function<void(const DrawInfo&)>& setup) const;
   void draw_casters(const std::function<void(const DrawInfo&)>& setup) const;
+  // The casters and the receivers marked in_receiver_maps.
+  void draw_casters_and_map_receivers(const std::function<void(const DrawInfo&)>& setup) const;
   // Casters only, ignoring materials (for passes that cannot honour masks).
   void draw_casters() const;
   bool has_adjacency() const { return adjacency_count_ > 0; }

@@ -8,7 +8,15 @@ std::string to_string(TimingSource s) {
   return s == TimingSource::CpuFinish ? "cpu_glfinish" : "gl_timer_query";
 }
 
-PassTimer::PassTimer(TimingSource source) : source_(source) {}
+std::string to_string(PassDetail d) { return d == PassDetail::Coarse ? "coarse" : "fine"; }
+
+PassDetail pass_detail_from_string(const std::string& s) {
+  if (s == "coarse") return PassDetail::Coarse;
+  if (s == "fine") return PassDetail::Fine;
+  throw std::invalid_argument("expected coarse or fine, found '" + s + "'");
+}
+
+PassTimer::PassTimer(TimingSource source, PassDetail detail) : source_(source), detail_(detail) {}
 
 PassTimer::~PassTimer() {
   for (auto& [name, q] : queries_) free_queries_.push_back(q);
@@ -19,14 +27,25 @@ PassTimer::~PassTimer() {
 void PassTimer::begin_frame() {
   glFinish();
   cpu_passes_.clear();
+  open_timed_.clear();
+  current_.clear();
   for (auto& [name, q] : queries_) free_queries_.push_back(q);
   queries_.clear();
   frame_start_ = Clock::now();
 }
 
 void PassTimer::begin(const std::string& pass) {
+  if (detail_ == PassDetail::Coarse) {
+    open_timed_.push_back(false);
+    return;
+  }
+  begin_bracket(pass);
+}
+
+void PassTimer::begin_bracket(const std::string& pass) {
   if (!current_.empty())
     throw std::logic_error("pass '" + pass + "' begun inside '" + current_ + "'");
+  open_timed_.push_back(true);
   current_ = pass;
   if (source_ == TimingSource::CpuFinish) {
     glFinish();
@@ -45,7 +64,15 @@ void PassTimer::begin(const std::string& pass) {
 }
 
 void PassTimer::end() {
-  if (current_.empty()) throw std::logic_error("PassTimer::end without begin");
+  if (open_timed_.empty()) throw std::logic_error("PassTimer::end without begin");
+  close();
+}
+
+void PassTimer::close() noexcept {
+  if (open_timed_.empty()) return;
+  const bool timed = open_timed_.back();
+  open_timed_.pop_back();
+  if (!timed) return;
   if (source_ == TimingSource::CpuFinish) {
     glFinish();
     const double ms = std::chrono::duration<double, std::milli>(Clock::now() - pass_start_).count();

@@ -16,6 +16,7 @@
 #include "gl/debug.h"
 #include "gl/gpu_scene.h"
 #include "metrics/image_io.h"
+#include "metrics/light_horizon.h"
 #include "metrics/metrics.h"
 #include "reference/embree_isa.h"
 #include "reference/reference.h"
@@ -25,6 +26,7 @@
 #include "results/timing_stats.h"
 #include "run/gbuffer.h"
 #include "run/progress.h"
+#include "scenes/receiver_inference.h"
 #include "scenes/scene_analysis.h"
 
 namespace sb {
@@ -65,36 +67,9 @@ json stats_json(const metrics::ErrorStats& s) {
           {"mean_signed", json_number(s.mean_signed)}};
 }
 
-// Three regions: every pixel; the reference's penumbra; and the soft pixels
-// of either the technique or the reference (`soft_union`), which also sees
-// light bleeding into a true umbra and blur outside the true penumbra.
-json compare_json(const ImageF& test, const ImageF& ref, const std::vector<uint8_t>& penumbra,
-                  const std::vector<uint8_t>& soft_union) {
-  json j;
-  j["all"] = stats_json(metrics::compare(test, ref));
-  j["penumbra"] = stats_json(metrics::compare(test, ref, &penumbra));
-  j["soft_union"] = stats_json(metrics::compare(test, ref, &soft_union));
-  return j;
-}
-
-// Pixels whose surface faces away from every point of the light: they are in
-// attached shadow whatever any technique says, and shading ignores V there
-// (N·L <= 0). Visibility is defined as 0 on them for every technique and the
-// reference alike, so the error measures cast shadows only.
-std::vector<uint8_t> attached_shadow_mask(const ImageF& positions, const ImageF& normals,
-                                          const AreaLight& light) {
-  std::vector<uint8_t> mask(positions.pixel_count(), 0);
-  const glm::vec3 corners[4] = {light.point(0, 0), light.point(1, 0), light.point(0, 1),
-                                light.point(1, 1)};
-  for (size_t i = 0; i < mask.size(); ++i) {
-    if (positions.data[i * 4 + 3] == 0.0f) continue;
-    const glm::vec3 p(positions.data[i * 4], positions.data[i * 4 + 1], positions.data[i * 4 + 2]);
-    const glm::vec3 n(normals.data[i * 3], normals.data[i * 3 + 1], normals.data[i * 3 + 2]);
-    bool faces = false;
-    for (const auto& c : corners) faces = faces || glm::dot(n, c - p) > 0.0f;
-    mask[i] = faces ? 0 : 1;
-  }
-  return mask;
+std::vector<uint8_t> mask_and(std::vector<uint8_t> a, const std::vector<uint8_t>& b) {
+  for (size_t i = 0; i < a.size(); ++i) a[i] = a[i] && b[i] ? 1 : 0;
+  return a;
 }
 
 // A technique's visibility must be finite and in [0,1]; float rounding of
@@ -120,9 +95,43 @@ VisibilityCheck check_visibility(const ImageF& v) {
   return c;
 }
 
-void apply_attached_shadow(const std::vector<uint8_t>& mask, ImageF& visibility) {
-  for (size_t i = 0; i < mask.size(); ++i)
-    if (mask[i]) visibility.data[i] = 0.0f;
+// Pixels whose surface faces away from every point of the light are in
+// attached shadow whatever any technique says: V = 0 there for every
+// technique and the reference alike, so the error measures cast shadows only.
+void apply_attached_shadow(const std::vector<uint8_t>& attached, ImageF& visibility) {
+  for (size_t i = 0; i < attached.size(); ++i)
+    if (attached[i]) visibility.data[i] = 0.0f;
+}
+
+// The unmeasured pixels (mask 0) take the reference's values: they show no
+// error in the heat map and in SSIM's windows.
+ImageF with_unmeasured_from(const ImageF& test, const ImageF& ref,
+                            const std::vector<uint8_t>& measured) {
+  ImageF out = test;
+  for (size_t i = 0; i < measured.size(); ++i)
+    if (!measured[i])
+      for (int c = 0; c < out.channels; ++c)
+        out.data[i * size_t(out.channels) + size_t(c)] =
+            ref.data[i * size_t(ref.channels) + size_t(c)];
+  return out;
+}
+
+// Three regions, each only over the measured pixels (all but those whose
+// tangent plane cuts the light; see metrics/light_horizon.h): every pixel;
+// the reference's penumbra; and the soft pixels of either the technique or
+// the reference (`soft_union`), which also sees light bleeding into a true
+// umbra and blur outside the true penumbra.
+//
+// SSIM's windows reach past the mask, so the unmeasured pixels take the
+// reference's values first: they add no error to a neighbour either.
+json compare_json(const ImageF& test, const ImageF& ref, const std::vector<uint8_t>& measured,
+                  const std::vector<uint8_t>& penumbra, const std::vector<uint8_t>& soft_union) {
+  const ImageF t = with_unmeasured_from(test, ref, measured);
+  json j;
+  j["all"] = stats_json(metrics::compare(t, ref, &measured));
+  j["penumbra"] = stats_json(metrics::compare(t, ref, &penumbra));
+  j["soft_union"] = stats_json(metrics::compare(t, ref, &soft_union));
+  return j;
 }
 
 // Undo whatever state a technique left behind.
@@ -140,11 +149,32 @@ void reset_gl_state() {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
+// Pixel sets shared by every job of one (scene, resolution).
+struct Regions {
+  std::vector<uint8_t> measured;  // all but the pixels whose tangent plane cuts the light
+  std::vector<uint8_t> penumbra;  // the reference's soft pixels, measured ones only
+  std::vector<uint8_t> attached;  // the light wholly below the tangent plane: V = 0
+};
+
 struct SceneState {
   Scene scene;
   SceneCapabilities caps;
   std::vector<std::string> skip_reason;  // per technique variant
+  std::vector<std::string> inferred_receivers;
 };
+
+// Per mesh: closed (depth passes may cull it; known when a technique in the
+// plan asked for closedness) and, for receivers, whether nothing lies behind
+// them from the light (filtered maps may draw them).
+std::vector<MeshDrawFlags> draw_flags(const SceneState& st) {
+  std::vector<MeshDrawFlags> flags(st.scene.meshes.size());
+  for (size_t i = 0; i < flags.size(); ++i) {
+    const Mesh& m = st.scene.meshes[i];
+    flags[i].closed = m.casts_shadow && st.caps.closedness_checked && st.caps.topology[i].closed();
+    flags[i].nothing_behind = !m.casts_shadow && can_shadow_nothing(st.scene, i);
+  }
+  return flags;
+}
 
 class Runner {
  public:
@@ -216,7 +246,9 @@ class Runner {
       scene["camera"] = {
           {"eye", vec_json(c.eye)}, {"target", vec_json(c.target)}, {"fov_y", c.fov_y_degrees}};
       scene["derived"] = {{"closedness_checked", st->caps.closedness_checked},
-                          {"adjacency_built", st->caps.adjacency_built}};
+                          {"adjacency_built", st->caps.adjacency_built},
+                          {"receiver_inference", sv.infer_receivers},
+                          {"inferred_receivers", st->inferred_receivers}};
     }
     r["scene"] = scene;
     r["technique_variant"] = tv.name;
@@ -249,7 +281,8 @@ class Runner {
                         {{"type", sv.type},
                          {"params", sv.params.json()},
                          {"light", sv.light},
-                         {"camera", sv.camera}}},
+                         {"camera", sv.camera},
+                         {"infer_receivers", sv.infer_receivers}}},
                        {"resolution", res.label()},
                        {"technique", {{"name", tv.info->name}, {"params", tv.params.json()}}},
                        {"frames", {e_.warmup_frames, e_.timed_frames}},
@@ -310,6 +343,13 @@ class Runner {
     std::string scene_error;
     try {
       st.scene = build_scene(sv, e_.file);
+      if (sv.infer_receivers) st.inferred_receivers = infer_receivers(st.scene);
+      if (!st.inferred_receivers.empty()) {
+        std::string names;
+        for (const auto& n : st.inferred_receivers)
+          names += (names.empty() ? "'" : ", '") + n + "'";
+        log("scene " + sv.name + ": inferred receivers (planar, can shadow nothing): " + names);
+      }
       st.caps = check_closedness(st.scene, infos);
       std::vector<const TechniqueInfo*> running;
       for (const auto& tv : e_.techniques) {
@@ -360,7 +400,7 @@ class Runner {
       }
       if (pending.empty()) continue;
       try {
-        if (!gpu) gpu = std::make_unique<GpuScene>(st.scene, st.caps.adjacency);
+        if (!gpu) gpu = std::make_unique<GpuScene>(st.scene, st.caps.adjacency, draw_flags(st));
         run_resolution(sv, st, *gpu, res, pending);
       } catch (const std::exception& ex) {
         // Shared work (G-buffer, reference) failed: every pending job fails.
@@ -401,9 +441,14 @@ class Runner {
     log("reference " + sv.name + " @ " + res.label() + ": " + std::to_string(ref.spp) + " spp, " +
         (ref.from_cache ? std::string("from cache") : std::to_string(ref.seconds) + " s") +
         ", mean std error " + std::to_string(ref.mean_std_error));
-    const std::vector<uint8_t> attached = attached_shadow_mask(positions, normals, st.scene.light);
+    const auto horizon = metrics::classify_light_horizon(positions, normals, st.scene.light);
+    const std::vector<uint8_t> attached =
+        metrics::horizon_mask(horizon, metrics::LightHorizon::Below);
+    std::vector<uint8_t> measured = metrics::horizon_mask(horizon, metrics::LightHorizon::Cuts);
+    for (auto& m : measured) m = m ? 0 : 1;
     apply_attached_shadow(attached, ref.visibility);
-    const std::vector<uint8_t> penumbra = metrics::penumbra_mask(ref.visibility);
+    const std::vector<uint8_t> penumbra =
+        mask_and(metrics::penumbra_mask(ref.visibility), measured);
 
     targets.upload_visibility(ref.visibility);
     targets.render_shading(st.scene);
@@ -437,6 +482,7 @@ class Runner {
         {"penumbra_rms_std_error", ref.penumbra_rms_std_error},
         {"penumbra_pixels", std::count(penumbra.begin(), penumbra.end(), uint8_t(1))},
         {"attached_shadow_pixels", std::count(attached.begin(), attached.end(), uint8_t(1))},
+        {"horizon_cut_pixels", std::count(measured.begin(), measured.end(), uint8_t(0))},
         {"cache_key", ref.cache_key},
         {"from_cache", ref.from_cache},
         {"seconds", ref.seconds}};
@@ -451,8 +497,8 @@ class Runner {
       r["reference"] = ref_json;
       const auto t0 = std::chrono::steady_clock::now();
       try {
-        run_job(tv, targets, gpu, st.scene, view_projection, in, ref, ref_shaded, penumbra,
-                attached, id, r);
+        run_job(tv, targets, gpu, st.scene, view_projection, in, ref, ref_shaded,
+                {measured, penumbra, attached}, id, r);
         for (const auto& [k, v] : ref_images.items()) r["images"][k] = v;
         r["status"] = "ok";
       } catch (const std::exception& ex) {
@@ -469,8 +515,7 @@ class Runner {
 
   void run_job(const TechniqueVariant& tv, FrameTargets& targets, const GpuScene& gpu,
                const Scene& scene, const glm::mat4& view_projection, const FrameInputs& in,
-               const reference::Result& ref, const ImageF& ref_shaded,
-               const std::vector<uint8_t>& penumbra, const std::vector<uint8_t>& attached,
+               const reference::Result& ref, const ImageF& ref_shaded, const Regions& regions,
                const std::string& id, json& r) {
     gl::take_debug_errors();
     std::unique_ptr<Technique> technique = tv.info->create(tv.params);
@@ -478,49 +523,74 @@ class Runner {
     gl::throw_if_errors(tv.name + " prepare");
 
     gl::PassTimer timer(timing_source_);
-    std::vector<double> frame_ms, technique_ms;
-    std::map<std::string, std::vector<double>> pass_ms, shared_ms;
-    std::vector<std::string> pass_order;
+    // One frame: the G-buffer, the technique and shading, each in one
+    // harness bracket. In fine detail the technique's own passes are the
+    // brackets instead, and the sum of their times is what it pays for them.
+    const auto run_frame = [&](const std::string& frame_name, gl::PassDetail detail) {
+      timer.set_detail(detail);
+      reset_gl_state();
+      timer.begin_frame();
+      {
+        auto p = timer.bracket("shared:gbuffer");
+        targets.render_gbuffer(gpu, view_projection);
+      }
+      reset_gl_state();
+      if (detail == gl::PassDetail::Coarse) {
+        auto p = timer.bracket("technique");
+        technique->render(in, timer);
+      } else {
+        technique->render(in, timer);
+      }
+      gl::throw_if_errors(tv.name + " " + frame_name);
+      reset_gl_state();
+      {
+        auto p = timer.bracket("shared:shading");
+        targets.render_shading(scene);
+      }
+      auto frame = timer.end_frame();
+      gl::throw_if_errors(tv.name + " " + frame_name);
+      return frame;
+    };
+    struct Samples {
+      std::vector<double> frame, technique;
+      std::map<std::string, std::vector<double>> passes, shared;
+      std::vector<std::string> pass_order;
+      void add(const gl::PassTimer::Frame& f) {
+        frame.push_back(f.total_ms);
+        double tech = 0.0;
+        for (const auto& [name, ms] : f.passes) {
+          if (name.rfind("shared:", 0) == 0) {
+            shared[name.substr(7)].push_back(ms);
+            continue;
+          }
+          if (name != "technique" && !passes.count(name)) pass_order.push_back(name);
+          if (name != "technique") passes[name].push_back(ms);
+          tech += ms;
+        }
+        technique.push_back(tech);
+      }
+    };
+    Samples coarse, fine;
     const int frames = e_.warmup_frames + e_.timed_frames;
     // Frame -1 is never timed, whatever the warm-up count: shader compilation
     // and the driver's first-use work must not land in a timed frame (with
     // "warmup": 0 they would, and only for the techniques compiled last).
     for (int f = -1; f < frames; ++f) {
-      const std::string frame_name = f < 0 ? "compile frame" : "frame " + std::to_string(f);
-      reset_gl_state();
-      timer.begin_frame();
-      {
-        auto p = timer.scope("shared:gbuffer");
-        targets.render_gbuffer(gpu, view_projection);
-      }
-      reset_gl_state();
-      technique->render(in, timer);
-      gl::throw_if_errors(tv.name + " " + frame_name);
-      reset_gl_state();
-      {
-        auto p = timer.scope("shared:shading");
-        targets.render_shading(scene);
-      }
-      const auto frame = timer.end_frame();
-      gl::throw_if_errors(tv.name + " " + frame_name);
-      if (f < e_.warmup_frames) continue;
-      frame_ms.push_back(frame.total_ms);
-      double tech = 0.0;
-      for (const auto& [name, ms] : frame.passes) {
-        if (name.rfind("shared:", 0) == 0) {
-          shared_ms[name.substr(7)].push_back(ms);
-          continue;
-        }
-        if (!pass_ms.count(name)) pass_order.push_back(name);
-        pass_ms[name].push_back(ms);
-        tech += ms;
-      }
-      technique_ms.push_back(tech);
+      const auto frame =
+          run_frame(f < 0 ? "compile frame" : "frame " + std::to_string(f), gl::PassDetail::Coarse);
+      if (f >= e_.warmup_frames) coarse.add(frame);
     }
+    // Per-pass detail in frames of its own, so its syncs never reach the
+    // technique's time above.
+    if (o_.pass_detail == gl::PassDetail::Fine)
+      for (int f = 0; f < e_.timed_frames; ++f)
+        fine.add(run_frame("fine frame " + std::to_string(f), gl::PassDetail::Fine));
+
     json timing;
     timing["compile_frames"] = 1;
     timing["warmup_frames"] = e_.warmup_frames;
     timing["timed_frames"] = e_.timed_frames;
+    timing["pass_timing"] = gl::to_string(o_.pass_detail);
     // Statistics plus the raw per-frame samples, in frame order: comparisons
     // between runs test the samples themselves (shadowbench compare).
     const auto with_samples = [](const std::vector<double>& v) {
@@ -528,12 +598,19 @@ class Runner {
       j["samples_ms"] = v;
       return j;
     };
-    timing["frame"] = with_samples(frame_ms);
-    timing["technique"] = with_samples(technique_ms);
-    timing["passes"] = json::object();
-    for (const auto& name : pass_order) timing["passes"][name] = with_samples(pass_ms[name]);
-    timing["pass_order"] = pass_order;
-    for (const auto& [name, v] : shared_ms) timing["shared"][name] = with_samples(v);
+    timing["frame"] = with_samples(coarse.frame);
+    timing["technique"] = with_samples(coarse.technique);
+    for (const auto& [name, v] : coarse.shared) timing["shared"][name] = with_samples(v);
+    if (o_.pass_detail == gl::PassDetail::Fine) {
+      timing["passes"] = json::object();
+      for (const auto& name : fine.pass_order)
+        timing["passes"][name] = with_samples(fine.passes[name]);
+      timing["pass_order"] = fine.pass_order;
+      // The same frames' sums: what per-pass syncs cost, against "technique".
+      timing["fine"] = {{"frames", e_.timed_frames},
+                        {"technique", with_samples(fine.technique)},
+                        {"frame", with_samples(fine.frame)}};
+    }
     r["timing"] = timing;
 
     ImageF visibility = targets.read_visibility();
@@ -542,12 +619,17 @@ class Runner {
                              {"below_0", check.below_zero},
                              {"above_1", check.above_one},
                              {"tolerance", kVisibilityTolerance}};
-    apply_attached_shadow(attached, visibility);
+    apply_attached_shadow(regions.attached, visibility);
+    // Shaded from the same V as the metrics, as the reference is: untimed.
+    targets.upload_visibility(visibility);
+    targets.render_shading(scene);
     const ImageF shaded = targets.read_shaded();
     json m;
-    const std::vector<uint8_t> soft_union = metrics::soft_union_mask(visibility, ref.visibility);
-    m["visibility"] = compare_json(visibility, ref.visibility, penumbra, soft_union);
-    m["shaded"] = compare_json(shaded, ref_shaded, penumbra, soft_union);
+    const std::vector<uint8_t> soft_union =
+        mask_and(metrics::soft_union_mask(visibility, ref.visibility), regions.measured);
+    m["visibility"] =
+        compare_json(visibility, ref.visibility, regions.measured, regions.penumbra, soft_union);
+    m["shaded"] = compare_json(shaded, ref_shaded, regions.measured, regions.penumbra, soft_union);
     r["metrics"] = m;
 
     // A reference whose noise is comparable to the error cannot rank techniques.
@@ -566,8 +648,10 @@ class Runner {
       fs::create_directories(fs::path(store_.dir()) / rel);
       io::write_exr((fs::path(store_.dir()) / rel / "visibility.exr").string(), visibility);
       io::write_png((fs::path(store_.dir()) / rel / "shaded.png").string(), shaded);
-      io::write_png((fs::path(store_.dir()) / rel / "error.png").string(),
-                    metrics::error_heatmap(visibility, ref.visibility, kHeatmapFullScale));
+      io::write_png(
+          (fs::path(store_.dir()) / rel / "error.png").string(),
+          metrics::error_heatmap(with_unmeasured_from(visibility, ref.visibility, regions.measured),
+                                 ref.visibility, kHeatmapFullScale));
       r["images"] = {{"visibility", rel + "/visibility.exr"},
                      {"shaded", rel + "/shaded.png"},
                      {"error_heatmap", rel + "/error.png"},

@@ -9,6 +9,7 @@
 #include "core/names.h"
 #include "core/registry.h"
 #include "gl/context.h"
+#include "gl/pass_timer.h"
 
 namespace sb {
 
@@ -22,6 +23,9 @@ struct RunOptions {
   bool quiet = false;
   // Overrides the experiment's reference.embree_config ("isa=avx2", ...).
   std::string embree_config;
+  // Coarse: one timing bracket around each technique. Fine: also time each
+  // of its passes, in extra frames that never enter the technique's time.
+  gl::PassDetail pass_detail = gl::PassDetail::Coarse;
 };
 
 struct RunSummary {

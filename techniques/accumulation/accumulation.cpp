@@ -95,7 +95,7 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
                  bool_param("jitter", true, "jitter each point inside its stratum"),
                  int_param("seed", 1, 0, 2147483647, "jitter seed")});
   registry.add({"accumulation", "accumulation",
-                "average of N hard shadow maps from stratified points on the area light", Needs{},
-                std::move(params),
+                "average of N hard shadow maps from stratified points on the area light",
+                Needs{.caster_closedness = true}, std::move(params),
                 [](const Params& p) { return std::make_unique<shadow::Accumulation>(p); }});
 }

@@ -31,8 +31,9 @@ void main() {
 }
 )";
 
-void set_cull(CullMode cull, bool double_sided) {
-  if (cull == CullMode::None || double_sided) {
+void set_cull(CullMode cull, const DrawInfo& d) {
+  // Receivers, double-sided and open meshes keep every face.
+  if (cull == CullMode::None || !d.casts_shadow || d.double_sided || !d.cullable) {
     glDisable(GL_CULL_FACE);
   } else {
     glEnable(GL_CULL_FACE);
@@ -117,10 +118,10 @@ void DepthMap::render(const GpuScene& gpu, const LightFrustum& f, CullMode cull,
       masked_program_.set("alpha_cutoff", d.alpha_cutoff);
       glBindTextureUnit(0, d.texture);
     }
-    set_cull(d.casts_shadow ? cull : CullMode::None, d.double_sided);
+    set_cull(cull, d);
   };
   if (receivers_too)
-    gpu.draw_all(setup);
+    gpu.draw_casters_and_map_receivers(setup);
   else
     gpu.draw_casters(setup);
   glDisable(GL_POLYGON_OFFSET_FILL);

@@ -48,10 +48,13 @@ class DepthMap {
   // A square depth map in `depth_format`. How it is read (compared or raw,
   // nearest or linear) is up to the sampler object bound with it.
   DepthMap(int size, GLenum depth_format);
-  // `receivers_too`: also draw the meshes that cast no shadow (the ground),
+  // `receivers_too`: also draw the receivers that have nothing behind them
+  // from the light (DrawInfo::in_receiver_maps: a ground under everything),
   // unculled. Filtered maps need them: their filters average the occluder
   // depth with what lies around it, and an empty texel reads as the far
   // plane, which would drag every average far behind the real receiver.
+  // Only closed casters are culled (`cull`); open and double-sided ones
+  // keep both faces.
   void render(const GpuScene& gpu, const LightFrustum& f, CullMode cull, DepthBias bias,
               bool receivers_too = false);
   GLuint texture() const { return texture_.get(); }

@@ -41,10 +41,14 @@ void main() {
   if (pos.w == 0.0) { visibility = weight; return; }
   receiver_normal = texelFetch(normal_tex, p, 0).xyz;
   receiver_world = offset_world(pos.xyz, receiver_normal, light_point, normal_offset);
+  // Behind the light's eye plane (w <= 0) the projection mirrors a point into
+  // the map. Every caster lies in front of that plane, and the segment from
+  // such a point to the light's centre does not: it is unshadowed.
+  bool behind_light = (light_view_projection * vec4(receiver_world, 1.0)).w <= 0.0;
   vec3 t = light_coords(light_view_projection, receiver_world);
   // Outside the map's cone nothing stands between the point and the light's
   // centre: the cone holds every caster.
-  if (any(lessThan(t.xy, vec2(0.0))) || any(greaterThan(t.xy, vec2(1.0)))) {
+  if (behind_light || any(lessThan(t.xy, vec2(0.0))) || any(greaterThan(t.xy, vec2(1.0)))) {
     visibility = weight * above_horizon(receiver_normal, pos.xyz, light_point);
     return;
   }

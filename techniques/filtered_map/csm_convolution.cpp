@@ -9,12 +9,18 @@
 // the near plane over a receiver on the far one. Ringing is
 // damped with exp(−damping·(k/M)²) per term, and the reconstruction is
 // sharpened around ½ (Annen et al.'s 2f − ½ is sharpen = 2).
+// The truncated series rises from 0 to 1 over about 1/M around d = z, so a
+// lit surface compared with its own depth (a double-sided leaf, an open
+// quad: nothing is culled on them) reads ½. As Annen et al. do, the receiver
+// is moved towards the light by ε = receiver_offset / (2M) in normalised
+// depth before the comparison; contact shadows closer than ε leak.
 //
 // | parameter           | default | meaning                                        |
 // |---------------------|---------|------------------------------------------------|
 // | terms               | 16      | M, Fourier terms: 2M basis values, M/2 layers  |
 // | damping             | 1       | ringing suppression per term                   |
 // | sharpen             | 2       | V = clamp(sharpen·(f − ½) + ½)                 |
+// | receiver_offset     | 1       | ε = receiver_offset / (2M), normalised depth   |
 // | prefilter, k, sigma | none, 5 | separable prefilter of the basis               |
 // | format              | "32f"   | "32f" or "16f"                                 |
 // | size, depth_format, constant_bias, slope_bias, cull, normal_offset: as in shadow_map |
@@ -41,8 +47,9 @@ const char* const kCsmLookup = R"(
 uniform int terms;
 uniform float term_weights[32];  // damping / c_k
 uniform float sharpen;
+uniform float receiver_offset;  // already divided by 2M
 float lit_fraction(vec3 t) {
-  float z = receiver_depth01();
+  float z = receiver_depth01() - receiver_offset;
   float f = 0.5;
   for (int k = 0; k < terms; ++k) {
     vec4 m = texture(moments, vec3(t.xy, float(k / 2)));
@@ -61,7 +68,8 @@ class ConvolutionShadowMap final : public FilteredMapTechnique {
                              {2 * p.get_int("terms"), kCsmBasis, kCsmLookup,
                               SeparableFilter::Mode::Linear, 0.0f, /*receivers_in_map=*/false}),
         terms_(p.get_int("terms")),
-        sharpen_(p.get_float("sharpen")) {
+        sharpen_(p.get_float("sharpen")),
+        receiver_offset_(p.get_float("receiver_offset") / float(2 * terms_)) {
     const double damping = p.get_float("damping");
     for (int k = 0; k < terms_; ++k) {
       const double c = std::numbers::pi * double(2 * k + 1);
@@ -75,11 +83,13 @@ class ConvolutionShadowMap final : public FilteredMapTechnique {
     lookup.set("terms", terms_);
     lookup.set("term_weights", weights_);
     lookup.set("sharpen", sharpen_);
+    lookup.set("receiver_offset", receiver_offset_);
   }
 
  private:
   int terms_;
   float sharpen_;
+  float receiver_offset_;
   std::vector<float> weights_;
 };
 
@@ -94,11 +104,15 @@ TechniqueInfo csm_convolution_info() {
                  float_param("damping", 1.0, 0.0, 100.0,
                              "ringing suppression: term k is weighted exp(-damping·(k/M)²)"),
                  float_param("sharpen", 2.0, 1.0, 16.0,
-                             "V = clamp(sharpen·(f − ½) + ½); 2 is Annen et al.'s 2f − ½")});
+                             "V = clamp(sharpen·(f − ½) + ½); 2 is Annen et al.'s 2f − ½"),
+                 float_param("receiver_offset", 1.0, 0.0, 64.0,
+                             "receiver moved towards the light by receiver_offset/(2M) in "
+                             "normalised depth (Annen et al. 2007), so lit unculled surfaces "
+                             "do not read their own depth as ½")});
   return {"csm_convolution",
           "filtered_map",
           "convolution shadow map, M Fourier terms (Annen et al. 2007)",
-          Needs{},
+          Needs{.caster_closedness = true},
           std::move(params),
           [](const Params& p) { return std::make_unique<ConvolutionShadowMap>(p); }};
 }

@@ -111,7 +111,7 @@ TechniqueInfo evsm_info() {
   return {"evsm",
           "filtered_map",
           "exponential variance shadow map, 2 or 4 components (Lauritzen & McCool 2008)",
-          Needs{},
+          Needs{.caster_closedness = true},
           std::move(params),
           [](const Params& p) { return std::make_unique<Evsm>(p); }};
 }

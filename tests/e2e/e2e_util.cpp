@@ -53,6 +53,17 @@ ImageF RunOutput::image(const nlohmann::json& record, const std::string& key) co
 
 RunOutput run_config(const nlohmann::json& config, const std::string& name, gl::Backend backend,
                      bool fresh, bool write_gbuffer) {
+  return run_config_with(
+      config, name,
+      [&](RunOptions& o) {
+        o.backend = backend;
+        o.write_gbuffer = write_gbuffer;
+      },
+      fresh);
+}
+
+RunOutput run_config_with(const nlohmann::json& config, const std::string& name,
+                          const std::function<void(RunOptions&)>& adjust, bool fresh) {
   RunOutput out;
   out.dir = (fs::temp_directory_path() / ("shadowbench_e2e_" + name)).string();
   if (fresh) fs::remove_all(out.dir);
@@ -60,10 +71,9 @@ RunOutput run_config(const nlohmann::json& config, const std::string& name, gl::
   RunOptions o;
   o.run_dir = out.dir;
   o.run_id = name;
-  o.backend = backend;
   o.cache_dir = (fs::temp_directory_path() / "shadowbench_e2e_cache").string();
   o.quiet = true;
-  o.write_gbuffer = write_gbuffer;
+  adjust(o);
   out.summary = run_experiment(e, o);
   out.records = read_run_records(out.dir);
   return out;

@@ -1,6 +1,7 @@
 #pragma once
 // Runs small experiments through the real driver code path and reads back
 // what they wrote.
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -27,6 +28,9 @@ struct RunOutput {
 RunOutput run_config(const nlohmann::json& config, const std::string& name,
                      gl::Backend backend = gl::Backend::OSMesa, bool fresh = true,
                      bool write_gbuffer = false);
+// The same, with the run's options adjusted before it starts.
+RunOutput run_config_with(const nlohmann::json& config, const std::string& name,
+                          const std::function<void(RunOptions&)>& adjust, bool fresh = true);
 
 // A small sphere grid seen from close by, for fast runs.
 nlohmann::json small_scene(double light_size);

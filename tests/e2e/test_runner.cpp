@@ -38,9 +38,10 @@ TEST(Runner, WritesEveryOutputWithTimingAndMetrics) {
   ASSERT_EQ(frames.size(), 3u);
   EXPECT_DOUBLE_EQ(*std::min_element(frames.begin(), frames.end()),
                    r["timing"]["frame"]["min_ms"].get<double>());
-  EXPECT_EQ(r["timing"]["passes"]["lookup"]["samples_ms"].size(), 3u);
-  EXPECT_TRUE(r["timing"]["passes"].contains("shadow_map"));
-  EXPECT_TRUE(r["timing"]["passes"].contains("lookup"));
+  // Coarse pass timing by default: one bracket per technique, no passes.
+  EXPECT_EQ(r["timing"]["pass_timing"], "coarse");
+  EXPECT_FALSE(r["timing"].contains("passes"));
+  EXPECT_EQ(r["timing"]["technique"]["samples_ms"].size(), 3u);
   EXPECT_TRUE(r["timing"]["shared"].contains("gbuffer"));
   EXPECT_GE(r["timing"]["frame"]["median_ms"].get<double>(),
             r["timing"]["technique"]["median_ms"].get<double>());
@@ -57,9 +58,14 @@ TEST(Runner, WritesEveryOutputWithTimingAndMetrics) {
 
 TEST(Runner, SkipsWithAReasonAndBuildsNoAdjacencyForShadowMapsOnly) {
   const auto before = derived_data_counters();
-  run_config(config_with(small_scene(1.0), json::array({"shadow_map", "pcf_box"})), "no_adjacency");
+  run_config(config_with(small_scene(1.0), json::array({"none"})), "nothing_derived");
   EXPECT_EQ(derived_data_counters().adjacency_builds, before.adjacency_builds);
   EXPECT_EQ(derived_data_counters().closedness_checks, before.closedness_checks);
+  // Depth maps ask which casters are closed (they cull only those), not
+  // for adjacency.
+  run_config(config_with(small_scene(1.0), json::array({"shadow_map", "pcf_box"})), "no_adjacency");
+  EXPECT_EQ(derived_data_counters().adjacency_builds, before.adjacency_builds);
+  EXPECT_GT(derived_data_counters().closedness_checks, before.closedness_checks);
 
   const auto out =
       run_config(config_with(small_scene(1.0), json::array({"shadow_volume"})), "adjacency");

@@ -1,0 +1,70 @@
+#include "scenes/receiver_inference.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace sb {
+
+std::optional<glm::dvec4> mesh_plane(const Mesh& m, double eps) {
+  glm::dvec3 n(0.0);
+  double best = 0.0;
+  for (size_t t = 0; t < m.triangle_count(); ++t) {
+    const glm::dvec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+                     c = m.positions[m.indices[3 * t + 2]];
+    const glm::dvec3 cr = glm::cross(b - a, c - a);
+    const double len = glm::length(cr);
+    if (len > best) {
+      best = len;
+      n = cr / len;
+    }
+  }
+  if (best == 0.0) return std::nullopt;
+  const double d = -glm::dot(n, glm::dvec3(m.positions[m.indices[0]]));
+  for (uint32_t i : m.indices)
+    if (std::fabs(glm::dot(n, glm::dvec3(m.positions[i])) + d) > eps) return std::nullopt;
+  return glm::dvec4(n, d);
+}
+
+bool can_shadow_nothing(const Scene& scene, size_t mesh) {
+  const Bounds all = scene.bounds();
+  const Mesh& m = scene.meshes.at(mesh);
+  if (all.empty() || m.triangle_count() == 0) return false;
+  // Flatness and "on the plane" within a millionth of the scene's size.
+  const double eps = 1e-6 * std::max(double(all.radius()), 1e-6);
+  const auto plane = mesh_plane(m, eps);
+  if (!plane) return false;
+  glm::dvec3 n(*plane);
+  double d = plane->w;
+  const glm::dvec3 corners[4] = {scene.light.point(0, 0), scene.light.point(1, 0),
+                                 scene.light.point(0, 1), scene.light.point(1, 1)};
+  if (glm::dot(n, corners[0]) + d < 0.0) {  // orient towards the light
+    n = -n;
+    d = -d;
+  }
+  for (const auto& c : corners)
+    if (!(glm::dot(n, c) + d > eps)) return false;
+  for (size_t j = 0; j < scene.meshes.size(); ++j) {
+    if (j == mesh) continue;
+    const Mesh& other = scene.meshes[j];
+    for (uint32_t v : other.indices)
+      if (glm::dot(n, glm::dvec3(other.positions[v])) + d < -eps) return false;
+  }
+  return true;
+}
+
+std::vector<std::string> infer_receivers(Scene& scene) {
+  // Decided on the scene as loaded, then applied: each decision is exact on
+  // its own, since a receiver still stands where it stood.
+  std::vector<size_t> receivers;
+  for (size_t i = 0; i < scene.meshes.size(); ++i)
+    if (scene.meshes[i].casts_shadow && can_shadow_nothing(scene, i)) receivers.push_back(i);
+  std::vector<std::string> names;
+  for (size_t i : receivers) {
+    scene.meshes[i].casts_shadow = false;
+    names.push_back(scene.meshes[i].name);
+  }
+  return names;
+}
+
+}  // namespace sb
