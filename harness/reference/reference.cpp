@@ -20,6 +20,7 @@
 #include "core/hash.h"
 #include "reference/embree_isa.h"
 #include "reference/embree_scene.h"
+#include "reference/ray_offset.h"
 #include "reference/shadow_packet.h"
 #include "reference/stratify.h"
 
@@ -34,12 +35,12 @@ using detail::FtzDazScope;
 constexpr const char* kMethod = "embree_stratified_packet16";
 // Bump whenever the estimate changes for the same inputs (sampling, offsets,
 // error estimate): it is part of every cache key.
-constexpr uint32_t kMethodVersion = 3;  // 2: horizon test, viewer-facing normals; 3: alpha masks
+// 2: horizon test, viewer-facing normals; 3: alpha masks; 4: ray offsets from
+// the point and its own triangles, not the scene's radius (ray_offset.h).
+constexpr uint32_t kMethodVersion = 4;
 constexpr char kMagic[8] = {'S', 'B', 'R', 'E', 'F', '\r', '\n', '\x1a'};
 constexpr uint32_t kFileVersion = 1;
 
-constexpr float kEpsScene = 1e-4f;     // × scene bounding radius
-constexpr float kEpsPosition = 1e-6f;  // × max |p_i|: ~8 float ulps of p
 constexpr float kTfar = 1.0f - 1e-4f;  // direction = light sample - origin
 
 // The settings' device config, or the environment's when they leave it empty.
@@ -65,13 +66,6 @@ void check_inputs(const ImageF& positions, const ImageF& normals, const Settings
 }
 
 bool covered(const ImageF& positions, size_t i) { return positions.data[i * 4 + 3] > 0.5f; }
-
-// Offsets must grow with the scene, receivers included (a caster's shadow
-// lands on them).
-float scene_radius(const Scene& scene) {
-  const Bounds b = scene.bounds();
-  return b.empty() ? 1.0f : std::max(b.radius(), 1e-6f);
-}
 
 void summarise(Result& r, const ImageF& positions) {
   double sum = 0, psum = 0, psum2 = 0;
@@ -107,86 +101,88 @@ void check_ray_range(const glm::vec3& o, const glm::vec3& base, const glm::vec3&
                    std::to_string(largest) + ", beyond what Embree traces (1.8e18)");
 }
 
-void trace(const Scene& scene, RTCScene rtc, const ImageF& positions, const ImageF& normals,
-           const Settings& s, Result& r) {
+void trace(const Scene& scene, const FlatScene& casters, const ImageF& positions,
+           const ImageF& normals, const Settings& s, Result& r) {
+  // Without casters only the horizon test remains.
+  RTCScene rtc = casters.empty() ? nullptr : casters.get();
+  const detail::RayOffset offset(scene, casters);
   const detail::Layout layout = detail::make_layout(s.spp);
   const AreaLight& light = scene.light;
   const glm::vec3 corner = light.center - light.half_u - light.half_v;
   const glm::vec3 eu = 2.0f * light.half_u, ev = 2.0f * light.half_v;
-  const float eps_scene = kEpsScene * scene_radius(scene);
   const int width = positions.width;
   const size_t nch = size_t(normals.channels);
   const size_t spp = size_t(s.spp);
   constexpr size_t kLanes = detail::ShadowPacket::kLanes;
 
-  tbb::parallel_for(
-      tbb::blocked_range2d<int>(0, positions.height, 8, 0, width, 8),
-      [&](const tbb::blocked_range2d<int>& tile) {
-        FtzDazScope ftz;
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        detail::ShadowPacket packet;
-        std::vector<uint8_t> visible(spp);
-        for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
-          for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-            const size_t pix = size_t(y) * size_t(width) + size_t(x);
-            if (!covered(positions, pix)) continue;  // V = 1, error 0 preset
-            const float* pp = &positions.data[pix * 4];
-            const float* np = &normals.data[pix * nch];
-            const glm::vec3 p(pp[0], pp[1], pp[2]);
-            glm::vec3 n(np[0], np[1], np[2]);
-            const glm::vec3 to_light = light.center - p;
-            const float len = glm::length(n);
-            if (len > 0.0f) {
-              n /= len;
-            } else {  // no usable normal: step towards the light instead
-              const float d = glm::length(to_light);
-              n = d > 0.0f ? to_light / d : glm::vec3(0, 1, 0);
-            }
-            // n is the G-buffer's geometric normal, facing the viewer: the side of
-            // the surface that is seen. It is not flipped towards the light: on a
-            // closed mesh that would put the origin inside the solid.
-            const float pmax = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
-            const glm::vec3 o = p + (eps_scene + kEpsPosition * pmax) * n;
-            const glm::vec3 base = corner - o;
-            check_ray_range(o, base, eu, ev, pix, width);
-            packet.reset(o);
+  tbb::parallel_for(tbb::blocked_range2d<int>(0, positions.height, 8, 0, width, 8),
+                    [&](const tbb::blocked_range2d<int>& tile) {
+                      FtzDazScope ftz;
+                      RTCIntersectContext context;
+                      rtcInitIntersectContext(&context);
+                      detail::ShadowPacket packet;
+                      std::vector<uint8_t> visible(spp);
+                      for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
+                        for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+                          const size_t pix = size_t(y) * size_t(width) + size_t(x);
+                          if (!covered(positions, pix)) continue;  // V = 1, error 0 preset
+                          const float* pp = &positions.data[pix * 4];
+                          const float* np = &normals.data[pix * nch];
+                          const glm::vec3 p(pp[0], pp[1], pp[2]);
+                          glm::vec3 n(np[0], np[1], np[2]);
+                          const glm::vec3 to_light = light.center - p;
+                          const float len = glm::length(n);
+                          if (len > 0.0f) {
+                            n /= len;
+                          } else {  // no usable normal: step towards the light instead
+                            const float d = glm::length(to_light);
+                            n = d > 0.0f ? to_light / d : glm::vec3(0, 1, 0);
+                          }
+                          // n is the G-buffer's geometric normal, facing the viewer: the side of
+                          // the surface that is seen. It is not flipped towards the light: on a
+                          // closed mesh that would put the origin inside the solid.
+                          const glm::vec3 o = p + offset.at(p) * n;
+                          const glm::vec3 base = corner - o;
+                          check_ray_range(o, base, eu, ev, pix, width);
+                          packet.reset(o);
 
-            const uint64_t key = detail::pixel_key(s.seed, pix, spp);
-            for (size_t first = 0; first < spp; first += kLanes) {
-              const size_t lanes = std::min(kLanes, spp - first);
-              bool any = false;
-              for (size_t j = 0; j < kLanes; ++j) {
-                if (j >= lanes) {  // past the last sample
-                  packet.deactivate(int(j));
-                  continue;
-                }
-                const detail::Stratum& st = layout.order[first + j];
-                float u, v;
-                detail::sample_uv(key, uint32_t(first + j), u, v);
-                const float ls = st.s0 + u * st.ds, lt = st.t0 + v * st.dt;
-                const glm::vec3 d = base + ls * eu + lt * ev;
-                // Light points below the tangent plane are occluded by the surface
-                // itself, open or closed: no ray is traced for them.
-                if (glm::dot(n, d) > 0.0f) {
-                  packet.activate(int(j), d, kTfar);
-                  any = true;
-                } else {
-                  packet.deactivate(int(j));
-                }
-              }
-              if (rtc != nullptr && any) rtcOccluded16(packet.valid, rtc, &context, &packet.ray);
-              for (size_t j = 0; j < lanes; ++j)
-                visible[layout.order[first + j].cell] = packet.reached_light(int(j)) ? 1 : 0;
-            }
+                          const uint64_t key = detail::pixel_key(s.seed, pix, spp);
+                          for (size_t first = 0; first < spp; first += kLanes) {
+                            const size_t lanes = std::min(kLanes, spp - first);
+                            bool any = false;
+                            for (size_t j = 0; j < kLanes; ++j) {
+                              if (j >= lanes) {  // past the last sample
+                                packet.deactivate(int(j));
+                                continue;
+                              }
+                              const detail::Stratum& st = layout.order[first + j];
+                              float u, v;
+                              detail::sample_uv(key, uint32_t(first + j), u, v);
+                              const float ls = st.s0 + u * st.ds, lt = st.t0 + v * st.dt;
+                              const glm::vec3 d = base + ls * eu + lt * ev;
+                              // Light points below the tangent plane are occluded by the surface
+                              // itself, open or closed: no ray is traced for them.
+                              if (glm::dot(n, d) > 0.0f) {
+                                packet.activate(int(j), d, kTfar);
+                                any = true;
+                              } else {
+                                packet.deactivate(int(j));
+                              }
+                            }
+                            if (rtc != nullptr && any)
+                              rtcOccluded16(packet.valid, rtc, &context, &packet.ray);
+                            for (size_t j = 0; j < lanes; ++j)
+                              visible[layout.order[first + j].cell] =
+                                  packet.reached_light(int(j)) ? 1 : 0;
+                          }
 
-            size_t count = 0;
-            for (uint8_t b : visible) count += b;
-            r.visibility.data[pix] = float(double(count) / double(spp));
-            r.std_error.data[pix] =
-                float(std::sqrt(detail::stratified_variance(visible.data(), layout)));
-          }
-      });
+                          size_t count = 0;
+                          for (uint8_t b : visible) count += b;
+                          r.visibility.data[pix] = float(double(count) / double(spp));
+                          r.std_error.data[pix] =
+                              float(std::sqrt(detail::stratified_variance(visible.data(), layout)));
+                        }
+                    });
 }
 
 // ---- cache file -----------------------------------------------------------
@@ -350,8 +346,7 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
   {
     Device device(r.isa);
     FlatScene casters(device, scene, [](const Mesh& m) { return m.casts_shadow; });
-    // Without casters only the horizon test remains.
-    trace(scene, casters.empty() ? nullptr : casters.get(), positions, geometric_normals, s, r);
+    trace(scene, casters, positions, geometric_normals, s, r);
     device.check("rtcOccluded16");
   }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -368,7 +363,6 @@ std::string cache_key(const Scene& scene, const ImageF& positions, const ImageF&
   hash_vec3(h, scene.light.center);
   hash_vec3(h, scene.light.half_u);
   hash_vec3(h, scene.light.half_v);
-  h.add(scene_radius(scene));
   uint64_t casters = 0;
   for (const Mesh& m : scene.meshes) {
     if (!m.casts_shadow) continue;

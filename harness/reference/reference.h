@@ -19,10 +19,10 @@
 //
 // Shadow rays: origin p + eps*n, n the G-buffer's geometric normal, which
 // faces the viewer (the seen side of the surface; never flipped towards the
-// light, which would start rays inside closed solids), eps = 1e-4 * R + 1e-6 * max|p_i| (R =
-// bounding radius of all meshes, casters and receivers; the second term covers float rounding of p
-// far from the origin). Rays end at distance*(1 - 1e-4) before the light
-// sample.
+// light, which would start rays inside closed solids), eps = 2^-16 *
+// max(max|p_i|, M), M the largest |coordinate| of the caster triangles p lies
+// on (ray_offset.h): float rounding at p, never the size of the whole scene.
+// Rays end at distance*(1 - 1e-4) before the light sample.
 //
 // Standard error: the collapsed-strata estimate. Horizontally neighbouring
 // strata are paired (a triple closes an odd row) and
@@ -80,8 +80,8 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
 
 // As compute(), but looked up in / stored to cache_dir/<key>.sbref. The key
 // hashes everything V depends on: caster geometry (in order), the light
-// rectangle (centre, half_u, half_v; not target or intensity), the offset
-// scale R, both buffers' shapes and bytes, the settings, the method and its
+// rectangle (centre, half_u, half_v; not target or intensity), both
+// buffers' shapes and bytes, the settings, the method and its
 // version, and the Embree version and ISA. Corrupt or mismatched files are ignored
 // and recomputed; writes go to a temp file renamed into place. An unwritable
 // cache_dir throws sb::JobError.

@@ -1,17 +1,20 @@
 // accumulation — the rasterised reference of the seeds ("1024-sample
-// shadows"): N hard shadow maps from stratified points on the area light,
-// their 0/1 visibilities averaged (Heckbert & Herf 1997 style).
+// shadows"): N hard shadow maps from points spread evenly over the area
+// light (light_samples.h), their 0/1 visibilities averaged (Heckbert & Herf
+// 1997 style).
 //
 // | parameter      | default | meaning                                          |
 // |----------------|---------|--------------------------------------------------|
-// | samples        | 256     | light points; stratified on an m×n grid, m*n = N |
-// | jitter         | true    | jitter each point inside its stratum (seeded)    |
+// | samples        | 256     | light points N; an m×n grid of strata when N has |
+// |                |         | a near-square factorisation (n <= 2m), else the  |
+// |                |         | Hammersley set (light_samples.h)                 |
+// | jitter         | true    | grid: each point uniform in its stratum;         |
+// |                |         | Hammersley: one seeded toroidal shift of all     |
 // | seed           | 1       | jitter seed                                      |
 // | size, constant_bias, slope_bias, cull: as in shadow_map                       |
-#include <cmath>
 #include <memory>
-#include <random>
 
+#include "accumulation/light_samples.h"
 #include "common/map_lookup.h"
 #include "core/registry.h"
 #include "gl/debug.h"
@@ -20,13 +23,6 @@
 
 namespace sb::shadow {
 namespace {
-
-// The largest m <= sqrt(n) dividing n: an m × (n/m) grid of strata.
-int grid_rows(int n) {
-  int m = static_cast<int>(std::sqrt(static_cast<double>(n)));
-  while (m > 1 && n % m != 0) --m;
-  return m;
-}
 
 class Accumulation final : public Technique {
  public:
@@ -38,17 +34,9 @@ class Accumulation final : public Technique {
 
   void prepare(const FrameInputs& in) override {
     map_ = DepthMap(map_settings_.size, map_settings_.depth_format);
-    const int rows = grid_rows(samples_);
-    const int cols = samples_ / rows;
-    std::mt19937 rng(seed_);
-    std::uniform_real_distribution<float> u01(0.0f, 1.0f);
     frusta_.clear();
-    for (int r = 0; r < rows; ++r)
-      for (int c = 0; c < cols; ++c) {
-        const float s = (float(c) + (jitter_ ? u01(rng) : 0.5f)) / float(cols);
-        const float t = (float(r) + (jitter_ ? u01(rng) : 0.5f)) / float(rows);
-        frusta_.push_back(fit_light_frustum(*in.scene, in.scene->light.point(s, t)));
-      }
+    for (const glm::vec2& st : light_samples(samples_, jitter_, seed_))
+      frusta_.push_back(fit_light_frustum(*in.scene, in.scene->light.point(st.x, st.y)));
     accumulate_ = MapLookupPass("accumulation",
                                 "float lit_fraction(vec3 t) { return texture(shadow_map, t); }\n");
     gl::throw_if_errors("accumulation prepare");
@@ -91,8 +79,12 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
   using namespace sb;
   auto params = shadow::depth_map_params(1024);
   params.insert(params.begin(),
-                {int_param("samples", 256, 1, 65536, "light points, stratified on an m×n grid"),
-                 bool_param("jitter", true, "jitter each point inside its stratum"),
+                {int_param("samples", 256, 1, 65536,
+                           "light points: an m×n grid of strata if N = m·n with n <= 2m, "
+                           "else the Hammersley set"),
+                 bool_param("jitter", true,
+                            "jitter each point inside its stratum (Hammersley: one random "
+                            "toroidal shift)"),
                  int_param("seed", 1, 0, 2147483647, "jitter seed")});
   registry.add({"accumulation", "accumulation",
                 "average of N hard shadow maps from stratified points on the area light",

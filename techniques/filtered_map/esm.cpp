@@ -25,11 +25,33 @@ uniform float exponent;
 vec4 basis(float z, int layer) { return vec4(z); }
 )";
 
+// The map holds z, standing for exp(c·z). Its bilinear filter must average
+// exp(c·z): a hardware-filtered z would give exp(c·Σw·z), a geometric mean,
+// far below the arithmetic one where depths differ across the footprint. So
+// the four texels are fetched and weighed as GL_LINEAR would (texel centres
+// at (i+½)/size, edges clamped like the map's GL_CLAMP_TO_EDGE), and summed
+// in log space: log Σ w·exp(c·z) = c·m + log Σ w·exp(c·(z − m)), m the
+// largest z of a texel with weight > 0, so no exponential exceeds 1 and the
+// sum is at least that texel's weight (Salvi 2008).
 const char* const kLogSpaceLookup = R"(
 uniform float exponent;
 float lit_fraction(vec3 t) {
-  float z = texture(moments, vec3(t.xy, 0.0)).r;
-  return exp(min(exponent * (z - receiver_depth01()), 0.0));
+  ivec2 size = textureSize(moments, 0).xy;
+  vec2 p = t.xy * vec2(size) - 0.5;
+  ivec2 i0 = ivec2(floor(p));
+  vec2 f = p - vec2(i0);
+  ivec2 last = size - 1;
+  ivec2 a = clamp(i0, ivec2(0), last), b = clamp(i0 + 1, ivec2(0), last);
+  vec4 z = vec4(texelFetch(moments, ivec3(a.x, a.y, 0), 0).r,
+                texelFetch(moments, ivec3(b.x, a.y, 0), 0).r,
+                texelFetch(moments, ivec3(a.x, b.y, 0), 0).r,
+                texelFetch(moments, ivec3(b.x, b.y, 0), 0).r);
+  vec4 w = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+  vec4 live = mix(vec4(-1.0e30), z, greaterThan(w, vec4(0.0)));
+  float m = max(max(live.x, live.y), max(live.z, live.w));
+  // min(): a texel without weight may lie above m; its exp must not overflow.
+  float sum = dot(w, exp(exponent * min(z - m, vec4(0.0))));
+  return exp(min(exponent * (m - receiver_depth01()) + log(sum), 0.0));
 }
 )";
 
@@ -53,11 +75,15 @@ float lit_fraction(vec3 t) {
 }
 )";
 
+}  // namespace
+
 BasisShader esm_shader(bool log_space, float exponent) {
   if (log_space) return {1, kLogSpace, kLogSpaceLookup, SeparableFilter::Mode::LogSumExp, exponent};
   return {1, std::string(kIeeeExp) + kLinear, std::string(kIeeeExp) + kLinearLookup,
           SeparableFilter::Mode::Linear, 0.0f};
 }
+
+namespace {
 
 class Esm final : public FilteredMapTechnique {
  public:

@@ -1,6 +1,7 @@
 #pragma once
 #include <vector>
 
+#include "common/filtered_map.h"
 #include "core/registry.h"
 
 namespace sb::shadow {
@@ -9,6 +10,8 @@ TechniqueInfo esm_info();
 TechniqueInfo evsm_info();
 TechniqueInfo msm_info();
 TechniqueInfo csm_convolution_info();
+// esm's map and lookup GLSL (exposed for tests that run the lookup alone).
+BasisShader esm_shader(bool log_space, float exponent);
 // light_bleeding_reduction and min_variance, shared by vsm and evsm.
 std::vector<ParamSpec> bleeding_params(double default_min_variance);
 }  // namespace sb::shadow

@@ -190,13 +190,19 @@ TEST(ShadowMapFamily, LogSpaceEsmStaysFiniteWhereLinearStorageOverflows) {
   const auto& ok80 =
       out.record("esm_linear/exponent=80,log_space=false,size=512,prefilter=gauss,k=5");
   EXPECT_EQ(ok80["status"], "ok") << ok80.value("reason", "");
-  // ...and agrees with the log-space one where nothing overflows.
-  EXPECT_NEAR(
-      ok80["metrics"]["visibility"]["all"]["rmse"].get<double>(),
-      out.record(
-             "esm/exponent=80,size=512,prefilter=gauss,k=5")["metrics"]["visibility"]["all"]["rmse"]
-          .get<double>(),
-      0.01);
+  // ...and agrees with the log-space one pixel by pixel where nothing
+  // overflows: both average exp(c·z) bilinearly, one in log space. (A
+  // hardware-filtered z, a geometric mean of exp(c·z), differed here by 0.075.)
+  const ImageF linear = out.visibility(
+      "esm_linear/exponent=80,log_space=false,size=512,"
+      "prefilter=gauss,k=5");
+  const ImageF log_space = out.visibility("esm/exponent=80,size=512,prefilter=gauss,k=5");
+  ASSERT_EQ(linear.data.size(), log_space.data.size());
+  float worst = 0.0f;
+  for (size_t i = 0; i < linear.data.size(); ++i)
+    worst = std::max(worst, std::fabs(linear.data[i] - log_space.data[i]));
+  EXPECT_LT(worst, 1e-4f);
+  RecordProperty("esm_log_vs_linear_max_difference", std::to_string(worst));
   // c = 200: exp(200·z) is Inf for z > 0.44, Inf/Inf is NaN, and the job fails.
   const auto& bad =
       out.record("esm_linear/exponent=200,log_space=false,size=512,prefilter=gauss,k=5");

@@ -52,6 +52,37 @@ TEST(Techniques, AccumulationMatchesTheRayTracedReference) {
   EXPECT_LT(m["rmse"].get<double>(), 0.02) << m.dump();
 }
 
+// A prime sample count used to give 1×N strata (thin columns, t left to
+// chance); it must do about as well as the nearest square. Few samples make
+// one seed's error a lottery, so the penumbra RMSE is averaged over eight.
+TEST(Techniques, AccumulationWithAPrimeSampleCountIsAsGoodAsASquareOne) {
+  const json seeds = json::array({1, 2, 3, 4, 5, 6, 7, 8});
+  const auto out = run_config(
+      experiment(
+          small_scene(1.5),
+          json::array({json{
+              {"name", "accumulation"},
+              {"params", {{"samples", json::array({13, 16})}, {"size", 512}, {"seed", seeds}}}}}),
+          1024),
+      "accumulation_prime");
+  ASSERT_EQ(out.summary.failed, 0);
+  const auto mean_penumbra_rmse = [&](int samples) {
+    double sum = 0.0;
+    for (const auto& seed : seeds) {
+      const std::string variant = "accumulation/samples=" + std::to_string(samples) +
+                                  ",seed=" + std::to_string(seed.get<int>()) + ",size=512";
+      sum += out.record(variant)["metrics"]["visibility"]["penumbra"]["rmse"].get<double>();
+    }
+    return sum / double(seeds.size());
+  };
+  const double rmse13 = mean_penumbra_rmse(13), rmse16 = mean_penumbra_rmse(16);
+  // Stratified error falls as N^-0.75: 13 samples should cost about
+  // (16/13)^0.75 = 1.17 times the error of 16.
+  EXPECT_LT(rmse13, 1.3 * rmse16) << rmse13 << " vs " << rmse16;
+  RecordProperty("penumbra_rmse_13", std::to_string(rmse13));
+  RecordProperty("penumbra_rmse_16", std::to_string(rmse16));
+}
+
 TEST(Techniques, PcfBeatsHardShadowMapForALargeLight) {
   const auto out = run_config(
       experiment(small_scene(3.0),

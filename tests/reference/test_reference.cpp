@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "reference/ray_offset.h"
 #include "reference/reference.h"
 #include "test_scenes.h"
 
@@ -54,10 +55,10 @@ struct EdgeScene {
     scene.meshes.push_back(sbtest::quad("occluder", h + 8.0f * e, h - 8.0f * e,
                                         h - 8.0f * e - 8.0f * n, h + 8.0f * e - 8.0f * n, true));
   }
-  // Exact V for a ground point, for the shadow-ray origin the reference uses.
+  // Exact V for a ground point, for the shadow-ray origin the reference uses
+  // (the ground is no caster: the offset follows p alone).
   double visibility(double px, double pz) const {
-    const double h0 =
-        1e-4 * double(scene.bounds().radius()) + 1e-6 * std::max(std::fabs(px), std::fabs(pz));
+    const double h0 = double(ref::detail::kOffsetRelative) * std::max(std::fabs(px), std::fabs(pz));
     const double f = (5.0 - h0) / (10.0 - h0);
     const double k = -(1.0 - f) * (a * px + b * pz) / f;
     return 1.0 - halfplane_area(a, b, k) / 4.0;

@@ -1,0 +1,22 @@
+#pragma once
+// Where accumulation puts its N light points: (s, t) in [0,1)² on the area
+// light (AreaLight::point), spread evenly in both directions for every N.
+//
+//   N = m·n, m the largest divisor <= √N, n <= 2m: the m×n grid of strata
+//     (rows of n), one point per stratum, at its centre or (jitter) uniform
+//     inside it. Square N gives the usual n×n jittered grid.
+//   any other N (primes, 2·prime, ...): the m×n grid would be a few thin
+//     columns (1×N for a prime), stratified in s only. They get the
+//     Hammersley set ((i+½)/N, radical inverse of i in base 2, centred in
+//     its dyadic interval), whose star discrepancy is O(log N / N) for any N;
+//     jitter adds one seeded toroidal shift to all points (Cranley–Patterson
+//     rotation), which keeps that structure and makes every point uniform.
+#include <glm/vec2.hpp>
+#include <vector>
+
+namespace sb::shadow {
+
+// N >= 1 points; the same (n, jitter, seed) always gives the same points.
+std::vector<glm::vec2> light_samples(int n, bool jitter, unsigned seed);
+
+}  // namespace sb::shadow
