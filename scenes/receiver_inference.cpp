@@ -30,8 +30,11 @@ bool can_shadow_nothing(const Scene& scene, size_t mesh) {
   const Bounds all = scene.bounds();
   const Mesh& m = scene.meshes.at(mesh);
   if (all.empty() || m.triangle_count() == 0) return false;
-  // Flatness and "on the plane" within a millionth of the scene's size.
+  // Flatness within a millionth of the scene's size. Geometry sunk into the
+  // plane by up to a thousandth (a tree's roots, a model resting a little
+  // into its floor) is hidden by it from a camera on the light's side.
   const double eps = 1e-6 * std::max(double(all.radius()), 1e-6);
+  const double sunk = 1e-3 * std::max(double(all.radius()), 1e-6);
   const auto plane = mesh_plane(m, eps);
   if (!plane) return false;
   glm::dvec3 n(*plane);
@@ -44,11 +47,12 @@ bool can_shadow_nothing(const Scene& scene, size_t mesh) {
   }
   for (const auto& c : corners)
     if (!(glm::dot(n, c) + d > eps)) return false;
+  if (!(glm::dot(n, glm::dvec3(scene.camera.eye)) + d > eps)) return false;
   for (size_t j = 0; j < scene.meshes.size(); ++j) {
     if (j == mesh) continue;
     const Mesh& other = scene.meshes[j];
     for (uint32_t v : other.indices)
-      if (glm::dot(n, glm::dvec3(other.positions[v])) + d < -eps) return false;
+      if (glm::dot(n, glm::dvec3(other.positions[v])) + d < -sunk) return false;
   }
   return true;
 }

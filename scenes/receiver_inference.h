@@ -8,7 +8,10 @@
 // side of its plane and every other mesh lies on that side or on the plane:
 // a segment between two points of one open half-space never meets the plane,
 // and no point it could shadow lies on the other side. Such a mesh is made a
-// non-caster. The rule is exact, not a heuristic, so it changes no true V.
+// non-caster. The rule is exact for every point the camera can see, which it
+// also asks to be on the light's side: geometry sunk into the plane by up to
+// 1/1000 of the scene's radius (roots, a model resting slightly into its
+// floor) is allowed, since the plane hides it from that camera.
 #include <optional>
 #include <string>
 #include <vector>

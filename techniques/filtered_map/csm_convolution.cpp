@@ -13,14 +13,16 @@
 // lit surface compared with its own depth (a double-sided leaf, an open
 // quad: nothing is culled on them) reads ½. As Annen et al. do, the receiver
 // is moved towards the light by ε = receiver_offset / (2M) in normalised
-// depth before the comparison; contact shadows closer than ε leak.
+// depth before the comparison; occluders closer than ε leak. Their 1/(2M)
+// (receiver_offset 1) leaked inside foliage canopies; ½ keeps lit leaves lit
+// and gave the lowest error there (docs/shadow_maps.md).
 //
 // | parameter           | default | meaning                                        |
 // |---------------------|---------|------------------------------------------------|
 // | terms               | 16      | M, Fourier terms: 2M basis values, M/2 layers  |
 // | damping             | 1       | ringing suppression per term                   |
 // | sharpen             | 2       | V = clamp(sharpen·(f − ½) + ½)                 |
-// | receiver_offset     | 1       | ε = receiver_offset / (2M), normalised depth   |
+// | receiver_offset     | 0.5     | ε = receiver_offset / (2M), normalised depth   |
 // | prefilter, k, sigma | none, 5 | separable prefilter of the basis               |
 // | format              | "32f"   | "32f" or "16f"                                 |
 // | size, depth_format, constant_bias, slope_bias, cull, normal_offset: as in shadow_map |
@@ -105,7 +107,7 @@ TechniqueInfo csm_convolution_info() {
                              "ringing suppression: term k is weighted exp(-damping·(k/M)²)"),
                  float_param("sharpen", 2.0, 1.0, 16.0,
                              "V = clamp(sharpen·(f − ½) + ½); 2 is Annen et al.'s 2f − ½"),
-                 float_param("receiver_offset", 1.0, 0.0, 64.0,
+                 float_param("receiver_offset", 0.5, 0.0, 64.0,
                              "receiver moved towards the light by receiver_offset/(2M) in "
                              "normalised depth (Annen et al. 2007), so lit unculled surfaces "
                              "do not read their own depth as ½")});

@@ -113,10 +113,25 @@ TEST(ReceiverInference, NeedsTheWholeLightAndEveryOtherMeshOnOneSide) {
   EXPECT_FALSE(s.meshes[0].casts_shadow);
   EXPECT_TRUE(s.meshes[2].casts_shadow);
   // With the light between the planes, "high" has the light below it and
-  // the other quads too: it is a receiver, seen from below; "low" and
-  // "tile" have "high" on the light's side: receivers as well.
+  // the other quads too: a receiver when the camera is below it as well;
+  // "low" and "tile" have "high" on the light's side: receivers too.
   light_between.light.center = {0, 0.5f, 0};
+  light_between.camera.eye = {0, 0.5f, 10};
+  Scene camera_above = light_between;
   EXPECT_EQ(infer_receivers(light_between), (std::vector<std::string>{"low", "tile", "high"}));
+  // Seen from above, "high" shows the camera its other side.
+  camera_above.camera.eye = {0, 5, 10};
+  EXPECT_EQ(infer_receivers(camera_above), (std::vector<std::string>{"low", "tile"}));
+  // Geometry sunk into a ground by up to a thousandth of the scene's radius
+  // (here 1.41) is hidden by it; deeper, it is not. (The sunk quad itself
+  // has everything above it.)
+  Scene sunk = s;
+  for (auto& m : sunk.meshes) m.casts_shadow = true;
+  sunk.meshes[2] = quad("roots", -0.001f);
+  EXPECT_EQ(infer_receivers(sunk), (std::vector<std::string>{"low", "tile", "roots"}));
+  sunk.meshes[2] = quad("roots", -0.01f);
+  for (auto& m : sunk.meshes) m.casts_shadow = true;
+  EXPECT_EQ(infer_receivers(sunk), (std::vector<std::string>{"roots"}));
   // A light rectangle cut by the plane: not inferred.
   Scene tilted;
   tilted.meshes = {quad("low", 0.0f)};
