@@ -4,6 +4,7 @@
 //                          [--benchmark-out FILE] [--bencher-out FILE] [--embree-config CFG]
 //                          [--max-jobs N] [--pass-timing coarse|fine]
 //   shadowbench validate CONFIG [--plugins DIR] [--max-jobs N]
+//   shadowbench plan CONFIG [--plugins DIR] [--max-jobs N]
 //   shadowbench list [--plugins DIR]
 //   shadowbench report RUN_DIR [--out DIR] [--metric PATH]
 //                             [--benchmark-out FILE] [--bencher-out FILE]
@@ -25,6 +26,7 @@
 #include "core/error.h"
 #include "core/registry.h"
 #include "core/scene_types.h"
+#include "plan/plan.h"
 #include "reference/embree_isa.h"
 #include "results/bencher_json.h"
 #include "results/benchmark_json.h"
@@ -49,6 +51,7 @@ constexpr const char* kUsage =
     "                         [--embree-config isa=avx2|max_isa=avx2] [--max-jobs 10000]\n"
     "                         [--pass-timing coarse|fine]\n"
     "  shadowbench validate CONFIG [--plugins DIR] [--max-jobs 10000]\n"
+    "  shadowbench plan CONFIG [--plugins DIR] [--max-jobs 10000]\n"
     "  shadowbench list [--plugins DIR]\n"
     "  shadowbench report RUN_DIR [--out DIR] [--metric visibility.all.rmse]\n"
     "  (run and report also take --benchmark-out FILE (Google Benchmark JSON)\n"
@@ -228,23 +231,31 @@ int cmd_list(const Args& a) {
   return kExitOk;
 }
 
-int cmd_validate(const Args& a) {
+// Both plan every job on the CPU, no GL: a bad scene file is found now, and
+// the counts say which jobs will be skipped and why.
+int cmd_validate(const Args& a, bool show_plan) {
   const Registry r = load_registry(a);
   const Experiment e = load_experiment(one_config(a), r, a.limits);
-  // Build every scene on the CPU too, so that a bad scene file is found now.
-  for (const auto& sv : e.scenes) {
-    try {
-      (void)build_scene(sv, e.file);
-    } catch (const InputError&) {
-      throw;
-    } catch (const std::exception& ex) {
-      throw InputError(e.file, sv.pointer, "scene " + sv.name + ": " + ex.what());
-    }
+  const Plan plan = make_plan(e);
+  if (show_plan) std::printf("%s", describe_plan(e, plan).c_str());
+  for (size_t s = 0; s < plan.scenes.size(); ++s) {
+    const ScenePlan& sp = plan.scenes[s];
+    if (sp.error.empty()) continue;
+    const std::string what =
+        sp.bad_input
+            ? sp.input_error
+            : InputError(e.file, e.scenes[s].pointer, "scene " + e.scenes[s].name + ": " + sp.error)
+                  .what();
+    std::fprintf(stderr, "shadowbench: error: %s\n", what.c_str());
+    return kExitBadInput;
   }
-  std::printf(
-      "%s: ok: %zu scene variant(s) × %zu resolution(s) × %zu technique variant(s) = %zu jobs\n",
-      e.file.c_str(), e.scenes.size(), e.resolutions.size(), e.techniques.size(),
-      e.scenes.size() * e.resolutions.size() * e.techniques.size());
+  if (!show_plan)
+    std::printf(
+        "%s: ok: %zu scene variant(s) × %zu resolution(s) × %zu technique variant(s) = %zu jobs "
+        "(%zu to run, %zu skipped; `shadowbench plan` says why)\n",
+        e.file.c_str(), e.scenes.size(), e.resolutions.size(), e.techniques.size(),
+        plan.jobs.size(), plan.count(PlannedJob::Status::Run),
+        plan.count(PlannedJob::Status::Skip));
   return kExitOk;
 }
 
@@ -393,7 +404,8 @@ int main(int argc, char** argv) {
       throw InputError("", "command line", "--metric goes with compare or report");
     if (a.command == "compare") return on_records(a, cmd_compare);
     if (a.command == "run") return cmd_run(a);
-    if (a.command == "validate") return cmd_validate(a);
+    if (a.command == "validate") return cmd_validate(a, false);
+    if (a.command == "plan") return cmd_validate(a, true);
     if (a.command == "list") return cmd_list(a);
     if (a.command == "report") return on_records(a, cmd_report);
     if (a.command == "scene") return cmd_scene(a);

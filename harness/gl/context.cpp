@@ -67,7 +67,14 @@ bool backend_available(Backend backend) {
   return false;
 }
 
+namespace {
+std::size_t g_contexts_created = 0;
+}  // namespace
+
+std::size_t contexts_created() { return g_contexts_created; }
+
 std::unique_ptr<Context> create_context(Backend backend) {
+  ++g_contexts_created;
   if (!backend_available(backend))
     throw std::runtime_error("backend '" + to_string(backend) + "' was not compiled in");
 #if defined(SHADOWBENCH_HAVE_OSMESA)

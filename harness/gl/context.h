@@ -3,6 +3,7 @@
 // (device platform where a GPU exists, surfaceless otherwise). Every GL entry
 // point is loaded through glad from the backend's GetProcAddress; nothing is
 // linked against libGL/libOpenGL (see shared FINDINGS: libglvnd pitfall).
+#include <cstddef>
 #include <memory>
 #include <string>
 
@@ -32,6 +33,9 @@ class Context {
   void load_gl(void* (*get_proc)(const char*));
 };
 
+// How many contexts this process asked for: the plan stage's tests check
+// that planning creates none.
+std::size_t contexts_created();
 // Throws std::runtime_error with the backend's reason if it cannot be created.
 std::unique_ptr<Context> create_context(Backend backend);
 

@@ -19,9 +19,9 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/names.h"
 #include "results/pareto.h"
 #include "results/store.h"
-#include "run/runner.h"
 
 extern char** environ;
 

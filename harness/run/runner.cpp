@@ -18,6 +18,7 @@
 #include "metrics/image_io.h"
 #include "metrics/light_horizon.h"
 #include "metrics/metrics.h"
+#include "plan/plan.h"
 #include "reference/embree_isa.h"
 #include "reference/reference.h"
 #include "results/report.h"
@@ -156,17 +157,10 @@ struct Regions {
   std::vector<uint8_t> attached;  // the light wholly below the tangent plane: V = 0
 };
 
-struct SceneState {
-  Scene scene;
-  SceneCapabilities caps;
-  std::vector<std::string> skip_reason;  // per technique variant
-  std::vector<std::string> inferred_receivers;
-};
-
 // Per mesh: closed (depth passes may cull it; known when a technique in the
 // plan asked for closedness) and, for receivers, whether nothing lies behind
 // them from the light (filtered maps may draw them).
-std::vector<MeshDrawFlags> draw_flags(const SceneState& st) {
+std::vector<MeshDrawFlags> draw_flags(const ScenePlan& st) {
   std::vector<MeshDrawFlags> flags(st.scene.meshes.size());
   for (size_t i = 0; i < flags.size(); ++i) {
     const Mesh& m = st.scene.meshes[i];
@@ -222,7 +216,7 @@ class Runner {
     progress_.draw();
   }
 
-  json base_record(const SceneVariant& sv, const SceneState* st, const Resolution& res,
+  json base_record(const SceneVariant& sv, const ScenePlan* st, const Resolution& res,
                    const TechniqueVariant& tv) const {
     json r;
     r["schema_version"] = kSchemaVersion;
@@ -337,37 +331,16 @@ class Runner {
   }
 
   void run_scene(const SceneVariant& sv) {
-    SceneState st;
-    std::vector<const TechniqueInfo*> infos;
-    for (const auto& tv : e_.techniques) infos.push_back(tv.info);
-    std::string scene_error;
-    try {
-      st.scene = build_scene(sv, e_.file);
-      if (sv.infer_receivers) st.inferred_receivers = infer_receivers(st.scene);
-      if (!st.inferred_receivers.empty()) {
-        std::string names;
-        for (const auto& n : st.inferred_receivers)
-          names += (names.empty() ? "'" : ", '") + n + "'";
-        log("scene " + sv.name + ": inferred receivers (planar, can shadow nothing): " + names);
-      }
-      st.caps = check_closedness(st.scene, infos);
-      std::vector<const TechniqueInfo*> running;
-      for (const auto& tv : e_.techniques) {
-        st.skip_reason.push_back(unmet_needs(st.scene, st.caps, *tv.info));
-        if (st.skip_reason.back().empty()) running.push_back(tv.info);
-      }
-      build_adjacency_if_needed(st.scene, running, st.caps);
-      for (const auto& l : st.caps.log) log("scene " + sv.name + ": " + l);
-    } catch (const InputError& ex) {
+    // Every decision is the plan's (plan/plan.h); the runner only executes.
+    const ScenePlan st = plan_scene(e_, sv, Derive::All);
+    const std::string& scene_error = st.error;
+    for (const auto& l : st.log) log("scene " + sv.name + ": " + l);
+    if (st.bad_input) {
       // A bad scene file: its jobs fail, the other scenes still run, and the
-      // run's exit code says "bad input".
-      scene_error = std::string("bad scene input: ") + ex.what();
+      // run's exit code says "bad input". Said even with --quiet.
       ++summary_.bad_input;
-      // Said even with --quiet: it decides the exit code.
       progress_.clear();
-      std::fprintf(stderr, "shadowbench: error: %s\n", ex.what());
-    } catch (const std::exception& ex) {
-      scene_error = std::string("building the scene failed: ") + ex.what();
+      std::fprintf(stderr, "shadowbench: error: %s\n", st.input_error.c_str());
     }
 
     std::unique_ptr<GpuScene> gpu;
@@ -417,7 +390,7 @@ class Runner {
     }
   }
 
-  void run_resolution(const SceneVariant& sv, const SceneState& st, const GpuScene& gpu,
+  void run_resolution(const SceneVariant& sv, const ScenePlan& st, const GpuScene& gpu,
                       const Resolution& res, const std::vector<size_t>& pending) {
     reset_gl_state();
     FrameTargets targets(res.width, res.height);

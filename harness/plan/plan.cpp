@@ -1,0 +1,103 @@
+#include "plan/plan.h"
+
+#include "core/error.h"
+#include "core/names.h"
+#include "scenes/receiver_inference.h"
+
+namespace sb {
+
+ScenePlan plan_scene(const Experiment& e, const SceneVariant& sv, Derive derive) {
+  ScenePlan p;
+  p.variant = &sv;
+  std::vector<const TechniqueInfo*> infos;
+  for (const auto& tv : e.techniques) infos.push_back(tv.info);
+  try {
+    p.scene = build_scene(sv, e.file);
+    if (sv.infer_receivers) p.inferred_receivers = infer_receivers(p.scene);
+    if (!p.inferred_receivers.empty()) {
+      std::string names;
+      for (const auto& n : p.inferred_receivers) names += (names.empty() ? "'" : ", '") + n + "'";
+      p.log.push_back("inferred receivers (planar, can shadow nothing): " + names);
+    }
+    p.caps = check_closedness(p.scene, infos);
+    std::vector<const TechniqueInfo*> running;
+    for (const auto& tv : e.techniques) {
+      p.skip_reason.push_back(unmet_needs(p.scene, p.caps, *tv.info));
+      if (p.skip_reason.back().empty()) running.push_back(tv.info);
+    }
+    if (derive == Derive::All) {
+      build_adjacency_if_needed(p.scene, running, p.caps);
+    } else {
+      bool adjacency = false;
+      for (const auto* t : running) adjacency = adjacency || t->needs.edge_adjacency;
+      if (adjacency) p.caps.log.push_back("edge adjacency of the casters (built when run)");
+    }
+    for (const auto& l : p.caps.log) p.log.push_back(l);
+  } catch (const InputError& ex) {
+    p.error = std::string("bad scene input: ") + ex.what();
+    p.bad_input = true;
+    p.input_error = ex.what();
+  } catch (const std::exception& ex) {
+    p.error = std::string("building the scene failed: ") + ex.what();
+  }
+  return p;
+}
+
+size_t Plan::count(PlannedJob::Status s) const {
+  size_t n = 0;
+  for (const auto& j : jobs) n += j.status == s ? 1 : 0;
+  return n;
+}
+
+Plan make_plan(const Experiment& e) {
+  Plan plan;
+  for (size_t s = 0; s < e.scenes.size(); ++s) {
+    ScenePlan sp = plan_scene(e, e.scenes[s], Derive::Decide);
+    for (size_t r = 0; r < e.resolutions.size(); ++r)
+      for (size_t t = 0; t < e.techniques.size(); ++t) {
+        PlannedJob j;
+        j.id = job_id(e.scenes[s].name, e.resolutions[r].label(), e.techniques[t].name);
+        j.scene = s;
+        j.resolution = r;
+        j.technique = t;
+        if (!sp.error.empty()) {
+          j.status = PlannedJob::Status::Fail;
+          j.reason = sp.error;
+        } else if (!sp.skip_reason[t].empty()) {
+          j.status = PlannedJob::Status::Skip;
+          j.reason = sp.skip_reason[t];
+        }
+        plan.jobs.push_back(std::move(j));
+      }
+    sp.scene = Scene{};  // a sweep of big scenes must not stay in memory
+    sp.caps.topology.clear();
+    plan.scenes.push_back(std::move(sp));
+  }
+  return plan;
+}
+
+std::string describe_plan(const Experiment& e, const Plan& plan) {
+  std::string out = e.file + ": " + std::to_string(plan.jobs.size()) +
+                    " jobs: " + std::to_string(plan.count(PlannedJob::Status::Run)) + " to run, " +
+                    std::to_string(plan.count(PlannedJob::Status::Skip)) + " skipped, " +
+                    std::to_string(plan.count(PlannedJob::Status::Fail)) + " failing\n";
+  for (size_t s = 0; s < plan.scenes.size(); ++s) {
+    const ScenePlan& sp = plan.scenes[s];
+    out += "scene " + e.scenes[s].name + "\n";
+    if (!sp.error.empty()) out += "  error: " + sp.error + "\n";
+    for (const auto& l : sp.log) out += "  " + l + "\n";
+    for (const auto& j : plan.jobs) {
+      if (j.scene != s) continue;
+      out += "  " +
+             std::string(j.status == PlannedJob::Status::Run    ? "run  "
+                         : j.status == PlannedJob::Status::Skip ? "skip "
+                                                                : "fail ") +
+             e.resolutions[j.resolution].label() + "  " + e.techniques[j.technique].name;
+      if (!j.reason.empty()) out += "  (" + j.reason + ")";
+      out += "\n";
+    }
+  }
+  return out;
+}
+
+}  // namespace sb

@@ -1,0 +1,94 @@
+// The plan decides every job before any GL context exists: skips with their
+// reasons, failing scenes, and the derived data each scene needs.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "../config/cli_runner.h"
+#include "config/experiment.h"
+#include "core/registry.h"
+#include "gl/context.h"
+#include "plan/plan.h"
+
+namespace sb::test {
+namespace {
+
+const Registry& registry() {
+  static const Registry r = [] {
+    Registry reg;
+    reg.load_plugins(SHADOWBENCH_PLUGIN_DIR);
+    return reg;
+  }();
+  return r;
+}
+
+const std::string kScenes = std::string(SHADOWBENCH_SOURCE_DIR) + "/configs/scenes.json";
+
+const PlannedJob& job(const Experiment& e, const Plan& plan, const std::string& scene,
+                      const std::string& technique) {
+  for (const auto& j : plan.jobs)
+    if (e.scenes[j.scene].name == scene && e.techniques[j.technique].info->name == technique)
+      return j;
+  throw std::runtime_error("no job " + scene + " / " + technique);
+}
+
+TEST(PlanStage, ListsTheFoliageShadowVolumeSkipBeforeAnyGlContext) {
+  const Experiment e = load_experiment(kScenes, registry());
+  const Plan plan = make_plan(e);
+  EXPECT_EQ(gl::contexts_created(), 0u);
+  const PlannedJob& skipped = job(e, plan, "foliage", "shadow_volume");
+  EXPECT_EQ(skipped.status, PlannedJob::Status::Skip);
+  EXPECT_NE(skipped.reason.find("needs closed casters: mesh 'leaves'"), std::string::npos)
+      << skipped.reason;
+  EXPECT_EQ(job(e, plan, "sphere_grid", "shadow_volume").status, PlannedJob::Status::Run);
+  EXPECT_EQ(plan.jobs.size(), 20u);
+  EXPECT_EQ(plan.count(PlannedJob::Status::Skip), 1u);
+  // Derived data follow the techniques that will run: adjacency for the
+  // sphere grid's shadow volumes, none on foliage, whose volume job is skipped.
+  const auto logs = [&](size_t s) {
+    std::string all;
+    for (const auto& l : plan.scenes[s].log) all += l + "\n";
+    return all;
+  };
+  EXPECT_NE(logs(0).find("edge adjacency"), std::string::npos) << logs(0);
+  EXPECT_EQ(logs(2).find("edge adjacency"), std::string::npos) << logs(2);
+  EXPECT_NE(logs(2).find("closedness"), std::string::npos) << logs(2);
+}
+
+TEST(PlanStage, ABadSceneFailsItsJobsAndTheRestArePlanned) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "shadowbench_test_plan_bad_scene";
+  std::filesystem::create_directories(dir);
+  const std::string config = (dir / "bad.json").string();
+  std::ofstream(config) << R"({"name":"bad","scenes":[{"type":"sphere_grid","params":{"grid":2}},)"
+                        << R"({"type":"gltf","params":{"file":"missing.glb"}}],)"
+                        << R"("techniques":["none","shadow_volume"],"resolutions":[[32,24]]})";
+  const Experiment e = load_experiment(config, registry());
+  const Plan plan = make_plan(e);
+  EXPECT_EQ(plan.count(PlannedJob::Status::Run), 2u);
+  EXPECT_EQ(plan.count(PlannedJob::Status::Fail), 2u);
+  EXPECT_TRUE(plan.scenes[1].bad_input);
+  EXPECT_NE(plan.scenes[1].input_error.find("missing.glb"), std::string::npos);
+  // The plan command prints what it can, then says "bad input" with exit 2.
+  const auto r = run_cli("plan " + config);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("run  32x24  shadow_volume"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("missing.glb"), std::string::npos) << r.output;
+}
+
+TEST(PlanStage, ValidateAndPlanCountTheSkips) {
+  const auto v = run_cli("validate " + kScenes);
+  EXPECT_EQ(v.exit_code, 0) << v.output;
+  EXPECT_NE(v.output.find("20 jobs (19 to run, 1 skipped"), std::string::npos) << v.output;
+  const auto p = run_cli("plan " + kScenes);
+  EXPECT_EQ(p.exit_code, 0) << p.output;
+  EXPECT_NE(p.output.find("skip 800x600  shadow_volume/mode=zfail  (shadow_volume needs closed "
+                          "casters: mesh 'leaves'"),
+            std::string::npos)
+      << p.output;
+}
+
+}  // namespace
+}  // namespace sb::test
