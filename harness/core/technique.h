@@ -43,6 +43,16 @@ struct FrameInputs {
   // background) and the triangle's geometric normal (RGBA32F).
   GLuint gbuffer_position = 0;
   GLuint gbuffer_normal = 0;
+  // The shading normal (interpolated, RGBA32F) and albedo (RGBA8, texture ×
+  // material colour) at the same pixels, for techniques that filter or weigh
+  // by them.
+  GLuint gbuffer_shading_normal = 0;
+  GLuint gbuffer_albedo = 0;
+  // The plane that receives every caster's shadow, n·x + d = 0 with n towards
+  // the casters: set when the technique declared needs.planar_receiver
+  // (its job is skipped when the scene has none).
+  bool has_receiver_plane = false;
+  glm::vec4 receiver_plane{0.0f};
   // The G-buffer pass's depth-stencil (D24S8) texture, also attached to the
   // visibility framebuffer, so stencil techniques can test against it.
   GLuint depth_stencil = 0;

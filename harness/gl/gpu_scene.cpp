@@ -88,6 +88,13 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>&
   }
 }
 
+std::vector<GpuScene::MeshRange> GpuScene::mesh_ranges() const {
+  std::vector<MeshRange> out;
+  for (const auto& r : ranges_)
+    out.push_back({r.count, r.first_byte, r.base_vertex, r.casts_shadow});
+  return out;
+}
+
 bool GpuScene::has_alpha_tested_casters() const {
   for (const auto& r : ranges_)
     if (r.casts_shadow && r.info.alpha_tested) return true;

@@ -56,6 +56,22 @@ class GpuScene {
   // Casters as GL_TRIANGLES_ADJACENCY (6 indices per triangle).
   void draw_casters_adjacency() const;
 
+  // Read-only views for techniques that read the scene in their own shaders
+  // (bind as GL_SHADER_STORAGE_BUFFER; never write them) instead of
+  // uploading it again. Vertices are kFloatsPerVertex floats: position,
+  // normal, texture coordinate; indices are uint32 triangle lists.
+  static constexpr int kFloatsPerVertex = 8;
+  struct MeshRange {
+    GLsizei index_count;
+    GLsizeiptr first_index_byte;  // into index_buffer()
+    GLint base_vertex;            // added to every index of the mesh
+    bool casts_shadow;
+  };
+  GLuint vertex_buffer() const { return vertices_.get(); }
+  GLuint index_buffer() const { return indices_.get(); }
+  GLuint adjacency_buffer() const { return adjacency_.get(); }  // 0 unless built
+  std::vector<MeshRange> mesh_ranges() const;
+
  private:
   struct Range {
     GLsizei count;

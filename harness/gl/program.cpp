@@ -1,6 +1,7 @@
 #include "gl/program.h"
 
 #include <glm/gtc/type_ptr.hpp>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -22,9 +23,12 @@ GLuint compile(const std::string& program, GLenum stage, const std::string& sour
     std::vector<char> log(static_cast<size_t>(len) + 1, '\0');
     glGetShaderInfoLog(s, len, nullptr, log.data());
     glDeleteShader(s);
-    const char* kind = stage == GL_VERTEX_SHADER     ? "vertex"
-                       : stage == GL_GEOMETRY_SHADER ? "geometry"
-                                                     : "fragment";
+    const char* kind = stage == GL_VERTEX_SHADER            ? "vertex"
+                       : stage == GL_GEOMETRY_SHADER        ? "geometry"
+                       : stage == GL_TESS_CONTROL_SHADER    ? "tessellation control"
+                       : stage == GL_TESS_EVALUATION_SHADER ? "tessellation evaluation"
+                       : stage == GL_COMPUTE_SHADER         ? "compute"
+                                                            : "fragment";
     throw JobError("shader '" + program + "' (" + kind + ") failed to compile: " + log.data());
   }
   return s;
@@ -32,13 +36,40 @@ GLuint compile(const std::string& program, GLenum stage, const std::string& sour
 
 }  // namespace
 
-Program::Program(std::string name, const ShaderSources& sources) : name_(std::move(name)) {
+namespace {
+
+std::vector<std::pair<GLenum, std::string>> graphics_stages(
+    const ShaderSources& s, const std::string& tess_control = "",
+    const std::string& tess_evaluation = "") {
+  std::vector<std::pair<GLenum, std::string>> stages = {{GL_VERTEX_SHADER, s.vertex}};
+  if (!tess_control.empty()) stages.emplace_back(GL_TESS_CONTROL_SHADER, tess_control);
+  if (!tess_evaluation.empty()) stages.emplace_back(GL_TESS_EVALUATION_SHADER, tess_evaluation);
+  if (!s.geometry.empty()) stages.emplace_back(GL_GEOMETRY_SHADER, s.geometry);
+  if (!s.fragment.empty()) stages.emplace_back(GL_FRAGMENT_SHADER, s.fragment);
+  return stages;
+}
+
+}  // namespace
+
+Program::Program(std::string name, const ShaderSources& sources)
+    : Program(std::move(name), graphics_stages(sources)) {}
+
+Program Program::tessellated(std::string name, const ShaderSources& sources,
+                             const std::string& tess_control, const std::string& tess_evaluation) {
+  if (tess_control.empty() || tess_evaluation.empty())
+    throw std::logic_error("program '" + name + "': tessellation needs both of its stages");
+  return Program(std::move(name), graphics_stages(sources, tess_control, tess_evaluation));
+}
+
+Program Program::compute(std::string name, const std::string& source) {
+  return Program(std::move(name), {{GL_COMPUTE_SHADER, source}});
+}
+
+Program::Program(std::string name, const std::vector<std::pair<GLenum, std::string>>& stages)
+    : name_(std::move(name)) {
   std::vector<GLuint> shaders;
-  shaders.push_back(compile(name_, GL_VERTEX_SHADER, sources.vertex));
-  if (!sources.geometry.empty())
-    shaders.push_back(compile(name_, GL_GEOMETRY_SHADER, sources.geometry));
-  if (!sources.fragment.empty())
-    shaders.push_back(compile(name_, GL_FRAGMENT_SHADER, sources.fragment));
+  shaders.reserve(stages.size());
+  for (const auto& [stage, source] : stages) shaders.push_back(compile(name_, stage, source));
   id_ = glCreateProgram();
   for (GLuint s : shaders) glAttachShader(id_, s);
   glLinkProgram(id_);

@@ -4,6 +4,7 @@
 #include <glm/glm.hpp>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "gl/gl.h"
@@ -20,6 +21,11 @@ class Program {
  public:
   Program() = default;
   Program(std::string name, const ShaderSources& sources);
+  // A graphics program with tessellation between vertex and geometry.
+  static Program tessellated(std::string name, const ShaderSources& sources,
+                             const std::string& tess_control, const std::string& tess_evaluation);
+  // A compute program (run it with glDispatchCompute after use()).
+  static Program compute(std::string name, const std::string& source);
   ~Program();
   Program(Program&& o) noexcept;
   Program& operator=(Program&& o) noexcept;
@@ -46,6 +52,7 @@ class Program {
   void set(const std::string& u, const std::vector<glm::vec2>& values) const;
 
  private:
+  Program(std::string name, const std::vector<std::pair<GLenum, std::string>>& stages);
   GLint cached_location(const std::string& uniform) const;
   std::string name_;
   GLuint id_ = 0;

@@ -174,6 +174,8 @@ FrameInputs FrameTargets::inputs(const Scene& scene, const GpuScene& gpu, const 
   in.view_projection = projection * view;
   in.gbuffer_position = position_.get();
   in.gbuffer_normal = geometric_normal_.get();
+  in.gbuffer_shading_normal = shading_normal_.get();
+  in.gbuffer_albedo = albedo_.get();
   in.depth_stencil = depth_stencil_.get();
   in.visibility_framebuffer = visibility_fb_.get();
   in.visibility_texture = visibility_.get();

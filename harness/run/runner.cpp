@@ -461,6 +461,8 @@ class Runner {
         {"seconds", ref.seconds}};
 
     FrameInputs in = targets.inputs(st.scene, gpu, view, projection);
+    in.has_receiver_plane = st.caps.has_planar_receiver;
+    in.receiver_plane = st.caps.receiver.plane;
     for (size_t i : pending) {
       const TechniqueVariant& tv = e_.techniques[i];
       const std::string id = job_id(sv.name, res.label(), tv.name);

@@ -79,6 +79,23 @@ RunOutput run_config_with(const nlohmann::json& config, const std::string& name,
   return out;
 }
 
+RunOutput run_with_registry(const nlohmann::json& config, const Registry& registry,
+                            const std::string& name) {
+  RunOutput out;
+  out.dir = (fs::temp_directory_path() / ("shadowbench_e2e_" + name)).string();
+  fs::remove_all(out.dir);
+  const Experiment e = parse_experiment(config, name + ".json", registry);
+  RunOptions o;
+  o.run_dir = out.dir;
+  o.run_id = name;
+  o.cache_dir = "";
+  o.quiet = true;
+  o.write_images = false;
+  out.summary = run_experiment(e, o);
+  out.records = read_run_records(out.dir);
+  return out;
+}
+
 std::string fresh_test_folder(const std::string& prefix) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() /

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "core/registry.h"
 #include "gl/context.h"
 #include "run/runner.h"
 
@@ -31,6 +32,11 @@ RunOutput run_config(const nlohmann::json& config, const std::string& name,
 // The same, with the run's options adjusted before it starts.
 RunOutput run_config_with(const nlohmann::json& config, const std::string& name,
                           const std::function<void(RunOptions&)>& adjust, bool fresh = true);
+
+// Runs `config` against `registry` (test techniques registered in the test),
+// without images or a reference cache, into a fresh folder named `name`.
+RunOutput run_with_registry(const nlohmann::json& config, const Registry& registry,
+                            const std::string& name);
 
 // A small sphere grid seen from close by, for fast runs.
 nlohmann::json small_scene(double light_size);

@@ -1,0 +1,126 @@
+// What the plugin contract gives a technique on the GPU: compute and
+// tessellation programs, and read-only views of the scene's buffers, so a
+// technique can build its own data from the scene without uploading it again.
+#include <gtest/gtest.h>
+
+#include <numeric>
+
+#include "core/error.h"
+#include "gl/context.h"
+#include "gl/debug.h"
+#include "gl/gpu_scene.h"
+#include "gl/objects.h"
+#include "gl/program.h"
+#include "scenes/mesh_builders.h"
+
+namespace sb::test {
+namespace {
+
+class GpuAccess : public ::testing::Test {
+ protected:
+  void SetUp() override { context_ = gl::create_context(gl::Backend::OSMesa); }
+  std::unique_ptr<gl::Context> context_;
+};
+
+std::vector<float> read_buffer(GLuint buffer, size_t count) {
+  std::vector<float> out(count);
+  glGetNamedBufferSubData(buffer, 0, GLsizeiptr(count * sizeof(float)), out.data());
+  return out;
+}
+
+TEST_F(GpuAccess, AComputeProgramRuns) {
+  const gl::Program square = gl::Program::compute("square", R"(#version 450 core
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) buffer Out { float values[]; };
+void main() { uint i = gl_GlobalInvocationID.x; values[i] = float(i * i); }
+)");
+  const std::vector<float> zeros(256, -1.0f);
+  const gl::Buffer out = gl::make_buffer(GLsizeiptr(zeros.size() * sizeof(float)), zeros.data());
+  square.use();
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.get());
+  glDispatchCompute(4, 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  gl::throw_if_errors("compute test");
+  const auto values = read_buffer(out.get(), zeros.size());
+  for (size_t i = 0; i < values.size(); ++i) EXPECT_EQ(values[i], float(i * i)) << i;
+}
+
+// A technique reads the scene's vertices and indices where GpuScene keeps
+// them: here, each caster triangle's area, summed against the CPU's.
+TEST_F(GpuAccess, TheScenesBuffersAreReadableFromACompute) {
+  Scene scene;
+  scene.meshes.push_back(make_box("box", {0, 1, 0}, {0.5f, 1.0f, 1.5f}));
+  scene.meshes.push_back(make_box("receiver", {0, -1, 0}, {5.0f, 0.1f, 5.0f}));
+  scene.meshes.back().casts_shadow = false;
+  const GpuScene gpu(scene, {});
+  const auto ranges = gpu.mesh_ranges();
+  ASSERT_EQ(ranges.size(), 2u);
+  ASSERT_TRUE(ranges[0].casts_shadow);
+  const gl::Program area = gl::Program::compute("area", R"(#version 450 core
+layout(local_size_x = 1) in;
+layout(std430, binding = 0) readonly buffer Vertices { float v[]; };
+layout(std430, binding = 1) readonly buffer Indices { uint idx[]; };
+layout(std430, binding = 2) buffer Out { float area[]; };
+uniform uint first_index;
+uniform int base_vertex;
+uniform int floats_per_vertex;
+vec3 position(uint i) {
+  int k = (int(idx[first_index + i]) + base_vertex) * floats_per_vertex;
+  return vec3(v[k], v[k + 1], v[k + 2]);
+}
+void main() {
+  uint t = gl_GlobalInvocationID.x;
+  vec3 a = position(3u * t), b = position(3u * t + 1u), c = position(3u * t + 2u);
+  area[t] = 0.5 * length(cross(b - a, c - a));
+}
+)");
+  const size_t triangles = size_t(ranges[0].index_count) / 3;
+  const std::vector<float> zeros(triangles, 0.0f);
+  const gl::Buffer out = gl::make_buffer(GLsizeiptr(zeros.size() * sizeof(float)), zeros.data());
+  area.use();
+  glProgramUniform1ui(area.id(), area.location("first_index"),
+                      GLuint(ranges[0].first_index_byte / 4));
+  area.set("base_vertex", ranges[0].base_vertex);
+  area.set("floats_per_vertex", GpuScene::kFloatsPerVertex);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, gpu.vertex_buffer());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, gpu.index_buffer());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, out.get());
+  glDispatchCompute(GLuint(triangles), 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  gl::throw_if_errors("scene buffer test");
+  const auto areas = read_buffer(out.get(), triangles);
+  // A 1 × 2 × 3 box: surface 2·(2 + 3 + 6) = 22.
+  EXPECT_NEAR(std::accumulate(areas.begin(), areas.end(), 0.0), 22.0, 1e-4);
+}
+
+TEST_F(GpuAccess, TessellatedProgramsLinkAndCompileErrorsNameTheStage) {
+  const char* vertex =
+      "#version 450 core\nlayout(location = 0) in vec3 p;\n"
+      "void main() { gl_Position = vec4(p, 1.0); }\n";
+  const char* control =
+      "#version 450 core\nlayout(vertices = 3) out;\nvoid main() {\n"
+      "  gl_out[gl_InvocationID].gl_Position = gl_in[gl_InvocationID].gl_Position;\n"
+      "  gl_TessLevelOuter[0] = gl_TessLevelOuter[1] = gl_TessLevelOuter[2] = 4.0;\n"
+      "  gl_TessLevelInner[0] = 4.0;\n}\n";
+  const char* evaluation =
+      "#version 450 core\nlayout(triangles) in;\nvoid main() {\n"
+      "  gl_Position = gl_TessCoord.x * gl_in[0].gl_Position +\n"
+      "    gl_TessCoord.y * gl_in[1].gl_Position + gl_TessCoord.z * gl_in[2].gl_Position;\n}\n";
+  const char* fragment = "#version 450 core\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n";
+  const gl::Program ok =
+      gl::Program::tessellated("tess", {vertex, "", fragment}, control, evaluation);
+  EXPECT_NE(ok.id(), 0u);
+  try {
+    (void)gl::Program::tessellated("broken", {vertex, "", fragment}, "#version 450 core\nnonsense;",
+                                   evaluation);
+    ADD_FAILURE() << "no error";
+  } catch (const JobError& e) {
+    EXPECT_NE(std::string(e.what()).find("'broken' (tessellation control)"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW((void)gl::Program::compute("bad", "#version 450 core\nvoid main() { x; }"),
+               JobError);
+}
+
+}  // namespace
+}  // namespace sb::test
