@@ -326,7 +326,8 @@ void time_resolution_charts(const std::vector<const json*>& ok, Palette& styles,
   }
 }
 
-// Stacked bars of median pass times per (scene variant, resolution).
+// Stacked bars of median pass times per (scene variant, resolution): the
+// technique's passes with --pass-timing fine, else its one bracket.
 void passes_charts(const std::vector<const json*>& ok, Palette& pass_colours,
                    const std::string& out_dir, std::vector<Chart>& out) {
   for (const auto& [key, records] : by_scene_and_resolution(ok)) {
@@ -344,7 +345,11 @@ void passes_charts(const std::vector<const json*>& ok, Palette& pass_colours,
       };
       add("gbuffer", "/timing/shared/gbuffer", true);
       add("shading", "/timing/shared/shading", true);
-      for (const auto& name : r->value(json::json_pointer("/timing/pass_order"), json::array()))
+      const json order = r->value(json::json_pointer("/timing/pass_order"), json::array());
+      // A coarse run (the default) times the technique as one bracket: one
+      // segment then, so the bar is never just the shared passes.
+      if (order.empty()) add("technique (all passes)", "/timing/technique", false);
+      for (const auto& name : order)
         if (name.is_string())
           add(name.get<std::string>(), "/timing/passes/" + name.get<std::string>(), false);
       if (segments.empty()) continue;

@@ -169,6 +169,27 @@ TEST(Charts, HigherIsBetterMetricsFlipTheFront) {
   EXPECT_NE(read(charts.front().svg).find("shaded.all.ssim (higher is better)"), std::string::npos);
 }
 
+// Coarse pass timing (the default) records no passes: each bar still shows
+// the technique's time, as one segment.
+TEST(Charts, CoarseRunsShowTheTechniqueAsOneSegment) {
+  SKIP_WITHOUT_MATPLOTLIB();
+  test::TempDir dir("charts_coarse");
+  std::vector<json> records;
+  for (json r : synthetic_records())
+    if (r["scene_variant"] == "jeep/count=1" && r["resolution"] == "320x240" &&
+        r.contains("timing")) {
+      r["timing"].erase("passes");
+      r["timing"].erase("pass_order");
+      records.push_back(r);
+    }
+  const auto charts = write_charts(records, dir.path().string(), ChartOptions{});
+  ASSERT_EQ(charts.size(), 2u);
+  const std::string svg = read(charts.back().svg);
+  EXPECT_EQ(charts.back().kind, "passes");
+  EXPECT_EQ(text_count(svg, "technique (all passes)"), 1);
+  EXPECT_EQ(text_count(svg, "lookup"), 0);
+}
+
 TEST(Charts, UnknownMetricIsAnInputErrorNamingIt) {
   test::TempDir dir("charts_bad");
   ChartOptions o;
