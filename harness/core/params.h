@@ -25,6 +25,7 @@ struct ParamSpec {
   // String parameters naming a file: the config layer resolves them relative
   // to the config file's folder.
   bool is_path = false;
+  std::string rule_doc;  // what `rule` accepts, for the docs: "odd", "2 or 4"
 };
 
 // Adds the rule "odd integer" to an Int parameter.

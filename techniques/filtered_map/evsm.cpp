@@ -101,6 +101,7 @@ TechniqueInfo evsm_info() {
   components.rule = [](const nlohmann::json& v) {
     return v.get<int>() == 3 ? std::string("2 or 4") : std::string();
   };
+  components.rule_doc = "2 or 4";
   params.insert(params.begin(),
                 {components,
                  float_param("positive_exponent", 40.0, 0.1, 1000.0,

@@ -1,0 +1,53 @@
+#include "config/param_table.h"
+
+#include <cstdio>
+
+namespace sb {
+namespace {
+
+std::string number(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+// Pipes would end a Markdown table cell.
+std::string cell(const std::string& text) {
+  std::string out;
+  for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
+  return out;
+}
+
+std::string accepted(const ParamSpec& p) {
+  switch (p.type) {
+    case ParamType::Int:
+    case ParamType::Float: {
+      std::string range = number(p.min) + " … " + number(p.max);
+      if (!p.rule_doc.empty()) range += ", " + p.rule_doc;
+      return range;
+    }
+    case ParamType::Choice: {
+      std::string list;
+      for (const auto& c : p.choices) list += (list.empty() ? "`" : ", `") + c + "`";
+      return list;
+    }
+    case ParamType::Bool:
+      return "true, false";
+    case ParamType::String:
+      return p.is_path ? "a file path, relative to the config" : "text";
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string markdown_param_table(const std::vector<ParamSpec>& specs) {
+  if (specs.empty()) return "No parameters.\n";
+  std::string out = "| parameter | type | default | accepted | meaning |\n|---|---|---|---|---|\n";
+  for (const auto& p : specs)
+    out += "| `" + p.name + "` | " + to_string(p.type) + " | `" + cell(p.default_value.dump()) +
+           "` | " + cell(accepted(p)) + " | " + cell(p.doc) + " |\n";
+  return out;
+}
+
+}  // namespace sb
