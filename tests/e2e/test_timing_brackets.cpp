@@ -51,17 +51,10 @@ TEST(TimingBrackets, TheFirstFrameIsNeverTimedEvenWithoutWarmup) {
                                  {"resolutions", {{32, 24}}},
                                  {"frames", {{"warmup", 0}, {"timed", 3}}},
                                  {"reference", {{"spp", 4}}}};
-  const Experiment e = parse_experiment(config, "brackets.json", registry);
-  RunOptions o;
-  o.run_dir = (std::filesystem::temp_directory_path() / "shadowbench_e2e_brackets").string();
-  std::filesystem::remove_all(o.run_dir);
-  o.run_id = "brackets";
-  o.cache_dir = "";
-  o.quiet = true;
-  o.write_images = false;
-  ASSERT_EQ(run_experiment(e, o).ok, 1);
+  const auto out = run_with_registry(config, registry, "brackets");
+  ASSERT_EQ(out.summary.ok, 1);
   EXPECT_EQ(calls, 4) << "one compile frame, then the three timed ones";
-  const auto records = read_run_records(o.run_dir);
+  const auto& records = out.records;
   ASSERT_EQ(records.size(), 1u);
   const auto& timing = records[0]["timing"];
   EXPECT_EQ(timing["compile_frames"], 1);
