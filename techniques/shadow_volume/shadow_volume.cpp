@@ -89,7 +89,10 @@ class ShadowVolume final : public Technique {
       : zfail_(p.get_string("mode") == "zfail"), offset_(p.get_float("offset")) {}
 
   void prepare(const FrameInputs& in) override {
-    if (!in.gpu->has_adjacency()) throw JobError("shadow_volume: the scene has no adjacency");
+    // A scene without casters (a lone ground, inferred a receiver) has no
+    // volumes to draw, and no adjacency: every point is lit.
+    if (!in.gpu->has_adjacency() && in.scene->caster_triangle_count() > 0)
+      throw JobError("shadow_volume: the scene has no adjacency");
     volume_ = gl::Program("shadow_volume", {kVolumeVertex, kVolumeGeometry, ""});
     resolve_ =
         gl::Program("shadow_volume_resolve", {gl::kFullscreenVertexShader, "", kResolveFragment});
@@ -127,7 +130,7 @@ class ShadowVolume final : public Technique {
       volume_.set("view_projection", in.view_projection);
       volume_.set("light_position", in.scene->light.center);
       volume_.set("caps", zfail_ ? 1 : 0);
-      in.gpu->draw_casters_adjacency();
+      if (in.gpu->has_adjacency()) in.gpu->draw_casters_adjacency();
       glDisable(GL_POLYGON_OFFSET_FILL);
       glDisable(GL_DEPTH_CLAMP);
     }

@@ -95,6 +95,25 @@ TEST(ReceiverInference, APlaneWithAnythingUnderItStaysACaster) {
   EXPECT_EQ(record["scene"]["caster_triangles"], 14) << "cube and roof";
 }
 
+// A file with nothing but its ground: once inferred a receiver, the scene has
+// no caster at all, and every technique must say "all lit", as the
+// reference does, rather than fail.
+TEST(ReceiverInference, AGroundAloneLeavesNoCasterAndEveryTechniqueSaysLit) {
+  TempDir dir;
+  GltfBuilder b;
+  add_mesh(b, "ground", {-10, 0, -10, -10, 0, 10, 10, 0, 10, 10, 0, -10}, {0, 1, 2, 0, 2, 3});
+  json config = experiment(b.save_gltf(dir / "ground_only.gltf"), true);
+  config["techniques"] = json::array({"shadow_map", "vsm", "shadow_volume", "accumulation"});
+  const auto out = run_config(config, "receivers_ground_only");
+  ASSERT_EQ(out.records.size(), 4u);
+  for (const json& r : out.records) {
+    ASSERT_EQ(r["status"], "ok") << r["technique_variant"] << ": " << r.value("reason", "");
+    EXPECT_EQ(r["scene"]["caster_triangles"], 0);
+    EXPECT_EQ(r["metrics"]["visibility"]["all"]["max_error"].get<double>(), 0.0)
+        << r["technique_variant"];
+  }
+}
+
 // The rule on its own: the light must lie strictly on one side, and every
 // other mesh on that side or on the plane.
 TEST(ReceiverInference, NeedsTheWholeLightAndEveryOtherMeshOnOneSide) {
