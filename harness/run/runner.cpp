@@ -27,8 +27,8 @@
 #include "results/timing_stats.h"
 #include "run/gbuffer.h"
 #include "run/progress.h"
+#include "scenes/need_providers.h"
 #include "scenes/receiver_inference.h"
-#include "scenes/scene_analysis.h"
 
 namespace sb {
 namespace fs = std::filesystem;
@@ -162,9 +162,10 @@ struct Regions {
 // them from the light (filtered maps may draw them).
 std::vector<MeshDrawFlags> draw_flags(const ScenePlan& st) {
   std::vector<MeshDrawFlags> flags(st.scene.meshes.size());
+  const auto* topology = st.derived.find<CasterTopology>(need::kCasterClosedness);
   for (size_t i = 0; i < flags.size(); ++i) {
     const Mesh& m = st.scene.meshes[i];
-    flags[i].closed = m.casts_shadow && st.caps.closedness_checked && st.caps.topology[i].closed();
+    flags[i].closed = m.casts_shadow && topology != nullptr && (*topology)[i].closed();
     flags[i].nothing_behind = !m.casts_shadow && can_shadow_nothing(st.scene, i);
   }
   return flags;
@@ -239,8 +240,8 @@ class Runner {
       const auto& c = st->scene.camera;
       scene["camera"] = {
           {"eye", vec_json(c.eye)}, {"target", vec_json(c.target)}, {"fov_y", c.fov_y_degrees}};
-      scene["derived"] = {{"closedness_checked", st->caps.closedness_checked},
-                          {"adjacency_built", st->caps.adjacency_built},
+      scene["derived"] = {{"closedness_checked", st->derived.has(need::kCasterClosedness)},
+                          {"adjacency_built", st->derived.has(need::kEdgeAdjacency)},
                           {"receiver_inference", sv.infer_receivers},
                           {"inferred_receivers", st->inferred_receivers}};
     }
@@ -344,6 +345,7 @@ class Runner {
     }
 
     std::unique_ptr<GpuScene> gpu;
+    DerivedData derived;  // the plan's, and the GPU stages' (freed before gpu)
     for (const auto& res : e_.resolutions) {
       // Pending jobs of this (scene, resolution); finished ones are kept.
       std::vector<size_t> pending;
@@ -373,8 +375,18 @@ class Runner {
       }
       if (pending.empty()) continue;
       try {
-        if (!gpu) gpu = std::make_unique<GpuScene>(st.scene, st.caps.adjacency, draw_flags(st));
-        run_resolution(sv, st, *gpu, res, pending);
+        if (!gpu) {
+          // Both or neither: a failed GPU stage is tried again at the next
+          // resolution, like a failed upload.
+          const auto* adjacency = st.derived.find<CasterAdjacency>(need::kEdgeAdjacency);
+          auto uploaded = std::make_unique<GpuScene>(
+              st.scene, adjacency ? *adjacency : CasterAdjacency{}, draw_flags(st));
+          DerivedData with_gpu = st.derived;
+          for (const NeedProvider* p : st.uploads) p->upload(st.scene, *uploaded, with_gpu);
+          gpu = std::move(uploaded);
+          derived = std::move(with_gpu);
+        }
+        run_resolution(sv, st, *gpu, derived, res, pending);
       } catch (const std::exception& ex) {
         // Shared work (G-buffer, reference) failed: every pending job fails.
         for (size_t i : pending) {
@@ -391,7 +403,8 @@ class Runner {
   }
 
   void run_resolution(const SceneVariant& sv, const ScenePlan& st, const GpuScene& gpu,
-                      const Resolution& res, const std::vector<size_t>& pending) {
+                      const DerivedData& derived, const Resolution& res,
+                      const std::vector<size_t>& pending) {
     reset_gl_state();
     FrameTargets targets(res.width, res.height);
     const float aspect = float(res.width) / float(res.height);
@@ -461,8 +474,11 @@ class Runner {
         {"seconds", ref.seconds}};
 
     FrameInputs in = targets.inputs(st.scene, gpu, view, projection);
-    in.has_receiver_plane = st.caps.has_planar_receiver;
-    in.receiver_plane = st.caps.receiver.plane;
+    in.derived = &derived;
+    if (const auto* r = derived.find<PlanarReceiver>(need::kPlanarReceiver)) {
+      in.has_receiver_plane = true;
+      in.receiver_plane = r->plane;
+    }
     for (size_t i : pending) {
       const TechniqueVariant& tv = e_.techniques[i];
       const std::string id = job_id(sv.name, res.label(), tv.name);

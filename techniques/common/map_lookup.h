@@ -21,9 +21,9 @@
 #include <string>
 
 #include "common/depth_pass.h"
-#include "core/technique.h"
 #include "gl/objects.h"
 #include "gl/program.h"
+#include "plugin/technique.h"
 
 namespace sb::shadow {
 
