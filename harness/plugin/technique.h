@@ -59,10 +59,21 @@ struct FrameInputs {
 class Technique {
  public:
   virtual ~Technique() = default;
-  // Once per (scene, resolution), untimed: compile shaders, allocate targets.
+  // Once per (scene, resolution), untimed. It may compile shaders, allocate
+  // targets and upload or derive immutable scene data (geometry, textures),
+  // and precompute what depends on the technique's parameters only, such as
+  // sample offsets in the light's own (u, v) frame. It must not do anything
+  // that depends on the light's pose or the camera (fitting a light
+  // frustum, placing light samples in the world, light-derived uniforms):
+  // an engine does that every frame, so here it belongs in render(), where
+  // it is timed; done in prepare() it would hide its cost from the timed
+  // frames, and be stale if the light moved. tests/techniques/
+  // test_timing_contract.cpp moves the light after prepare() and checks
+  // that the next frame equals one from a technique prepared under the
+  // moved light.
   virtual void prepare(const FrameInputs& in) = 0;
-  // One frame. Every GL command belongs to a named pass of `timer`, e.g.
-  // auto pass = timer.scope("shadow_map");
+  // One frame, timed. Every GL command belongs to a named pass of `timer`,
+  // e.g. auto pass = timer.scope("shadow_map");
   virtual void render(const FrameInputs& in, gl::PassTimer& timer) = 0;
 };
 

@@ -136,19 +136,7 @@ json compare_json(const ImageF& test, const ImageF& ref, const std::vector<uint8
 }
 
 // Undo whatever state a technique left behind.
-void reset_gl_state() {
-  glDisable(GL_BLEND);
-  glDisable(GL_STENCIL_TEST);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_POLYGON_OFFSET_FILL);
-  glDisable(GL_DEPTH_CLAMP);
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glDepthMask(GL_TRUE);
-  glStencilMask(0xff);
-  glUseProgram(0);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-}
+void reset_gl_state() { gl::reset_state(); }
 
 // Pixel sets shared by every job of one (scene, resolution).
 struct Regions {

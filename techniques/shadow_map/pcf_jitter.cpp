@@ -74,8 +74,7 @@ class JitteredPcf final : public SingleMapTechnique {
         rotate_(p.get_bool("rotate")) {}
 
  protected:
-  void set_uniforms(const gl::Program& lookup, const LightFrustum& /*frustum*/,
-                    const Scene& /*scene*/) const override {
+  void set_uniforms(const gl::Program& lookup) const override {
     lookup.set("taps", int(offsets_.size()));
     lookup.set("early_out_taps", early_out_);
     lookup.set("offsets", offsets_);

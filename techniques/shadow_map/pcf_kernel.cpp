@@ -43,8 +43,7 @@ class KernelPcf final : public SingleMapTechnique {
                                 shape == KernelShape::Gauss ? p.get_float("sigma") : 0.0f)) {}
 
  protected:
-  void set_uniforms(const gl::Program& lookup, const LightFrustum& /*frustum*/,
-                    const Scene& /*scene*/) const override {
+  void set_uniforms(const gl::Program& lookup) const override {
     lookup.set("radius", int(weights_.size()) / 2);
     lookup.set("weights", weights_);
   }
