@@ -9,7 +9,7 @@
 
 #include "core/error.h"
 #include "results/mann_whitney.h"
-#include "results/timing_stats.h"
+#include "record/timing_stats.h"
 
 namespace sb {
 namespace {

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "record/fields.h"  // json_number
+
 namespace sb {
 
 class ResultsStore {
@@ -38,8 +40,5 @@ std::vector<nlohmann::json> read_run_records(const std::string& run_dir);
 // name, a glTF URI, a driver message): they are written as U+FFFD instead of
 // making nlohmann throw and the run lose its records.
 std::string json_text(const nlohmann::json& value, int indent = -1);
-// NaN and ±inf have no JSON spelling: they are stored as the strings "nan",
-// "inf", "-inf" (documented in docs/results.md).
-nlohmann::json json_number(double v);
 
 }  // namespace sb

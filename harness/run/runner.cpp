@@ -19,12 +19,12 @@
 #include "metrics/light_horizon.h"
 #include "metrics/metrics.h"
 #include "plan/plan.h"
+#include "record/timing_record.h"
 #include "reference/embree_isa.h"
 #include "reference/reference.h"
 #include "results/report.h"
 #include "results/run_lock.h"
 #include "results/store.h"
-#include "results/timing_stats.h"
 #include "run/gbuffer.h"
 #include "run/progress.h"
 #include "scenes/receiver_inference.h"
@@ -569,9 +569,7 @@ class Runner {
     // Statistics plus the raw per-frame samples, in frame order: comparisons
     // between runs test the samples themselves (shadowbench compare).
     const auto with_samples = [](const std::vector<double>& v) {
-      json j = to_json(summarize(v));
-      j["samples_ms"] = v;
-      return j;
+      return TimingSeries::of(v).to_json();
     };
     timing["frame"] = with_samples(coarse.frame);
     timing["technique"] = with_samples(coarse.technique);

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "results/timing_stats.h"
+#include "record/timing_record.h"
 
 namespace sb::test {
 
@@ -27,9 +27,7 @@ inline std::vector<double> noisy_samples(double median_ms, double noise, int n, 
 }
 
 inline nlohmann::json timing_json(const std::vector<double>& samples) {
-  nlohmann::json t = to_json(summarize(samples));
-  t["samples_ms"] = samples;
-  return t;
+  return TimingSeries::of(samples).to_json();
 }
 
 // An ok record with frame samples, a "depth" and a "lookup" pass (the first
