@@ -1,13 +1,18 @@
 // The typed record: to_json/from_json round trips for an ok job with every
 // optional part, a skipped job and a failed one; a record of another
 // schema_version refused with a clear message; a missing or ill-typed member
-// named by its JSON pointer.
+// named by its JSON pointer, in memory and in a run folder's file.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <limits>
+#include <tuple>
 
+#include "../metrics/test_util.h"
+#include "core/error.h"
 #include "record/job_record.h"
+#include "results/store.h"
 #include "sample_records.h"
 
 namespace sb {
@@ -220,6 +225,32 @@ TEST(JobRecord, MissingOrIllTypedMembersAreNamedByPointer) {
     const RecordError e = error_of(j);
     EXPECT_EQ(e.pointer(), c.pointer);
     EXPECT_NE(e.problem().find(c.problem), std::string::npos) << c.pointer << ": " << e.what();
+  }
+}
+
+// Read from a run folder, the message names the file, the line and the place.
+TEST(JobRecord, RunFolderReadingNamesFileLineAndPointer) {
+  test::TempDir dir("record_file");
+  const JobRecord r = full_record();
+  json bad = r.to_json();
+  bad["metrics"]["visibility"]["all"]["rmse"] = "low";
+  json newer = r.to_json();
+  newer["schema_version"] = 7;
+  for (const auto& [second, pointer, what] :
+       {std::tuple<json, std::string, std::string>{bad, "/metrics/visibility/all/rmse",
+                                                   "expected a number"},
+        {newer, "/schema_version", "schema_version 7"}}) {
+    std::ofstream(dir.file("results.jsonl")) << r.to_json().dump() << "\n" << second.dump() << "\n";
+    try {
+      read_job_records(dir.path().string());
+      FAIL() << "expected an InputError";
+    } catch (const InputError& e) {
+      const std::string msg = e.what();
+      EXPECT_EQ(e.file(), dir.file("results.jsonl"));
+      EXPECT_NE(e.where().find("line 2"), std::string::npos) << msg;
+      EXPECT_NE(e.where().find(pointer), std::string::npos) << msg;
+      EXPECT_NE(msg.find(what), std::string::npos) << msg;
+    }
   }
 }
 
