@@ -19,12 +19,12 @@
 #include "metrics/light_horizon.h"
 #include "metrics/metrics.h"
 #include "plan/plan.h"
+#include "record/job_record.h"
 #include "reference/embree_isa.h"
 #include "reference/reference.h"
 #include "results/report.h"
 #include "results/run_lock.h"
 #include "results/store.h"
-#include "results/timing_stats.h"
 #include "run/gbuffer.h"
 #include "run/progress.h"
 #include "scenes/need_providers.h"
@@ -277,23 +277,22 @@ class Runner {
   }
 
   bool resumable(const std::string& id, const std::string& hash) {
-    const json* done = store_.finished(id);
+    const JobRecord* done = store_.finished(id);
     if (done == nullptr) return false;
-    const json stored = done->value("spec_hash", json());
-    if (stored.is_string() && stored.get<std::string>() == hash) return true;
+    if (done->spec_hash == hash) return true;
     ++summary_.respecified;
     log("job " + id +
         ": its settings changed since the earlier run in this folder; running it again");
     return false;
   }
 
-  void finish(const std::string& id, json record) {
+  void finish(json record) {
     record["finished_at"] = now_iso8601();
     const std::string status = record["status"];
     if (status == "ok") ++summary_.ok;
     if (status == "skipped") ++summary_.skipped;
     if (status == "failed") ++summary_.failed;
-    store_.put(id, record);
+    store_.put(JobRecord::from_json(record));
     ++done_;
     // Jobs that rendered carry their duration; the rest took no time.
     if (record.contains("duration_s"))
@@ -349,14 +348,14 @@ class Runner {
           json r = base_record(sv, nullptr, res, e_.techniques[i]);
           r["status"] = "failed";
           r["reason"] = scene_error;
-          finish(id, r);
+          finish(r);
           continue;
         }
         if (!st.skip_reason[i].empty()) {
           json r = base_record(sv, &st, res, e_.techniques[i]);
           r["status"] = "skipped";
           r["reason"] = st.skip_reason[i];
-          finish(id, r);
+          finish(r);
           continue;
         }
         pending.push_back(i);
@@ -382,7 +381,7 @@ class Runner {
           json r = base_record(sv, &st, res, e_.techniques[i]);
           r["status"] = "failed";
           r["reason"] = std::string("shared pass failed: ") + ex.what();
-          finish(id, r);
+          finish(r);
         }
         gl::take_debug_errors();
         reset_gl_state();
@@ -488,7 +487,7 @@ class Runner {
       r["duration_s"] =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       reset_gl_state();
-      finish(id, r);
+      finish(r);
     }
   }
 
@@ -573,9 +572,7 @@ class Runner {
     // Statistics plus the raw per-frame samples, in frame order: comparisons
     // between runs test the samples themselves (shadowbench compare).
     const auto with_samples = [](const std::vector<double>& v) {
-      json j = to_json(summarize(v));
-      j["samples_ms"] = v;
-      return j;
+      return TimingSeries::of(v).to_json();
     };
     timing["frame"] = with_samples(coarse.frame);
     timing["technique"] = with_samples(coarse.technique);
