@@ -25,9 +25,9 @@
 #include "config/experiment.h"
 #include "config/param_table.h"
 #include "core/error.h"
-#include "core/registry.h"
 #include "core/scene_types.h"
 #include "plan/plan.h"
+#include "plugin/registry.h"
 #include "reference/embree_isa.h"
 #include "results/bencher_json.h"
 #include "results/benchmark_json.h"
@@ -39,6 +39,7 @@
 #include "run/runner.h"
 #include "scenes/gltf_export.h"
 #include "scenes/gltf_import.h"
+#include "scenes/need_providers.h"
 #include "scenes/scene_spec.h"
 
 namespace {
@@ -203,14 +204,10 @@ void write_ci_outputs(const Args& a, const std::vector<JobRecord>& records) {
   }
 }
 
-// Needs as the plan reads them (core/technique.h).
+// Needs as the technique declared them (plugin/needs.h).
 std::string needs_of(const TechniqueInfo& t) {
   std::string needs;
-  if (t.needs.closed_casters) needs += " closed_casters";
-  if (t.needs.edge_adjacency) needs += " edge_adjacency";
-  if (t.needs.opaque_casters) needs += " opaque_casters";
-  if (t.needs.planar_receiver) needs += " planar_receiver";
-  if (t.needs.caster_closedness) needs += " caster_closedness";
+  for (const auto& n : t.needs.names) needs += " " + n;
   return needs;
 }
 
@@ -252,6 +249,12 @@ int cmd_list(const Args& a) {
                   p.default_value.dump().c_str(), p.doc.c_str(), extra.c_str());
     }
   }
+  std::printf("needs:\n");
+  const auto print_need = [](const NeedProvider& p, const char* from) {
+    std::printf("  %-18s %s%s\n", p.name.c_str(), p.summary.c_str(), from);
+  };
+  for (const auto& p : builtin_need_providers()) print_need(p, "");
+  for (const auto& p : r.providers()) print_need(p, "  (plugin)");
   std::printf("scenes:\n");
   for (const auto& s : scene_types()) {
     std::printf("  %-16s %s\n", s.name.c_str(), s.summary.c_str());

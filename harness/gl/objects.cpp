@@ -94,6 +94,20 @@ void draw_fullscreen_triangle() {
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
+void reset_state() {
+  glDisable(GL_BLEND);
+  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glDisable(GL_DEPTH_CLAMP);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthMask(GL_TRUE);
+  glStencilMask(0xff);
+  glUseProgram(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
 const char* const kFullscreenVertexShader = R"(#version 450 core
 out vec2 uv;
 void main() {

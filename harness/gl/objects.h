@@ -61,6 +61,10 @@ Buffer make_buffer(GLsizeiptr bytes, const void* data, GLbitfield flags = 0);
 
 // Draws one triangle covering the viewport (no vertex buffer: uses gl_VertexID).
 void draw_fullscreen_triangle();
+// Undoes whatever state a technique left behind: no blending, stencil or
+// depth test, culling, polygon offset or depth clamp; every write mask on;
+// no program; the default framebuffer bound.
+void reset_state();
 // Called when a context is made: drops names that belonged to the last one.
 void forget_context_objects();
 // Vertex shader for draw_fullscreen_triangle(); writes `uv` in [0,1]^2.

@@ -30,8 +30,8 @@
 #include "results/store.h"
 #include "run/gbuffer.h"
 #include "run/progress.h"
+#include "scenes/need_providers.h"
 #include "scenes/receiver_inference.h"
-#include "scenes/scene_analysis.h"
 
 namespace sb {
 namespace fs = std::filesystem;
@@ -119,19 +119,7 @@ ImageF with_unmeasured_from(const ImageF& test, const ImageF& ref,
 }
 
 // Undo whatever state a technique left behind.
-void reset_gl_state() {
-  glDisable(GL_BLEND);
-  glDisable(GL_STENCIL_TEST);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_POLYGON_OFFSET_FILL);
-  glDisable(GL_DEPTH_CLAMP);
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glDepthMask(GL_TRUE);
-  glStencilMask(0xff);
-  glUseProgram(0);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-}
+void reset_gl_state() { gl::reset_state(); }
 
 // Pixel sets shared by every job of one (scene, resolution).
 struct Regions {
@@ -226,9 +214,10 @@ struct FrameSamples {
 // them from the light (filtered maps may draw them).
 std::vector<MeshDrawFlags> draw_flags(const ScenePlan& st) {
   std::vector<MeshDrawFlags> flags(st.scene.meshes.size());
+  const auto* topology = st.derived.find<CasterTopology>(need::kCasterClosedness);
   for (size_t i = 0; i < flags.size(); ++i) {
     const Mesh& m = st.scene.meshes[i];
-    flags[i].closed = m.casts_shadow && st.caps.closedness_checked && st.caps.topology[i].closed();
+    flags[i].closed = m.casts_shadow && topology != nullptr && (*topology)[i].closed();
     flags[i].nothing_behind = !m.casts_shadow && can_shadow_nothing(st.scene, i);
   }
   return flags;
@@ -303,8 +292,8 @@ class Runner {
       b.light = {vec3(l.center), vec3(l.target), {l.width(), l.height()}, l.intensity};
       const auto& c = st->scene.camera;
       b.camera = {vec3(c.eye), vec3(c.target), c.fov_y_degrees};
-      b.derived = {st->caps.closedness_checked, st->caps.adjacency_built, sv.infer_receivers,
-                   st->inferred_receivers};
+      b.derived = {st->derived.has(need::kCasterClosedness), st->derived.has(need::kEdgeAdjacency),
+                   sv.infer_receivers, st->inferred_receivers};
       r.scene.built = std::move(b);
     }
     r.technique_variant = tv.name;
@@ -407,6 +396,7 @@ class Runner {
     }
 
     std::unique_ptr<GpuScene> gpu;
+    DerivedData derived;  // the plan's, and the GPU stages' (freed before gpu)
     for (const auto& res : e_.resolutions) {
       // Pending jobs of this (scene, resolution); finished ones are kept.
       std::vector<size_t> pending;
@@ -430,8 +420,18 @@ class Runner {
       }
       if (pending.empty()) continue;
       try {
-        if (!gpu) gpu = std::make_unique<GpuScene>(st.scene, st.caps.adjacency, draw_flags(st));
-        run_resolution(sv, st, *gpu, res, pending);
+        if (!gpu) {
+          // Both or neither: a failed GPU stage is tried again at the next
+          // resolution, like a failed upload.
+          const auto* adjacency = st.derived.find<CasterAdjacency>(need::kEdgeAdjacency);
+          auto uploaded = std::make_unique<GpuScene>(
+              st.scene, adjacency ? *adjacency : CasterAdjacency{}, draw_flags(st));
+          DerivedData with_gpu = st.derived;
+          for (const NeedProvider* p : st.uploads) p->upload(st.scene, *uploaded, with_gpu);
+          gpu = std::move(uploaded);
+          derived = std::move(with_gpu);
+        }
+        run_resolution(sv, st, *gpu, derived, res, pending);
       } catch (const std::exception& ex) {
         // Shared work (G-buffer, reference) failed: every pending job fails.
         for (size_t i : pending)
@@ -489,7 +489,8 @@ class Runner {
   }
 
   void run_resolution(const SceneVariant& sv, const ScenePlan& st, const GpuScene& gpu,
-                      const Resolution& res, const std::vector<size_t>& pending) {
+                      const DerivedData& derived, const Resolution& res,
+                      const std::vector<size_t>& pending) {
     reset_gl_state();
     FrameTargets targets(res.width, res.height);
     const float aspect = float(res.width) / float(res.height);
@@ -530,8 +531,11 @@ class Runner {
     const ReferenceRecord ref_record = reference_record(ref, regions);
 
     FrameInputs in = targets.inputs(st.scene, gpu, view, projection);
-    in.has_receiver_plane = st.caps.has_planar_receiver;
-    in.receiver_plane = st.caps.receiver.plane;
+    in.derived = &derived;
+    if (const auto* r = derived.find<PlanarReceiver>(need::kPlanarReceiver)) {
+      in.has_receiver_plane = true;
+      in.receiver_plane = r->plane;
+    }
     const FrameSetup frame{targets, gpu, st.scene, view_projection, in};
     const Baseline baseline{ref, ref_shaded, regions};
     for (size_t i : pending) {

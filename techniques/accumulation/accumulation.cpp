@@ -16,10 +16,10 @@
 
 #include "accumulation/light_samples.h"
 #include "common/map_lookup.h"
-#include "core/registry.h"
 #include "gl/debug.h"
 #include "gl/objects.h"
 #include "gl/program.h"
+#include "plugin/registry.h"
 
 namespace sb::shadow {
 namespace {
@@ -32,11 +32,11 @@ class Accumulation final : public Technique {
         seed_(static_cast<unsigned>(p.get_int("seed"))),
         map_settings_(depth_map_settings(p)) {}
 
-  void prepare(const FrameInputs& in) override {
+  void prepare(const FrameInputs& /*in*/) override {
     map_ = DepthMap(map_settings_.size, map_settings_.depth_format);
-    frusta_.clear();
-    for (const glm::vec2& st : light_samples(samples_, jitter_, seed_))
-      frusta_.push_back(fit_light_frustum(*in.scene, in.scene->light.point(st.x, st.y)));
+    // Where the points lie on the light, in its own (s, t): not where the
+    // light is, so they may be drawn here; their frusta are fitted per frame.
+    points_ = light_samples(samples_, jitter_, seed_);
     accumulate_ = MapLookupPass("accumulation",
                                 "float lit_fraction(vec3 t) { return texture(shadow_map, t); }\n");
     gl::throw_if_errors("accumulation prepare");
@@ -48,10 +48,12 @@ class Accumulation final : public Technique {
       const float zero[4] = {0, 0, 0, 0};
       glClearNamedFramebufferfv(in.visibility_framebuffer, GL_COLOR, 0, zero);
     }
-    const float weight = 1.0f / float(frusta_.size());
-    for (const auto& f : frusta_) {
+    const float weight = 1.0f / float(points_.size());
+    for (const glm::vec2& st : points_) {
+      LightFrustum f;
       {
         auto pass = timer.scope("shadow_maps");
+        f = fit_light_frustum(*in.scene, in.scene->light.point(st.x, st.y));
         map_.render(*in.gpu, f, map_settings_.cull, map_settings_.bias);
       }
       auto pass = timer.scope("accumulate");
@@ -68,7 +70,7 @@ class Accumulation final : public Technique {
   unsigned seed_;
   DepthMapSettings map_settings_;
   DepthMap map_;
-  std::vector<LightFrustum> frusta_;
+  std::vector<glm::vec2> points_;  // (s, t) on the light
   MapLookupPass accumulate_;
 };
 
@@ -88,6 +90,6 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
                  int_param("seed", 1, 0, 2147483647, "jitter seed")});
   registry.add({"accumulation", "accumulation",
                 "average of N hard shadow maps from stratified points on the area light",
-                Needs{.caster_closedness = true}, std::move(params),
+                Needs{need::kCasterClosedness}, std::move(params),
                 [](const Params& p) { return std::make_unique<shadow::Accumulation>(p); }});
 }

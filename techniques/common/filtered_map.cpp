@@ -65,10 +65,9 @@ FilteredMapTechnique::FilteredMapTechnique(const Params& p, std::string name, Ba
   layers_ = (shader_.channels + 3) / 4;
 }
 
-void FilteredMapTechnique::prepare(const FrameInputs& in) {
+void FilteredMapTechnique::prepare(const FrameInputs& /*in*/) {
   const int size = settings_.depth.size;
   map_ = DepthMap(size, settings_.depth.depth_format);
-  frustum_ = fit_light_frustum(*in.scene, in.scene->light.center);
   const GLenum format = basis_format(layers_ > 1 ? 4 : shader_.channels, settings_.half_float);
   moments_ = make_array_texture(format, size, layers_);
   // The lookup filters bilinearly; the basis and filter passes use texelFetch.
@@ -78,7 +77,6 @@ void FilteredMapTechnique::prepare(const FrameInputs& in) {
   basis_ = gl::Program(name_ + "_basis", {gl::kFullscreenVertexShader, "",
                                           std::string(kBasisHead) + kLightDepthGlsl +
                                               shader_.basis_glsl + kBasisMain});
-  basis_.set("light_depth_range", glm::vec2(frustum_.near_plane, frustum_.far_plane));
   filter_.reset();
   if (settings_.prefilter && settings_.k > 1)
     filter_.emplace(moments_.get(), format, size, layers_,
@@ -90,9 +88,11 @@ void FilteredMapTechnique::prepare(const FrameInputs& in) {
 }
 
 void FilteredMapTechnique::render(const FrameInputs& in, gl::PassTimer& timer) {
+  LightFrustum frustum;
   {
     auto pass = timer.scope("shadow_map");
-    map_.render(*in.gpu, frustum_, settings_.depth.cull, settings_.depth.bias,
+    frustum = fit_light_frustum(*in.scene, in.scene->light.center);
+    map_.render(*in.gpu, frustum, settings_.depth.cull, settings_.depth.bias,
                 shader_.receivers_in_map);
   }
   {
@@ -100,6 +100,7 @@ void FilteredMapTechnique::render(const FrameInputs& in, gl::PassTimer& timer) {
     glDisable(GL_DEPTH_TEST);
     glViewport(0, 0, settings_.depth.size, settings_.depth.size);
     basis_.use();
+    basis_.set("light_depth_range", glm::vec2(frustum.near_plane, frustum.far_plane));
     glBindTextureUnit(0, map_.texture());
     for (int l = 0; l < layers_; ++l) {
       if (layers_ > 1) basis_.set("layer", l);
@@ -113,7 +114,7 @@ void FilteredMapTechnique::render(const FrameInputs& in, gl::PassTimer& timer) {
   }
   auto pass = timer.scope("lookup");
   glBindTextureUnit(4, moments_.get());
-  lookup_.draw(in, frustum_, settings_.depth, map_.texture());
+  lookup_.draw(in, frustum, settings_.depth, map_.texture());
 }
 
 }  // namespace sb::shadow

@@ -8,6 +8,9 @@
 //   3. "prefilter":  an optional separable box or Gaussian filter over them;
 //   4. "lookup":     visibility reconstructed from the bilinearly filtered
 //                    basis values at the receiver's depth.
+// The light frustum, and the depth range the basis values are computed in,
+// are fitted in every frame (core/technique.h: prepare() must not depend on
+// the light).
 #include <optional>
 #include <string>
 #include <vector>
@@ -70,7 +73,6 @@ class FilteredMapTechnique : public Technique {
   FilteredMapSettings settings_;
   int layers_ = 1;
   DepthMap map_;
-  LightFrustum frustum_;
   gl::Texture moments_;
   std::vector<gl::Framebuffer> moment_layers_;
   gl::Program basis_;

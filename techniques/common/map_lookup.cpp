@@ -103,21 +103,23 @@ SingleMapTechnique::SingleMapTechnique(const Params& p, std::string name,
       linear_compare_(linear_compare),
       settings_(depth_map_settings(p)) {}
 
-void SingleMapTechnique::prepare(const FrameInputs& in) {
+void SingleMapTechnique::prepare(const FrameInputs& /*in*/) {
   map_ = DepthMap(settings_.size, settings_.depth_format);
-  frustum_ = fit_light_frustum(*in.scene, in.scene->light.center);
   lookup_ = MapLookupPass(name_ + "_lookup", lit_fraction_glsl_, linear_compare_);
-  set_uniforms(lookup_.program(), frustum_, *in.scene);
+  set_uniforms(lookup_.program());
   gl::throw_if_errors(name_ + " prepare");
 }
 
 void SingleMapTechnique::render(const FrameInputs& in, gl::PassTimer& timer) {
+  LightFrustum frustum;
   {
     auto pass = timer.scope("shadow_map");
-    map_.render(*in.gpu, frustum_, settings_.cull, settings_.bias);
+    frustum = fit_light_frustum(*in.scene, in.scene->light.center);
+    map_.render(*in.gpu, frustum, settings_.cull, settings_.bias);
   }
   auto pass = timer.scope("lookup");
-  lookup_.draw(in, frustum_, settings_, map_.texture());
+  set_light_uniforms(lookup_.program(), frustum, *in.scene);
+  lookup_.draw(in, frustum, settings_, map_.texture());
 }
 
 }  // namespace sb::shadow

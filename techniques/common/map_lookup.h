@@ -21,9 +21,9 @@
 #include <string>
 
 #include "common/depth_pass.h"
-#include "core/technique.h"
 #include "gl/objects.h"
 #include "gl/program.h"
+#include "plugin/technique.h"
 
 namespace sb::shadow {
 
@@ -47,7 +47,8 @@ class MapLookupPass {
 
 // A technique made of one depth map from the light's centre and one lookup:
 // shadow_map, the PCF kernels, PCSS and their kin differ only in
-// `lit_fraction` and its uniforms.
+// `lit_fraction` and its uniforms. The light frustum is fitted in every
+// frame (core/technique.h: prepare() must not depend on the light).
 class SingleMapTechnique : public Technique {
  public:
   SingleMapTechnique(const Params& p, std::string name, std::string lit_fraction_glsl,
@@ -56,9 +57,12 @@ class SingleMapTechnique : public Technique {
   void render(const FrameInputs& in, gl::PassTimer& timer) override;
 
  protected:
-  // Sets the variant's own uniforms on the lookup program, once, in prepare().
-  virtual void set_uniforms(const gl::Program& /*lookup*/, const LightFrustum& /*frustum*/,
-                            const Scene& /*scene*/) const {}
+  // The variant's own uniforms that depend on its parameters only: set once,
+  // in prepare().
+  virtual void set_uniforms(const gl::Program& /*lookup*/) const {}
+  // Those that depend on the light or its frustum: set in every frame.
+  virtual void set_light_uniforms(const gl::Program& /*lookup*/, const LightFrustum& /*frustum*/,
+                                  const Scene& /*scene*/) const {}
   const DepthMapSettings& settings() const { return settings_; }
 
  private:
@@ -67,7 +71,6 @@ class SingleMapTechnique : public Technique {
   bool linear_compare_;
   DepthMapSettings settings_;
   DepthMap map_;
-  LightFrustum frustum_;
   MapLookupPass lookup_;
 };
 

@@ -74,8 +74,7 @@ class JitteredPcf final : public SingleMapTechnique {
         rotate_(p.get_bool("rotate")) {}
 
  protected:
-  void set_uniforms(const gl::Program& lookup, const LightFrustum& /*frustum*/,
-                    const Scene& /*scene*/) const override {
+  void set_uniforms(const gl::Program& lookup) const override {
     lookup.set("taps", int(offsets_.size()));
     lookup.set("early_out_taps", early_out_);
     lookup.set("offsets", offsets_);
@@ -105,7 +104,7 @@ TechniqueInfo pcf_jitter_info() {
   TechniqueInfo info{"pcf_jitter",
                      "shadow_map",
                      "jittered-disk percentage-closer filtering with an early-out (Shypula 2008)",
-                     Needs{.caster_closedness = true},
+                     Needs{need::kCasterClosedness},
                      std::move(params),
                      [](const Params& p) { return std::make_unique<JitteredPcf>(p); }};
   info.check = [](const Params& p) -> std::pair<std::string, std::string> {

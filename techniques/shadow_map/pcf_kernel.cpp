@@ -43,8 +43,7 @@ class KernelPcf final : public SingleMapTechnique {
                                 shape == KernelShape::Gauss ? p.get_float("sigma") : 0.0f)) {}
 
  protected:
-  void set_uniforms(const gl::Program& lookup, const LightFrustum& /*frustum*/,
-                    const Scene& /*scene*/) const override {
+  void set_uniforms(const gl::Program& lookup) const override {
     lookup.set("radius", int(weights_.size()) / 2);
     lookup.set("weights", weights_);
   }
@@ -70,7 +69,7 @@ TechniqueInfo pcf_box_info() {
   return {"pcf_box",
           "shadow_map",
           "box percentage-closer filtering, k×k taps (Reeves et al. 1987)",
-          Needs{.caster_closedness = true},
+          Needs{need::kCasterClosedness},
           kernel_pcf_params(3, false),
           [](const Params& p) { return std::make_unique<KernelPcf>(p, KernelShape::Box); }};
 }
@@ -79,7 +78,7 @@ TechniqueInfo pcf_gauss_info() {
   return {"pcf_gauss",
           "shadow_map",
           "Gaussian-weighted percentage-closer filtering, k×k taps",
-          Needs{.caster_closedness = true},
+          Needs{need::kCasterClosedness},
           kernel_pcf_params(5, true),
           [](const Params& p) { return std::make_unique<KernelPcf>(p, KernelShape::Gauss); }};
 }

@@ -72,15 +72,17 @@ class Pcss final : public SingleMapTechnique {
         min_filter_texels_(p.get_float("min_filter_texels")) {}
 
  protected:
-  void set_uniforms(const gl::Program& lookup, const LightFrustum& frustum,
-                    const Scene& scene) const override {
+  void set_uniforms(const gl::Program& lookup) const override {
     lookup.set("search_radius", search_radius_);
     lookup.set("filter_radius", filter_radius_);
+    lookup.set("search_texels", search_texels_);
+    lookup.set("min_filter_texels", min_filter_texels_);
+  }
+  void set_light_uniforms(const gl::Program& lookup, const LightFrustum& frustum,
+                          const Scene& scene) const override {
     // A rectangular light: the mean of its sides (the scenes' lights are square).
     lookup.set("light_size", 0.5f * (scene.light.width() + scene.light.height()));
     lookup.set("tan_half_fov", frustum.tan_half_fov);
-    lookup.set("search_texels", search_texels_);
-    lookup.set("min_filter_texels", min_filter_texels_);
   }
 
  private:
@@ -110,7 +112,7 @@ TechniqueInfo pcss_info() {
           "shadow_map",
           "percentage-closer soft shadows: blocker search, then PCF as wide as the penumbra "
           "(Fernando 2005)",
-          Needs{.caster_closedness = true},
+          Needs{need::kCasterClosedness},
           std::move(params),
           [](const Params& p) { return std::make_unique<Pcss>(p); }};
 }

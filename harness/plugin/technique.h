@@ -14,21 +14,12 @@
 #include "core/scene.h"
 #include "gl/gl.h"
 #include "gl/pass_timer.h"
+#include "plugin/derived_data.h"
+#include "plugin/needs.h"
 
 namespace sb {
 
 class GpuScene;
-
-// What a technique needs from a scene, read by the planner before any GL
-// context exists. A scene that cannot provide it makes the pair "skipped".
-struct Needs {
-  bool edge_adjacency = false;   // triangle adjacency of the casters
-  bool closed_casters = false;   // every caster is a closed 2-manifold
-  bool opaque_casters = false;   // cannot honour alpha-tested casters
-  bool planar_receiver = false;  // a plane that receives every caster's shadow
-  // Which casters are closed (no skip): depth passes cull closed ones only.
-  bool caster_closedness = false;
-};
 
 // Everything a technique may read for one (scene, resolution).
 struct FrameInputs {
@@ -49,7 +40,7 @@ struct FrameInputs {
   GLuint gbuffer_shading_normal = 0;
   GLuint gbuffer_albedo = 0;
   // The plane that receives every caster's shadow, n·x + d = 0 with n towards
-  // the casters: set when the technique declared needs.planar_receiver
+  // the casters: set when the technique declared need::kPlanarReceiver
   // (its job is skipped when the scene has none).
   bool has_receiver_plane = false;
   glm::vec4 receiver_plane{0.0f};
@@ -60,15 +51,29 @@ struct FrameInputs {
   // (V = 1 on background).
   GLuint visibility_framebuffer = 0;
   GLuint visibility_texture = 0;
+  // Everything derived for the technique's needs (plugin/needs.h), CPU and
+  // GPU, by need name: derived->get<SilhouetteEdges>(need::kSilhouetteEdges).
+  const DerivedData* derived = nullptr;
 };
 
 class Technique {
  public:
   virtual ~Technique() = default;
-  // Once per (scene, resolution), untimed: compile shaders, allocate targets.
+  // Once per (scene, resolution), untimed. It may compile shaders, allocate
+  // targets and upload or derive immutable scene data (geometry, textures),
+  // and precompute what depends on the technique's parameters only, such as
+  // sample offsets in the light's own (u, v) frame. It must not do anything
+  // that depends on the light's pose or the camera (fitting a light
+  // frustum, placing light samples in the world, light-derived uniforms):
+  // an engine does that every frame, so here it belongs in render(), where
+  // it is timed; done in prepare() it would hide its cost from the timed
+  // frames, and be stale if the light moved. tests/techniques/
+  // test_timing_contract.cpp moves the light after prepare() and checks
+  // that the next frame equals one from a technique prepared under the
+  // moved light.
   virtual void prepare(const FrameInputs& in) = 0;
-  // One frame. Every GL command belongs to a named pass of `timer`, e.g.
-  // auto pass = timer.scope("shadow_map");
+  // One frame, timed. Every GL command belongs to a named pass of `timer`,
+  // e.g. auto pass = timer.scope("shadow_map");
   virtual void render(const FrameInputs& in, gl::PassTimer& timer) = 0;
 };
 

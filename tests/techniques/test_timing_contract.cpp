@@ -1,0 +1,167 @@
+// The timing contract of Technique::prepare() (core/technique.h): it runs
+// once per (scene, resolution), untimed, and must not depend on the light or
+// the camera. Whatever it derived from the light would go stale when the
+// light moves, and a technique that did so would be charging its per-frame
+// work to the untimed prepare().
+//
+// The check, for every technique the plugins register (default parameters)
+// and the technique variants of configs/quick.json: technique A is prepared
+// under light L1 and renders a frame; the light moves (its centre shifts,
+// it turns and tilts) and A renders again. A fresh technique B, prepared
+// under the moved light, renders too. A's second frame must equal B's to
+// the bit: everything light-dependent happened in render().
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/gtc/quaternion.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "config/experiment.h"
+#include "core/registry.h"
+#include "gl/context.h"
+#include "gl/debug.h"
+#include "gl/gpu_scene.h"
+#include "gl/objects.h"
+#include "gl/pass_timer.h"
+#include "run/gbuffer.h"
+#include "scenes/receiver_inference.h"
+#include "scenes/scene_analysis.h"
+#include "scenes/topology.h"
+
+namespace sb::test {
+namespace {
+
+constexpr int kWidth = 96;
+constexpr int kHeight = 72;
+
+// Every registered technique with its defaults, then quick.json's variants.
+std::vector<TechniqueVariant> variants_under_test(const Registry& plugins) {
+  nlohmann::json names = nlohmann::json::array();
+  for (const TechniqueInfo& t : plugins.all()) names.push_back(t.name);
+  const nlohmann::json defaults = {{"name", "defaults"},
+                                   {"scenes", {{{"type", "sphere_grid"}}}},
+                                   {"techniques", names},
+                                   {"resolutions", {{kWidth, kHeight}}}};
+  std::vector<TechniqueVariant> out = parse_experiment(defaults, "<defaults>", plugins).techniques;
+  const Experiment quick =
+      load_experiment(std::string(SHADOWBENCH_SOURCE_DIR) + "/configs/quick.json", plugins);
+  out.insert(out.end(), quick.techniques.begin(), quick.techniques.end());
+  return out;
+}
+
+// A small sphere grid seen from close by: 2×2 spheres over the ground.
+Scene small_scene() {
+  const SceneType* type = find_scene_type("sphere_grid");
+  Scene s = type->build(resolve_params(type->params, {{"grid", 2}, {"light_size", 2.0}}, "", ""));
+  s.camera.eye = {0.0f, 3.0f, 4.5f};
+  s.camera.target = {0.0f, 0.6f, 0.0f};
+  return s;
+}
+
+// The same light a little elsewhere: the centre shifted, the axis tilted and
+// the rectangle turned about it, so any frustum fitted to the first light,
+// and any point sampled on it, is wrong for this one.
+AreaLight moved(const AreaLight& l) {
+  AreaLight m =
+      make_area_light(l.center + glm::vec3(1.0f, -0.5f, 0.8f),
+                      l.target + glm::vec3(-0.3f, 0.0f, 0.4f), l.width(), l.height(), l.intensity);
+  const glm::quat turn = glm::angleAxis(glm::radians(12.0f), m.direction());
+  m.half_u = turn * m.half_u;
+  m.half_v = turn * m.half_v;
+  return m;
+}
+
+class TimingContract : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    plugins_.load_plugins(SHADOWBENCH_PLUGIN_DIR);
+    context_ = gl::create_context(gl::Backend::OSMesa);
+    scene_ = small_scene();
+    first_light_ = scene_.light;
+    std::vector<std::vector<uint32_t>> adjacency(scene_.meshes.size());
+    std::vector<MeshDrawFlags> flags(scene_.meshes.size());
+    for (size_t i = 0; i < scene_.meshes.size(); ++i) {
+      const Mesh& m = scene_.meshes[i];
+      if (m.casts_shadow) adjacency[i] = build_adjacency_indices(m);
+      flags[i].closed = m.casts_shadow && analyse_topology(m).closed();
+      flags[i].nothing_behind = !m.casts_shadow && can_shadow_nothing(scene_, i);
+    }
+    gpu_ = std::make_unique<GpuScene>(scene_, adjacency, flags);
+    targets_ = std::make_unique<FrameTargets>(kWidth, kHeight);
+    const glm::mat4 view = scene_.camera.view();
+    const glm::mat4 projection = scene_.camera.projection(float(kWidth) / float(kHeight));
+    view_projection_ = projection * view;
+    // FrameInputs points at scene_: moving scene_.light moves the light the
+    // technique sees, as a light animated between frames would.
+    in_ = targets_->inputs(scene_, *gpu_, view, projection);
+    PlanarReceiver receiver;
+    in_.has_receiver_plane = find_planar_receiver(scene_, receiver);
+    in_.receiver_plane = receiver.plane;
+  }
+
+  // One frame as the runner draws it: the G-buffer, then the technique.
+  ImageF render(Technique& technique) {
+    gl::reset_state();
+    targets_->render_gbuffer(*gpu_, view_projection_);
+    gl::reset_state();
+    gl::PassTimer timer(gl::TimingSource::CpuFinish, gl::PassDetail::Coarse);
+    timer.begin_frame();
+    {
+      auto bracket = timer.bracket("technique");
+      technique.render(in_, timer);
+    }
+    timer.end_frame();
+    gl::throw_if_errors("timing contract frame");
+    gl::reset_state();
+    return targets_->read_visibility();
+  }
+
+  Registry plugins_;
+  std::unique_ptr<gl::Context> context_;
+  Scene scene_;
+  AreaLight first_light_;
+  std::unique_ptr<GpuScene> gpu_;
+  std::unique_ptr<FrameTargets> targets_;
+  glm::mat4 view_projection_{1.0f};
+  FrameInputs in_;
+};
+
+size_t differing_pixels(const ImageF& a, const ImageF& b) {
+  size_t n = 0;
+  for (size_t i = 0; i < a.data.size(); ++i) n += a.data[i] != b.data[i] ? 1 : 0;
+  return n;
+}
+
+TEST_F(TimingContract, AfterTheLightMovesAFrameEqualsOnePreparedUnderTheMovedLight) {
+  const std::vector<TechniqueVariant> variants = variants_under_test(plugins_);
+  ASSERT_GE(variants.size(), plugins_.all().size());
+  const AreaLight second_light = moved(first_light_);
+  for (const TechniqueVariant& tv : variants) {
+    SCOPED_TRACE(tv.name);
+    scene_.light = first_light_;
+    const std::unique_ptr<Technique> a = tv.info->create(tv.params);
+    a->prepare(in_);
+    const ImageF at_first = render(*a);
+    scene_.light = second_light;
+    const ImageF a_moved = render(*a);
+
+    const std::unique_ptr<Technique> b = tv.info->create(tv.params);
+    b->prepare(in_);
+    const ImageF b_moved = render(*b);
+
+    ASSERT_TRUE(a_moved.same_shape(b_moved));
+    EXPECT_EQ(differing_pixels(a_moved, b_moved), 0u)
+        << "prepared under the first light, then rendered under the second, " << tv.name
+        << " differs from the same technique prepared under the second light";
+    // Otherwise the check above proves nothing. `none` is V = 1 under any light.
+    if (tv.info->name != "none") {
+      EXPECT_GT(differing_pixels(at_first, b_moved), size_t(kWidth * kHeight / 100))
+          << "moving the light hardly changed " << tv.name << "'s visibility";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace sb::test
