@@ -24,6 +24,7 @@
 
 #include "config/experiment.h"
 #include "config/param_table.h"
+#include "config/unread_params.h"
 #include "core/error.h"
 #include "core/scene_types.h"
 #include "plan/plan.h"
@@ -265,11 +266,18 @@ int cmd_list(const Args& a) {
   return kExitOk;
 }
 
+// Parameters a technique declares but never reads (config/unread_params.h).
+void warn_unread_parameters(const Experiment& e) {
+  for (const std::string& w : unread_parameter_warnings(e))
+    std::fprintf(stderr, "shadowbench: warning: %s\n", w.c_str());
+}
+
 // Both plan every job on the CPU, no GL: a bad scene file is found now, and
 // the counts say which jobs will be skipped and why.
 int cmd_validate(const Args& a, bool show_plan) {
   const Registry r = load_registry(a);
   const Experiment e = load_experiment(one_config(a), r, a.limits);
+  warn_unread_parameters(e);
   const Plan plan = make_plan(e);
   if (show_plan) std::printf("%s", describe_plan(e, plan).c_str());
   for (size_t s = 0; s < plan.scenes.size(); ++s) {
@@ -296,6 +304,7 @@ int cmd_validate(const Args& a, bool show_plan) {
 int cmd_run(const Args& a) {
   const Registry r = load_registry(a);
   const Experiment e = load_experiment(one_config(a), r, a.limits);
+  warn_unread_parameters(e);
   RunOptions o;
   o.backend = gl::backend_from_string(a.backend);
   if (a.out.empty()) {

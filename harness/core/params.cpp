@@ -77,7 +77,14 @@ std::string to_string(ParamType t) {
 const nlohmann::json& Params::get(const std::string& name) const {
   auto it = values_.find(name);
   if (it == values_.end()) throw std::logic_error("parameter '" + name + "' was never declared");
+  read_.insert(name);
   return *it;
+}
+std::vector<std::string> Params::unread() const {
+  std::vector<std::string> out;
+  for (auto it = values_.begin(); it != values_.end(); ++it)
+    if (!read_.count(it.key())) out.push_back(it.key());
+  return out;
 }
 int Params::get_int(const std::string& name) const { return get(name).get<int>(); }
 float Params::get_float(const std::string& name) const { return get(name).get<float>(); }

@@ -4,6 +4,7 @@
 // any GL context exists, and unknown keys are errors.
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,8 @@ ParamSpec path_param(std::string name, std::string doc);
 std::string to_string(ParamType t);
 
 // Resolved parameter values (defaults filled in, every value checked).
+// Params remembers which of them a get_*() has read, so that a declared
+// parameter no code reads can be reported (config/unread_params.h).
 class Params {
  public:
   Params() = default;
@@ -51,11 +54,16 @@ class Params {
   float get_float(const std::string& name) const;
   bool get_bool(const std::string& name) const;
   std::string get_string(const std::string& name) const;
+  // The values as JSON; reading them here does not count as reading.
   const nlohmann::json& json() const { return values_; }
+  // The parameters no get_*() has read, by name. A copy starts
+  // with the reads of its source; Params(json()) starts with none.
+  std::vector<std::string> unread() const;
 
  private:
   const nlohmann::json& get(const std::string& name) const;
   nlohmann::json values_ = nlohmann::json::object();
+  mutable std::set<std::string> read_;
 };
 
 // Checks one scalar value against its spec; throws InputError naming `file`

@@ -56,6 +56,11 @@ struct FrameInputs {
   const DerivedData* derived = nullptr;
 };
 
+// Made by TechniqueInfo::create from its Params. The constructor reads every
+// parameter the technique declares, whatever the mode, and makes no GL call:
+// `validate`, `plan` and `run` create each variant without a GL context to
+// warn about a declared parameter it never reads (config/unread_params.h).
+// GL objects are made in prepare().
 class Technique {
  public:
   virtual ~Technique() = default;

@@ -3,15 +3,8 @@
 // light (light_samples.h), their 0/1 visibilities averaged (Heckbert & Herf
 // 1997 style).
 //
-// | parameter      | default | meaning                                          |
-// |----------------|---------|--------------------------------------------------|
-// | samples        | 256     | light points N; an m×n grid of strata when N has |
-// |                |         | a near-square factorisation (n <= 2m), else the  |
-// |                |         | Hammersley set (light_samples.h)                 |
-// | jitter         | true    | grid: each point uniform in its stratum;         |
-// |                |         | Hammersley: one seeded toroidal shift of all     |
-// | seed           | 1       | jitter seed                                      |
-// | size, constant_bias, slope_bias, cull: as in shadow_map                       |
+// Parameters, defaults and ranges: docs/parameters.md (generated from their
+// declarations by `shadowbench list --markdown`).
 #include <memory>
 
 #include "accumulation/light_samples.h"

@@ -17,15 +17,10 @@
 // (receiver_offset 1) leaked inside foliage canopies; ½ keeps lit leaves lit
 // and gave the lowest error there (docs/shadow_maps.md).
 //
-// | parameter           | default | meaning                                        |
-// |---------------------|---------|------------------------------------------------|
-// | terms               | 16      | M, Fourier terms: 2M basis values, M/2 layers  |
-// | damping             | 1       | ringing suppression per term                   |
-// | sharpen             | 2       | V = clamp(sharpen·(f − ½) + ½)                 |
-// | receiver_offset     | 0.5     | ε = receiver_offset / (2M), normalised depth   |
-// | prefilter, k, sigma | none, 5 | separable prefilter of the basis               |
-// | format              | "32f"   | "32f" or "16f"                                 |
-// | size, depth_format, constant_bias, slope_bias, cull, normal_offset: as in shadow_map |
+// With M terms the map holds 2M basis values, in M/2 layers of four.
+//
+// Parameters, defaults and ranges: docs/parameters.md (generated from their
+// declarations by `shadowbench list --markdown`).
 #include <cmath>
 #include <memory>
 #include <numbers>

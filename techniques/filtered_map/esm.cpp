@@ -5,13 +5,10 @@
 // (the default) the map keeps z itself and the prefilter works on
 // log-sum-exp (separable_filter.h), so no exponential is ever formed above 1.
 //
-// | parameter           | default | meaning                                          |
-// |---------------------|---------|--------------------------------------------------|
-// | exponent            | 80      | c; larger is sharper and leaks less near contact |
-// | log_space           | true    | store and filter z (log space), not exp(c·z)     |
-// | prefilter, k, sigma | none, 5 | separable prefilter                              |
-// | format              | "32f"   | "32f" or "16f"                                   |
-// | size, depth_format, constant_bias, slope_bias, cull, normal_offset: as in shadow_map |
+// A larger exponent is sharper and leaks less near contact.
+//
+// Parameters, defaults and ranges: docs/parameters.md (generated from their
+// declarations by `shadowbench list --markdown`).
 #include <memory>
 
 #include "common/filtered_map.h"

@@ -7,16 +7,11 @@
 // The exponents are clamped to what the format holds: exp(2c) must stay
 // finite, so c <= 42 for 32f and c <= 5.54 for 16f (ln 65504 / 2).
 //
-// | parameter                | default | meaning                                      |
-// |--------------------------|---------|----------------------------------------------|
-// | components               | 4       | 2: positive warp only; 4: both               |
-// | positive_exponent        | 40      | c⁺ (clamped)                                 |
-// | negative_exponent        | 5       | c⁻ (clamped)                                 |
-// | light_bleeding_reduction | 0       | as in vsm                                    |
-// | min_variance             | 1e-4    | floor in warped units, scaled by the warp's slope² |
-// | prefilter, k, sigma      | none, 5 | separable prefilter of the moments           |
-// | format                   | "32f"   | "32f" or "16f"                               |
-// | size, depth_format, constant_bias, slope_bias, cull, normal_offset: as in shadow_map |
+// min_variance is a floor in depth units, carried through each warp (scaled
+// by the warp's slope squared).
+//
+// Parameters, defaults and ranges: docs/parameters.md (generated from their
+// declarations by `shadowbench list --markdown`).
 #include <algorithm>
 #include <memory>
 

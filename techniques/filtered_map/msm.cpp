@@ -5,11 +5,10 @@
 // solve and a quadratic) and returns the lit fraction it implies at the
 // receiver's depth. Four moments need fp32 here (no 16-bit quantisation).
 //
-// | parameter           | default | meaning                                         |
-// |---------------------|---------|-------------------------------------------------|
-// | moment_bias         | 3e-5    | α; larger trades light leaks for stability      |
-// | prefilter, k, sigma | none, 5 | separable prefilter of the moments              |
-// | size, depth_format, constant_bias, slope_bias, cull, normal_offset: as in shadow_map |
+// A larger moment_bias (α) trades light leaks for stability.
+//
+// Parameters, defaults and ranges: docs/parameters.md (generated from their
+// declarations by `shadowbench list --markdown`).
 #include <memory>
 
 #include "common/filtered_map.h"

@@ -3,14 +3,11 @@
 // lookup bounds the lit fraction with Chebyshev's inequality. Shypula 2008
 // times it unfiltered and box- or Gaussian-prefiltered at 9, 13 and 19.
 //
-// | parameter                | default | meaning                                        |
-// |--------------------------|---------|------------------------------------------------|
-// | prefilter, k, sigma      | none, 5 | separable prefilter of the moments             |
-// | format                   | "32f"   | "32f" or "16f" moments                         |
-// | light_bleeding_reduction | 0       | bounds below it read 0, the rest rescale       |
-// | min_variance             | 1e-5    | variance floor (depth in [0,1]); 16f needs ~1e-3 |
-// | size                     | 1024    | map side (Shypula's VSM map is 1024²)          |
-// | depth_format, constant_bias, slope_bias, cull, normal_offset: as in shadow_map  |
+// The default map side is Shypula's, 1024²; 16f moments need a
+// min_variance of about 1e-3.
+//
+// Parameters, defaults and ranges: docs/parameters.md (generated from their
+// declarations by `shadowbench list --markdown`).
 #include <memory>
 
 #include "common/filtered_map.h"

@@ -1,14 +1,10 @@
 // shadow_map — Williams 1978: one depth map from the light's centre, one
 // depth comparison per pixel; visibility is 0 or 1.
 //
-// | parameter      | default | meaning                                         |
-// |----------------|---------|-------------------------------------------------|
-// | size           | 2048    | shadow-map side in texels                       |
-// | depth_format   | "32f"   | depth-map format: "32f", "24" or "16"           |
-// | constant_bias  | 4       | glPolygonOffset units in the depth pass         |
-// | slope_bias     | 2       | glPolygonOffset factor in the depth pass        |
-// | cull           | "front" | faces culled in the depth pass (Shypula 2008)   |
-// | normal_offset  | 0       | receiver offset along its normal, in texels     |
+// The depth pass culls front faces by default (Shypula 2008).
+//
+// Parameters, defaults and ranges: docs/parameters.md (generated from their
+// declarations by `shadowbench list --markdown`).
 #include <memory>
 
 #include "common/map_lookup.h"

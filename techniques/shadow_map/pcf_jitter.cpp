@@ -5,15 +5,10 @@
 // rotation (interleaved gradient noise, Jimenez 2014) trades banding for
 // noise.
 //
-// | parameter           | default | meaning                                          |
-// |---------------------|---------|--------------------------------------------------|
-// | taps                | 32      | taps on the disk, at most 64                     |
-// | early_out_taps      | 8       | outermost taps tried first; 0: no early-out      |
-// | radius              | 4.5     | disk radius in texels (4.5: the 9×9 box's reach) |
-// | rotate              | true    | rotate the pattern per pixel                     |
-// | seed                | 1       | jitter of the tap positions                      |
-// | receiver_plane_bias | false   | taps compare against the receiver's plane        |
-// | size, depth_format, constant_bias, slope_bias, cull, normal_offset: as in shadow_map |
+// The default radius, 4.5 texels, is the reach of the 9×9 box.
+//
+// Parameters, defaults and ranges: docs/parameters.md (generated from their
+// declarations by `shadowbench list --markdown`).
 #include <algorithm>
 #include <cmath>
 #include <memory>

@@ -2,13 +2,8 @@
 // k×k grid of depth comparisons one texel apart, averaged with box or
 // Gaussian weights. Both are the same shader; only the weights differ.
 //
-// | parameter           | default   | meaning                                       |
-// |---------------------|-----------|-----------------------------------------------|
-// | k                   | 3 / 5     | kernel side (odd), k*k taps                   |
-// | sigma (pcf_gauss)   | 0         | Gaussian sigma in texels; 0: OpenCV's default |
-// | filter              | "nearest" | "bilinear": each tap is a hardware 2×2 PCF    |
-// | receiver_plane_bias | false     | taps compare against the receiver's plane     |
-// | size, depth_format, constant_bias, slope_bias, cull, normal_offset: as in shadow_map |
+// Parameters, defaults and ranges: docs/parameters.md (generated from their
+// declarations by `shadowbench list --markdown`).
 #include <memory>
 
 #include "common/kernel.h"

@@ -7,14 +7,8 @@
 // with L the light's side, n the near plane, z_r and z_b the receiver's and
 // the blockers' distances along the light's axis.
 //
-// | parameter           | default | meaning                                           |
-// |---------------------|---------|---------------------------------------------------|
-// | search_taps         | 3       | blocker-search grid side (odd)                    |
-// | search_texels       | 0       | search width in texels; 0: from the light's size  |
-// | filter_taps         | 5       | PCF grid side (odd), spread over the penumbra     |
-// | min_filter_texels   | 1       | smallest PCF radius, in texels                    |
-// | receiver_plane_bias | true    | taps compare against the receiver's plane         |
-// | size, depth_format, constant_bias, slope_bias, cull, normal_offset: as in shadow_map |
+// Parameters, defaults and ranges: docs/parameters.md (generated from their
+// declarations by `shadowbench list --markdown`).
 #include <memory>
 
 #include "common/map_lookup.h"

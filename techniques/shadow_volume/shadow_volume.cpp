@@ -6,11 +6,8 @@
 //   works with the camera inside a volume.
 // Hard shadows: V is 0 or 1. Needs closed 2-manifold casters and adjacency.
 //
-// | parameter | default  | meaning                                              |
-// |-----------|----------|------------------------------------------------------|
-// | mode      | "zfail"  | "zpass" or "zfail"                                   |
-// | offset    | 1.0      | glPolygonOffset units pushing volumes away from the  |
-// |           |          | camera so caps never shadow their own surface         |
+// Parameters, defaults and ranges: docs/parameters.md (generated from their
+// declarations by `shadowbench list --markdown`).
 #include <array>
 #include <memory>
 
