@@ -86,4 +86,40 @@ std::vector<uint32_t> build_adjacency_indices(const Mesh& mesh) {
   return out;
 }
 
+std::vector<MeshEdge> mesh_edges(const Mesh& mesh) {
+  const auto w = weld_by_position(mesh);
+  // undirected welded edge -> (triangle, corner) of each use
+  std::unordered_map<uint64_t, std::vector<std::pair<uint32_t, uint32_t>>> uses;
+  uses.reserve(mesh.indices.size());
+  for (uint32_t t = 0; t < mesh.triangle_count(); ++t)
+    for (uint32_t e = 0; e < 3; ++e) {
+      const uint32_t a = w[mesh.indices[3 * t + e]];
+      const uint32_t b = w[mesh.indices[3 * t + (e + 1) % 3]];
+      uses[edge_key(std::min(a, b), std::max(a, b))].emplace_back(t, e);
+    }
+  const auto endpoints = [&](uint32_t t, uint32_t e) {
+    return std::make_pair(mesh.indices[3 * t + e], mesh.indices[3 * t + (e + 1) % 3]);
+  };
+  std::vector<MeshEdge> out;
+  out.reserve(mesh.indices.size() / 2 + 1);
+  // In triangle order, so the output does not depend on the hash map's.
+  for (uint32_t t = 0; t < mesh.triangle_count(); ++t)
+    for (uint32_t e = 0; e < 3; ++e) {
+      const auto [va, vb] = endpoints(t, e);
+      const auto& u = uses[edge_key(std::min(w[va], w[vb]), std::max(w[va], w[vb]))];
+      if (u.size() == 2) {
+        const auto [ot, oe] = u[0].first == t && u[0].second == e ? u[1] : u[0];
+        const auto [oa, ob] = endpoints(ot, oe);
+        const bool opposite = w[oa] == w[vb] && w[ob] == w[va];
+        if (opposite) {
+          if (ot < t || (ot == t && oe < e)) continue;  // emitted from the other side
+          out.push_back({va, vb, t, int64_t(ot)});
+          continue;
+        }
+      }
+      out.push_back({va, vb, t, -1});
+    }
+  return out;
+}
+
 }  // namespace sb

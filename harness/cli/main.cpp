@@ -26,9 +26,9 @@
 #include "config/param_table.h"
 #include "config/unread_params.h"
 #include "core/error.h"
-#include "core/registry.h"
 #include "core/scene_types.h"
 #include "plan/plan.h"
+#include "plugin/registry.h"
 #include "reference/embree_isa.h"
 #include "results/bencher_json.h"
 #include "results/benchmark_json.h"
@@ -40,6 +40,7 @@
 #include "run/runner.h"
 #include "scenes/gltf_export.h"
 #include "scenes/gltf_import.h"
+#include "scenes/need_providers.h"
 #include "scenes/scene_spec.h"
 
 namespace {
@@ -193,7 +194,7 @@ std::string default_run_id(const std::string& name) {
 }
 
 // --benchmark-out and --bencher-out of run and report.
-void write_ci_outputs(const Args& a, const std::vector<nlohmann::json>& records) {
+void write_ci_outputs(const Args& a, const std::vector<JobRecord>& records) {
   if (!a.benchmark_out.empty()) {
     write_benchmark_json(a.benchmark_out, records);
     std::printf("Google Benchmark JSON: %s\n", a.benchmark_out.c_str());
@@ -204,14 +205,10 @@ void write_ci_outputs(const Args& a, const std::vector<nlohmann::json>& records)
   }
 }
 
-// Needs as the plan reads them (core/technique.h).
+// Needs as the technique declared them (plugin/needs.h).
 std::string needs_of(const TechniqueInfo& t) {
   std::string needs;
-  if (t.needs.closed_casters) needs += " closed_casters";
-  if (t.needs.edge_adjacency) needs += " edge_adjacency";
-  if (t.needs.opaque_casters) needs += " opaque_casters";
-  if (t.needs.planar_receiver) needs += " planar_receiver";
-  if (t.needs.caster_closedness) needs += " caster_closedness";
+  for (const auto& n : t.needs.names) needs += " " + n;
   return needs;
 }
 
@@ -253,6 +250,12 @@ int cmd_list(const Args& a) {
                   p.default_value.dump().c_str(), p.doc.c_str(), extra.c_str());
     }
   }
+  std::printf("needs:\n");
+  const auto print_need = [](const NeedProvider& p, const char* from) {
+    std::printf("  %-18s %s%s\n", p.name.c_str(), p.summary.c_str(), from);
+  };
+  for (const auto& p : builtin_need_providers()) print_need(p, "");
+  for (const auto& p : r.providers()) print_need(p, "  (plugin)");
   std::printf("scenes:\n");
   for (const auto& s : scene_types()) {
     std::printf("  %-16s %s\n", s.name.c_str(), s.summary.c_str());
@@ -298,18 +301,6 @@ int cmd_validate(const Args& a, bool show_plan) {
   return kExitOk;
 }
 
-// report and compare read run folders that anyone may have written: a record
-// with a field of the wrong type is bad input, not an internal error.
-int on_records(const Args& a, int (*command)(const Args&)) {
-  try {
-    return command(a);
-  } catch (const nlohmann::json::exception& e) {
-    std::string dirs;
-    for (const auto& p : a.positional) dirs += (dirs.empty() ? "" : ", ") + p;
-    throw InputError(dirs, "", std::string("a record is malformed: ") + e.what());
-  }
-}
-
 int cmd_run(const Args& a) {
   const Registry r = load_registry(a);
   const Experiment e = load_experiment(one_config(a), r, a.limits);
@@ -341,7 +332,7 @@ int cmd_run(const Args& a) {
     return kExitInternal;
   }
   if (!a.quiet) {
-    const auto md = make_markdown(read_run_records(o.run_dir), e.name + " (" + o.run_id + ")");
+    const auto md = make_markdown(read_job_records(o.run_dir), e.name + " (" + o.run_id + ")");
     std::printf("\n%s\n", md.c_str());
   }
   std::printf("%d ok, %d skipped, %d failed, %d resumed", s.ok, s.skipped, s.failed, s.resumed);
@@ -349,17 +340,19 @@ int cmd_run(const Args& a) {
     std::printf(" (%d earlier records had other settings and were rerun)", s.respecified);
   std::printf("; results in %s\n", o.run_dir.c_str());
   if (!a.benchmark_out.empty() || !a.bencher_out.empty())
-    write_ci_outputs(a, read_run_records(o.run_dir));
+    write_ci_outputs(a, read_job_records(o.run_dir));
   if (s.bad_input > 0) return kExitBadInput;
   return s.failed > 0 ? kExitJobsFailed : kExitOk;
 }
 
+// report and compare read run folders that anyone may have written: a record
+// that does not follow the schema is bad input (read_job_records names the
+// file, the line and the JSON pointer), not an internal error.
 int cmd_report(const Args& a) {
   if (a.positional.size() != 1) throw InputError("", "command line", "expected one RUN_DIR");
-  const auto records = read_run_records(a.positional[0]);
-  const std::string title = records.empty() ? "shadowbench"
-                                            : records[0].value("experiment", "shadowbench") + " (" +
-                                                  records[0].value("run_id", "") + ")";
+  const auto records = read_job_records(a.positional[0]);
+  const std::string title =
+      records.empty() ? "shadowbench" : records[0].experiment + " (" + records[0].run_id + ")";
   const std::string& run_dir = a.positional[0];
   write_reports(run_dir, records, title);
   std::printf("%s", make_markdown(records, title).c_str());
@@ -383,18 +376,18 @@ int cmd_report(const Args& a) {
 int cmd_compare(const Args& a) {
   if (a.positional.size() != 2)
     throw InputError("", "command line", "expected BASE_DIR NEW_DIR\n" + std::string(kUsage));
-  std::vector<nlohmann::json> runs[2];
+  std::vector<JobRecord> runs[2];
   for (int i = 0; i < 2; ++i) {
     const std::string& dir = a.positional[size_t(i)];
     if (!std::filesystem::is_directory(dir)) throw InputError(dir, "", "no such run directory");
-    runs[i] = read_run_records(dir);
+    runs[i] = read_job_records(dir);
     if (runs[i].empty()) throw InputError(dir + "/results.jsonl", "", "no records");
   }
   const CompareResult r = compare_runs(runs[0], runs[1], a.compare);
   if (r.jobs.empty())
     throw InputError(a.positional[1], "", "no job in common with " + a.positional[0]);
-  auto describe = [](const std::vector<nlohmann::json>& records, const std::string& dir) {
-    const std::string id = records[0].value("run_id", "");
+  auto describe = [](const std::vector<JobRecord>& records, const std::string& dir) {
+    const std::string& id = records[0].run_id;
     return dir + (id.empty() ? "" : " (" + id + ")");
   };
   std::printf("BASE %s\nNEW  %s\n", describe(runs[0], a.positional[0]).c_str(),
@@ -442,12 +435,12 @@ int main(int argc, char** argv) {
                        "--alpha, --time-threshold, --error-threshold and --timing go with compare");
     if (a.metric_given && a.command != "compare" && a.command != "report")
       throw InputError("", "command line", "--metric goes with compare or report");
-    if (a.command == "compare") return on_records(a, cmd_compare);
+    if (a.command == "compare") return cmd_compare(a);
     if (a.command == "run") return cmd_run(a);
     if (a.command == "validate") return cmd_validate(a, false);
     if (a.command == "plan") return cmd_validate(a, true);
     if (a.command == "list") return cmd_list(a);
-    if (a.command == "report") return on_records(a, cmd_report);
+    if (a.command == "report") return cmd_report(a);
     if (a.command == "scene") return cmd_scene(a);
     if (a.command == "--help" || a.command == "help" || a.command == "-h") {
       std::printf("%s", kUsage);

@@ -315,6 +315,7 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
   check_job_count(r, doc, limits);
   Experiment e;
   e.file = file;
+  e.registry = &registry;
   e.name = doc.contains("name") ? r.string(doc["name"], "/name") : "experiment";
   // It names the run folder: a plain file name.
   const bool plain_name = !e.name.empty() && e.name.size() <= 100 && e.name[0] != '.' &&

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "core/params.h"
-#include "core/registry.h"
 #include "core/scene_types.h"
+#include "plugin/registry.h"
 
 namespace sb {
 
@@ -58,6 +58,9 @@ struct Experiment {
   int timed_frames = 10;
   ReferenceConfig reference;
   std::string content_hash;  // of the file's bytes
+  // The registry the techniques came from: the planner finds the providers
+  // of plugins' own needs in it (plugin/needs.h).
+  const Registry* registry = nullptr;
 };
 
 // Caps checked before anything is expanded or built (docs/config.md).

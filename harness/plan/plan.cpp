@@ -19,20 +19,11 @@ ScenePlan plan_scene(const Experiment& e, const SceneVariant& sv, Derive derive)
       for (const auto& n : p.inferred_receivers) names += (names.empty() ? "'" : ", '") + n + "'";
       p.log.push_back("inferred receivers (planar, can shadow nothing): " + names);
     }
-    p.caps = check_closedness(p.scene, infos);
-    std::vector<const TechniqueInfo*> running;
-    for (const auto& tv : e.techniques) {
-      p.skip_reason.push_back(unmet_needs(p.scene, p.caps, *tv.info));
-      if (p.skip_reason.back().empty()) running.push_back(tv.info);
-    }
-    if (derive == Derive::All) {
-      build_adjacency_if_needed(p.scene, running, p.caps);
-    } else {
-      bool adjacency = false;
-      for (const auto* t : running) adjacency = adjacency || t->needs.edge_adjacency;
-      if (adjacency) p.caps.log.push_back("edge adjacency of the casters (built when run)");
-    }
-    for (const auto& l : p.caps.log) p.log.push_back(l);
+    ResolvedNeeds needs = resolve_needs(p.scene, infos, e.registry, derive);
+    p.derived = std::move(needs.data);
+    p.uploads = std::move(needs.uploads);
+    p.skip_reason = std::move(needs.skip_reason);
+    for (auto& l : needs.log) p.log.push_back(std::move(l));
   } catch (const InputError& ex) {
     p.error = std::string("bad scene input: ") + ex.what();
     p.bad_input = true;
@@ -70,7 +61,7 @@ Plan make_plan(const Experiment& e) {
         plan.jobs.push_back(std::move(j));
       }
     sp.scene = Scene{};  // a sweep of big scenes must not stay in memory
-    sp.caps.topology.clear();
+    sp.derived = DerivedData{};
     plan.scenes.push_back(std::move(sp));
   }
   return plan;

@@ -11,7 +11,7 @@
 
 #include "config/experiment.h"
 #include "core/scene.h"
-#include "scenes/scene_analysis.h"
+#include "plan/need_resolution.h"
 
 namespace sb {
 
@@ -19,18 +19,14 @@ namespace sb {
 struct ScenePlan {
   const SceneVariant* variant = nullptr;
   Scene scene;                                  // empty when the scene failed to build
-  SceneCapabilities caps;                       // derived data, as far as needed
+  DerivedData derived;                          // for the techniques' needs, as far as asked
+  std::vector<const NeedProvider*> uploads;     // GPU stages of the running techniques' needs
   std::vector<std::string> inferred_receivers;  // scenes/receiver_inference.h
   std::vector<std::string> skip_reason;         // per technique variant; "" = runs
   std::string error;             // why the scene could not be built: all its jobs fail
   bool bad_input = false;        // ... because its input (a glTF file, say) is bad
   std::string input_error;       // then the InputError's message (file and place)
   std::vector<std::string> log;  // one line per decision or derived datum
-};
-
-enum class Derive {
-  Decide,  // only what a skip decision needs (closedness); for plan and validate
-  All,     // also what running techniques need (adjacency); for run
 };
 
 // Builds the scene and decides its jobs. Never throws for bad scene input:

@@ -12,9 +12,11 @@
 #include <string>
 #include <vector>
 
+#include "record/job_record.h"
+
 namespace sb {
 
-nlohmann::json make_bencher_json(const std::vector<nlohmann::json>& records);
-void write_bencher_json(const std::string& path, const std::vector<nlohmann::json>& records);
+nlohmann::json make_bencher_json(const std::vector<JobRecord>& records);
+void write_bencher_json(const std::string& path, const std::vector<JobRecord>& records);
 
 }  // namespace sb

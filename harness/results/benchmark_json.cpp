@@ -16,18 +16,6 @@ namespace {
 
 using nlohmann::json;
 
-std::vector<double> samples_of(const json& stats) {
-  std::vector<double> out;
-  if (!stats.is_object()) return out;
-  if (stats.contains("samples_ms") && stats["samples_ms"].is_array()) {
-    for (const auto& v : stats["samples_ms"])
-      if (v.is_number()) out.push_back(v.get<double>());
-  } else if (stats.contains("median_ms") && stats["median_ms"].is_number()) {
-    out.push_back(stats["median_ms"].get<double>());  // a record without samples
-  }
-  return out;
-}
-
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const size_t n = v.size();
@@ -126,41 +114,36 @@ json benchmark_context() {
   return c;
 }
 
-json make_benchmark_json(const std::vector<json>& records, const json& context) {
+json make_benchmark_json(const std::vector<JobRecord>& records, const json& context) {
   json out;
   out["context"] = context;
   for (const auto& r : records) {
-    if (r.value("status", "") != "ok") continue;
-    for (const char* key : {"run_id", "experiment", "backend", "gl_renderer", "timing_source"})
-      if (r.contains(key) && !out["context"].contains(std::string("shadowbench_") + key))
-        out["context"][std::string("shadowbench_") + key] = r[key];
+    if (r.status != JobStatus::Ok) continue;
+    for (const auto& [key, value] : {std::pair<const char*, const std::string&>{"run_id", r.run_id},
+                                     {"experiment", r.experiment},
+                                     {"backend", r.backend},
+                                     {"gl_renderer", r.gl_renderer},
+                                     {"timing_source", r.timing_source}})
+      if (!out["context"].contains(std::string("shadowbench_") + key))
+        out["context"][std::string("shadowbench_") + key] = value;
     break;
   }
   json benchmarks = json::array();
   int family = 0;
   for (const auto& r : records) {
-    if (r.value("status", "") != "ok" || !r.contains("timing") || !r["timing"].is_object())
-      continue;
-    const std::string id = r.value("job_id", "");
-    const json& timing = r["timing"];
-    if (timing.contains("frame"))
-      add_benchmark(benchmarks, id + "/frame", family++, samples_of(timing["frame"]));
-    if (!timing.contains("passes") || !timing["passes"].is_object()) continue;
-    std::vector<std::string> names;
-    if (timing.contains("pass_order") && timing["pass_order"].is_array())
-      for (const auto& p : timing["pass_order"])
-        if (p.is_string() && timing["passes"].contains(p.get<std::string>()))
-          names.push_back(p.get<std::string>());
-    for (const auto& [name, stats] : timing["passes"].items())
-      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
-    for (const auto& name : names)
-      add_benchmark(benchmarks, id + "/pass:" + name, family++, samples_of(timing["passes"][name]));
+    if (r.status != JobStatus::Ok || !r.timing) continue;
+    add_benchmark(benchmarks, r.job_id + "/frame", family++, r.timing->frame.samples_ms);
+    if (!r.timing->fine) continue;
+    // In pass order (which names every pass).
+    for (const auto& name : r.timing->fine->pass_order)
+      add_benchmark(benchmarks, r.job_id + "/pass:" + name, family++,
+                    r.timing->fine->passes.at(name).samples_ms);
   }
   out["benchmarks"] = std::move(benchmarks);
   return out;
 }
 
-void write_benchmark_json(const std::string& path, const std::vector<json>& records) {
+void write_benchmark_json(const std::string& path, const std::vector<JobRecord>& records) {
   write_file_atomically(path,
                         json_text(make_benchmark_json(records, benchmark_context()), 2) + "\n");
 }

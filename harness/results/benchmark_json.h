@@ -14,13 +14,15 @@
 #include <string>
 #include <vector>
 
+#include "record/job_record.h"
+
 namespace sb {
 
 // The context block for this machine and process, now.
 nlohmann::json benchmark_context();
-nlohmann::json make_benchmark_json(const std::vector<nlohmann::json>& records,
+nlohmann::json make_benchmark_json(const std::vector<JobRecord>& records,
                                    const nlohmann::json& context);
 // Writes make_benchmark_json(records, benchmark_context()) atomically.
-void write_benchmark_json(const std::string& path, const std::vector<nlohmann::json>& records);
+void write_benchmark_json(const std::string& path, const std::vector<JobRecord>& records);
 
 }  // namespace sb

@@ -15,11 +15,11 @@
 #include <functional>
 #include <map>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 #include "core/error.h"
 #include "core/names.h"
+#include "record/job_record.h"
 #include "results/pareto.h"
 #include "results/store.h"
 
@@ -38,73 +38,22 @@ constexpr int kExitNoMatplotlib = 3;  // plot_charts.py's exit code when the imp
 
 // ---------------------------------------------------------------- metrics
 
-// The keys every record's metrics have (docs/results.md); a path resolving in
-// some ok record is accepted too, so a new metric needs no edit here.
-std::vector<std::string> known_metric_paths() {
-  std::vector<std::string> out;
-  for (const char* image : {"visibility", "shaded"})
-    for (const char* region : {"all", "penumbra"})
-      for (const char* key : {"rmse", "mae", "max_error", "psnr", "ssim", "frac_over_0.01",
-                              "frac_over_0.05", "frac_over_0.1", "pixel_count", "nonfinite_count"})
-        out.push_back(std::string(image) + "." + region + "." + key);
-  return out;
-}
-
-std::vector<std::string> split_dots(const std::string& s) {
-  std::vector<std::string> parts;
-  std::string part;
-  std::istringstream in(s);
-  while (std::getline(in, part, '.')) parts.push_back(part);
-  return parts;
-}
-
-// Follows parts[i..] into `node`; a key may itself hold dots (frac_over_0.05).
-const json* resolve(const json& node, const std::vector<std::string>& parts, std::size_t i) {
-  if (i == parts.size()) return &node;
-  if (!node.is_object()) return nullptr;
-  std::string key;
-  for (std::size_t j = i; j < parts.size(); ++j) {
-    key += (j > i ? "." : "") + parts[j];
-    if (const auto it = node.find(key); it != node.end())
-      if (const json* r = resolve(*it, parts, j + 1)) return r;
-  }
-  return nullptr;
-}
-
-// A stored number ("nan"/"inf"/"-inf" strings included), NaN if absent.
-double as_number(const json* v) {
-  if (v == nullptr) return std::nan("");
-  if (v->is_number()) return v->get<double>();
-  if (v->is_string()) {
-    const std::string s = v->get<std::string>();
-    if (s == "inf" || s == "-inf") return s == "inf" ? INFINITY : -INFINITY;
-  }
-  return std::nan("");
-}
-
-double metric_of(const json& record, const std::vector<std::string>& parts) {
-  const auto m = record.find("metrics");
-  return m == record.end() ? std::nan("") : as_number(resolve(*m, parts, 0));
-}
-
-void check_metric(const std::string& metric, const std::vector<const json*>& ok) {
-  const auto known = known_metric_paths();
-  if (std::find(known.begin(), known.end(), metric) != known.end()) return;
-  const auto parts = split_dots(metric);
-  for (const json* r : ok)
-    if (r->contains("metrics") && resolve(r->at("metrics"), parts, 0) != nullptr &&
-        !std::isnan(metric_of(*r, parts)))
-      return;
+MetricPath metric_path(const std::string& metric) {
+  if (const auto p = MetricPath::parse(metric)) return *p;
   throw InputError("", "--metric",
                    "unknown error metric \"" + metric +
                        "\": expected a dotted path into a record's \"metrics\", "
-                       "<visibility|shaded>.<all|penumbra>.<key> with key one of rmse, mae, "
-                       "max_error, psnr, ssim, frac_over_0.01, frac_over_0.05, frac_over_0.1");
+                       "<visibility|shaded>.<all|penumbra|soft_union>.<key> with key one of rmse, "
+                       "mae, max_error, psnr, ssim, frac_over_0.01, frac_over_0.05, frac_over_0.1, "
+                       "mean_signed, pixel_count, nonfinite_count");
 }
 
-bool higher_is_better(const std::string& metric) {
-  const auto parts = split_dots(metric);
-  return !parts.empty() && (parts.back() == "psnr" || parts.back() == "ssim");
+double metric_of(const JobRecord& r, const MetricPath& metric) {
+  return r.metric(metric).value_or(std::nan(""));
+}
+
+bool higher_is_better(const MetricPath& metric) {
+  return metric.key() == "psnr" || metric.key() == "ssim";
 }
 
 // ---------------------------------------------------------------- records
@@ -113,23 +62,29 @@ struct Timing {
   double median = std::nan(""), p10 = std::nan(""), p90 = std::nan("");
 };
 
-Timing timing_of(const json& r, const std::string& pointer) {
-  const json::json_pointer p(pointer);
-  if (!r.contains(p)) return {};
-  const json& t = r.at(p);
-  auto get = [&](const char* k) { return t.contains(k) ? as_number(&t.at(k)) : std::nan(""); };
-  return {get("median_ms"), get("p10_ms"), get("p90_ms")};
+Timing timing_of(const TimingSeries* t) {
+  if (t == nullptr) return {};
+  return {t->median_ms, t->p10_ms, t->p90_ms};
 }
 
-std::string str(const json& r, const char* key) { return r.value(key, std::string()); }
+// The frame's timing, or the technique's.
+Timing timing_of(const JobRecord& r, TimingSeries TimingRecord::*series) {
+  return r.timing ? timing_of(&(*r.timing.*series)) : Timing{};
+}
+
+const TimingSeries* shared_pass(const JobRecord& r, const std::string& name) {
+  if (!r.timing) return nullptr;
+  const auto it = r.timing->shared.find(name);
+  return it == r.timing->shared.end() ? nullptr : &it->second;
+}
 
 // Records grouped by a key, groups and members in first-appearance order.
 template <class Key>
-std::vector<std::pair<std::string, std::vector<const json*>>> group_by(
-    const std::vector<const json*>& records, Key key) {
-  std::vector<std::pair<std::string, std::vector<const json*>>> groups;
+std::vector<std::pair<std::string, std::vector<const JobRecord*>>> group_by(
+    const std::vector<const JobRecord*>& records, Key key) {
+  std::vector<std::pair<std::string, std::vector<const JobRecord*>>> groups;
   std::map<std::string, std::size_t> index;
-  for (const json* r : records) {
+  for (const JobRecord* r : records) {
     const std::string k = key(*r);
     const auto [it, added] = index.emplace(k, groups.size());
     if (added) groups.push_back({k, {}});
@@ -181,14 +136,13 @@ Chart make_chart(const std::string& kind, const std::string& stem, const std::st
 }
 
 // Charts of one (scene variant, resolution): <kind>__<scene>__<WxH>.
-auto by_scene_and_resolution(const std::vector<const json*>& ok) {
-  return group_by(
-      ok, [](const json& r) { return str(r, "scene_variant") + "\n" + str(r, "resolution"); });
+auto by_scene_and_resolution(const std::vector<const JobRecord*>& ok) {
+  return group_by(ok, [](const JobRecord& r) { return r.scene_variant + "\n" + r.resolution; });
 }
 
-Chart scene_chart(const std::string& kind, const std::string& what, const json& r,
+Chart scene_chart(const std::string& kind, const std::string& what, const JobRecord& r,
                   const std::string& out_dir) {
-  const std::string scene = str(r, "scene_variant"), res = str(r, "resolution");
+  const std::string scene = r.scene_variant, res = r.resolution;
   return make_chart(kind, kind + "__" + file_safe(scene) + "__" + file_safe(res),
                     what + ": " + scene + " @ " + res, out_dir);
 }
@@ -196,19 +150,19 @@ Chart scene_chart(const std::string& kind, const std::string& what, const json& 
 constexpr const char* kTimeLabel = "median frame time (ms; bars p10–p90)";
 
 // Error against frame time per (scene variant, resolution).
-void error_time_charts(const std::vector<const json*>& ok, const std::string& metric,
+void error_time_charts(const std::vector<const JobRecord*>& ok, const std::string& metric,
                        Palette& styles, const std::string& out_dir, std::vector<Chart>& out) {
-  const auto parts = split_dots(metric);
-  const bool higher = higher_is_better(metric);
+  const MetricPath path = metric_path(metric);
+  const bool higher = higher_is_better(path);
   for (const auto& [key, records] : by_scene_and_resolution(ok)) {
     Chart c = scene_chart("error_time", metric + " vs frame time", *records[0], out_dir);
     json points = json::array(), missing = json::array();
     std::vector<ParetoPoint> pp;
     std::vector<double> xs;
-    for (const json* r : records) {
-      const std::string label = str(*r, "technique_variant");
-      const Timing t = timing_of(*r, "/timing/frame");
-      const double e = metric_of(*r, parts);
+    for (const JobRecord* r : records) {
+      const std::string label = r->technique_variant;
+      const Timing t = timing_of(*r, &TimingRecord::frame);
+      const double e = metric_of(*r, path);
       if (!std::isfinite(t.median) || !std::isfinite(e)) {
         missing.push_back(label);
         continue;
@@ -241,15 +195,15 @@ void error_time_charts(const std::vector<const json*>& ok, const std::string& me
 }
 
 // One series per technique variant of (x, frame time) over `records`.
-json time_series(const std::vector<const json*>& records,
-                 const std::function<double(const json&)>& x, Palette& styles, Chart& c) {
+json time_series(const std::vector<const JobRecord*>& records,
+                 const std::function<double(const JobRecord&)>& x, Palette& styles, Chart& c) {
   json series = json::array();
   std::vector<double> ys;
   for (const auto& [label, rs] :
-       group_by(records, [](const json& r) { return str(r, "technique_variant"); })) {
+       group_by(records, [](const JobRecord& r) { return r.technique_variant; })) {
     std::vector<std::pair<double, Timing>> pts;
-    for (const json* r : rs) {
-      const Timing t = timing_of(*r, "/timing/frame");
+    for (const JobRecord* r : rs) {
+      const Timing t = timing_of(*r, &TimingRecord::frame);
       if (std::isfinite(t.median) && std::isfinite(x(*r))) pts.push_back({x(*r), t});
     }
     if (pts.empty()) continue;
@@ -267,31 +221,31 @@ json time_series(const std::vector<const json*>& records,
   return series;
 }
 
-double triangles_of(const json& r) {
-  const json::json_pointer p("/scene/triangles");
-  return r.contains(p) ? as_number(&r.at(p)) : std::nan("");
+double triangles_of(const JobRecord& r) {
+  return r.scene.built ? static_cast<double>(r.scene.built->triangles) : std::nan("");
 }
 
-double pixels_of(const json& r) {
-  return static_cast<double>(r.value("width", 0)) * static_cast<double>(r.value("height", 0));
+double pixels_of(const JobRecord& r) {
+  return static_cast<double>(r.width) * static_cast<double>(r.height);
 }
 
 // Frame time against scene.triangles per (scene type, resolution).
-void time_triangles_charts(const std::vector<const json*>& ok, Palette& styles,
+void time_triangles_charts(const std::vector<const JobRecord*>& ok, Palette& styles,
                            const std::string& out_dir, std::vector<Chart>& out) {
-  const auto groups = group_by(ok, [](const json& r) {
-    return r.value(json::json_pointer("/scene/type"), std::string()) + "\n" + str(r, "resolution");
-  });
+  const auto groups =
+      group_by(ok, [](const JobRecord& r) { return r.scene.type + "\n" + r.resolution; });
   for (const auto& [key, records] : groups) {
     std::set<double> counts;
-    for (const json* r : records)
+    for (const JobRecord* r : records)
       if (std::isfinite(triangles_of(*r))) counts.insert(triangles_of(*r));
     if (counts.size() < 2) continue;
-    const std::string type = records[0]->value(json::json_pointer("/scene/type"), std::string());
-    const std::string res = str(*records[0], "resolution");
+    const std::string& type = records[0]->scene.type;
+    const std::string& res = records[0]->resolution;
+    std::string title = "frame time vs triangles: ";
+    title.append(type).append(" @ ").append(res);
     Chart c =
         make_chart("time_triangles", "time_triangles__" + file_safe(type) + "__" + file_safe(res),
-                   "frame time vs triangles: " + type + " @ " + res, out_dir);
+                   title, out_dir);
     c.data["series"] = time_series(records, triangles_of, styles, c);
     c.data.update({{"xlabel", "triangles (scene.triangles)"},
                    {"ylabel", kTimeLabel},
@@ -301,13 +255,13 @@ void time_triangles_charts(const std::vector<const json*>& ok, Palette& styles,
 }
 
 // Frame time against width×height per scene variant.
-void time_resolution_charts(const std::vector<const json*>& ok, Palette& styles,
+void time_resolution_charts(const std::vector<const JobRecord*>& ok, Palette& styles,
                             const std::string& out_dir, std::vector<Chart>& out) {
   for (const auto& [scene, records] :
-       group_by(ok, [](const json& r) { return str(r, "scene_variant"); })) {
+       group_by(ok, [](const JobRecord& r) { return r.scene_variant; })) {
     std::map<double, std::string> sizes;  // pixels → "WxH"
-    for (const json* r : records)
-      if (pixels_of(*r) > 0) sizes.emplace(pixels_of(*r), str(*r, "resolution"));
+    for (const JobRecord* r : records)
+      if (pixels_of(*r) > 0) sizes.emplace(pixels_of(*r), r->resolution);
     if (sizes.size() < 2) continue;
     Chart c = make_chart("time_resolution", "time_resolution__" + file_safe(scene),
                          "frame time vs resolution: " + scene, out_dir);
@@ -328,33 +282,33 @@ void time_resolution_charts(const std::vector<const json*>& ok, Palette& styles,
 
 // Stacked bars of median pass times per (scene variant, resolution): the
 // technique's passes with --pass-timing fine, else its one bracket.
-void passes_charts(const std::vector<const json*>& ok, Palette& pass_colours,
+void passes_charts(const std::vector<const JobRecord*>& ok, Palette& pass_colours,
                    const std::string& out_dir, std::vector<Chart>& out) {
   for (const auto& [key, records] : by_scene_and_resolution(ok)) {
     Chart c = scene_chart("passes", "time per pass", *records[0], out_dir);
     json bars = json::array();
-    for (const json* r : records) {
+    for (const JobRecord* r : records) {
       json segments = json::array();
-      auto add = [&](const std::string& name, const std::string& pointer, bool shared) {
-        const double ms = timing_of(*r, pointer).median;
+      auto add = [&](const std::string& name, const TimingSeries* series, bool shared) {
+        const double ms = timing_of(series).median;
         if (!std::isfinite(ms)) return;
         segments.push_back({{"name", shared ? name + " (shared)" : name},
                             {"ms", ms},
                             {"shared", shared},
                             {"style", shared ? -1 : pass_colours(name)}});
       };
-      add("gbuffer", "/timing/shared/gbuffer", true);
-      add("shading", "/timing/shared/shading", true);
-      const json order = r->value(json::json_pointer("/timing/pass_order"), json::array());
+      add("gbuffer", shared_pass(*r, "gbuffer"), true);
+      add("shading", shared_pass(*r, "shading"), true);
+      const FineTiming* fine = r->timing && r->timing->fine ? &*r->timing->fine : nullptr;
       // A coarse run (the default) times the technique as one bracket: one
       // segment then, so the bar is never just the shared passes.
-      if (order.empty()) add("technique (all passes)", "/timing/technique", false);
-      for (const auto& name : order)
-        if (name.is_string())
-          add(name.get<std::string>(), "/timing/passes/" + name.get<std::string>(), false);
+      if (fine == nullptr || fine->pass_order.empty())
+        add("technique (all passes)", r->timing ? &r->timing->technique : nullptr, false);
+      if (fine != nullptr)
+        for (const auto& name : fine->pass_order) add(name, &fine->passes.at(name), false);
       if (segments.empty()) continue;
-      c.file.series.push_back(str(*r, "technique_variant"));
-      bars.push_back({{"label", str(*r, "technique_variant")}, {"segments", segments}});
+      c.file.series.push_back(r->technique_variant);
+      bars.push_back({{"label", r->technique_variant}, {"segments", segments}});
     }
     c.data.update({{"ylabel", "median time (ms)"}, {"bars", bars}});
     if (!bars.empty()) out.push_back(std::move(c));
@@ -374,6 +328,7 @@ int run_process(const std::vector<std::string>& argv, std::string* output) {
   posix_spawn_file_actions_adddup2(&actions, fd, STDERR_FILENO);
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
   std::vector<char*> args;
+  args.reserve(argv.size() + 1);
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
   pid_t pid = 0;
@@ -429,15 +384,15 @@ std::string charts_unavailable_reason() {
   return "";
 }
 
-std::vector<ChartFile> write_charts(const std::vector<json>& records, const std::string& out_dir,
-                                    const ChartOptions& options) {
-  std::vector<const json*> ok;
-  for (const json& r : records)
-    if (r.value("status", std::string()) == "ok") ok.push_back(&r);
-  check_metric(options.error_metric, ok);
+std::vector<ChartFile> write_charts(const std::vector<JobRecord>& records,
+                                    const std::string& out_dir, const ChartOptions& options) {
+  std::vector<const JobRecord*> ok;
+  for (const JobRecord& r : records)
+    if (r.status == JobStatus::Ok) ok.push_back(&r);
+  metric_path(options.error_metric);  // an unknown metric is bad input, drawn or not
 
   Palette styles, pass_colours;  // in plan order, failed jobs included: stable across reruns
-  for (const json& r : records) styles(str(r, "technique_variant"));
+  for (const JobRecord& r : records) styles(r.technique_variant);
   std::vector<Chart> charts;
   error_time_charts(ok, options.error_metric, styles, out_dir, charts);
   time_triangles_charts(ok, styles, out_dir, charts);
@@ -463,6 +418,7 @@ std::vector<ChartFile> write_charts(const std::vector<json>& records, const std:
     throw std::runtime_error(script + " failed (exit " + std::to_string(rc) + "):\n" + output);
 
   std::vector<ChartFile> out;
+  out.reserve(charts.size());
   for (Chart& c : charts) out.push_back(std::move(c.file));
   return out;
 }

@@ -15,15 +15,17 @@
 //  - passes:          per-pass stacked bars per (scene variant, resolution):
 //                     timing.passes.<name>.median_ms in pass_order, over the
 //                     shared G-buffer and shading passes in grey.
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "record/job_record.h"
 
 namespace sb {
 
 struct ChartOptions {
-  // A dotted path into record["metrics"]: <visibility|shaded>.<all|penumbra>.<key>,
-  // e.g. visibility.penumbra.rmse, shaded.all.ssim, visibility.all.frac_over_0.05.
+  // A dotted path into record["metrics"] (record/metrics_record.h, MetricPath):
+  // <visibility|shaded>.<all|penumbra|soft_union>.<key>, e.g.
+  // visibility.penumbra.rmse, shaded.all.ssim, visibility.all.frac_over_0.05.
   // For psnr and ssim higher is better, and the Pareto front follows that.
   std::string error_metric = "visibility.all.rmse";
 };
@@ -42,7 +44,7 @@ struct ChartFile {
 // error metric (naming it), std::runtime_error when python3 or matplotlib is
 // missing (saying what to install) or when the plotting script fails (with
 // its stderr). No ok records: no charts, and python is not run.
-std::vector<ChartFile> write_charts(const std::vector<nlohmann::json>& records,
+std::vector<ChartFile> write_charts(const std::vector<JobRecord>& records,
                                     const std::string& out_dir, const ChartOptions& options = {});
 
 // Empty if /usr/bin/python3 can import matplotlib, else why not (and what to

@@ -3,43 +3,29 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <map>
 #include <set>
 
 #include "core/error.h"
+#include "record/timing_stats.h"
 #include "results/mann_whitney.h"
-#include "results/timing_stats.h"
 
 namespace sb {
 namespace {
 
-using nlohmann::json;
-
-std::optional<double> number(const json& v) {
-  if (v.is_number()) return v.get<double>();
-  if (v.is_string()) {
-    const std::string s = v.get<std::string>();
-    if (s == "nan") return std::numeric_limits<double>::quiet_NaN();
-    if (s == "inf") return std::numeric_limits<double>::infinity();
-    if (s == "-inf") return -std::numeric_limits<double>::infinity();
-  }
-  return std::nullopt;
+// timing.<key>.samples_ms: "frame" or "technique"; the finite ones.
+std::vector<double> time_samples(const JobRecord& record, const std::string& key) {
+  std::vector<double> out;
+  if (!record.timing) return out;
+  const TimingSeries& series = key == "technique" ? record.timing->technique : record.timing->frame;
+  for (const double d : series.samples_ms)
+    if (std::isfinite(d)) out.push_back(d);
+  return out;
 }
 
-// timing.<key>.samples_ms: "frame" or "technique".
-std::vector<double> time_samples(const json& record, const std::string& key) {
-  std::vector<double> out;
-  const json* s = nullptr;
-  if (record.contains("timing") && record["timing"].is_object() && record["timing"].contains(key) &&
-      record["timing"][key].is_object() && record["timing"][key].contains("samples_ms"))
-    s = &record["timing"][key]["samples_ms"];
-  if (s == nullptr || !s->is_array()) return out;
-  for (const auto& v : *s) {
-    const auto d = number(v);
-    if (d && std::isfinite(*d)) out.push_back(*d);
-  }
-  return out;
+// "visibility.all.rmse" of a metric option, also spelt "metrics.visibility.all.rmse".
+std::optional<MetricPath> metric_path(const std::string& option) {
+  return MetricPath::parse(option.rfind("metrics.", 0) == 0 ? option.substr(8) : option);
 }
 
 // Metrics where a larger value is better: an increase is an improvement.
@@ -86,21 +72,9 @@ bool JobComparison::regressed() const {
          (base_status == "ok" && new_status == "failed");
 }
 
-std::optional<double> metric_value(const json& record, const std::string& dotted_path) {
-  std::string path = dotted_path;
-  if (path.rfind("metrics.", 0) == 0) path = path.substr(8);
-  if (!record.contains("metrics")) return std::nullopt;
-  const json* node = &record["metrics"];
-  size_t start = 0;
-  while (start <= path.size()) {
-    const size_t dot = path.find('.', start);
-    const std::string key = path.substr(start, dot == std::string::npos ? dot : dot - start);
-    if (!node->is_object() || !node->contains(key)) return std::nullopt;
-    node = &(*node)[key];
-    if (dot == std::string::npos) break;
-    start = dot + 1;
-  }
-  return number(*node);
+std::optional<double> metric_value(const JobRecord& record, const std::string& dotted_path) {
+  const auto path = metric_path(dotted_path);
+  return path ? record.metric(*path) : std::nullopt;
 }
 
 void check_options(const CompareOptions& o) {
@@ -115,21 +89,20 @@ void check_options(const CompareOptions& o) {
                      "expected an absolute change >= 0, found " + fmt("%g", o.error_threshold));
   if (o.timing != "frame" && o.timing != "technique")
     throw InputError("", "--timing", "expected frame or technique, found '" + o.timing + "'");
-  if (o.metric.empty() || o.metric.front() == '.' || o.metric.back() == '.')
+  if (!metric_path(o.metric))
     throw InputError("", "--metric",
-                     "expected a dotted path under a record's metrics, e.g. visibility.all.rmse");
+                     "no record has metrics." + o.metric +
+                         ": expected <visibility|shaded>.<all|penumbra|soft_union>.<key> "
+                         "(try visibility.all.rmse, visibility.penumbra.rmse, shaded.all.ssim)");
 }
 
-CompareResult compare_runs(const std::vector<json>& base, const std::vector<json>& fresh,
+CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector<JobRecord>& fresh,
                            const CompareOptions& o) {
   check_options(o);
-  auto index = [](const std::vector<json>& records, std::vector<std::string>& order) {
-    std::map<std::string, const json*> m;
-    for (const auto& r : records) {
-      if (!r.contains("job_id") || !r["job_id"].is_string()) continue;
-      const std::string id = r["job_id"].get<std::string>();
-      if (m.emplace(id, &r).second) order.push_back(id);
-    }
+  auto index = [](const std::vector<JobRecord>& records, std::vector<std::string>& order) {
+    std::map<std::string, const JobRecord*> m;
+    for (const auto& r : records)
+      if (m.emplace(r.job_id, &r).second) order.push_back(r.job_id);
     return m;
   };
   std::vector<std::string> base_order, new_order;
@@ -144,15 +117,15 @@ CompareResult compare_runs(const std::vector<json>& base, const std::vector<json
       out.only_base.push_back(id);
       continue;
     }
-    const json& rb = *b.at(id);
-    const json& rn = *it->second;
+    const JobRecord& rb = *b.at(id);
+    const JobRecord& rn = *it->second;
     JobComparison c;
     c.job_id = id;
-    c.base_status = rb.value("status", "");
-    c.new_status = rn.value("status", "");
+    c.base_status = to_string(rb.status);
+    c.new_status = to_string(rn.status);
     if (c.base_status != "ok" || c.new_status != "ok") {
       if (c.base_status == "ok" && c.new_status == "failed")
-        c.note = "failed in NEW: " + rn.value("reason", "");
+        c.note = "failed in NEW: " + rn.reason.value_or("");
       else
         c.note = "status " + c.base_status + " -> " + c.new_status;
       out.jobs.push_back(std::move(c));

@@ -10,10 +10,11 @@
 //     regression is an increase by more than error_threshold (absolute), an
 //     improvement a decrease by more than it.
 // A job that was ok in BASE and is failed in NEW is a regression too.
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "record/job_record.h"
 
 namespace sb {
 
@@ -54,14 +55,15 @@ struct CompareResult {
   int regressions = 0, improvements = 0;  // jobs with any regression / any improvement and none
 };
 
-// Throws InputError for an options value out of range.
+// Throws InputError for an options value out of range or an unknown metric.
 void check_options(const CompareOptions& o);
-CompareResult compare_runs(const std::vector<nlohmann::json>& base,
-                           const std::vector<nlohmann::json>& fresh, const CompareOptions& o);
+CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector<JobRecord>& fresh,
+                           const CompareOptions& o);
 // The table that `shadowbench compare` prints.
 std::string format_comparison(const CompareResult& r, const CompareOptions& o);
-// Reads a value of a record by a dotted path ("visibility.all.rmse" under
-// "metrics"); the strings "nan", "inf", "-inf" read as those numbers.
-std::optional<double> metric_value(const nlohmann::json& record, const std::string& dotted_path);
+// A value of a record's metrics by a dotted path ("visibility.all.rmse", or
+// "metrics.visibility.all.rmse"); nullopt when the record has no metrics or
+// the path names no metric (record/metrics_record.h, MetricPath).
+std::optional<double> metric_value(const JobRecord& record, const std::string& dotted_path);
 
 }  // namespace sb

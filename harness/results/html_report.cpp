@@ -5,19 +5,19 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
-#include <stdexcept>
+#include <tuple>
 
 #include "core/image.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
-#include "results/report.h"
+#include "results/report_columns.h"
 #include "results/store.h"
 
 namespace sb {
 namespace {
 
-using json = nlohmann::json;
 namespace fs = std::filesystem;
 
 // The page's style and script: inline, so that the report works offline.
@@ -147,38 +147,6 @@ constexpr const char* kScript = R"js(
 })();
 )js";
 
-// make_csv's cells, so that the HTML, CSV and Markdown tables agree to the
-// digit and share one list of columns. Row 0 is the header.
-std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
-  std::vector<std::vector<std::string>> rows(1);
-  std::string field;
-  bool quoted = false;
-  for (size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (quoted) {
-      if (c != '"') {
-        field += c;
-      } else if (i + 1 < text.size() && text[i + 1] == '"') {
-        field += '"';
-        ++i;
-      } else {
-        quoted = false;
-      }
-    } else if (c == '"') {
-      quoted = true;
-    } else if (c == ',' || c == '\n') {
-      rows.back().push_back(std::move(field));
-      field.clear();
-      if (c == '\n') rows.emplace_back();
-    } else {
-      field += c;
-    }
-  }
-  if (!field.empty()) rows.back().push_back(std::move(field));
-  if (rows.back().empty()) rows.pop_back();
-  return rows;
-}
-
 // A relative URL for a file path: every byte but unreserved characters and
 // '/', '=', '+', ',' percent-encoded (':' too, so no segment reads as a scheme).
 std::string url_path(const std::string& path) {
@@ -199,26 +167,16 @@ std::string url_path(const std::string& path) {
   return out;
 }
 
-std::string str_at(const json& r, const char* pointer) {
-  const json::json_pointer p(pointer);
-  if (!r.contains(p)) return "";
-  const json& v = r.at(p);
-  return v.is_string() ? v.get<std::string>() : v.dump();
-}
-
 std::string fmt_g(double v, const char* format = "%g") {
   char buf[32];
   std::snprintf(buf, sizeof buf, format, v);
   return buf;
 }
 
-std::string status_class(const std::string& status) {
-  if (status == "ok" || status == "skipped" || status == "failed") return "s-" + status;
-  return "s-other";
-}
+std::string status_class(JobStatus status) { return std::string("s-") + to_string(status); }
 
-std::string status_badge(const std::string& status) {
-  return "<span class=\"status " + status_class(status) + "\">" + html_escape(status) + "</span>";
+std::string status_badge(JobStatus status) {
+  return "<span class=\"status " + status_class(status) + "\">" + to_string(status) + "</span>";
 }
 
 // The heat-map ramp as an image, through the very function the heat maps use.
@@ -236,7 +194,7 @@ void write_legend(const fs::path& path) {
 
 class Page {
  public:
-  Page(const std::vector<json>& records, const fs::path& run_dir, const fs::path& out_dir,
+  Page(const std::vector<JobRecord>& records, const fs::path& run_dir, const fs::path& out_dir,
        const fs::path& run_from_out, const std::vector<ReportChart>& charts,
        const std::string& title)
       : records_(records),
@@ -245,14 +203,8 @@ class Page {
         run_from_out_(run_from_out),
         charts_(charts),
         title_(title) {
-    cells_ = parse_csv(make_csv(records));
-    if (cells_.size() != records.size() + 1)
-      throw std::logic_error("html report: make_csv gave a row count unlike the records'");
-    const auto& head = cells_[0];
-    for (size_t i = 0; i < head.size(); ++i) column_[head[i]] = i;
     for (size_t i = 0; i < records.size(); ++i) {
-      const std::string key =
-          records[i].value("scene_variant", "") + " @ " + records[i].value("resolution", "");
+      const std::string key = records[i].scene_variant + " @ " + records[i].resolution;
       if (!group_index_.count(key)) {
         group_index_[key] = groups_.size();
         groups_.push_back({key, {}});
@@ -281,11 +233,6 @@ class Page {
     std::vector<size_t> rows;  // indices into records_
   };
 
-  std::string cell(size_t record, const std::string& column) const {
-    const auto it = column_.find(column);
-    return it == column_.end() ? "" : cells_[record + 1].at(it->second);
-  }
-
   // A path relative to the run directory, as a URL relative to the report.
   std::string run_link(const std::string& rel) const {
     return html_escape(url_path((run_from_out_ / rel).lexically_normal().generic_string()));
@@ -294,27 +241,19 @@ class Page {
   void header() {
     out_ += "<header>\n<h1>" + html_escape(title_) + "</h1>\n";
     if (!records_.empty()) {
-      const json& r0 = records_.front();
-      out_ += "<p>Backend <span class=\"mono\">" + html_escape(r0.value("backend", "")) +
-              "</span>, renderer <span class=\"mono\">" + html_escape(r0.value("gl_renderer", "")) +
-              "</span>, timing source <span class=\"mono\">" +
-              html_escape(r0.value("timing_source", "")) +
-              "</span>. Reference: " + html_escape(str_at(r0, "/reference/method")) + ", " +
-              html_escape(str_at(r0, "/reference/spp")) + " spp.</p>\n";
+      const JobRecord& r0 = records_.front();
+      out_ += "<p>Backend <span class=\"mono\">" + html_escape(r0.backend) +
+              "</span>, renderer <span class=\"mono\">" + html_escape(r0.gl_renderer) +
+              "</span>, timing source <span class=\"mono\">" + html_escape(r0.timing_source) +
+              "</span>. Reference: " + reference_method(r0) + ".</p>\n";
     }
     // ok, skipped, failed, then any other status, each with its count.
-    std::vector<std::pair<std::string, int>> counts = {{"ok", 0}, {"skipped", 0}, {"failed", 0}};
-    for (const auto& r : records_) {
-      const std::string status = r.value("status", "");
-      auto it = std::find_if(counts.begin(), counts.end(),
-                             [&](const auto& c) { return c.first == status; });
-      if (it == counts.end()) it = counts.insert(counts.end(), {status, 0});
-      ++it->second;
-    }
     std::string tally;
-    for (const auto& [status, n] : counts)
-      if (n > 0)
-        tally += (tally.empty() ? "" : ", ") + std::to_string(n) + " " + html_escape(status);
+    for (const JobStatus status : {JobStatus::Ok, JobStatus::Skipped, JobStatus::Failed}) {
+      const auto n = std::count_if(records_.begin(), records_.end(),
+                                   [&](const JobRecord& r) { return r.status == status; });
+      if (n > 0) tally += (tally.empty() ? "" : ", ") + std::to_string(n) + " " + to_string(status);
+    }
     out_ += "<p>" + std::to_string(records_.size()) + " jobs" +
             (tally.empty() ? "" : ": " + tally) + ". Run directory <a href=\"" + run_link(".") +
             "/\">" + html_escape(run_dir_.generic_string()) + "</a>";
@@ -333,31 +272,29 @@ class Page {
     out_ += "<section id=\"summary\">\n<h2>Summary</h2>\n<p class=\"note\">Times are medians in ";
     out_ += "milliseconds; error figures are on the visibility buffer over all pixels, except ";
     out_ += "penumbra_rmse (reference penumbra only). Click a column header to sort.</p>\n";
-    const auto& head = cells_[0];
-    std::vector<size_t> shown;  // every column but scene and resolution (the group's)
-    for (size_t i = 0; i < head.size(); ++i)
-      if (head[i] != "scene" && head[i] != "resolution") shown.push_back(i);
-    const std::set<std::string> text_columns = {"technique", "status", "reason"};
+    std::vector<const ReportColumn*> shown;  // scene and resolution are the group's
+    for (const auto& c : report_columns())
+      if (!c.per_group) shown.push_back(&c);
     for (size_t g = 0; g < groups_.size(); ++g) {
       out_ += "<h3 id=\"summary-" + std::to_string(g) + "\">" + html_escape(groups_[g].key) +
               "<a href=\"#images-" + std::to_string(g) + "\">images</a></h3>\n";
       out_ += "<div class=\"table-wrap\"><table class=\"sortable\">\n<thead><tr>";
-      for (size_t i : shown)
-        out_ += std::string("<th") + (text_columns.count(head[i]) ? "" : " class=\"num\"") + ">" +
-                html_escape(head[i]) + "</th>";
+      for (const ReportColumn* c : shown)
+        out_ += std::string("<th") + (c->numeric() ? " class=\"num\"" : "") + ">" +
+                html_escape(c->header) + "</th>";
       out_ += "</tr></thead>\n<tbody>\n";
       for (size_t r : groups_[g].rows) {
         out_ += "<tr>";
-        for (size_t i : shown) {
-          const std::string& v = cells_[r + 1].at(i);
-          if (head[i] == "status")
-            out_ += "<td>" + status_badge(v) + "</td>";
-          else if (head[i] == "technique")
-            out_ += "<td class=\"name\">" + html_escape(v) + "</td>";
-          else if (head[i] == "reason")
-            out_ += "<td class=\"reason\">" + html_escape(v) + "</td>";
+        for (const ReportColumn* c : shown) {
+          const std::string name = c->name;
+          if (name == "status")
+            out_ += "<td>" + status_badge(records_[r].status) + "</td>";
+          else if (name == "technique")
+            out_ += "<td class=\"name\">" + html_escape(c->cell(records_[r])) + "</td>";
+          else if (name == "reason")
+            out_ += "<td class=\"reason\">" + html_escape(c->cell(records_[r])) + "</td>";
           else
-            out_ += "<td class=\"num\">" + html_escape(v) + "</td>";
+            out_ += "<td class=\"num\">" + html_escape(c->cell(records_[r])) + "</td>";
         }
         out_ += "</tr>\n";
       }
@@ -393,18 +330,17 @@ class Page {
     out_ += "</div>\n</section>\n";
   }
 
-  // One image of a record (key under "images"), linked to itself, with a
-  // caption; a placeholder when the record names none.
-  std::string image(const json& r, const char* key, const std::string& alt,
-                    const std::string& caption) const {
-    const json::json_pointer p(std::string("/images/") + key);
-    if (!r.contains(p) || !r.at(p).is_string())
+  // One image of a record, linked to itself, with a caption; a placeholder
+  // when the record names none.
+  std::string image(const JobRecord& r, const std::optional<std::string>& path,
+                    const std::string& alt, const std::string& caption) const {
+    if (!path)
       return "<div><div class=\"placeholder\">no " + html_escape(caption) + " image</div></div>";
-    const std::string href = run_link(r.at(p).get<std::string>());
+    const std::string href = run_link(*path);
     std::string size;
-    if (r.value("width", 0) > 0 && r.value("height", 0) > 0)
-      size = " width=\"" + std::to_string(r.value("width", 0)) + "\" height=\"" +
-             std::to_string(r.value("height", 0)) + "\"";
+    if (r.width > 0 && r.height > 0)
+      size =
+          " width=\"" + std::to_string(r.width) + "\" height=\"" + std::to_string(r.height) + "\"";
     return "<div><a href=\"" + href + "\"><img src=\"" + href + "\" alt=\"" + html_escape(alt) +
            "\"" + size + "></a><div class=\"cap\">" + html_escape(caption) + "</div></div>";
   }
@@ -422,23 +358,24 @@ class Page {
   }
 
   // What the reference is, beside its image: the record's "reference" fields.
-  static std::string reference_facts(const json& r) {
+  static std::string reference_facts(const ReferenceRecord& ref) {
+    const std::pair<const char*, std::string> facts[] = {
+        {"seed", std::to_string(ref.seed)},
+        {"mean std error", fmt_g(ref.mean_std_error, "%.4g")},
+        {"penumbra mean std error", fmt_g(ref.penumbra_mean_std_error, "%.4g")},
+        {"penumbra pixels", std::to_string(ref.penumbra_pixels)},
+        {"attached-shadow pixels", std::to_string(ref.attached_shadow_pixels)},
+        {"from cache", ref.from_cache ? "true" : "false"}};
     std::string out = "<dl class=\"facts\">";
-    for (const auto& [key, label] : {std::pair<const char*, const char*>{"seed", "seed"},
-                                     {"mean_std_error", "mean std error"},
-                                     {"penumbra_mean_std_error", "penumbra mean std error"},
-                                     {"penumbra_pixels", "penumbra pixels"},
-                                     {"attached_shadow_pixels", "attached-shadow pixels"},
-                                     {"from_cache", "from cache"}}) {
-      const json::json_pointer p(std::string("/reference/") + key);
-      if (!r.contains(p)) continue;
-      const json& v = r.at(p);
-      const std::string text = v.is_number_float() ? fmt_g(v.get<double>(), "%.4g")
-                               : v.is_string()     ? v.get<std::string>()
-                                                   : v.dump();
+    for (const auto& [label, text] : facts)
       out += "<dt>" + std::string(label) + "</dt><dd>" + html_escape(text) + "</dd>";
-    }
     return out + "</dl>";
+  }
+
+  // "method, N spp" of a record's reference (", spp" without one).
+  static std::string reference_method(const JobRecord& r) {
+    if (!r.reference) return ", spp";
+    return html_escape(r.reference->method) + ", " + std::to_string(r.reference->spp) + " spp";
   }
 
   void images() {
@@ -447,13 +384,11 @@ class Page {
       out_ += "<h3 id=\"images-" + std::to_string(g) + "\">" + html_escape(groups_[g].key) +
               "<a href=\"#summary-" + std::to_string(g) + "\">table</a></h3>\n";
       std::set<double> scales;
-      const json* ref = nullptr;
+      const JobRecord* ref = nullptr;
       for (size_t i : groups_[g].rows) {
-        const json& r = records_[i];
-        const json::json_pointer fs_ptr("/images/error_heatmap_full_scale");
-        if (r.contains(fs_ptr) && r.at(fs_ptr).is_number())
-          scales.insert(r.at(fs_ptr).get<double>());
-        if (!ref && r.contains(json::json_pointer("/images/reference_shaded"))) ref = &r;
+        const JobRecord& r = records_[i];
+        if (r.images.error_heatmap_full_scale) scales.insert(*r.images.error_heatmap_full_scale);
+        if (!ref && r.images.reference_shaded) ref = &r;
       }
       for (double s : scales) legend(s);
       out_ += "<div class=\"grid\">\n";
@@ -461,10 +396,9 @@ class Page {
         out_ +=
             "<figure class=\"card ref\"><div class=\"card-head\"><span class=\"name\">"
             "reference</span><span class=\"nums\">" +
-            html_escape(str_at(*ref, "/reference/method")) + ", " +
-            html_escape(str_at(*ref, "/reference/spp")) + " spp</span></div><div class=\"pair\">" +
-            image(*ref, "reference_shaded", "reference, shaded", "shaded") + reference_facts(*ref) +
-            "</div></figure>\n";
+            reference_method(*ref) + "</span></div><div class=\"pair\">" +
+            image(*ref, ref->images.reference_shaded, "reference, shaded", "shaded") +
+            (ref->reference ? reference_facts(*ref->reference) : "") + "</div></figure>\n";
       }
       for (size_t i : groups_[g].rows) card(i, scales.size() > 1);
       out_ += "</div>\n";
@@ -473,46 +407,39 @@ class Page {
   }
 
   void card(size_t i, bool label_scale) {
-    const json& r = records_[i];
-    const std::string name = r.value("technique_variant", "");
-    const std::string status = r.value("status", "");
+    const JobRecord& r = records_[i];
+    const std::string& name = r.technique_variant;
     std::string nums;
-    for (const auto& [column, label] : {std::pair<const char*, const char*>{"frame_ms", "frame "},
-                                        {"rmse", "RMSE "},
-                                        {"penumbra_rmse", "penumbra RMSE "}}) {
-      const std::string v = cell(i, column);
+    for (const auto& [column, label, unit] :
+         {std::tuple<const char*, const char*, const char*>{"frame_ms", "frame ", " ms"},
+          {"rmse", "RMSE ", ""},
+          {"penumbra_rmse", "penumbra RMSE ", ""}}) {
+      const std::string v = report_column(column).cell(r);
       if (v.empty()) continue;
-      nums += (nums.empty() ? "" : " &middot; ") + std::string(label) + html_escape(v) +
-              (std::strcmp(column, "frame_ms") == 0 ? " ms" : "");
+      nums += (nums.empty() ? "" : " &middot; ") + std::string(label) + html_escape(v) + unit;
     }
     std::string heat_caption = "error heat map";
-    const json::json_pointer fs_ptr("/images/error_heatmap_full_scale");
-    if (label_scale && r.contains(fs_ptr))
-      heat_caption += ", full scale " + fmt_g(r.at(fs_ptr).get<double>());
+    if (label_scale && r.images.error_heatmap_full_scale)
+      heat_caption += ", full scale " + fmt_g(*r.images.error_heatmap_full_scale);
     out_ += "<figure class=\"card\"><div class=\"card-head\"><span class=\"name\">" +
-            html_escape(name) + "</span>" + status_badge(status) + "<span class=\"nums\">" + nums +
-            "</span></div>";
-    const bool has_images =
-        r.contains("images") && r["images"].is_object() &&
-        (r["images"].contains("shaded") || r["images"].contains("error_heatmap"));
-    if (has_images)
-      out_ += "<div class=\"pair\">" + image(r, "shaded", name + ", shaded", "shaded") +
-              image(r, "error_heatmap", name + ", error heat map", heat_caption) + "</div>";
-    const std::string reason = r.value("reason", "");
-    if (status != "ok" || !reason.empty())
-      out_ += "<p class=\"reason-text " + status_class(status) + "\">" + html_escape(status) +
+            html_escape(name) + "</span>" + status_badge(r.status) + "<span class=\"nums\">" +
+            nums + "</span></div>";
+    if (r.images.shaded || r.images.error_heatmap)
+      out_ += "<div class=\"pair\">" + image(r, r.images.shaded, name + ", shaded", "shaded") +
+              image(r, r.images.error_heatmap, name + ", error heat map", heat_caption) + "</div>";
+    const std::string reason = r.reason.value_or("");
+    if (r.status != JobStatus::Ok || !reason.empty())
+      out_ += "<p class=\"reason-text " + status_class(r.status) + "\">" + to_string(r.status) +
               (reason.empty() ? "" : ": " + html_escape(reason)) + "</p>";
     out_ += "</figure>\n";
   }
 
-  const std::vector<json>& records_;
+  const std::vector<JobRecord>& records_;
   fs::path run_dir_;
   fs::path out_dir_;  // canonical
   fs::path run_from_out_;
   const std::vector<ReportChart>& charts_;
   std::string title_;
-  std::vector<std::vector<std::string>> cells_;
-  std::map<std::string, size_t> column_;
   std::vector<Group> groups_;
   std::map<std::string, size_t> group_index_;
   std::string out_;
@@ -547,7 +474,7 @@ std::string html_escape(const std::string& s) {
   return out;
 }
 
-void write_html_report(const std::vector<json>& records, const std::string& run_dir,
+void write_html_report(const std::vector<JobRecord>& records, const std::string& run_dir,
                        const std::string& out_dir, const std::vector<ReportChart>& charts,
                        const std::string& title) {
   fs::create_directories(out_dir);

@@ -4,9 +4,10 @@
 // resolution (reference, each technique's shaded image and error heat map,
 // with a colour legend). It works offline from the file system: inline CSS
 // and JS, no network, images linked by paths relative to the report folder.
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "record/job_record.h"
 
 namespace sb {
 
@@ -24,11 +25,12 @@ struct ReportChart {
 inline constexpr const char* kHeatmapLegendFile = "heatmap_legend.png";
 
 // Writes out_dir/index.html (atomically) and out_dir/heatmap_legend.png,
-// creating out_dir. Images named by the records ("images": paths relative to
+// creating out_dir. Its summary tables have the columns of results.csv
+// (results/report_columns.h). Images named by the records (paths relative to
 // run_dir) are linked relative to out_dir, not copied. After loading, the
 // page's script sets <body data-images-ok="true|false" data-missing="...">
 // and logs console.error for each image that did not load.
-void write_html_report(const std::vector<nlohmann::json>& records, const std::string& run_dir,
+void write_html_report(const std::vector<JobRecord>& records, const std::string& run_dir,
                        const std::string& out_dir, const std::vector<ReportChart>& charts,
                        const std::string& title);
 

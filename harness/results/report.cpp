@@ -1,56 +1,14 @@
 #include "results/report.h"
 
-#include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <string_view>
 
+#include "results/report_columns.h"
 #include "results/store.h"
 
 namespace sb {
 namespace {
-
-using json = nlohmann::json;
-
-// A number from a record ("nan"/"inf" strings included), or NaN if absent.
-double number_at(const json& r, const json::json_pointer& p) {
-  if (!r.contains(p)) return std::nan("");
-  const json& v = r.at(p);
-  if (v.is_number()) return v.get<double>();
-  if (v.is_string()) {
-    const auto s = v.get<std::string>();
-    if (s == "inf") return INFINITY;
-    if (s == "-inf") return -INFINITY;
-  }
-  return std::nan("");
-}
-
-std::string fmt(double v, const char* spec) {
-  if (std::isnan(v)) return "";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, spec, v);
-  return buf;
-}
-
-struct Column {
-  const char* header;
-  const char* pointer;
-  const char* format;
-};
-
-const Column kColumns[] = {
-    {"frame_ms", "/timing/frame/median_ms", "%.3f"},
-    {"technique_ms", "/timing/technique/median_ms", "%.3f"},
-    {"rmse", "/metrics/visibility/all/rmse", "%.5f"},
-    {"mae", "/metrics/visibility/all/mae", "%.5f"},
-    {"max_error", "/metrics/visibility/all/max_error", "%.4f"},
-    {"psnr", "/metrics/visibility/all/psnr", "%.2f"},
-    {"ssim", "/metrics/visibility/all/ssim", "%.4f"},
-    {"frac_over_0.05", "/metrics/visibility/all/frac_over_0.05", "%.4f"},
-    {"penumbra_rmse", "/metrics/visibility/penumbra/rmse", "%.5f"},
-};
 
 std::string csv_escape(const std::string& s) {
   if (s.find_first_of(",\"\n") == std::string::npos) return s;
@@ -58,24 +16,6 @@ std::string csv_escape(const std::string& s) {
   for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out + "\"";
 }
-
-}  // namespace
-
-std::string make_csv(const std::vector<json>& records) {
-  std::string out = "scene,resolution,technique,status";
-  for (const auto& c : kColumns) out += std::string(",") + c.header;
-  out += ",reason\n";
-  for (const auto& r : records) {
-    out += csv_escape(r.value("scene_variant", "")) + "," + r.value("resolution", "") + "," +
-           csv_escape(r.value("technique_variant", "")) + "," + r.value("status", "");
-    for (const auto& c : kColumns)
-      out += "," + fmt(number_at(r, json::json_pointer(c.pointer)), c.format);
-    out += "," + csv_escape(r.value("reason", "")) + "\n";
-  }
-  return out;
-}
-
-namespace {
 
 // Text from records (labels, reasons) inside a Markdown table or heading:
 // the characters that end a cell, open code, links, emphasis or HTML are
@@ -96,42 +36,57 @@ std::string md_text(const std::string& s) {
 
 }  // namespace
 
-std::string make_markdown(const std::vector<json>& records, const std::string& title) {
+std::string make_csv(const std::vector<JobRecord>& records) {
+  std::string out;
+  for (const auto& c : report_columns()) out += (out.empty() ? "" : ",") + csv_escape(c.header);
+  out += "\n";
+  for (const auto& r : records) {
+    std::string row;
+    for (const auto& c : report_columns())
+      row += (&c == &report_columns().front() ? "" : ",") + csv_escape(c.cell(r));
+    out += row + "\n";
+  }
+  return out;
+}
+
+std::string make_markdown(const std::vector<JobRecord>& records, const std::string& title) {
   std::string out = "# " + md_text(title) + "\n\n";
   if (!records.empty()) {
-    const json& r0 = records.front();
-    out += "Backend `" + r0.value("backend", "") + "`, renderer `" + r0.value("gl_renderer", "") +
-           "`, timing source `" + r0.value("timing_source", "") + "`. Error is measured on the " +
-           "visibility buffer against the ray-traced reference (" +
-           r0.value(json::json_pointer("/reference/method"), std::string("")) + ", " +
-           std::to_string(r0.value(json::json_pointer("/reference/spp"), 0)) + " spp).\n";
+    const JobRecord& r0 = records.front();
+    const std::string method = r0.reference ? r0.reference->method : "";
+    const int spp = r0.reference ? r0.reference->spp : 0;
+    out += "Backend `" + r0.backend + "`, renderer `" + r0.gl_renderer + "`, timing source `" +
+           r0.timing_source + "`. Error is measured on the " +
+           "visibility buffer against the ray-traced reference (" + method + ", " +
+           std::to_string(spp) + " spp).\n";
   }
-  std::map<std::string, std::vector<const json*>> groups;
+  std::map<std::string, std::vector<const JobRecord*>> groups;
   std::vector<std::string> order;
   for (const auto& r : records) {
-    const std::string key = r.value("scene_variant", "") + " @ " + r.value("resolution", "");
+    const std::string key = r.scene_variant + " @ " + r.resolution;
     if (!groups.count(key)) order.push_back(key);
     groups[key].push_back(&r);
   }
   for (const auto& key : order) {
-    out += "\n## " + md_text(key) + "\n\n| technique | status |";
-    for (const auto& c : kColumns) out += std::string(" ") + c.header + " |";
-    out += "\n|---|---|";
-    for (size_t i = 0; i < std::size(kColumns); ++i) out += "---:|";
-    out += "\n";
-    for (const json* r : groups[key]) {
-      std::string status = r->value("status", "");
-      if (status != "ok") status += ": " + r->value("reason", "");
-      out += "| " + md_text(r->value("technique_variant", "")) + " | " + md_text(status) + " |";
-      for (const auto& c : kColumns)
-        out += " " + fmt(number_at(*r, json::json_pointer(c.pointer)), c.format) + " |";
+    out += "\n## " + md_text(key) + "\n\n|";
+    std::string rule = "|";
+    for (const auto& c : report_columns()) {
+      if (c.per_group) continue;
+      out += std::string(" ") + md_text(c.header) + " |";
+      rule += c.numeric() ? "---:|" : "---|";
+    }
+    out += "\n" + rule + "\n";
+    for (const JobRecord* r : groups[key]) {
+      out += "|";
+      for (const auto& c : report_columns())
+        if (!c.per_group) out += " " + md_text(c.cell(*r)) + " |";
       out += "\n";
     }
   }
   return out;
 }
 
-void write_reports(const std::string& run_dir, const std::vector<json>& records,
+void write_reports(const std::string& run_dir, const std::vector<JobRecord>& records,
                    const std::string& title) {
   namespace fs = std::filesystem;
   write_file_atomically((fs::path(run_dir) / "results.csv").string(), make_csv(records));

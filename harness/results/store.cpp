@@ -2,17 +2,37 @@
 
 #include <unistd.h>
 
-#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <set>
-#include <sstream>
 
 #include "config/json_file.h"
 #include "core/error.h"
 
 namespace sb {
 namespace fs = std::filesystem;
+
+namespace {
+
+// Each non-empty line of run_dir/results.jsonl, parsed with the config's
+// limits, with its line number.
+void for_each_line(const std::string& run_dir,
+                   const std::function<void(const nlohmann::json&, size_t line)>& take) {
+  const fs::path jsonl = fs::path(run_dir) / "results.jsonl";
+  const std::string text = read_input_file(jsonl.string(), size_t(1) << 30, "results file");
+  size_t n = 0, begin = 0;
+  while (begin < text.size()) {
+    size_t end = text.find('\n', begin);
+    if (end == std::string::npos) end = text.size();
+    ++n;
+    if (end > begin)
+      take(parse_json_text(text.substr(begin, end - begin), jsonl.string(), {}, n - 1), n);
+    begin = end + 1;
+  }
+}
+
+}  // namespace
 
 void write_file_atomically(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
@@ -31,45 +51,38 @@ std::string json_text(const nlohmann::json& value, int indent) {
   return value.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
-nlohmann::json json_number(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  return v;
-}
-
 ResultsStore::ResultsStore(std::string run_dir) : dir_(std::move(run_dir)) {
   fs::create_directories(fs::path(dir_) / "records");
   for (const auto& e : fs::directory_iterator(fs::path(dir_) / "records")) {
     if (e.path().extension() != ".json") continue;
     try {
-      nlohmann::json r = read_json_file(e.path().string());
-      if (!r.contains("job_id") || !r["job_id"].is_string()) continue;
-      // Key first: json's operator= takes its argument by value, and C++17
-      // evaluates the right side first, which would empty `r` before the key is read.
-      const std::string key = r["job_id"].get<std::string>();
+      JobRecord r = JobRecord::from_json(read_json_file(e.path().string()));
+      const std::string key = r.job_id;
       records_[key] = std::move(r);
-    } catch (const std::exception&) {
+    } catch (const InputError&) {
       // A torn or foreign file: the job simply runs again.
+    } catch (const RecordError&) {
+      // Not a record of this schema: likewise.
     }
   }
 }
 
-const nlohmann::json* ResultsStore::finished(const std::string& job_id) const {
+const JobRecord* ResultsStore::finished(const std::string& job_id) const {
   auto it = records_.find(job_id);
   if (it == records_.end()) return nullptr;
-  const std::string status = it->second.value("status", "");
-  return status == "ok" || status == "skipped" ? &it->second : nullptr;
+  const JobStatus s = it->second.status;
+  return s == JobStatus::Ok || s == JobStatus::Skipped ? &it->second : nullptr;
 }
 
-void ResultsStore::put(const std::string& job_id, const nlohmann::json& record) {
-  write_file_atomically((fs::path(dir_) / "records" / (job_id + ".json")).string(),
-                        json_text(record, 2) + "\n");
-  records_[job_id] = record;
+void ResultsStore::put(const JobRecord& record) {
+  write_file_atomically((fs::path(dir_) / "records" / (record.job_id + ".json")).string(),
+                        json_text(record.to_json(), 2) + "\n");
+  records_[record.job_id] = record;
   rewrite_jsonl();
 }
 
-std::vector<nlohmann::json> ResultsStore::records() const {
-  std::vector<nlohmann::json> out;
+std::vector<JobRecord> ResultsStore::records() const {
+  std::vector<JobRecord> out;
   std::set<std::string> seen;
   for (const auto& id : order_) {
     auto it = records_.find(id);
@@ -82,25 +95,28 @@ std::vector<nlohmann::json> ResultsStore::records() const {
 
 void ResultsStore::rewrite_jsonl() const {
   std::string text;
-  for (const auto& r : records()) text += json_text(r) + "\n";
+  for (const auto& r : records()) text += json_text(r.to_json()) + "\n";
   write_file_atomically((fs::path(dir_) / "results.jsonl").string(), text);
 }
 
+std::vector<JobRecord> read_job_records(const std::string& run_dir) {
+  std::vector<JobRecord> out;
+  const std::string file = (fs::path(run_dir) / "results.jsonl").string();
+  for_each_line(run_dir, [&](const nlohmann::json& j, size_t line) {
+    try {
+      out.push_back(JobRecord::from_json(j));
+    } catch (const RecordError& e) {
+      const std::string where = "line " + std::to_string(line);
+      throw InputError(file, e.pointer().empty() ? where : where + " (" + e.pointer() + ")",
+                       e.problem());
+    }
+  });
+  return out;
+}
+
 std::vector<nlohmann::json> read_run_records(const std::string& run_dir) {
-  // Records are input like any other: someone else's run folder, or a
-  // crafted one. Every line is parsed with the config's limits.
   std::vector<nlohmann::json> out;
-  const fs::path jsonl = fs::path(run_dir) / "results.jsonl";
-  const std::string text = read_input_file(jsonl.string(), size_t(1) << 30, "results file");
-  size_t n = 0, begin = 0;
-  while (begin < text.size()) {
-    size_t end = text.find('\n', begin);
-    if (end == std::string::npos) end = text.size();
-    ++n;
-    if (end > begin)
-      out.push_back(parse_json_text(text.substr(begin, end - begin), jsonl.string(), {}, n - 1));
-    begin = end + 1;
-  }
+  for_each_line(run_dir, [&](const nlohmann::json& j, size_t) { out.push_back(j); });
   return out;
 }
 

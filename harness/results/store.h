@@ -9,37 +9,45 @@
 #include <string>
 #include <vector>
 
+#include "record/job_record.h"
+
 namespace sb {
 
 class ResultsStore {
  public:
+  // Reads the records/ of an earlier run of run_dir; a record that cannot be
+  // read (torn, foreign, of another schema_version) is left out: its job runs again.
   explicit ResultsStore(std::string run_dir);
 
   const std::string& dir() const { return dir_; }
   // A finished record from an earlier run of this directory, or null.
-  const nlohmann::json* finished(const std::string& job_id) const;
+  const JobRecord* finished(const std::string& job_id) const;
   // Stores the record and rewrites results.jsonl (records ordered by `order`).
-  void put(const std::string& job_id, const nlohmann::json& record);
+  void put(const JobRecord& record);
   void set_order(std::vector<std::string> job_ids) { order_ = std::move(job_ids); }
-  std::vector<nlohmann::json> records() const;  // in plan order, then the rest
+  std::vector<JobRecord> records() const;  // in plan order, then the rest
 
  private:
   void rewrite_jsonl() const;
   std::string dir_;
-  std::map<std::string, nlohmann::json> records_;
+  std::map<std::string, JobRecord> records_;
   std::vector<std::string> order_;
 };
 
 // Writes `text` to `path` through a temporary file and a rename.
 void write_file_atomically(const std::string& path, const std::string& text);
-// Reads results.jsonl (or a records/ folder) of a run directory.
+// The records of a run directory's results.jsonl, for report, compare and
+// the CI outputs. Run folders are input like any other: a line that is not
+// JSON, or a record that does not follow the schema (record/job_record.h;
+// another schema_version included), is an InputError naming the file, the
+// line and the JSON pointer.
+std::vector<JobRecord> read_job_records(const std::string& run_dir);
+// The same lines as JSON, unread: for tests and tools that check the written
+// schema itself.
 std::vector<nlohmann::json> read_run_records(const std::string& run_dir);
 // JSON text for output. Strings may hold bytes that are not UTF-8 (a file
 // name, a glTF URI, a driver message): they are written as U+FFFD instead of
 // making nlohmann throw and the run lose its records.
 std::string json_text(const nlohmann::json& value, int indent = -1);
-// NaN and ±inf have no JSON spelling: they are stored as the strings "nan",
-// "inf", "-inf" (documented in docs/results.md).
-nlohmann::json json_number(double v);
 
 }  // namespace sb

@@ -2,10 +2,10 @@
 // Shared passes, never charged to a technique: the G-buffer (camera view) and
 // the shading pass that turns visibility into a picture.
 #include "core/image.h"
-#include "core/technique.h"
 #include "gl/gpu_scene.h"
 #include "gl/objects.h"
 #include "gl/program.h"
+#include "plugin/technique.h"
 
 namespace sb {
 

@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +11,7 @@
 #include <ctime>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <thread>
 
 #include "core/error.h"
@@ -19,16 +22,16 @@
 #include "metrics/light_horizon.h"
 #include "metrics/metrics.h"
 #include "plan/plan.h"
+#include "record/job_record.h"
 #include "reference/embree_isa.h"
 #include "reference/reference.h"
 #include "results/report.h"
 #include "results/run_lock.h"
 #include "results/store.h"
-#include "results/timing_stats.h"
 #include "run/gbuffer.h"
 #include "run/progress.h"
+#include "scenes/need_providers.h"
 #include "scenes/receiver_inference.h"
-#include "scenes/scene_analysis.h"
 
 namespace sb {
 namespace fs = std::filesystem;
@@ -36,7 +39,6 @@ using json = nlohmann::json;
 
 namespace {
 
-constexpr int kSchemaVersion = 1;
 constexpr float kHeatmapFullScale = 0.25f;
 
 std::string now_iso8601() {
@@ -48,24 +50,24 @@ std::string now_iso8601() {
   return buf;
 }
 
-// Non-finite components are written as strings, like every number of a record.
-json vec_json(const glm::vec3& v) {
-  return json::array({json_number(v.x), json_number(v.y), json_number(v.z)});
-}
+std::array<double, 3> vec3(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 
-json stats_json(const metrics::ErrorStats& s) {
-  return {{"pixel_count", s.pixel_count},
-          {"rmse", json_number(s.rmse)},
-          {"mae", json_number(s.mae)},
-          {"max_error", json_number(s.max_error)},
-          {"max_pixel", json::array({s.max_x, s.max_y})},
-          {"psnr", json_number(s.psnr)},
-          {"ssim", json_number(s.ssim)},
-          {"frac_over_0.01", s.frac_over_001},
-          {"frac_over_0.05", s.frac_over_005},
-          {"frac_over_0.1", s.frac_over_01},
-          {"nonfinite_count", s.nonfinite_count},
-          {"mean_signed", json_number(s.mean_signed)}};
+RegionStats region_stats(const metrics::ErrorStats& s) {
+  RegionStats r;
+  r.pixel_count = static_cast<std::int64_t>(s.pixel_count);
+  r.rmse = s.rmse;
+  r.mae = s.mae;
+  r.max_error = s.max_error;
+  r.max_x = s.max_x;
+  r.max_y = s.max_y;
+  r.psnr = s.psnr;
+  r.ssim = s.ssim;
+  r.frac_over_001 = s.frac_over_001;
+  r.frac_over_005 = s.frac_over_005;
+  r.frac_over_01 = s.frac_over_01;
+  r.nonfinite_count = static_cast<std::int64_t>(s.nonfinite_count);
+  r.mean_signed = s.mean_signed;
+  return r;
 }
 
 std::vector<uint8_t> mask_and(std::vector<uint8_t> a, const std::vector<uint8_t>& b) {
@@ -73,25 +75,24 @@ std::vector<uint8_t> mask_and(std::vector<uint8_t> a, const std::vector<uint8_t>
   return a;
 }
 
+std::int64_t count_ones(const std::vector<uint8_t>& mask) {
+  return std::count(mask.begin(), mask.end(), uint8_t(1));
+}
+
 // A technique's visibility must be finite and in [0,1]; float rounding of
 // sums (accumulation, kernels) may overshoot by this much.
 constexpr float kVisibilityTolerance = 1e-5f;  // the failure message says 1e-5
 
-struct VisibilityCheck {
-  size_t nonfinite = 0;
-  size_t below_zero = 0;
-  size_t above_one = 0;
-};
-
-VisibilityCheck check_visibility(const ImageF& v) {
-  VisibilityCheck c;
+VisibilityCheckRecord check_visibility(const ImageF& v) {
+  VisibilityCheckRecord c;
+  c.tolerance = kVisibilityTolerance;
   for (float x : v.data) {
     if (!std::isfinite(x))
       ++c.nonfinite;
     else if (x < -kVisibilityTolerance)
-      ++c.below_zero;
+      ++c.below_0;
     else if (x > 1.0f + kVisibilityTolerance)
-      ++c.above_one;
+      ++c.above_1;
   }
   return c;
 }
@@ -117,24 +118,6 @@ ImageF with_unmeasured_from(const ImageF& test, const ImageF& ref,
   return out;
 }
 
-// Three regions, each only over the measured pixels (all but those whose
-// tangent plane cuts the light; see metrics/light_horizon.h): every pixel;
-// the reference's penumbra; and the soft pixels of either the technique or
-// the reference (`soft_union`), which also sees light bleeding into a true
-// umbra and blur outside the true penumbra.
-//
-// SSIM's windows reach past the mask, so the unmeasured pixels take the
-// reference's values first: they add no error to a neighbour either.
-json compare_json(const ImageF& test, const ImageF& ref, const std::vector<uint8_t>& measured,
-                  const std::vector<uint8_t>& penumbra, const std::vector<uint8_t>& soft_union) {
-  const ImageF t = with_unmeasured_from(test, ref, measured);
-  json j;
-  j["all"] = stats_json(metrics::compare(t, ref, &measured));
-  j["penumbra"] = stats_json(metrics::compare(t, ref, &penumbra));
-  j["soft_union"] = stats_json(metrics::compare(t, ref, &soft_union));
-  return j;
-}
-
 // Undo whatever state a technique left behind.
 void reset_gl_state() { gl::reset_state(); }
 
@@ -145,14 +128,96 @@ struct Regions {
   std::vector<uint8_t> attached;  // the light wholly below the tangent plane: V = 0
 };
 
+// What every job of one (scene, resolution) draws with.
+struct FrameSetup {
+  FrameTargets& targets;
+  const GpuScene& gpu;
+  const Scene& scene;
+  const glm::mat4& view_projection;
+  const FrameInputs& in;
+};
+
+// What every job of one (scene, resolution) is measured against.
+struct Baseline {
+  const reference::Result& ref;
+  const ImageF& shaded;  // the reference's V, shaded
+  const Regions& regions;
+};
+
+// A technique's V, shaded as the reference's is: untimed.
+ImageF shade(const FrameSetup& f, const ImageF& visibility) {
+  f.targets.upload_visibility(visibility);
+  f.targets.render_shading(f.scene);
+  return f.targets.read_shaded();
+}
+
+// Three regions, each only over the measured pixels (all but those whose
+// tangent plane cuts the light; see metrics/light_horizon.h): every pixel;
+// the reference's penumbra; and the soft pixels of either the technique or
+// the reference (`soft_union`), which also sees light bleeding into a true
+// umbra and blur outside the true penumbra.
+//
+// SSIM's windows reach past the mask, so the unmeasured pixels take the
+// reference's values first: they add no error to a neighbour either.
+ImageMetrics compare_images(const ImageF& test, const ImageF& ref, const Regions& regions,
+                            const std::vector<uint8_t>& soft_union) {
+  const ImageF t = with_unmeasured_from(test, ref, regions.measured);
+  return {region_stats(metrics::compare(t, ref, &regions.measured)),
+          region_stats(metrics::compare(t, ref, &regions.penumbra)),
+          region_stats(metrics::compare(t, ref, &soft_union))};
+}
+
+// The visibility buffer's and the shaded image's error against the reference's.
+MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const Baseline& b) {
+  const std::vector<uint8_t> soft_union =
+      mask_and(metrics::soft_union_mask(visibility, b.ref.visibility), b.regions.measured);
+  return {compare_images(visibility, b.ref.visibility, b.regions, soft_union),
+          compare_images(shaded, b.shaded, b.regions, soft_union)};
+}
+
+// A reference whose noise is comparable to the error cannot rank techniques.
+std::optional<std::string> noise_warning(const MetricsRecord& m, const reference::Result& ref) {
+  const double pen_rmse =
+      std::isfinite(m.visibility.penumbra.rmse) ? m.visibility.penumbra.rmse : 0.0;
+  // RMS against RMS: the noise's sqrt(mean σ²), not its mean σ.
+  if (ref.penumbra_rms_std_error > 0.0 && pen_rmse > 0.0 &&
+      ref.penumbra_rms_std_error > 0.5 * pen_rmse)
+    return "reference noise (penumbra RMS std error " + std::to_string(ref.penumbra_rms_std_error) +
+           ") is over half the penumbra RMSE; raise reference.spp";
+  return std::nullopt;
+}
+
+// Per-frame times of a run of frames, by bracket.
+struct FrameSamples {
+  std::vector<double> frame, technique;
+  std::map<std::string, std::vector<double>> passes, shared;
+  std::vector<std::string> pass_order;
+
+  void add(const gl::PassTimer::Frame& f) {
+    frame.push_back(f.total_ms);
+    double tech = 0.0;
+    for (const auto& [name, ms] : f.passes) {
+      if (name.rfind("shared:", 0) == 0) {
+        shared[name.substr(7)].push_back(ms);
+        continue;
+      }
+      if (name != "technique" && !passes.count(name)) pass_order.push_back(name);
+      if (name != "technique") passes[name].push_back(ms);
+      tech += ms;
+    }
+    technique.push_back(tech);
+  }
+};
+
 // Per mesh: closed (depth passes may cull it; known when a technique in the
 // plan asked for closedness) and, for receivers, whether nothing lies behind
 // them from the light (filtered maps may draw them).
 std::vector<MeshDrawFlags> draw_flags(const ScenePlan& st) {
   std::vector<MeshDrawFlags> flags(st.scene.meshes.size());
+  const auto* topology = st.derived.find<CasterTopology>(need::kCasterClosedness);
   for (size_t i = 0; i < flags.size(); ++i) {
     const Mesh& m = st.scene.meshes[i];
-    flags[i].closed = m.casts_shadow && st.caps.closedness_checked && st.caps.topology[i].closed();
+    flags[i].closed = m.casts_shadow && topology != nullptr && (*topology)[i].closed();
     flags[i].nothing_behind = !m.casts_shadow && can_shadow_nothing(st.scene, i);
   }
   return flags;
@@ -204,54 +269,49 @@ class Runner {
     progress_.draw();
   }
 
-  json base_record(const SceneVariant& sv, const ScenePlan* st, const Resolution& res,
-                   const TechniqueVariant& tv) const {
-    json r;
-    r["schema_version"] = kSchemaVersion;
-    r["run_id"] = o_.run_id;
-    r["config"] = e_.file;
-    r["config_hash"] = e_.content_hash;
-    r["experiment"] = e_.name;
-    r["job_id"] = job_id(sv.name, res.label(), tv.name);
-    r["spec_hash"] = spec_hash(sv, res, tv);
-    r["scene_variant"] = sv.name;
-    json scene = {{"type", sv.type}, {"variant", sv.name}, {"params", sv.params.json()}};
+  // What identifies a job and where it ran; `st` is null for a scene that
+  // did not build.
+  JobRecord base_record(const SceneVariant& sv, const ScenePlan* st, const Resolution& res,
+                        const TechniqueVariant& tv) const {
+    JobRecord r;
+    r.run_id = o_.run_id;
+    r.config = e_.file;
+    r.config_hash = e_.content_hash;
+    r.experiment = e_.name;
+    r.job_id = job_id(sv.name, res.label(), tv.name);
+    r.spec_hash = spec_hash(sv, res, tv);
+    r.scene_variant = sv.name;
+    r.scene.type = sv.type;
+    r.scene.variant = sv.name;
+    r.scene.params = sv.params.json();
     if (st != nullptr) {
-      scene["triangles"] = st->scene.triangle_count();
-      scene["caster_triangles"] = st->scene.caster_triangle_count();
+      BuiltScene b;
+      b.triangles = static_cast<std::int64_t>(st->scene.triangle_count());
+      b.caster_triangles = static_cast<std::int64_t>(st->scene.caster_triangle_count());
       const auto& l = st->scene.light;
-      scene["light"] = {{"center", vec_json(l.center)},
-                        {"target", vec_json(l.target)},
-                        {"size", json::array({l.width(), l.height()})},
-                        {"intensity", l.intensity}};
+      b.light = {vec3(l.center), vec3(l.target), {l.width(), l.height()}, l.intensity};
       const auto& c = st->scene.camera;
-      scene["camera"] = {
-          {"eye", vec_json(c.eye)}, {"target", vec_json(c.target)}, {"fov_y", c.fov_y_degrees}};
-      scene["derived"] = {{"closedness_checked", st->caps.closedness_checked},
-                          {"adjacency_built", st->caps.adjacency_built},
-                          {"receiver_inference", sv.infer_receivers},
-                          {"inferred_receivers", st->inferred_receivers}};
+      b.camera = {vec3(c.eye), vec3(c.target), c.fov_y_degrees};
+      b.derived = {st->derived.has(need::kCasterClosedness), st->derived.has(need::kEdgeAdjacency),
+                   sv.infer_receivers, st->inferred_receivers};
+      r.scene.built = std::move(b);
     }
-    r["scene"] = scene;
-    r["technique_variant"] = tv.name;
-    r["technique"] = {{"name", tv.info->name},
-                      {"family", tv.info->family},
-                      {"variant", tv.name},
-                      {"params", tv.params.json()}};
-    r["resolution"] = res.label();
-    r["width"] = res.width;
-    r["height"] = res.height;
-    r["backend"] = gl::to_string(o_.backend);
-    r["gl_platform"] = context_->platform();
-    r["gl_renderer"] = context_->renderer();
-    r["gl_version"] = context_->version();
-    r["timing_source"] = gl::to_string(timing_source_);
-    r["host"] = {{"hardware_threads", std::thread::hardware_concurrency()}};
+    r.technique_variant = tv.name;
+    r.technique = {tv.info->name, tv.info->family, tv.name, tv.params.json()};
+    r.resolution = res.label();
+    r.width = res.width;
+    r.height = res.height;
+    r.backend = gl::to_string(o_.backend);
+    r.gl_platform = context_->platform();
+    r.gl_renderer = context_->renderer();
+    r.gl_version = context_->version();
+    r.timing_source = gl::to_string(timing_source_);
+    r.host.hardware_threads = std::thread::hardware_concurrency();
     // llvmpipe's rasteriser threads (read at context creation; default: cores).
-    if (const char* lp = std::getenv("LP_NUM_THREADS")) r["host"]["lp_num_threads"] = lp;
+    if (const char* lp = std::getenv("LP_NUM_THREADS")) r.host.lp_num_threads = lp;
     char host[256] = {};
-    if (gethostname(host, sizeof host - 1) == 0) r["host"]["name"] = host;
-    r["build"] = {{"version", SHADOWBENCH_VERSION}};
+    if (gethostname(host, sizeof host - 1) == 0) r.host.name = host;
+    r.build_version = SHADOWBENCH_VERSION;
     return r;
   }
 
@@ -276,46 +336,50 @@ class Runner {
   }
 
   bool resumable(const std::string& id, const std::string& hash) {
-    const json* done = store_.finished(id);
+    const JobRecord* done = store_.finished(id);
     if (done == nullptr) return false;
-    const json stored = done->value("spec_hash", json());
-    if (stored.is_string() && stored.get<std::string>() == hash) return true;
+    if (done->spec_hash == hash) return true;
     ++summary_.respecified;
     log("job " + id +
         ": its settings changed since the earlier run in this folder; running it again");
     return false;
   }
 
-  void finish(const std::string& id, json record) {
-    record["finished_at"] = now_iso8601();
-    const std::string status = record["status"];
-    if (status == "ok") ++summary_.ok;
-    if (status == "skipped") ++summary_.skipped;
-    if (status == "failed") ++summary_.failed;
-    store_.put(id, record);
+  void finish(JobRecord record) {
+    record.finished_at = now_iso8601();
+    if (record.status == JobStatus::Ok) ++summary_.ok;
+    if (record.status == JobStatus::Skipped) ++summary_.skipped;
+    if (record.status == JobStatus::Failed) ++summary_.failed;
+    store_.put(record);
     ++done_;
     // Jobs that rendered carry their duration; the rest took no time.
-    if (record.contains("duration_s"))
+    if (record.duration_s)
       progress_.finish_job();
     else
       progress_.add_done_without_running(1);
     std::string line = "[" + std::to_string(done_) + "/" + std::to_string(total_) + "] " +
-                       record["scene_variant"].get<std::string>() + " @ " +
-                       record["resolution"].get<std::string>() + "  " +
-                       record["technique_variant"].get<std::string>() + ": " + status;
-    if (status == "ok") {
+                       record.scene_variant + " @ " + record.resolution + "  " +
+                       record.technique_variant + ": " + to_string(record.status);
+    if (record.status == JobStatus::Ok && record.timing && record.metrics) {
+      const double rmse = record.metrics->visibility.all.rmse;
       char buf[128];
       std::snprintf(buf, sizeof buf, "  frame %.2f ms, technique %.2f ms, RMSE %.5f",
-                    record["timing"]["frame"]["median_ms"].get<double>(),
-                    record["timing"]["technique"]["median_ms"].get<double>(),
-                    record["metrics"]["visibility"]["all"]["rmse"].is_number()
-                        ? record["metrics"]["visibility"]["all"]["rmse"].get<double>()
-                        : 0.0);
+                    record.timing->frame.median_ms, record.timing->technique.median_ms,
+                    std::isfinite(rmse) ? rmse : 0.0);
       line += buf;
-    } else {
-      line += " (" + record.value("reason", "") + ")";
+    } else if (record.status != JobStatus::Ok) {
+      line += " (" + record.reason.value_or("") + ")";
     }
     log(line);
+  }
+
+  // A job that ends without rendering: skipped, or failed with the reason.
+  void finish_unrun(const SceneVariant& sv, const ScenePlan* st, const Resolution& res,
+                    const TechniqueVariant& tv, JobStatus status, const std::string& reason) {
+    JobRecord r = base_record(sv, st, res, tv);
+    r.status = status;
+    r.reason = reason;
+    finish(std::move(r));
   }
 
   void run_scene(const SceneVariant& sv) {
@@ -332,6 +396,7 @@ class Runner {
     }
 
     std::unique_ptr<GpuScene> gpu;
+    DerivedData derived;  // the plan's, and the GPU stages' (freed before gpu)
     for (const auto& res : e_.resolutions) {
       // Pending jobs of this (scene, resolution); finished ones are kept.
       std::vector<size_t> pending;
@@ -344,42 +409,88 @@ class Runner {
           continue;
         }
         if (!scene_error.empty()) {
-          json r = base_record(sv, nullptr, res, e_.techniques[i]);
-          r["status"] = "failed";
-          r["reason"] = scene_error;
-          finish(id, r);
+          finish_unrun(sv, nullptr, res, e_.techniques[i], JobStatus::Failed, scene_error);
           continue;
         }
         if (!st.skip_reason[i].empty()) {
-          json r = base_record(sv, &st, res, e_.techniques[i]);
-          r["status"] = "skipped";
-          r["reason"] = st.skip_reason[i];
-          finish(id, r);
+          finish_unrun(sv, &st, res, e_.techniques[i], JobStatus::Skipped, st.skip_reason[i]);
           continue;
         }
         pending.push_back(i);
       }
       if (pending.empty()) continue;
       try {
-        if (!gpu) gpu = std::make_unique<GpuScene>(st.scene, st.caps.adjacency, draw_flags(st));
-        run_resolution(sv, st, *gpu, res, pending);
+        if (!gpu) {
+          // Both or neither: a failed GPU stage is tried again at the next
+          // resolution, like a failed upload.
+          const auto* adjacency = st.derived.find<CasterAdjacency>(need::kEdgeAdjacency);
+          auto uploaded = std::make_unique<GpuScene>(
+              st.scene, adjacency ? *adjacency : CasterAdjacency{}, draw_flags(st));
+          DerivedData with_gpu = st.derived;
+          for (const NeedProvider* p : st.uploads) p->upload(st.scene, *uploaded, with_gpu);
+          gpu = std::move(uploaded);
+          derived = std::move(with_gpu);
+        }
+        run_resolution(sv, st, *gpu, derived, res, pending);
       } catch (const std::exception& ex) {
         // Shared work (G-buffer, reference) failed: every pending job fails.
-        for (size_t i : pending) {
-          const std::string id = job_id(sv.name, res.label(), e_.techniques[i].name);
-          json r = base_record(sv, &st, res, e_.techniques[i]);
-          r["status"] = "failed";
-          r["reason"] = std::string("shared pass failed: ") + ex.what();
-          finish(id, r);
-        }
+        for (size_t i : pending)
+          finish_unrun(sv, &st, res, e_.techniques[i], JobStatus::Failed,
+                       std::string("shared pass failed: ") + ex.what());
         gl::take_debug_errors();
         reset_gl_state();
       }
     }
   }
 
+  // The reference's part of every record of one (scene, resolution).
+  ReferenceRecord reference_record(const reference::Result& ref, const Regions& regions) const {
+    ReferenceRecord r;
+    r.method = ref.method;
+    r.spp = ref.spp;
+    r.seed = ref.seed;
+    r.embree_isa = ref.isa;
+    r.embree_config = embree_config_;
+    r.mean_std_error = ref.mean_std_error;
+    r.penumbra_mean_std_error = ref.penumbra_mean_std_error;
+    r.penumbra_rms_std_error = ref.penumbra_rms_std_error;
+    r.penumbra_pixels = count_ones(regions.penumbra);
+    r.attached_shadow_pixels = count_ones(regions.attached);
+    r.horizon_cut_pixels =
+        static_cast<std::int64_t>(regions.measured.size()) - count_ones(regions.measured);
+    r.cache_key = ref.cache_key;
+    r.from_cache = ref.from_cache;
+    r.seconds = ref.seconds;
+    return r;
+  }
+
+  // The reference's images (and with --gbuffer the G-buffer's), once per
+  // (scene, resolution); every job's record names them.
+  ImagesRecord write_reference_images(const std::string& rel, const reference::Result& ref,
+                                      const ImageF& ref_shaded, const ImageF& positions,
+                                      const ImageF& normals) const {
+    ImagesRecord images;
+    if (!o_.write_images) return images;
+    const fs::path dir = fs::path(store_.dir()) / rel;
+    fs::create_directories(dir);
+    io::write_exr((dir / "visibility.exr").string(), ref.visibility);
+    io::write_exr((dir / "std_error.exr").string(), ref.std_error);
+    io::write_png((dir / "shaded.png").string(), ref_shaded);
+    images.reference_visibility = rel + "/visibility.exr";
+    images.reference_std_error = rel + "/std_error.exr";
+    images.reference_shaded = rel + "/shaded.png";
+    if (o_.write_gbuffer) {
+      io::write_exr((dir / "positions.exr").string(), positions);
+      io::write_exr((dir / "normals.exr").string(), normals);
+      images.gbuffer_positions = rel + "/positions.exr";
+      images.gbuffer_normals = rel + "/normals.exr";
+    }
+    return images;
+  }
+
   void run_resolution(const SceneVariant& sv, const ScenePlan& st, const GpuScene& gpu,
-                      const Resolution& res, const std::vector<size_t>& pending) {
+                      const DerivedData& derived, const Resolution& res,
+                      const std::vector<size_t>& pending) {
     reset_gl_state();
     FrameTargets targets(res.width, res.height);
     const float aspect = float(res.width) / float(res.height);
@@ -403,88 +514,83 @@ class Runner {
         (ref.from_cache ? std::string("from cache") : std::to_string(ref.seconds) + " s") +
         ", mean std error " + std::to_string(ref.mean_std_error));
     const auto horizon = metrics::classify_light_horizon(positions, normals, st.scene.light);
-    const std::vector<uint8_t> attached =
-        metrics::horizon_mask(horizon, metrics::LightHorizon::Below);
-    std::vector<uint8_t> measured = metrics::horizon_mask(horizon, metrics::LightHorizon::Cuts);
-    for (auto& m : measured) m = m ? 0 : 1;
-    apply_attached_shadow(attached, ref.visibility);
-    const std::vector<uint8_t> penumbra =
-        mask_and(metrics::penumbra_mask(ref.visibility), measured);
+    Regions regions;
+    regions.attached = metrics::horizon_mask(horizon, metrics::LightHorizon::Below);
+    regions.measured = metrics::horizon_mask(horizon, metrics::LightHorizon::Cuts);
+    for (auto& m : regions.measured) m = m ? 0 : 1;
+    apply_attached_shadow(regions.attached, ref.visibility);
+    regions.penumbra = mask_and(metrics::penumbra_mask(ref.visibility), regions.measured);
 
     targets.upload_visibility(ref.visibility);
     targets.render_shading(st.scene);
     const ImageF ref_shaded = targets.read_shaded();
 
-    const std::string ref_rel = "reference/" + file_safe(sv.name) + "__" + res.label();
-    json ref_images;
-    if (o_.write_images) {
-      fs::create_directories(fs::path(store_.dir()) / ref_rel);
-      io::write_exr((fs::path(store_.dir()) / ref_rel / "visibility.exr").string(), ref.visibility);
-      io::write_exr((fs::path(store_.dir()) / ref_rel / "std_error.exr").string(), ref.std_error);
-      io::write_png((fs::path(store_.dir()) / ref_rel / "shaded.png").string(), ref_shaded);
-      ref_images = {{"reference_visibility", ref_rel + "/visibility.exr"},
-                    {"reference_std_error", ref_rel + "/std_error.exr"},
-                    {"reference_shaded", ref_rel + "/shaded.png"}};
-      if (o_.write_gbuffer) {
-        io::write_exr((fs::path(store_.dir()) / ref_rel / "positions.exr").string(), positions);
-        io::write_exr((fs::path(store_.dir()) / ref_rel / "normals.exr").string(), normals);
-        ref_images["gbuffer_positions"] = ref_rel + "/positions.exr";
-        ref_images["gbuffer_normals"] = ref_rel + "/normals.exr";
-      }
-    }
-    json ref_json = {
-        {"method", ref.method},
-        {"spp", ref.spp},
-        {"seed", ref.seed},
-        {"embree_isa", ref.isa},
-        {"embree_config", embree_config_},
-        {"mean_std_error", ref.mean_std_error},
-        {"penumbra_mean_std_error", ref.penumbra_mean_std_error},
-        {"penumbra_rms_std_error", ref.penumbra_rms_std_error},
-        {"penumbra_pixels", std::count(penumbra.begin(), penumbra.end(), uint8_t(1))},
-        {"attached_shadow_pixels", std::count(attached.begin(), attached.end(), uint8_t(1))},
-        {"horizon_cut_pixels", std::count(measured.begin(), measured.end(), uint8_t(0))},
-        {"cache_key", ref.cache_key},
-        {"from_cache", ref.from_cache},
-        {"seconds", ref.seconds}};
+    const ImagesRecord ref_images =
+        write_reference_images("reference/" + file_safe(sv.name) + "__" + res.label(), ref,
+                               ref_shaded, positions, normals);
+    const ReferenceRecord ref_record = reference_record(ref, regions);
 
     FrameInputs in = targets.inputs(st.scene, gpu, view, projection);
-    in.has_receiver_plane = st.caps.has_planar_receiver;
-    in.receiver_plane = st.caps.receiver.plane;
+    in.derived = &derived;
+    if (const auto* r = derived.find<PlanarReceiver>(need::kPlanarReceiver)) {
+      in.has_receiver_plane = true;
+      in.receiver_plane = r->plane;
+    }
+    const FrameSetup frame{targets, gpu, st.scene, view_projection, in};
+    const Baseline baseline{ref, ref_shaded, regions};
     for (size_t i : pending) {
       const TechniqueVariant& tv = e_.techniques[i];
-      const std::string id = job_id(sv.name, res.label(), tv.name);
       progress_.start_job(sv.name, res.label(), tv.name);
-      json r = base_record(sv, &st, res, tv);
-      r["started_at"] = now_iso8601();
-      r["reference"] = ref_json;
+      JobRecord r = base_record(sv, &st, res, tv);
+      r.started_at = now_iso8601();
+      r.reference = ref_record;
       const auto t0 = std::chrono::steady_clock::now();
       try {
-        run_job(tv, targets, gpu, st.scene, view_projection, in, ref, ref_shaded,
-                {measured, penumbra, attached}, id, r);
-        for (const auto& [k, v] : ref_images.items()) r["images"][k] = v;
-        r["status"] = "ok";
+        run_job(tv, frame, baseline, r);
+        r.images.add(ref_images);
+        r.status = JobStatus::Ok;
       } catch (const std::exception& ex) {
-        r["status"] = "failed";
-        r["reason"] = ex.what();
+        r.status = JobStatus::Failed;
+        r.reason = ex.what();
         gl::take_debug_errors();
       }
-      r["duration_s"] =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      r.duration_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       reset_gl_state();
-      finish(id, r);
+      finish(std::move(r));
     }
   }
 
-  void run_job(const TechniqueVariant& tv, FrameTargets& targets, const GpuScene& gpu,
-               const Scene& scene, const glm::mat4& view_projection, const FrameInputs& in,
-               const reference::Result& ref, const ImageF& ref_shaded, const Regions& regions,
-               const std::string& id, json& r) {
+  // One job: prepare the technique, time it, check and measure its V, write
+  // its images. Whatever it got to stays in `r` when it throws.
+  void run_job(const TechniqueVariant& tv, const FrameSetup& frame, const Baseline& baseline,
+               JobRecord& r) {
     gl::take_debug_errors();
     std::unique_ptr<Technique> technique = tv.info->create(tv.params);
-    technique->prepare(in);
+    technique->prepare(frame.in);
     gl::throw_if_errors(tv.name + " prepare");
 
+    r.timing = time_frames(*technique, tv.name, frame);
+
+    ImageF visibility = frame.targets.read_visibility();
+    const VisibilityCheckRecord check = check_visibility(visibility);
+    r.visibility_check = check;
+    apply_attached_shadow(baseline.regions.attached, visibility);
+    // Shaded from the same V as the metrics, as the reference is: untimed.
+    const ImageF shaded = shade(frame, visibility);
+    r.metrics = measure(visibility, shaded, baseline);
+    if (auto warning = noise_warning(*r.metrics, baseline.ref)) r.warnings.push_back(*warning);
+    if (o_.write_images) r.images = write_job_images(r.job_id, visibility, shaded, baseline);
+    // Metrics and images are kept for inspection, but the job fails.
+    if (check.nonfinite + check.below_0 + check.above_1 > 0)
+      throw JobError("visibility outside [0,1]: " + std::to_string(check.nonfinite) + " NaN/Inf, " +
+                     std::to_string(check.below_0) + " below 0, " + std::to_string(check.above_1) +
+                     " above 1 (tolerance 1e-5)");
+  }
+
+  // The compile frame, the warm-up and the timed frames, and with
+  // --pass-timing fine as many frames again with each pass its own bracket.
+  TimingRecord time_frames(Technique& technique, const std::string& name,
+                           const FrameSetup& f) const {
     gl::PassTimer timer(timing_source_);
     // One frame: the G-buffer, the technique and shading, each in one
     // harness bracket. In fine detail the technique's own passes are the
@@ -495,136 +601,83 @@ class Runner {
       timer.begin_frame();
       {
         auto p = timer.bracket("shared:gbuffer");
-        targets.render_gbuffer(gpu, view_projection);
+        f.targets.render_gbuffer(f.gpu, f.view_projection);
       }
       reset_gl_state();
       if (detail == gl::PassDetail::Coarse) {
         auto p = timer.bracket("technique");
-        technique->render(in, timer);
+        technique.render(f.in, timer);
       } else {
-        technique->render(in, timer);
+        technique.render(f.in, timer);
       }
-      gl::throw_if_errors(tv.name + " " + frame_name);
+      gl::throw_if_errors(name + " " + frame_name);
       reset_gl_state();
       {
         auto p = timer.bracket("shared:shading");
-        targets.render_shading(scene);
+        f.targets.render_shading(f.scene);
       }
       auto frame = timer.end_frame();
-      gl::throw_if_errors(tv.name + " " + frame_name);
+      gl::throw_if_errors(name + " " + frame_name);
       return frame;
     };
-    struct Samples {
-      std::vector<double> frame, technique;
-      std::map<std::string, std::vector<double>> passes, shared;
-      std::vector<std::string> pass_order;
-      void add(const gl::PassTimer::Frame& f) {
-        frame.push_back(f.total_ms);
-        double tech = 0.0;
-        for (const auto& [name, ms] : f.passes) {
-          if (name.rfind("shared:", 0) == 0) {
-            shared[name.substr(7)].push_back(ms);
-            continue;
-          }
-          if (name != "technique" && !passes.count(name)) pass_order.push_back(name);
-          if (name != "technique") passes[name].push_back(ms);
-          tech += ms;
-        }
-        technique.push_back(tech);
-      }
-    };
-    Samples coarse, fine;
+    FrameSamples coarse, fine;
     const int frames = e_.warmup_frames + e_.timed_frames;
     // Frame -1 is never timed, whatever the warm-up count: shader compilation
     // and the driver's first-use work must not land in a timed frame (with
     // "warmup": 0 they would, and only for the techniques compiled last).
-    for (int f = -1; f < frames; ++f) {
+    for (int i = -1; i < frames; ++i) {
       const auto frame =
-          run_frame(f < 0 ? "compile frame" : "frame " + std::to_string(f), gl::PassDetail::Coarse);
-      if (f >= e_.warmup_frames) coarse.add(frame);
+          run_frame(i < 0 ? "compile frame" : "frame " + std::to_string(i), gl::PassDetail::Coarse);
+      if (i >= e_.warmup_frames) coarse.add(frame);
     }
     // Per-pass detail in frames of its own, so its syncs never reach the
     // technique's time above.
     if (o_.pass_detail == gl::PassDetail::Fine)
-      for (int f = 0; f < e_.timed_frames; ++f)
-        fine.add(run_frame("fine frame " + std::to_string(f), gl::PassDetail::Fine));
+      for (int i = 0; i < e_.timed_frames; ++i)
+        fine.add(run_frame("fine frame " + std::to_string(i), gl::PassDetail::Fine));
 
-    json timing;
-    timing["compile_frames"] = 1;
-    timing["warmup_frames"] = e_.warmup_frames;
-    timing["timed_frames"] = e_.timed_frames;
-    timing["pass_timing"] = gl::to_string(o_.pass_detail);
     // Statistics plus the raw per-frame samples, in frame order: comparisons
     // between runs test the samples themselves (shadowbench compare).
-    const auto with_samples = [](const std::vector<double>& v) {
-      json j = to_json(summarize(v));
-      j["samples_ms"] = v;
-      return j;
-    };
-    timing["frame"] = with_samples(coarse.frame);
-    timing["technique"] = with_samples(coarse.technique);
-    for (const auto& [name, v] : coarse.shared) timing["shared"][name] = with_samples(v);
+    TimingRecord t;
+    t.compile_frames = 1;
+    t.warmup_frames = e_.warmup_frames;
+    t.timed_frames = e_.timed_frames;
+    t.pass_timing = gl::to_string(o_.pass_detail);
+    t.frame = TimingSeries::of(coarse.frame);
+    t.technique = TimingSeries::of(coarse.technique);
+    for (const auto& [pass, v] : coarse.shared) t.shared[pass] = TimingSeries::of(v);
     if (o_.pass_detail == gl::PassDetail::Fine) {
-      timing["passes"] = json::object();
-      for (const auto& name : fine.pass_order)
-        timing["passes"][name] = with_samples(fine.passes[name]);
-      timing["pass_order"] = fine.pass_order;
+      FineTiming detail;
+      detail.pass_order = fine.pass_order;
+      for (const auto& pass : fine.pass_order)
+        detail.passes[pass] = TimingSeries::of(fine.passes[pass]);
       // The same frames' sums: what per-pass syncs cost, against "technique".
-      timing["fine"] = {{"frames", e_.timed_frames},
-                        {"technique", with_samples(fine.technique)},
-                        {"frame", with_samples(fine.frame)}};
+      detail.frames = e_.timed_frames;
+      detail.technique = TimingSeries::of(fine.technique);
+      detail.frame = TimingSeries::of(fine.frame);
+      t.fine = std::move(detail);
     }
-    r["timing"] = timing;
+    return t;
+  }
 
-    ImageF visibility = targets.read_visibility();
-    const VisibilityCheck check = check_visibility(visibility);
-    r["visibility_check"] = {{"nonfinite", check.nonfinite},
-                             {"below_0", check.below_zero},
-                             {"above_1", check.above_one},
-                             {"tolerance", kVisibilityTolerance}};
-    apply_attached_shadow(regions.attached, visibility);
-    // Shaded from the same V as the metrics, as the reference is: untimed.
-    targets.upload_visibility(visibility);
-    targets.render_shading(scene);
-    const ImageF shaded = targets.read_shaded();
-    json m;
-    const std::vector<uint8_t> soft_union =
-        mask_and(metrics::soft_union_mask(visibility, ref.visibility), regions.measured);
-    m["visibility"] =
-        compare_json(visibility, ref.visibility, regions.measured, regions.penumbra, soft_union);
-    m["shaded"] = compare_json(shaded, ref_shaded, regions.measured, regions.penumbra, soft_union);
-    r["metrics"] = m;
-
-    // A reference whose noise is comparable to the error cannot rank techniques.
-    const double pen_rmse = m["visibility"]["penumbra"]["rmse"].is_number()
-                                ? m["visibility"]["penumbra"]["rmse"].get<double>()
-                                : 0.0;
-    // RMS against RMS: the noise's sqrt(mean σ²), not its mean σ.
-    if (ref.penumbra_rms_std_error > 0.0 && pen_rmse > 0.0 &&
-        ref.penumbra_rms_std_error > 0.5 * pen_rmse)
-      r["warnings"].push_back("reference noise (penumbra RMS std error " +
-                              std::to_string(ref.penumbra_rms_std_error) +
-                              ") is over half the penumbra RMSE; raise reference.spp");
-
-    if (o_.write_images) {
-      const std::string rel = "jobs/" + id;
-      fs::create_directories(fs::path(store_.dir()) / rel);
-      io::write_exr((fs::path(store_.dir()) / rel / "visibility.exr").string(), visibility);
-      io::write_png((fs::path(store_.dir()) / rel / "shaded.png").string(), shaded);
-      io::write_png(
-          (fs::path(store_.dir()) / rel / "error.png").string(),
-          metrics::error_heatmap(with_unmeasured_from(visibility, ref.visibility, regions.measured),
-                                 ref.visibility, kHeatmapFullScale));
-      r["images"] = {{"visibility", rel + "/visibility.exr"},
-                     {"shaded", rel + "/shaded.png"},
-                     {"error_heatmap", rel + "/error.png"},
-                     {"error_heatmap_full_scale", kHeatmapFullScale}};
-    }
-    // Metrics and images are kept for inspection, but the job fails.
-    if (check.nonfinite + check.below_zero + check.above_one > 0)
-      throw JobError("visibility outside [0,1]: " + std::to_string(check.nonfinite) + " NaN/Inf, " +
-                     std::to_string(check.below_zero) + " below 0, " +
-                     std::to_string(check.above_one) + " above 1 (tolerance 1e-5)");
+  // The technique's V, its shaded image and its error heat map.
+  ImagesRecord write_job_images(const std::string& id, const ImageF& visibility,
+                                const ImageF& shaded, const Baseline& b) const {
+    const std::string rel = "jobs/" + id;
+    const fs::path dir = fs::path(store_.dir()) / rel;
+    fs::create_directories(dir);
+    io::write_exr((dir / "visibility.exr").string(), visibility);
+    io::write_png((dir / "shaded.png").string(), shaded);
+    io::write_png((dir / "error.png").string(),
+                  metrics::error_heatmap(
+                      with_unmeasured_from(visibility, b.ref.visibility, b.regions.measured),
+                      b.ref.visibility, kHeatmapFullScale));
+    ImagesRecord images;
+    images.visibility = rel + "/visibility.exr";
+    images.shaded = rel + "/shaded.png";
+    images.error_heatmap = rel + "/error.png";
+    images.error_heatmap_full_scale = kHeatmapFullScale;
+    return images;
   }
 
   const Experiment& e_;

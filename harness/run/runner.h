@@ -7,9 +7,9 @@
 
 #include "config/experiment.h"
 #include "core/names.h"
-#include "core/registry.h"
 #include "gl/context.h"
 #include "gl/pass_timer.h"
+#include "plugin/registry.h"
 
 namespace sb {
 

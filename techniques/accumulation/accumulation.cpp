@@ -9,10 +9,10 @@
 
 #include "accumulation/light_samples.h"
 #include "common/map_lookup.h"
-#include "core/registry.h"
 #include "gl/debug.h"
 #include "gl/objects.h"
 #include "gl/program.h"
+#include "plugin/registry.h"
 
 namespace sb::shadow {
 namespace {
@@ -83,6 +83,6 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
                  int_param("seed", 1, 0, 2147483647, "jitter seed")});
   registry.add({"accumulation", "accumulation",
                 "average of N hard shadow maps from stratified points on the area light",
-                Needs{.caster_closedness = true}, std::move(params),
+                Needs{need::kCasterClosedness}, std::move(params),
                 [](const Params& p) { return std::make_unique<shadow::Accumulation>(p); }});
 }

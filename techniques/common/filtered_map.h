@@ -9,7 +9,7 @@
 //   4. "lookup":     visibility reconstructed from the bilinearly filtered
 //                    basis values at the receiver's depth.
 // The light frustum, and the depth range the basis values are computed in,
-// are fitted in every frame (core/technique.h: prepare() must not depend on
+// are fitted in every frame (plugin/technique.h: prepare() must not depend on
 // the light).
 #include <optional>
 #include <string>

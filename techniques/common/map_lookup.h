@@ -21,9 +21,9 @@
 #include <string>
 
 #include "common/depth_pass.h"
-#include "core/technique.h"
 #include "gl/objects.h"
 #include "gl/program.h"
+#include "plugin/technique.h"
 
 namespace sb::shadow {
 
@@ -48,7 +48,7 @@ class MapLookupPass {
 // A technique made of one depth map from the light's centre and one lookup:
 // shadow_map, the PCF kernels, PCSS and their kin differ only in
 // `lit_fraction` and its uniforms. The light frustum is fitted in every
-// frame (core/technique.h: prepare() must not depend on the light).
+// frame (plugin/technique.h: prepare() must not depend on the light).
 class SingleMapTechnique : public Technique {
  public:
   SingleMapTechnique(const Params& p, std::string name, std::string lit_fraction_glsl,

@@ -109,7 +109,7 @@ TechniqueInfo csm_convolution_info() {
   return {"csm_convolution",
           "filtered_map",
           "convolution shadow map, M Fourier terms (Annen et al. 2007)",
-          Needs{.caster_closedness = true},
+          Needs{need::kCasterClosedness},
           std::move(params),
           [](const Params& p) { return std::make_unique<ConvolutionShadowMap>(p); }};
 }

@@ -112,7 +112,7 @@ TechniqueInfo esm_info() {
   return {"esm",
           "filtered_map",
           "exponential shadow map, log-space filtered (Annen et al. 2008, Salvi 2008)",
-          Needs{.caster_closedness = true},
+          Needs{need::kCasterClosedness},
           std::move(params),
           [](const Params& p) { return std::make_unique<Esm>(p); }};
 }

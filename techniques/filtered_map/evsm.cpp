@@ -107,7 +107,7 @@ TechniqueInfo evsm_info() {
   return {"evsm",
           "filtered_map",
           "exponential variance shadow map, 2 or 4 components (Lauritzen & McCool 2008)",
-          Needs{.caster_closedness = true},
+          Needs{need::kCasterClosedness},
           std::move(params),
           [](const Params& p) { return std::make_unique<Evsm>(p); }};
 }

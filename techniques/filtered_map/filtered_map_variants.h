@@ -2,7 +2,7 @@
 #include <vector>
 
 #include "common/filtered_map.h"
-#include "core/registry.h"
+#include "plugin/registry.h"
 
 namespace sb::shadow {
 TechniqueInfo vsm_info();

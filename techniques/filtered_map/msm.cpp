@@ -88,7 +88,7 @@ TechniqueInfo msm_info() {
   return {"msm",
           "filtered_map",
           "moment shadow map, Hamburger 4-moment reconstruction (Peters & Klein 2015)",
-          Needs{.caster_closedness = true},
+          Needs{need::kCasterClosedness},
           std::move(params),
           [](const Params& p) { return std::make_unique<Msm>(p); }};
 }

@@ -62,7 +62,7 @@ TechniqueInfo vsm_info() {
   return {"vsm",
           "filtered_map",
           "variance shadow map: filtered (z, z²), Chebyshev bound (Donnelly & Lauritzen 2006)",
-          Needs{.caster_closedness = true},
+          Needs{need::kCasterClosedness},
           std::move(params),
           [](const Params& p) { return std::make_unique<Vsm>(p); }};
 }

@@ -3,7 +3,7 @@
 #include <array>
 #include <memory>
 
-#include "core/registry.h"
+#include "plugin/registry.h"
 
 namespace sb {
 namespace {

@@ -16,7 +16,7 @@ TechniqueInfo hard_shadow_map_info() {
   return {"shadow_map",
           "shadow_map",
           "hard shadow map from the light's centre (Williams 1978)",
-          Needs{.caster_closedness = true},
+          Needs{need::kCasterClosedness},
           depth_map_params(2048),
           [](const Params& p) {
             return std::make_unique<SingleMapTechnique>(

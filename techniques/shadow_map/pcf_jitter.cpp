@@ -99,7 +99,7 @@ TechniqueInfo pcf_jitter_info() {
   TechniqueInfo info{"pcf_jitter",
                      "shadow_map",
                      "jittered-disk percentage-closer filtering with an early-out (Shypula 2008)",
-                     Needs{.caster_closedness = true},
+                     Needs{need::kCasterClosedness},
                      std::move(params),
                      [](const Params& p) { return std::make_unique<JitteredPcf>(p); }};
   info.check = [](const Params& p) -> std::pair<std::string, std::string> {

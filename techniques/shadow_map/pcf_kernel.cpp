@@ -64,7 +64,7 @@ TechniqueInfo pcf_box_info() {
   return {"pcf_box",
           "shadow_map",
           "box percentage-closer filtering, k×k taps (Reeves et al. 1987)",
-          Needs{.caster_closedness = true},
+          Needs{need::kCasterClosedness},
           kernel_pcf_params(3, false),
           [](const Params& p) { return std::make_unique<KernelPcf>(p, KernelShape::Box); }};
 }
@@ -73,7 +73,7 @@ TechniqueInfo pcf_gauss_info() {
   return {"pcf_gauss",
           "shadow_map",
           "Gaussian-weighted percentage-closer filtering, k×k taps",
-          Needs{.caster_closedness = true},
+          Needs{need::kCasterClosedness},
           kernel_pcf_params(5, true),
           [](const Params& p) { return std::make_unique<KernelPcf>(p, KernelShape::Gauss); }};
 }

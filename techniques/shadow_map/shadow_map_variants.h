@@ -1,5 +1,5 @@
 #pragma once
-#include "core/registry.h"
+#include "plugin/registry.h"
 
 namespace sb::shadow {
 TechniqueInfo hard_shadow_map_info();

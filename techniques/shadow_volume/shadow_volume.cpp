@@ -12,11 +12,11 @@
 #include <memory>
 
 #include "core/error.h"
-#include "core/registry.h"
 #include "gl/debug.h"
 #include "gl/gpu_scene.h"
 #include "gl/objects.h"
 #include "gl/program.h"
+#include "plugin/registry.h"
 
 namespace sb {
 namespace {
@@ -161,7 +161,7 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
                 "shadow_volume",
                 "stencil shadow volumes from the light's centre, silhouettes from adjacency "
                 "(z-pass or z-fail with caps)",
-                Needs{.edge_adjacency = true, .closed_casters = true, .opaque_casters = true},
+                Needs{need::kClosedCasters, need::kEdgeAdjacency, need::kOpaqueCasters},
                 {choice_param("mode", "zfail", {"zpass", "zfail"},
                               "zpass counts in front of the surface; zfail behind (robust)"),
                  float_param("offset", 1.0, -1e6, 1e6,

@@ -1,16 +1,17 @@
 #pragma once
-// Synthetic run directories for the compare tests: records with the fields
-// `compare` and the CI writers read (docs/results.md), and a results.jsonl.
+// Synthetic run directories for the compare tests: whole records
+// (JobRecord, tests/record/sample_records.h) with the frame samples, passes
+// and errors that `compare` and the CI writers read, and a results.jsonl.
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <random>
 #include <string>
 #include <vector>
 
-#include "results/timing_stats.h"
+#include "../record/sample_records.h"
+#include "record/job_record.h"
 
 namespace sb::test {
 
@@ -26,54 +27,42 @@ inline std::vector<double> noisy_samples(double median_ms, double noise, int n, 
   return v;
 }
 
-inline nlohmann::json timing_json(const std::vector<double>& samples) {
-  nlohmann::json t = to_json(summarize(samples));
-  t["samples_ms"] = samples;
-  return t;
-}
-
-// An ok record with frame samples, a "depth" and a "lookup" pass (the first
-// 40 % and 20 % of each frame) and visibility RMSE values.
-inline nlohmann::json make_record(const std::string& job_id, const std::vector<double>& frame,
-                                  double rmse, double penumbra_rmse,
-                                  const std::string& run_id = "synthetic") {
-  std::vector<double> depth, lookup;
+// An ok record with frame samples, per-pass detail for a "depth" and a
+// "lookup" pass (the first 40 % and 20 % of each frame) and visibility RMSE
+// values.
+inline JobRecord make_record(const std::string& job_id, const std::vector<double>& frame,
+                             double rmse, double penumbra_rmse,
+                             const std::string& run_id = "synthetic") {
+  std::vector<double> depth, lookup, technique;
   for (double f : frame) {
     depth.push_back(0.4 * f);
     lookup.push_back(0.2 * f);
+    technique.push_back(0.6 * f);
   }
-  nlohmann::json r;
-  r["schema_version"] = 1;
-  r["run_id"] = run_id;
-  r["experiment"] = "synthetic";
-  r["job_id"] = job_id;
-  r["status"] = "ok";
-  r["timing"]["warmup_frames"] = 1;
-  r["timing"]["timed_frames"] = frame.size();
-  r["timing"]["frame"] = timing_json(frame);
-  r["timing"]["pass_order"] = {"depth", "lookup"};
-  r["timing"]["passes"]["depth"] = timing_json(depth);
-  r["timing"]["passes"]["lookup"] = timing_json(lookup);
-  std::vector<double> technique;
-  for (size_t i = 0; i < frame.size(); ++i) technique.push_back(depth[i] + lookup[i]);
-  r["timing"]["technique"] = timing_json(technique);
-  r["metrics"]["visibility"]["all"]["rmse"] = rmse;
-  r["metrics"]["visibility"]["all"]["psnr"] = -20 * std::log10(rmse);
-  r["metrics"]["visibility"]["penumbra"]["rmse"] = penumbra_rmse;
+  JobRecord r = identity_record("grid", "320x240", "synthetic");
+  r.job_id = job_id;
+  r.run_id = run_id;
+  r.timing = coarse_timing(frame, technique);
+  add_fine_timing(*r.timing, {{"depth", depth}, {"lookup", lookup}});
+  MetricsRecord m;
+  m.visibility.all.rmse = rmse;
+  m.visibility.all.psnr = -20 * std::log10(rmse);
+  m.visibility.penumbra.rmse = penumbra_rmse;
+  r.metrics = m;
   return r;
 }
 
 inline std::filesystem::path temp_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / "shadowbench_test_compare" / name;
+  auto dir = std::filesystem::temp_directory_path() / "shadowbench_test_compare" / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
 }
 
-inline std::string write_run(const std::string& name, const std::vector<nlohmann::json>& records) {
+inline std::string write_run(const std::string& name, const std::vector<JobRecord>& records) {
   const auto dir = temp_dir(name);
   std::ofstream out(dir / "results.jsonl");
-  for (const auto& r : records) out << r.dump() << "\n";
+  for (const auto& r : records) out << r.to_json().dump() << "\n";
   return dir.string();
 }
 

@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -20,13 +21,15 @@ using sb::test::make_record;
 using sb::test::noisy_samples;
 namespace fs = std::filesystem;
 
-std::vector<json> synthetic_records(double slowdown, uint32_t seed) {
-  std::vector<json> rs;
+std::vector<sb::JobRecord> synthetic_records(double slowdown, uint32_t seed) {
+  std::vector<sb::JobRecord> rs;
   rs.push_back(make_record("grid__320x240__shadow_map--size=1024",
                            noisy_samples(20.0 * slowdown, 0.03, 15, seed), 0.10, 0.27));
   rs.push_back(make_record("grid__320x240__pcf_box--k=3+size=1024",
                            noisy_samples(25.0 * slowdown, 0.03, 15, seed + 1), 0.055, 0.15));
-  json skipped = {{"job_id", "grid__320x240__shadow_volume"}, {"status", "skipped"}};
+  sb::JobRecord skipped =
+      sb::test::identity_record("grid", "320x240", "shadow_volume", sb::JobStatus::Skipped);
+  skipped.reason = "casters are not closed";
   rs.push_back(skipped);
   return rs;
 }
@@ -54,7 +57,7 @@ TEST(BenchmarkJson, OneBenchmarkPerJobAndPassWithRepetitions) {
   const std::string frame = "grid__320x240__shadow_map--size=1024/frame";
   const auto reps = named(doc, frame);
   ASSERT_EQ(reps.size(), 15u);
-  const auto& samples = records[0]["timing"]["frame"]["samples_ms"];
+  const auto& samples = records[0].timing->frame.samples_ms;
   for (size_t i = 0; i < reps.size(); ++i) {
     const json& e = *reps[i];
     EXPECT_EQ(e["run_name"], frame);
@@ -64,16 +67,15 @@ TEST(BenchmarkJson, OneBenchmarkPerJobAndPassWithRepetitions) {
     EXPECT_EQ(e["threads"], 1);
     EXPECT_EQ(e["iterations"], 1);
     EXPECT_EQ(e["time_unit"], "ms");
-    EXPECT_DOUBLE_EQ(e["real_time"].get<double>(), samples[i].get<double>());
-    EXPECT_DOUBLE_EQ(e["cpu_time"].get<double>(), samples[i].get<double>());
+    EXPECT_DOUBLE_EQ(e["real_time"].get<double>(), samples[i]);
+    EXPECT_DOUBLE_EQ(e["cpu_time"].get<double>(), samples[i]);
   }
   const auto median = named(doc, frame + "_median");
   ASSERT_EQ(median.size(), 1u);
   EXPECT_EQ((*median[0])["run_type"], "aggregate");
   EXPECT_EQ((*median[0])["aggregate_name"], "median");
   EXPECT_EQ((*median[0])["run_name"], frame);
-  EXPECT_DOUBLE_EQ((*median[0])["real_time"].get<double>(),
-                   records[0]["timing"]["frame"]["median_ms"].get<double>());
+  EXPECT_DOUBLE_EQ((*median[0])["real_time"].get<double>(), records[0].timing->frame.median_ms);
   EXPECT_EQ((*named(doc, frame + "_cv")[0])["aggregate_unit"], "percentage");
   EXPECT_EQ(named(doc, "grid__320x240__shadow_map--size=1024/pass:depth").size(), 15u);
   EXPECT_EQ(named(doc, "grid__320x240__pcf_box--k=3+size=1024/pass:lookup").size(), 15u);
@@ -139,11 +141,11 @@ TEST(BencherJson, FollowsTheMetricFormat) {
   const json doc = sb::make_bencher_json(records);
   ASSERT_EQ(doc.size(), 2u);  // the skipped job has no measures
   const json& b = doc["grid__320x240__shadow_map--size=1024"];
-  const json& frame = records[0]["timing"]["frame"];
+  const sb::TimingSeries& frame = records[0].timing->frame;
   // Bencher's built-in latency measure is in nanoseconds.
-  EXPECT_DOUBLE_EQ(b["latency"]["value"].get<double>(), frame["median_ms"].get<double>() * 1e6);
-  EXPECT_DOUBLE_EQ(b["latency"]["lower_value"].get<double>(), frame["p10_ms"].get<double>() * 1e6);
-  EXPECT_DOUBLE_EQ(b["latency"]["upper_value"].get<double>(), frame["p90_ms"].get<double>() * 1e6);
+  EXPECT_DOUBLE_EQ(b["latency"]["value"].get<double>(), frame.median_ms * 1e6);
+  EXPECT_DOUBLE_EQ(b["latency"]["lower_value"].get<double>(), frame.p10_ms * 1e6);
+  EXPECT_DOUBLE_EQ(b["latency"]["upper_value"].get<double>(), frame.p90_ms * 1e6);
   EXPECT_DOUBLE_EQ(b["rmse"]["value"].get<double>(), 0.10);
   EXPECT_DOUBLE_EQ(b["penumbra-rmse"]["value"].get<double>(), 0.27);
   // The BMF schema: every measure an object with a numeric "value" and at
@@ -159,7 +161,7 @@ TEST(BencherJson, FollowsTheMetricFormat) {
     }
   // Non-finite errors have no JSON number: the measure is left out.
   auto with_nan = records;
-  with_nan[0]["metrics"]["visibility"]["all"]["rmse"] = "nan";
+  with_nan[0].metrics->visibility.all.rmse = std::nan("");
   EXPECT_FALSE(
       sb::make_bencher_json(with_nan)["grid__320x240__shadow_map--size=1024"].contains("rmse"));
 }

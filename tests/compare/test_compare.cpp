@@ -2,15 +2,17 @@
 // 1 % jitter is not, and error regressions are found by an absolute threshold.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/error.h"
 #include "results/compare.h"
 #include "synthetic_run.h"
 
 namespace {
 
-using nlohmann::json;
 using sb::compare_runs;
 using sb::CompareOptions;
+using sb::JobRecord;
 using sb::Verdict;
 using sb::test::make_record;
 using sb::test::noisy_samples;
@@ -18,8 +20,8 @@ using sb::test::noisy_samples;
 constexpr int kFrames = 15;
 constexpr double kNoise = 0.03;  // ±3 %
 
-std::vector<json> one_job(double median_ms, uint32_t seed, double rmse = 0.05,
-                          const std::string& id = "grid__320x240__pcf") {
+std::vector<JobRecord> one_job(double median_ms, uint32_t seed, double rmse = 0.05,
+                               const std::string& id = "grid__320x240__pcf") {
   return {make_record(id, noisy_samples(median_ms, kNoise, kFrames, seed), rmse, 2 * rmse)};
 }
 
@@ -85,10 +87,11 @@ TEST(Compare, TechniqueTimingIsolatesTheTechnique) {
   auto with_technique = [](double technique_ms, uint32_t seed) {
     const auto t = noisy_samples(technique_ms, 0.01, kFrames, seed);
     std::vector<double> frame;
+    frame.reserve(t.size());
     for (double v : t) frame.push_back(v + 20.0);  // G-buffer + shading
-    json r = make_record("j", frame, 0.05, 0.1);
-    r["timing"]["technique"] = sb::test::timing_json(t);
-    return std::vector<json>{r};
+    JobRecord r = make_record("j", frame, 0.05, 0.1);
+    r.timing->technique = sb::TimingSeries::of(t);
+    return std::vector<JobRecord>{r};
   };
   const auto base = with_technique(5.0, 1), slower = with_technique(6.5, 2);
   auto r = compare_runs(base, slower, CompareOptions{});
@@ -130,7 +133,7 @@ TEST(Compare, ErrorRegressionByAbsoluteThreshold) {
 
   // A NaN error where there was a number is a regression.
   auto nan_run = one_job(20.0, 1);
-  nan_run[0]["metrics"]["visibility"]["all"]["rmse"] = "nan";
+  nan_run[0].metrics->visibility.all.rmse = std::nan("");
   r = compare_runs(one_job(20.0, 1), nan_run, CompareOptions{});
   EXPECT_EQ(r.jobs[0].error, Verdict::kRegression);
 }
@@ -145,9 +148,9 @@ TEST(Compare, UnknownMetricIsBadInput) {
 }
 
 TEST(Compare, MatchesJobsByIdAndListsTheRest) {
-  std::vector<json> base = one_job(20.0, 1, 0.05, "a");
+  std::vector<JobRecord> base = one_job(20.0, 1, 0.05, "a");
   base.push_back(one_job(20.0, 2, 0.05, "b")[0]);
-  std::vector<json> fresh = one_job(20.0, 3, 0.05, "b");
+  std::vector<JobRecord> fresh = one_job(20.0, 3, 0.05, "b");
   fresh.push_back(one_job(20.0, 4, 0.05, "c")[0]);
   const auto r = compare_runs(base, fresh, CompareOptions{});
   ASSERT_EQ(r.jobs.size(), 1u);
@@ -161,8 +164,8 @@ TEST(Compare, MatchesJobsByIdAndListsTheRest) {
 
 TEST(Compare, AJobThatNowFailsIsARegression) {
   auto fresh = one_job(20.0, 2);
-  fresh[0]["status"] = "failed";
-  fresh[0]["reason"] = "GL_OUT_OF_MEMORY";
+  fresh[0].status = sb::JobStatus::Failed;
+  fresh[0].reason = "GL_OUT_OF_MEMORY";
   const auto r = compare_runs(one_job(20.0, 1), fresh, CompareOptions{});
   EXPECT_TRUE(r.jobs[0].regressed());
   EXPECT_EQ(r.regressions, 1);
@@ -172,7 +175,7 @@ TEST(Compare, AJobThatNowFailsIsARegression) {
 
 TEST(Compare, RecordsWithoutSamplesAreNotTimed) {
   auto old = one_job(20.0, 1);
-  old[0]["timing"]["frame"].erase("samples_ms");
+  old[0].timing->frame.samples_ms.clear();
   const auto r = compare_runs(old, one_job(26.0, 2), CompareOptions{});
   EXPECT_EQ(r.jobs[0].time, Verdict::kNotCompared);
   EXPECT_FALSE(r.jobs[0].p.has_value());

@@ -16,8 +16,8 @@ using sb::test::noisy_samples;
 using sb::test::run_cli;
 using sb::test::write_run;
 
-std::vector<nlohmann::json> run_of(double shadow_map_ms, double rmse, uint32_t seed,
-                                   const std::string& run_id) {
+std::vector<sb::JobRecord> run_of(double shadow_map_ms, double rmse, uint32_t seed,
+                                  const std::string& run_id) {
   return {
       make_record("grid__320x240__none", noisy_samples(10.0, 0.03, 15, seed), 0.31, 0.55, run_id),
       make_record("grid__320x240__shadow_map--size=1024",
@@ -63,6 +63,9 @@ TEST(CompareCli, BadInputExitsWithTwo) {
   const auto base = write_run("cli_base", run_of(20.0, 0.10, 1, "base"));
   const auto empty = write_run("cli_empty", {});
   const auto other = write_run("cli_other", {make_record("elsewhere", {1, 2, 3}, 0.1, 0.2)});
+  auto newer_records = run_of(20.0, 0.10, 1, "newer");
+  newer_records[1].schema_version = 2;  // a record of a schema this build does not read
+  const auto newer = write_run("cli_newer", newer_records);
   const std::string missing = base + "-missing";
   struct {
     std::string args, message;
@@ -77,6 +80,10 @@ TEST(CompareCli, BadInputExitsWithTwo) {
       {"compare " + base + " " + base + " --time-threshold -1", "--time-threshold"},
       {"compare " + base + " " + base + " --metric visibility.all.nope", "no record has metrics"},
       {"compare " + base + " " + base + " --timing shading", "--timing"},
+      {"compare " + base + " " + newer,
+       newer + "/results.jsonl: at line 2 (/schema_version): the record has schema_version 2; "
+               "this shadowbench reads schema_version 1"},
+      {"report " + newer, newer + "/results.jsonl: at line 2 (/schema_version)"},
       {"report " + base + " --alpha 0.1", "go with compare"},
       {"validate x.json --benchmark-out b.json", "go with run or report"},
   };

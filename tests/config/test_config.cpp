@@ -8,7 +8,7 @@
 #include "cli_runner.h"
 #include "config/experiment.h"
 #include "core/error.h"
-#include "core/registry.h"
+#include "plugin/registry.h"
 
 namespace sb {
 namespace {

@@ -6,8 +6,8 @@
 #include <stdexcept>
 
 #include "config/experiment.h"
-#include "core/registry.h"
 #include "metrics/image_io.h"
+#include "plugin/registry.h"
 #include "results/store.h"
 
 namespace sb::test {

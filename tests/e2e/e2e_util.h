@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "core/image.h"
-#include "core/registry.h"
 #include "gl/context.h"
+#include "plugin/registry.h"
 #include "run/runner.h"
 
 namespace sb::test {

@@ -6,9 +6,9 @@
 
 #include "config/experiment.h"
 #include "core/error.h"
-#include "core/registry.h"
 #include "e2e_util.h"
 #include "gl/gl.h"
+#include "plugin/registry.h"
 #include "results/store.h"
 #include "run/runner.h"
 

@@ -3,9 +3,9 @@
 // shading normal and albedo.
 #include <gtest/gtest.h>
 
-#include "core/registry.h"
 #include "e2e_util.h"
 #include "gl/gl.h"
+#include "plugin/registry.h"
 
 namespace sb::test {
 namespace {
@@ -44,7 +44,7 @@ TEST(PluginInputs, TheReceiverPlaneAndTheGBuffersShadingInputsReachTheTechnique)
   registry.add({"reads_inputs",
                 "test",
                 "reads its inputs",
-                Needs{.planar_receiver = true},
+                Needs{need::kPlanarReceiver},
                 {},
                 [&seen](const Params&) { return std::make_unique<ReadsItsInputs>(&seen); }});
   const nlohmann::json config = {{"name", "inputs"},

@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "e2e_util.h"
-#include "scenes/scene_analysis.h"
+#include "scenes/need_providers.h"
 
 namespace sb::test {
 namespace {

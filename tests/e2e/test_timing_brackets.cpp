@@ -11,10 +11,10 @@
 
 #include "../config/cli_runner.h"
 #include "config/experiment.h"
-#include "core/registry.h"
 #include "e2e_util.h"
 #include "gl/context.h"
 #include "gl/gl.h"
+#include "plugin/registry.h"
 #include "results/store.h"
 #include "run/runner.h"
 

@@ -8,9 +8,9 @@
 
 #include "../config/cli_runner.h"
 #include "config/experiment.h"
-#include "core/registry.h"
 #include "gl/context.h"
 #include "plan/plan.h"
+#include "plugin/registry.h"
 
 namespace sb::test {
 namespace {

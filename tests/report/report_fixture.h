@@ -1,16 +1,17 @@
 #pragma once
-// A synthetic run directory for the HTML report tests: records as the runner
-// writes them (two scene/resolution groups; ok, skipped and failed jobs; a
+// A synthetic run directory for the HTML report tests: records built as the
+// runner builds them (JobRecord; two scene/resolution groups; ok, skipped and failed jobs; a
 // reason with <&>"' in it; file names with '=', '+' and ','), tiny PNGs for
 // their images, and one chart (SVG + PNG) in the report folder.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "../record/sample_records.h"
 #include "core/image.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
@@ -22,7 +23,7 @@ inline constexpr const char* kNastyReason = "GL error <GL_INVALID_ENUM> & \"bad\
 
 struct SyntheticRun {
   std::filesystem::path run_dir, out_dir;
-  std::vector<nlohmann::json> records;
+  std::vector<JobRecord> records;
   std::vector<ReportChart> charts;
 };
 
@@ -44,9 +45,8 @@ inline ImageF synthetic_image(int w, int h, float shift) {
 // Writes the run into root/run; the report goes to `out_dir` (root/report
 // unless given).
 inline SyntheticRun make_synthetic_run(const std::filesystem::path& root,
-                                       std::filesystem::path out_dir = {}) {
+                                       const std::filesystem::path& out_dir = {}) {
   namespace fs = std::filesystem;
-  using nlohmann::json;
   SyntheticRun run;
   run.run_dir = root / "run";
   run.out_dir = out_dir.empty() ? root / "report" : out_dir;
@@ -55,15 +55,16 @@ inline SyntheticRun make_synthetic_run(const std::filesystem::path& root,
   const float full_scale = 0.25f;
   struct Job {
     const char* technique;
-    const char* status;
+    JobStatus status;
     std::string reason;
     double frame_ms;  // in an order that text sorting would get wrong
   };
-  const Job jobs[] = {{"none", "ok", "", 2.5},
-                      {"shadow_map/size=1024", "ok", "", 12.0},
-                      {"pcf_box/k=3,size=1024", "ok", "", 9.0},
-                      {"shadow_volume/mode=zpass", "skipped", "casters are not closed", 0.0},
-                      {"vsm/k=9,prefilter=gauss", "failed", kNastyReason, 120.0}};
+  const Job jobs[] = {
+      {"none", JobStatus::Ok, "", 2.5},
+      {"shadow_map/size=1024", JobStatus::Ok, "", 12.0},
+      {"pcf_box/k=3,size=1024", JobStatus::Ok, "", 9.0},
+      {"shadow_volume/mode=zpass", JobStatus::Skipped, "casters are not closed", 0.0},
+      {"vsm/k=9,prefilter=gauss", JobStatus::Failed, kNastyReason, 120.0}};
   const std::pair<int, int> sizes[] = {{64, 48}, {96, 72}};
   for (const auto& [w, h] : sizes) {
     const std::string res = std::to_string(w) + "x" + std::to_string(h);
@@ -76,40 +77,36 @@ inline SyntheticRun make_synthetic_run(const std::filesystem::path& root,
     for (const auto& j : jobs) {
       std::string safe = j.technique;
       for (char& c : safe) c = c == '/' ? '-' : c == ',' ? '+' : c;
-      const std::string id = "plates--layout=edge__" + res + "__" + safe;
-      json r = {{"schema_version", 1},
-                {"run_id", "synthetic"},
-                {"experiment", "synthetic"},
-                {"job_id", id},
-                {"scene_variant", scene},
-                {"technique_variant", j.technique},
-                {"resolution", res},
-                {"width", w},
-                {"height", h},
-                {"backend", "osmesa"},
-                {"gl_renderer", "llvmpipe <test>"},
-                {"timing_source", "cpu_glfinish"},
-                {"status", j.status},
-                {"reference", {{"method", "embree_stratified_packet16"}, {"spp", 256}}}};
-      if (!j.reason.empty()) r["reason"] = j.reason;
-      if (std::string(j.status) != "skipped") {
+      JobRecord r = identity_record(scene, res, j.technique, j.status);
+      r.job_id = "plates--layout=edge__" + res;
+      r.job_id += "__" + safe;
+      r.gl_renderer = "llvmpipe <test>";
+      r.reference = ReferenceRecord{};
+      r.reference->method = "embree_stratified_packet16";
+      r.reference->spp = 256;
+      if (!j.reason.empty()) r.reason = j.reason;
+      if (j.status != JobStatus::Skipped) {
         shift += 0.05f;
-        const std::string rel = "jobs/" + id;
+        const std::string rel = "jobs/" + r.job_id;
         fs::create_directories(run.run_dir / rel);
         const ImageF test = synthetic_image(w, h, shift);
         io::write_png((run.run_dir / rel / "shaded.png").string(), test);
         io::write_png((run.run_dir / rel / "error.png").string(),
                       metrics::error_heatmap(test, ref, full_scale));
-        r["images"] = {{"shaded", rel + "/shaded.png"},
-                       {"error_heatmap", rel + "/error.png"},
-                       {"error_heatmap_full_scale", full_scale},
-                       {"reference_shaded", ref_rel + "/shaded.png"}};
-        r["timing"]["frame"]["median_ms"] = j.frame_ms;
-        r["timing"]["technique"]["median_ms"] = 0.5 + shift * 10.0;
-        r["metrics"]["visibility"]["all"] = {{"rmse", 0.2 - shift}, {"mae", 0.1},
-                                             {"max_error", 1.0},    {"psnr", "inf"},
-                                             {"ssim", 0.9},         {"frac_over_0.05", 0.01}};
-        r["metrics"]["visibility"]["penumbra"]["rmse"] = 0.3 - shift;
+        r.images.shaded = rel + "/shaded.png";
+        r.images.error_heatmap = rel + "/error.png";
+        r.images.error_heatmap_full_scale = full_scale;
+        r.images.reference_shaded = ref_rel + "/shaded.png";
+        r.timing = coarse_timing({j.frame_ms}, {0.5 + shift * 10.0});
+        MetricsRecord m;
+        m.visibility.all.rmse = 0.2 - shift;
+        m.visibility.all.mae = 0.1;
+        m.visibility.all.max_error = 1.0;
+        m.visibility.all.psnr = std::numeric_limits<double>::infinity();
+        m.visibility.all.ssim = 0.9;
+        m.visibility.all.frac_over_005 = 0.01;
+        m.visibility.penumbra.rmse = 0.3 - shift;
+        r.metrics = m;
       }
       run.records.push_back(r);
     }
@@ -138,6 +135,21 @@ inline std::string read_text(const std::filesystem::path& p) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+// The text between each `open` and the next `close` (no std::regex: GCC 12
+// warns inside it under the sanitizers).
+inline std::vector<std::string> between(const std::string& text, const std::string& open,
+                                        const std::string& close) {
+  std::vector<std::string> out;
+  for (size_t p = text.find(open); p != std::string::npos; p = text.find(open, p)) {
+    p += open.size();
+    const size_t end = text.find(close, p);
+    if (end == std::string::npos) break;
+    out.push_back(text.substr(p, end - p));
+    p = end;
+  }
+  return out;
 }
 
 inline void write_synthetic_report(const SyntheticRun& run) {

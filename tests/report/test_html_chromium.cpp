@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -132,7 +133,7 @@ TEST_F(report_chromium, PageLoadsEveryImageWithoutConsoleErrorsAndRenders) {
   for (size_t p = 0; p < img.pixel_count(); p += 7) {
     uint32_t key = 0;
     for (int c = 0; c < 3; ++c)
-      key = key * 256 + static_cast<uint32_t>(img.data[p * img.channels + c] * 255.0f + 0.5f);
+      key = key * 256 + static_cast<uint32_t>(std::lround(img.data[p * img.channels + c] * 255.0f));
     colours.insert(key);
   }
   EXPECT_GT(colours.size(), 100u);
@@ -142,7 +143,7 @@ TEST_F(report_chromium, MissingImageIsDetected) {
   test::TempDir dir("html_chromium_missing");
   const auto run = test::make_synthetic_run(dir.path());
   test::write_synthetic_report(run);
-  const std::string gone = run.records[2]["images"]["error_heatmap"].get<std::string>();
+  const std::string gone = *run.records[2].images.error_heatmap;
   ASSERT_TRUE(fs::remove(run.run_dir / gone));
 
   const BrowserRun dom =

@@ -33,24 +33,9 @@ std::string percent_decode(const std::string& s) {
   return out;
 }
 
-// The text between each `open` and the next `close` (no std::regex: GCC 12
-// warns inside it under the sanitizers).
-std::vector<std::string> between(const std::string& text, const std::string& open,
-                                 const std::string& close) {
-  std::vector<std::string> out;
-  for (size_t p = text.find(open); p != std::string::npos; p = text.find(open, p)) {
-    p += open.size();
-    const size_t end = text.find(close, p);
-    if (end == std::string::npos) break;
-    out.push_back(text.substr(p, end - p));
-    p = end;
-  }
-  return out;
-}
-
 // Every value of attribute `attr` ("src" or "href") in the page.
 std::vector<std::string> attribute_values(const std::string& html, const std::string& attr) {
-  return between(html, " " + attr + "=\"", "\"");
+  return test::between(html, " " + attr + "=\"", "\"");
 }
 
 void expect_links_resolve(const test::SyntheticRun& run, const std::string& html) {
@@ -78,8 +63,7 @@ TEST(report_html, ContainsVariantsEscapedStringsAndResolvableImages) {
   const std::string html = test::read_text(index);
 
   for (const auto& r : run.records)
-    EXPECT_NE(html.find(r["technique_variant"].get<std::string>()), std::string::npos)
-        << r["technique_variant"];
+    EXPECT_NE(html.find(r.technique_variant), std::string::npos) << r.technique_variant;
   EXPECT_NE(html.find("plates/layout=edge @ 64x48"), std::string::npos);
   EXPECT_NE(html.find("plates/layout=edge @ 96x72"), std::string::npos);
   // The failed job's reason, escaped, in the table and on its card; never raw.
@@ -115,10 +99,10 @@ TEST(report_html, TableCellsAreTheCsvCellsAndSortable) {
   test::write_synthetic_report(run);
   const std::string html = test::read_text(run.out_dir / "index.html");
   EXPECT_NE(html.find("<table class=\"sortable\">"), std::string::npos);
-  // The same columns as summary.md, then the reason.
+  // The same columns as summary.md (results/report_columns.h).
   std::string headers;
-  const std::string first_head = between(html, "<thead>", "</thead>").at(0);
-  for (const auto& th : between(first_head, "<th", "</th>"))
+  const std::string first_head = test::between(html, "<thead>", "</thead>").at(0);
+  for (const auto& th : test::between(first_head, "<th", "</th>"))
     headers += th.substr(th.find('>') + 1) + ",";
   EXPECT_EQ(headers,
             "technique,status,frame_ms,technique_ms,rmse,mae,max_error,psnr,ssim,frac_over_0.05,"

@@ -8,16 +8,17 @@
 #include <map>
 
 #include "../metrics/test_util.h"
+#include "../record/sample_records.h"
 #include "core/error.h"
 #include "results/charts.h"
 
 namespace sb {
 namespace {
 
-using json = nlohmann::json;
-
-json timing(double median) {
-  return {{"median_ms", median}, {"p10_ms", median * 0.9}, {"p90_ms", median * 1.2}};
+// A series of three frames whose median is `median` (p10 and p90 about 10 %
+// and 20 % away).
+TimingSeries timing(double median) {
+  return TimingSeries::of({median * 0.875, median, median * 1.25});
 }
 
 struct Technique {
@@ -36,52 +37,46 @@ const std::vector<Technique> kTechniques = {
     {"accumulation/samples=16", 190.0, 0.01, {"accumulate", "shadow_maps"}},
 };
 
-json record(const std::string& scene, int triangles, int w, int h, const Technique& t) {
+JobRecord record(const std::string& scene, int triangles, int w, int h, const Technique& t) {
   const double scale = (triangles / 10000.0) * (w * h / 76800.0);
   const double gbuffer = 9.0 * scale, shading = 1.0 * scale, tech = t.ms * scale;
-  json passes = json::object();
-  for (std::size_t i = 0; i < t.passes.size(); ++i)
-    passes[t.passes[i]] = timing(tech * (i == 0 ? 0.7 : 0.3));
   const std::string res = std::to_string(w) + "x" + std::to_string(h);
-  const json stats = {{"rmse", t.rmse},
-                      {"psnr", t.rmse > 0 ? -20 * std::log10(t.rmse) : 0.0},
-                      {"ssim", 1.0 - t.rmse},
-                      {"frac_over_0.05", t.rmse / 2}};
-  return {{"status", "ok"},
-          {"scene_variant", scene},
-          {"technique_variant", t.variant},
-          {"resolution", res},
-          {"width", w},
-          {"height", h},
-          {"job_id", scene + "__" + res + "__" + t.variant},
-          {"scene", {{"type", "jeep"}, {"variant", scene}, {"triangles", triangles}}},
-          {"timing",
-           {{"frame", timing(gbuffer + shading + tech)},
-            {"technique", timing(tech)},
-            {"pass_order", t.passes},
-            {"passes", passes},
-            {"shared", {{"gbuffer", timing(gbuffer)}, {"shading", timing(shading)}}}}},
-          {"metrics",
-           {{"visibility", {{"all", stats}, {"penumbra", stats}}},
-            {"shaded", {{"all", stats}, {"penumbra", stats}}}}}};
+  JobRecord r = test::identity_record(scene, res, t.variant);
+  r.scene.built = BuiltScene{};
+  r.scene.built->triangles = triangles;
+  TimingRecord timing_record;
+  timing_record.frame = timing(gbuffer + shading + tech);
+  timing_record.technique = timing(tech);
+  timing_record.shared = {{"gbuffer", timing(gbuffer)}, {"shading", timing(shading)}};
+  FineTiming fine;
+  fine.pass_order = t.passes;
+  for (std::size_t i = 0; i < t.passes.size(); ++i)
+    fine.passes[t.passes[i]] = timing(tech * (i == 0 ? 0.7 : 0.3));
+  timing_record.pass_timing = "fine";
+  timing_record.fine = fine;
+  r.timing = timing_record;
+  RegionStats stats;
+  stats.rmse = t.rmse;
+  stats.psnr = t.rmse > 0 ? -20 * std::log10(t.rmse) : 0.0;
+  stats.ssim = 1.0 - t.rmse;
+  stats.frac_over_005 = t.rmse / 2;
+  r.metrics = MetricsRecord{{stats, stats, stats}, {stats, stats, stats}};
+  return r;
 }
 
-std::vector<json> synthetic_records() {
-  std::vector<json> out;
+std::vector<JobRecord> synthetic_records() {
+  std::vector<JobRecord> out;
   for (const auto& [scene, triangles] :
        std::vector<std::pair<std::string, int>>{{"jeep/count=1", 10000}, {"jeep/count=4", 40000}})
     for (const auto& [w, h] : std::vector<std::pair<int, int>>{{320, 240}, {640, 480}})
       for (const auto& t : kTechniques) out.push_back(record(scene, triangles, w, h, t));
   // Not drawn: failed and skipped jobs.
-  out.push_back({{"status", "failed"},
-                 {"scene_variant", "jeep/count=1"},
-                 {"technique_variant", "broken_technique"},
-                 {"resolution", "320x240"},
-                 {"reason", "GL error"}});
-  out.push_back({{"status", "skipped"},
-                 {"scene_variant", "jeep/count=1"},
-                 {"technique_variant", "skipped_technique"},
-                 {"resolution", "320x240"}});
+  JobRecord failed =
+      test::identity_record("jeep/count=1", "320x240", "broken_technique", JobStatus::Failed);
+  failed.reason = "GL error";
+  out.push_back(failed);
+  out.push_back(
+      test::identity_record("jeep/count=1", "320x240", "skipped_technique", JobStatus::Skipped));
   return out;
 }
 
@@ -158,9 +153,9 @@ TEST(Charts, HigherIsBetterMetricsFlipTheFront) {
   test::TempDir dir("charts_ssim");
   ChartOptions o;
   o.error_metric = "shaded.all.ssim";
-  std::vector<json> records;  // one scene at one resolution: quicker
-  for (const json& r : synthetic_records())
-    if (r["scene_variant"] == "jeep/count=1" && r["resolution"] == "320x240") records.push_back(r);
+  std::vector<JobRecord> records;  // one scene at one resolution: quicker
+  for (const JobRecord& r : synthetic_records())
+    if (r.scene_variant == "jeep/count=1" && r.resolution == "320x240") records.push_back(r);
   const auto charts = write_charts(records, dir.path().string(), o);
   ASSERT_EQ(charts.size(), 2u);  // error_time and passes
   EXPECT_EQ(charts.front().kind, "error_time");
@@ -174,12 +169,11 @@ TEST(Charts, HigherIsBetterMetricsFlipTheFront) {
 TEST(Charts, CoarseRunsShowTheTechniqueAsOneSegment) {
   SKIP_WITHOUT_MATPLOTLIB();
   test::TempDir dir("charts_coarse");
-  std::vector<json> records;
-  for (json r : synthetic_records())
-    if (r["scene_variant"] == "jeep/count=1" && r["resolution"] == "320x240" &&
-        r.contains("timing")) {
-      r["timing"].erase("passes");
-      r["timing"].erase("pass_order");
+  std::vector<JobRecord> records;
+  for (JobRecord r : synthetic_records())
+    if (r.scene_variant == "jeep/count=1" && r.resolution == "320x240" && r.timing) {
+      r.timing->fine.reset();
+      r.timing->pass_timing = "coarse";
       records.push_back(r);
     }
   const auto charts = write_charts(records, dir.path().string(), ChartOptions{});
@@ -242,8 +236,8 @@ TEST(Charts, MissingMatplotlibSaysWhatToInstall) {
 
 TEST(Charts, NoOkRecordsNoCharts) {
   test::TempDir dir("charts_none");
-  std::vector<json> records = synthetic_records();
-  for (auto& r : records) r["status"] = "failed";
+  std::vector<JobRecord> records = synthetic_records();
+  for (auto& r : records) r.status = JobStatus::Failed;
   EXPECT_TRUE(write_charts(records, dir.path().string(), {}).empty());
 }
 

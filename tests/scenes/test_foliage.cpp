@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
 #include "core/scene_types.h"
+#include "plan/need_resolution.h"
 #include "scenes/leaf.h"
-#include "scenes/scene_analysis.h"
 #include "scenes/topology.h"
 
 namespace sb {
@@ -37,9 +37,8 @@ TEST(Foliage, WoodIsClosedLeavesAreOpenAndMasked) {
 
   // The skip reason names the leaves and their boundary edges.
   TechniqueInfo volume{
-      "shadow_volume", "f", "", Needs{.closed_casters = true, .opaque_casters = true}, {}, nullptr};
-  const SceneCapabilities caps = check_closedness(s, {&volume});
-  EXPECT_EQ(unmet_needs(s, caps, volume),
+      "shadow_volume", "f", "", Needs{need::kClosedCasters, need::kOpaqueCasters}, {}, nullptr};
+  EXPECT_EQ(resolve_needs(s, {&volume}, nullptr, Derive::Decide).skip_reason[0],
             "shadow_volume needs closed casters: mesh 'leaves' has 288 boundary edges");
 }
 

@@ -2,8 +2,9 @@
 
 #include <map>
 
-#include "core/registry.h"
-#include "scenes/scene_analysis.h"
+#include "plan/need_resolution.h"
+#include "plugin/registry.h"
+#include "scenes/need_providers.h"
 #include "scenes/sphere_grid.h"
 #include "scenes/topology.h"
 
@@ -70,29 +71,34 @@ TEST(SceneAnalysis, BuildsOnlyWhatTechniquesNeed) {
   s.meshes.push_back(make_uv_sphere("s", glm::vec3(0, 2, 0), 1.0f, 8, 6));
   s.meshes.push_back(make_ground_plane("g", glm::vec3(0), 5.0f));
   TechniqueInfo map{"map", "f", "", Needs{}, {}, nullptr};
-  TechniqueInfo volume{"volume", "f",    "", Needs{.edge_adjacency = true, .closed_casters = true},
+  TechniqueInfo volume{"volume", "f",    "", Needs{need::kEdgeAdjacency, need::kClosedCasters},
                        {},       nullptr};
 
   const auto before = derived_data_counters();
-  SceneCapabilities caps = check_closedness(s, {&map});
-  build_adjacency_if_needed(s, {&map}, caps);
-  EXPECT_FALSE(caps.closedness_checked);
-  EXPECT_FALSE(caps.adjacency_built);
+  ResolvedNeeds r = resolve_needs(s, {&map}, nullptr, Derive::All);
+  EXPECT_FALSE(r.data.has(need::kCasterClosedness));
+  EXPECT_FALSE(r.data.has(need::kEdgeAdjacency));
   EXPECT_EQ(derived_data_counters().adjacency_builds, before.adjacency_builds);
   EXPECT_EQ(derived_data_counters().closedness_checks, before.closedness_checks);
 
-  caps = check_closedness(s, {&map, &volume});
-  EXPECT_TRUE(caps.closedness_checked);
-  EXPECT_EQ(unmet_needs(s, caps, volume), "");  // the open ground casts nothing
-  build_adjacency_if_needed(s, {&map, &volume}, caps);
-  EXPECT_TRUE(caps.adjacency_built);
-  EXPECT_EQ(caps.adjacency[0].size(), s.meshes[0].indices.size() * 2);
-  EXPECT_TRUE(caps.adjacency[1].empty());
+  // Deciding skips checks closedness but builds no adjacency yet.
+  r = resolve_needs(s, {&map, &volume}, nullptr, Derive::Decide);
+  EXPECT_TRUE(r.data.has(need::kCasterClosedness));
+  EXPECT_FALSE(r.data.has(need::kEdgeAdjacency));
+  EXPECT_EQ(r.skip_reason[1], "");  // the open ground casts nothing
+  EXPECT_EQ(derived_data_counters().adjacency_builds, before.adjacency_builds);
 
-  s.meshes[1].casts_shadow = true;  // now an open caster
-  caps = check_closedness(s, {&volume});
-  EXPECT_EQ(unmet_needs(s, caps, volume),
-            "volume needs closed casters: mesh 'g' has 4 boundary edges");
+  r = resolve_needs(s, {&map, &volume}, nullptr, Derive::All);
+  const auto& adjacency = r.data.get<CasterAdjacency>(need::kEdgeAdjacency);
+  EXPECT_EQ(adjacency[0].size(), s.meshes[0].indices.size() * 2);
+  EXPECT_TRUE(adjacency[1].empty());
+
+  s.meshes[1].casts_shadow = true;  // now an open caster: skipped, so no adjacency
+  const size_t builds = derived_data_counters().adjacency_builds;
+  r = resolve_needs(s, {&volume}, nullptr, Derive::All);
+  EXPECT_EQ(r.skip_reason[0], "volume needs closed casters: mesh 'g' has 4 boundary edges");
+  EXPECT_FALSE(r.data.has(need::kEdgeAdjacency));
+  EXPECT_EQ(derived_data_counters().adjacency_builds, builds);
 }
 
 }  // namespace
@@ -117,16 +123,14 @@ TEST(PlanarReceiver, FoundUnderTheCastersOnly) {
   EXPECT_FALSE(find_planar_receiver(s, r));
 
   // Only asked for when a technique needs it.
-  TechniqueInfo planar{"planar", "f", "", Needs{.planar_receiver = true}, {}, nullptr};
+  TechniqueInfo planar{"planar", "f", "", Needs{need::kPlanarReceiver}, {}, nullptr};
   TechniqueInfo map{"map", "f", "", Needs{}, {}, nullptr};
   const size_t before = derived_data_counters().receiver_searches;
-  SceneCapabilities caps = check_closedness(s, {&map});
-  EXPECT_FALSE(caps.receiver_checked);
+  EXPECT_EQ(resolve_needs(s, {&map}, nullptr, Derive::Decide).skip_reason[0], "");
   EXPECT_EQ(derived_data_counters().receiver_searches, before);
-  caps = check_closedness(s, {&planar});
-  EXPECT_TRUE(caps.receiver_checked);
-  EXPECT_EQ(unmet_needs(s, caps, planar),
+  EXPECT_EQ(resolve_needs(s, {&planar}, nullptr, Derive::Decide).skip_reason[0],
             "planar needs a planar receiver under every caster; the scene has none");
+  EXPECT_EQ(derived_data_counters().receiver_searches, before + 1);
 }
 
 TEST(Capabilities, AlphaTestedCastersSkipTechniquesThatCannotHonourThem) {
@@ -137,10 +141,9 @@ TEST(Capabilities, AlphaTestedCastersSkipTechniquesThatCannotHonourThem) {
   closed.base_color_texture = 0;
   closed.alpha_mode = AlphaMode::Mask;
   s.meshes.push_back(closed);
-  TechniqueInfo volume{"volume", "f",    "", Needs{.closed_casters = true, .opaque_casters = true},
+  TechniqueInfo volume{"volume", "f",    "", Needs{need::kClosedCasters, need::kOpaqueCasters},
                        {},       nullptr};
-  const SceneCapabilities caps = check_closedness(s, {&volume});
-  EXPECT_EQ(unmet_needs(s, caps, volume),
+  EXPECT_EQ(resolve_needs(s, {&volume}, nullptr, Derive::Decide).skip_reason[0],
             "volume cannot honour alpha masks: mesh 'masked' is alpha-tested");
 }
 

@@ -11,6 +11,8 @@
 #include "gl/gpu_scene.h"
 #include "gl/objects.h"
 #include "gl/program.h"
+#include "plan/need_resolution.h"
+#include "plugin/need_data.h"
 #include "scenes/mesh_builders.h"
 
 namespace sb::test {
@@ -120,6 +122,55 @@ TEST_F(GpuAccess, TessellatedProgramsLinkAndCompileErrorsNameTheStage) {
   }
   EXPECT_THROW((void)gl::Program::compute("bad", "#version 450 core\nvoid main() { x; }"),
                JobError);
+}
+
+// need::kSilhouetteEdges: the provider's buffer, read by a compute shader
+// that finds silhouettes by the sign of the two face planes, as a technique
+// would. A box seen from a point outside all three of its slabs shows three
+// faces, so its outline is a hexagon: 6 edges. From straight above (inside
+// two slabs) only the top face is lit: its 4 edges.
+TEST_F(GpuAccess, SilhouetteEdgesOfABoxFromAPointAreItsOutline) {
+  Scene scene;
+  scene.meshes.push_back(make_box("box", {0, 1, 0}, {0.5f, 1.0f, 1.5f}));
+  const GpuScene gpu(scene, {});
+  const NeedProvider* provider = find_need_provider(need::kSilhouetteEdges, nullptr);
+  ASSERT_NE(provider, nullptr);
+  ASSERT_TRUE(provider->upload);
+  DerivedData data;
+  provider->upload(scene, gpu, data);
+  const auto& edges = data.get<SilhouetteEdges>(need::kSilhouetteEdges);
+  ASSERT_EQ(edges.edge_count, 18);
+  ASSERT_EQ(edges.meshes.size(), 1u);
+  EXPECT_EQ(edges.meshes[0].edge_count, 18);
+
+  const gl::Program count = gl::Program::compute("count silhouettes", R"(#version 450 core
+layout(local_size_x = 1) in;
+struct Edge { vec4 p0; vec4 p1; vec4 plane_a; vec4 plane_b; };
+layout(std430, binding = 0) readonly buffer Edges { Edge edges[]; };
+layout(std430, binding = 1) buffer Count { uint silhouettes; };
+uniform vec3 light;
+void main() {
+  Edge e = edges[gl_GlobalInvocationID.x];
+  float a = dot(e.plane_a, vec4(light, 1.0)), b = dot(e.plane_b, vec4(light, 1.0));
+  if (e.p1.w == 0.0 || (a > 0.0) != (b > 0.0)) atomicAdd(silhouettes, 1u);
+}
+)");
+  const auto silhouettes_from = [&](glm::vec3 light) {
+    const uint32_t zero = 0;
+    const gl::Buffer counter = gl::make_buffer(sizeof zero, &zero);
+    count.use();
+    count.set("light", light);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, edges.buffer());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counter.get());
+    glDispatchCompute(GLuint(edges.edge_count), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl::throw_if_errors("silhouette count");
+    uint32_t n = 0;
+    glGetNamedBufferSubData(counter.get(), 0, sizeof n, &n);
+    return n;
+  };
+  EXPECT_EQ(silhouettes_from({3.0f, 5.0f, 4.0f}), 6u);
+  EXPECT_EQ(silhouettes_from({0.1f, 5.0f, 0.2f}), 4u);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// The timing contract of Technique::prepare() (core/technique.h): it runs
+// The timing contract of Technique::prepare() (plugin/technique.h): it runs
 // once per (scene, resolution), untimed, and must not depend on the light or
 // the camera. Whatever it derived from the light would go stale when the
 // light moves, and a technique that did so would be charging its per-frame
@@ -19,16 +19,15 @@
 #include <vector>
 
 #include "config/experiment.h"
-#include "core/registry.h"
 #include "gl/context.h"
 #include "gl/debug.h"
 #include "gl/gpu_scene.h"
 #include "gl/objects.h"
 #include "gl/pass_timer.h"
+#include "plugin/registry.h"
 #include "run/gbuffer.h"
+#include "scenes/need_providers.h"
 #include "scenes/receiver_inference.h"
-#include "scenes/scene_analysis.h"
-#include "scenes/topology.h"
 
 namespace sb::test {
 namespace {

@@ -14,21 +14,12 @@
 #include "core/scene.h"
 #include "gl/gl.h"
 #include "gl/pass_timer.h"
+#include "plugin/derived_data.h"
+#include "plugin/needs.h"
 
 namespace sb {
 
 class GpuScene;
-
-// What a technique needs from a scene, read by the planner before any GL
-// context exists. A scene that cannot provide it makes the pair "skipped".
-struct Needs {
-  bool edge_adjacency = false;   // triangle adjacency of the casters
-  bool closed_casters = false;   // every caster is a closed 2-manifold
-  bool opaque_casters = false;   // cannot honour alpha-tested casters
-  bool planar_receiver = false;  // a plane that receives every caster's shadow
-  // Which casters are closed (no skip): depth passes cull closed ones only.
-  bool caster_closedness = false;
-};
 
 // Everything a technique may read for one (scene, resolution).
 struct FrameInputs {
@@ -49,7 +40,7 @@ struct FrameInputs {
   GLuint gbuffer_shading_normal = 0;
   GLuint gbuffer_albedo = 0;
   // The plane that receives every caster's shadow, n·x + d = 0 with n towards
-  // the casters: set when the technique declared needs.planar_receiver
+  // the casters: set when the technique declared need::kPlanarReceiver
   // (its job is skipped when the scene has none).
   bool has_receiver_plane = false;
   glm::vec4 receiver_plane{0.0f};
@@ -60,6 +51,9 @@ struct FrameInputs {
   // (V = 1 on background).
   GLuint visibility_framebuffer = 0;
   GLuint visibility_texture = 0;
+  // Everything derived for the technique's needs (plugin/needs.h), CPU and
+  // GPU, by need name: derived->get<SilhouetteEdges>(need::kSilhouetteEdges).
+  const DerivedData* derived = nullptr;
 };
 
 // Made by TechniqueInfo::create from its Params. The constructor reads every

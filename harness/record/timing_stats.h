@@ -1,7 +1,8 @@
 #pragma once
 // Summary statistics of per-frame times: robust (median, p10, p90) plus the
 // coefficient of variation, so noisy machines show how noisy they were.
-#include <nlohmann/json.hpp>
+// A record keeps them with the samples (record/timing_record.h, TimingSeries).
+#include <cstddef>
 #include <vector>
 
 namespace sb {
@@ -15,6 +16,5 @@ struct TimingStats {
 // Percentiles by linear interpolation between order statistics (as numpy's
 // default), so p50 of {1,2,3,4} is 2.5.
 TimingStats summarize(std::vector<double> samples_ms);
-nlohmann::json to_json(const TimingStats& s);
 
 }  // namespace sb

@@ -1,4 +1,4 @@
-#include "results/timing_stats.h"
+#include "record/timing_stats.h"
 
 #include <algorithm>
 #include <cmath>
@@ -32,11 +32,6 @@ TimingStats summarize(std::vector<double> samples) {
   var /= double(samples.size());
   s.cv = s.mean > 0.0 ? std::sqrt(var) / s.mean : 0.0;
   return s;
-}
-
-nlohmann::json to_json(const TimingStats& s) {
-  return {{"count", s.count},  {"median_ms", s.median}, {"p10_ms", s.p10}, {"p90_ms", s.p90},
-          {"mean_ms", s.mean}, {"min_ms", s.min},       {"max_ms", s.max}, {"cv", s.cv}};
 }
 
 }  // namespace sb

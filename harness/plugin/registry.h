@@ -2,7 +2,8 @@
 // The registry of techniques. Each technique family is a plugin module
 // (techniques/<family>/) exporting one C entry point,
 //   extern "C" void shadowbench_register_plugin(sb::Registry&);
-// that adds its variants. The harness loads every module in its plugin folder.
+// that adds its variants, and the providers of any need of its own
+// (plugin/needs.h). The harness loads every module in its plugin folder.
 #include <functional>
 #include <memory>
 #include <string>
@@ -10,7 +11,8 @@
 #include <vector>
 
 #include "core/params.h"
-#include "core/technique.h"
+#include "plugin/needs.h"
+#include "plugin/technique.h"
 
 namespace sb {
 
@@ -32,12 +34,19 @@ class Registry {
   const TechniqueInfo* find(const std::string& name) const;
   const std::vector<TechniqueInfo>& all() const { return techniques_; }
 
+  // Needs a plugin adds; the harness's own are found by the planner
+  // (plan/need_resolution.h). Throws std::logic_error on duplicates.
+  void add_provider(NeedProvider provider);
+  const NeedProvider* find_provider(const std::string& name) const;
+  const std::vector<NeedProvider>& providers() const { return providers_; }
+
   // Loads every *.so in `dir`; throws std::runtime_error naming the module on
   // a missing entry point or a dlopen failure. Returns the module count.
   int load_plugins(const std::string& dir);
 
  private:
   std::vector<TechniqueInfo> techniques_;
+  std::vector<NeedProvider> providers_;
   std::vector<void*> modules_;  // kept open for the process lifetime
 };
 

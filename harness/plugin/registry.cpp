@@ -1,4 +1,4 @@
-#include "core/registry.h"
+#include "plugin/registry.h"
 
 #include <dlfcn.h>
 #include <unistd.h>
@@ -10,6 +10,10 @@
 
 namespace sb {
 
+bool Needs::has(const std::string& name) const {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
 void Registry::add(TechniqueInfo info) {
   if (find(info.name) != nullptr)
     throw std::logic_error("technique '" + info.name + "' registered twice");
@@ -19,6 +23,18 @@ void Registry::add(TechniqueInfo info) {
 const TechniqueInfo* Registry::find(const std::string& name) const {
   for (const auto& t : techniques_)
     if (t.name == name) return &t;
+  return nullptr;
+}
+
+void Registry::add_provider(NeedProvider provider) {
+  if (find_provider(provider.name) != nullptr)
+    throw std::logic_error("need '" + provider.name + "' provided twice");
+  providers_.push_back(std::move(provider));
+}
+
+const NeedProvider* Registry::find_provider(const std::string& name) const {
+  for (const auto& p : providers_)
+    if (p.name == name) return &p;
   return nullptr;
 }
 

@@ -1,0 +1,34 @@
+#pragma once
+// Resolves the techniques' needs (plugin/needs.h) for one scene: finds each
+// need's provider (a plugin's, else the harness's, scenes/need_providers.h),
+// computes what was asked for and nothing else, in dependency order, and
+// decides which techniques the scene cannot serve.
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+#include "plugin/registry.h"
+
+namespace sb {
+
+enum class Derive {
+  Decide,  // only what skip decisions need (Plan needs); for plan and validate
+  All,     // also the Run needs of the techniques that will run; for run
+};
+
+struct ResolvedNeeds {
+  DerivedData data;
+  std::vector<std::string> skip_reason;  // per technique; "" = runs
+  // GPU stages for the running techniques' needs, in dependency order; the
+  // runner calls each once the scene is on the GPU.
+  std::vector<const NeedProvider*> uploads;
+  std::vector<std::string> log;  // one line per datum derived or deferred
+};
+
+// The provider of `name`: `plugins`' first (may be null), then the harness's.
+const NeedProvider* find_need_provider(const std::string& name, const Registry* plugins);
+
+ResolvedNeeds resolve_needs(const Scene& scene, const std::vector<const TechniqueInfo*>& techniques,
+                            const Registry* plugins, Derive derive);
+
+}  // namespace sb

@@ -1,0 +1,93 @@
+#pragma once
+// One job's record, as `run` writes it (records/<job_id>.json, one line of
+// results.jsonl) and every reader reads it: docs/results.md, "Record schema".
+//
+// to_json() writes schema_version 1 exactly as documented: members that a job
+// did not reach (a skipped job's timing, a failed scene's light) are absent,
+// not null. from_json() reads it back or throws RecordError naming the JSON
+// pointer of what is wrong; a record of another schema_version is refused.
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "record/fields.h"
+#include "record/metrics_record.h"
+#include "record/reference_record.h"
+#include "record/scene_record.h"
+#include "record/timing_record.h"
+
+namespace sb {
+
+// The schema_version this build writes and reads.
+inline constexpr int kRecordSchemaVersion = 1;
+
+enum class JobStatus { Ok, Skipped, Failed };
+const char* to_string(JobStatus s);  // "ok", "skipped", "failed"
+
+struct HostRecord {
+  std::int64_t hardware_threads = 0;
+  std::optional<std::string> lp_num_threads;  // LP_NUM_THREADS, when set
+  std::optional<std::string> name;
+};
+
+// Pixels of the technique's visibility (before the attached-shadow mask)
+// that are not finite or outside [0, 1] by more than the tolerance.
+struct VisibilityCheckRecord {
+  std::int64_t nonfinite = 0;
+  std::int64_t below_0 = 0;
+  std::int64_t above_1 = 0;
+  double tolerance = 0;
+};
+
+// Paths relative to the run directory; each present only when written.
+struct ImagesRecord {
+  std::optional<std::string> visibility, shaded, error_heatmap;
+  std::optional<double> error_heatmap_full_scale;
+  std::optional<std::string> reference_visibility, reference_std_error, reference_shaded;
+  std::optional<std::string> gbuffer_positions, gbuffer_normals;  // run --gbuffer
+
+  bool empty() const;
+  // Takes every image `other` names (a job's record, the reference's).
+  void add(const ImagesRecord& other);
+};
+
+struct JobRecord {
+  int schema_version = kRecordSchemaVersion;
+  std::string run_id, experiment;
+  std::string config, config_hash;  // the config path as given; FNV-1a 64 of its bytes
+  std::string job_id;
+  std::string spec_hash;  // of everything in the config that decides the numbers
+  std::string scene_variant, technique_variant, resolution;
+  int width = 0, height = 0;
+  SceneRecord scene;
+  TechniqueRecord technique;
+  std::string backend, gl_platform, gl_renderer, gl_version, timing_source;
+  HostRecord host;
+  std::string build_version;  // "build": {"version"}
+
+  JobStatus status = JobStatus::Ok;
+  std::optional<std::string> reason;  // why skipped or failed
+  std::optional<std::string> started_at;
+  std::optional<std::string> finished_at;
+  std::optional<double> duration_s;  // jobs that rendered
+
+  // What the job got to before it finished or failed.
+  std::optional<ReferenceRecord> reference;
+  std::optional<TimingRecord> timing;
+  std::optional<VisibilityCheckRecord> visibility_check;
+  std::optional<MetricsRecord> metrics;
+  std::vector<std::string> warnings;  // written only when there are some
+  ImagesRecord images;                // written only when some image was
+
+  nlohmann::json to_json() const;
+  // Throws RecordError: at /schema_version for another version, else at the
+  // first member that is missing or of the wrong type.
+  static JobRecord from_json(const nlohmann::json& j);
+
+  // The named metric ("visibility.all.rmse"), when the record has metrics.
+  std::optional<double> metric(const MetricPath& path) const;
+};
+
+}  // namespace sb

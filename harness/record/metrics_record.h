@@ -1,0 +1,59 @@
+#pragma once
+// record["metrics"]: the error of a technique's visibility buffer and shaded
+// image against the reference's, per region (docs/results.md, "metrics").
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "record/fields.h"
+
+namespace sb {
+
+// One image over one region of pixels (as metrics::ErrorStats).
+struct RegionStats {
+  std::int64_t pixel_count = 0;
+  double rmse = 0, mae = 0, max_error = 0;
+  int max_x = -1, max_y = -1;  // "max_pixel": [x, y]
+  double psnr = 0, ssim = 1;
+  double frac_over_001 = 0, frac_over_005 = 0, frac_over_01 = 0;  // "frac_over_0.01" ...
+  std::int64_t nonfinite_count = 0;
+  double mean_signed = 0;
+
+  nlohmann::json to_json() const;
+  static RegionStats from_json(const Fields& f);
+};
+
+// The three regions: all measured pixels, the reference's penumbra, and the
+// soft pixels of either image.
+struct ImageMetrics {
+  RegionStats all, penumbra, soft_union;
+
+  nlohmann::json to_json() const;
+  static ImageMetrics from_json(const Fields& f);
+};
+
+struct MetricsRecord {
+  ImageMetrics visibility, shaded;
+
+  nlohmann::json to_json() const;
+  static MetricsRecord from_json(const Fields& f);
+};
+
+// A metric named by its dotted path under "metrics":
+// <visibility|shaded>.<all|penumbra|soft_union>.<key>, e.g.
+// visibility.all.rmse or visibility.all.frac_over_0.05 (a key may hold dots).
+class MetricPath {
+ public:
+  // nullopt when `dotted` names no number of the schema.
+  static std::optional<MetricPath> parse(const std::string& dotted);
+  double of(const MetricsRecord& m) const;
+  const std::string& key() const { return key_; }  // "rmse", "frac_over_0.05", ...
+
+ private:
+  ImageMetrics MetricsRecord::*image_ = nullptr;
+  RegionStats ImageMetrics::*region_ = nullptr;
+  std::string key_;
+};
+
+}  // namespace sb

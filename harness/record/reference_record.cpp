@@ -1,0 +1,41 @@
+#include "record/reference_record.h"
+
+namespace sb {
+
+nlohmann::json ReferenceRecord::to_json() const {
+  return {{"method", method},
+          {"spp", spp},
+          {"seed", seed},
+          {"embree_isa", embree_isa},
+          {"embree_config", embree_config},
+          {"mean_std_error", json_number(mean_std_error)},
+          {"penumbra_mean_std_error", json_number(penumbra_mean_std_error)},
+          {"penumbra_rms_std_error", json_number(penumbra_rms_std_error)},
+          {"penumbra_pixels", penumbra_pixels},
+          {"attached_shadow_pixels", attached_shadow_pixels},
+          {"horizon_cut_pixels", horizon_cut_pixels},
+          {"cache_key", cache_key},
+          {"from_cache", from_cache},
+          {"seconds", json_number(seconds)}};
+}
+
+ReferenceRecord ReferenceRecord::from_json(const Fields& f) {
+  ReferenceRecord r;
+  r.method = f.get<std::string>("method");
+  r.spp = f.get<int>("spp");
+  r.seed = f.get<std::uint64_t>("seed");
+  r.embree_isa = f.get<std::string>("embree_isa");
+  r.embree_config = f.get<std::string>("embree_config");
+  r.mean_std_error = f.get<double>("mean_std_error");
+  r.penumbra_mean_std_error = f.get<double>("penumbra_mean_std_error");
+  r.penumbra_rms_std_error = f.get<double>("penumbra_rms_std_error");
+  r.penumbra_pixels = f.get<std::int64_t>("penumbra_pixels");
+  r.attached_shadow_pixels = f.get<std::int64_t>("attached_shadow_pixels");
+  r.horizon_cut_pixels = f.get<std::int64_t>("horizon_cut_pixels");
+  r.cache_key = f.get<std::string>("cache_key");
+  r.from_cache = f.get<bool>("from_cache");
+  r.seconds = f.get<double>("seconds");
+  return r;
+}
+
+}  // namespace sb

@@ -1,0 +1,84 @@
+#include "results/report_columns.h"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace sb {
+namespace {
+
+// A figure of the visibility buffer's metrics over one region.
+template <RegionStats ImageMetrics::*Region, double RegionStats::*Value>
+std::optional<double> visibility(const JobRecord& r) {
+  if (!r.metrics) return std::nullopt;
+  return r.metrics->visibility.*Region.*Value;
+}
+
+template <TimingSeries TimingRecord::*Series>
+std::optional<double> median_ms(const JobRecord& r) {
+  if (!r.timing) return std::nullopt;
+  return (*r.timing.*Series).median_ms;
+}
+
+std::vector<ReportColumn> make_columns() {
+  using I = ImageMetrics;
+  using S = RegionStats;
+  auto text = [](const char* name, std::string (*get)(const JobRecord&), bool per_group = false) {
+    ReportColumn c;
+    c.name = c.header = name;
+    c.per_group = per_group;
+    c.text = get;
+    return c;
+  };
+  auto number = [](const char* name, std::optional<double> (*get)(const JobRecord&),
+                   const char* format) {
+    ReportColumn c;
+    c.name = c.header = name;
+    c.number = get;
+    c.format = format;
+    return c;
+  };
+  return {
+      text(
+          "scene", [](const JobRecord& r) { return r.scene_variant; }, true),
+      text(
+          "resolution", [](const JobRecord& r) { return r.resolution; }, true),
+      text("technique", [](const JobRecord& r) { return r.technique_variant; }),
+      text("status", [](const JobRecord& r) { return std::string(to_string(r.status)); }),
+      number("frame_ms", median_ms<&TimingRecord::frame>, "%.3f"),
+      number("technique_ms", median_ms<&TimingRecord::technique>, "%.3f"),
+      number("rmse", visibility<&I::all, &S::rmse>, "%.5f"),
+      number("mae", visibility<&I::all, &S::mae>, "%.5f"),
+      number("max_error", visibility<&I::all, &S::max_error>, "%.4f"),
+      number("psnr", visibility<&I::all, &S::psnr>, "%.2f"),
+      number("ssim", visibility<&I::all, &S::ssim>, "%.4f"),
+      number("frac_over_0.05", visibility<&I::all, &S::frac_over_005>, "%.4f"),
+      number("penumbra_rmse", visibility<&I::penumbra, &S::rmse>, "%.5f"),
+      text("reason", [](const JobRecord& r) { return r.reason.value_or(""); }),
+  };
+}
+
+}  // namespace
+
+std::string ReportColumn::cell(const JobRecord& r) const {
+  if (text != nullptr) return text(r);
+  const std::optional<double> v = number(r);
+  if (!v || std::isnan(*v)) return "";
+  if (std::isinf(*v)) return *v > 0 ? "inf" : "-inf";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, *v);
+  return buf;
+}
+
+const std::vector<ReportColumn>& report_columns() {
+  static const std::vector<ReportColumn> columns = make_columns();
+  return columns;
+}
+
+const ReportColumn& report_column(const std::string& name) {
+  for (const auto& c : report_columns())
+    if (name == c.name) return c;
+  throw std::out_of_range("no report column \"" + name + "\"");
+}
+
+}  // namespace sb

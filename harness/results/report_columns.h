@@ -1,0 +1,35 @@
+#pragma once
+// The columns of every table made from records: results.csv, summary.md and
+// the HTML report's summary tables all take their columns, headers and cell
+// text from this one list (docs/results.md, "Table columns").
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "record/job_record.h"
+
+namespace sb {
+
+struct ReportColumn {
+  const char* name = "";    // how code refers to the column ("frame_ms")
+  const char* header = "";  // what the tables show above it
+  // Scene and resolution: the Markdown and HTML tables are one per (scene,
+  // resolution) and leave these out; the CSV, one table, keeps them.
+  bool per_group = false;
+  // Exactly one of the two: a text cell, or a number printed with `format`.
+  std::string (*text)(const JobRecord&) = nullptr;
+  std::optional<double> (*number)(const JobRecord&) = nullptr;
+  const char* format = nullptr;  // printf format of a number
+
+  bool numeric() const { return number != nullptr; }
+  // The cell: the text, or the number formatted ("" when absent or NaN,
+  // "inf" and "-inf" for infinities).
+  std::string cell(const JobRecord& r) const;
+};
+
+// In table order: scene, resolution, technique, status, the figures, reason.
+const std::vector<ReportColumn>& report_columns();
+// The column called `name`; throws std::out_of_range for another name.
+const ReportColumn& report_column(const std::string& name);
+
+}  // namespace sb

@@ -1,0 +1,258 @@
+// The typed record: to_json/from_json round trips for an ok job with every
+// optional part, a skipped job and a failed one; a record of another
+// schema_version refused with a clear message; a missing or ill-typed member
+// named by its JSON pointer, in memory and in a run folder's file.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <tuple>
+
+#include "../metrics/test_util.h"
+#include "core/error.h"
+#include "record/job_record.h"
+#include "results/store.h"
+#include "sample_records.h"
+
+namespace sb {
+namespace {
+
+using json = nlohmann::json;
+
+RegionStats region(double rmse) {
+  RegionStats s;
+  s.pixel_count = 1200;
+  s.rmse = rmse;
+  s.mae = rmse / 2;
+  s.max_error = 1.0;
+  s.max_x = 17;
+  s.max_y = 3;
+  s.psnr = -20 * std::log10(rmse);
+  s.ssim = 0.75;
+  s.frac_over_001 = 0.5;
+  s.frac_over_005 = 0.25;
+  s.frac_over_01 = 0.125;
+  s.nonfinite_count = 2;
+  s.mean_signed = -0.01;
+  return s;
+}
+
+// An ok job with every optional member: fine pass timing, G-buffer images,
+// a warning, LP_NUM_THREADS, and non-finite numbers.
+JobRecord full_record() {
+  JobRecord r = test::identity_record("sphere_grid/light_size=2.0", "64x48", "pcf_box/k=3");
+  r.scene.params = {{"grid", 9}, {"light_size", 2.0}};
+  r.technique.family = "shadow_map";
+  r.technique.params = {{"k", 3}, {"size", 1024}};
+  BuiltScene b;
+  b.triangles = 61562;
+  b.caster_triangles = 61560;
+  b.light = {{0, 10, 0}, {0, 0, 0}, {2, 2}, 1.5};
+  b.camera = {{0, 12.125, 14.5}, {0, 0, 1.875}, 50};
+  b.derived = {true, false, true, {"ground"}};
+  r.scene.built = b;
+  r.host.lp_num_threads = "2";
+  r.host.name = "vm";
+  r.started_at = "2026-12-01T00:00:00Z";
+  r.duration_s = 0.5;
+  ReferenceRecord ref;
+  ref.method = "embree_stratified_packet16";
+  ref.spp = 256;
+  ref.seed = std::numeric_limits<std::uint64_t>::max();
+  ref.embree_isa = "avx2";
+  ref.mean_std_error = 0.003;
+  ref.penumbra_pixels = 800;
+  ref.attached_shadow_pixels = 90;
+  ref.horizon_cut_pixels = 40;
+  ref.cache_key = "abc";
+  ref.seconds = 1.25;
+  r.reference = ref;
+  r.timing = test::coarse_timing({10, 12, 11}, {4, 5, 4.5});
+  test::add_fine_timing(*r.timing, {{"depth", {2, 2.5, 2.25}}, {"lookup", {2.5, 3, 2.75}}});
+  r.visibility_check = VisibilityCheckRecord{0, 1, 2, double(1e-5f)};
+  MetricsRecord m;
+  m.visibility = {region(0.1), region(0.3), region(0.2)};
+  m.shaded = {region(0.05), region(0.15), region(0.1)};
+  m.shaded.all.psnr = std::numeric_limits<double>::infinity();
+  m.shaded.penumbra.ssim = std::numeric_limits<double>::quiet_NaN();
+  m.shaded.soft_union.mean_signed = -std::numeric_limits<double>::infinity();
+  r.metrics = m;
+  r.warnings = {"reference noise is over half the penumbra RMSE"};
+  r.images.visibility = "jobs/x/visibility.exr";
+  r.images.shaded = "jobs/x/shaded.png";
+  r.images.error_heatmap = "jobs/x/error.png";
+  r.images.error_heatmap_full_scale = 0.25;
+  r.images.reference_visibility = "reference/x/visibility.exr";
+  r.images.reference_std_error = "reference/x/std_error.exr";
+  r.images.reference_shaded = "reference/x/shaded.png";
+  r.images.gbuffer_positions = "reference/x/positions.exr";
+  r.images.gbuffer_normals = "reference/x/normals.exr";
+  return r;
+}
+
+TEST(JobRecord, FullRecordRoundTrips) {
+  const json j = full_record().to_json();
+  const JobRecord back = JobRecord::from_json(j);
+  EXPECT_EQ(back.to_json(), j);
+  // The documented spelling of what the types do not show.
+  EXPECT_EQ(j["schema_version"], 1);
+  EXPECT_EQ(j["status"], "ok");
+  EXPECT_FALSE(j.contains("reason"));
+  EXPECT_EQ(j["metrics"]["shaded"]["all"]["psnr"], "inf");
+  EXPECT_EQ(j["metrics"]["shaded"]["penumbra"]["ssim"], "nan");
+  EXPECT_EQ(j["metrics"]["shaded"]["soft_union"]["mean_signed"], "-inf");
+  EXPECT_EQ(j["metrics"]["visibility"]["all"]["max_pixel"], json::array({17, 3}));
+  EXPECT_TRUE(j["metrics"]["visibility"]["all"].contains("frac_over_0.05"));
+  EXPECT_EQ(j["timing"]["pass_order"], json::array({"depth", "lookup"}));
+  EXPECT_EQ(j["timing"]["fine"]["frames"], 3);
+  EXPECT_EQ(j["timing"]["passes"]["lookup"]["samples_ms"].size(), 3u);
+  EXPECT_EQ(j["timing"]["shared"].size(), 2u);
+  EXPECT_EQ(j["scene"]["derived"]["inferred_receivers"], json::array({"ground"}));
+  EXPECT_EQ(j["scene"]["light"]["size"], json::array({2.0, 2.0}));
+  EXPECT_EQ(j["reference"]["seed"], std::numeric_limits<std::uint64_t>::max());
+  EXPECT_EQ(j["host"]["lp_num_threads"], "2");
+  EXPECT_EQ(j["build"]["version"], "0.1.0");
+  EXPECT_EQ(j["images"].size(), 9u);  // eight paths and the full scale
+  EXPECT_TRUE(std::isnan(back.metrics->shaded.penumbra.ssim));
+  EXPECT_EQ(back.timing->fine->pass_order, (std::vector<std::string>{"depth", "lookup"}));
+  EXPECT_DOUBLE_EQ(back.timing->frame.median_ms, 11.0);
+}
+
+TEST(JobRecord, CoarseTimingHasNoPassDetail) {
+  JobRecord r = full_record();
+  r.timing->fine.reset();
+  r.timing->pass_timing = "coarse";
+  const json j = r.to_json();
+  for (const char* key : {"passes", "pass_order", "fine"})
+    EXPECT_FALSE(j["timing"].contains(key)) << key;
+  EXPECT_EQ(JobRecord::from_json(j).to_json(), j);
+}
+
+TEST(JobRecord, SkippedRecordHasOnlyWhatWasKnown) {
+  JobRecord r = test::identity_record("foliage", "64x48", "shadow_volume", JobStatus::Skipped);
+  r.reason = "shadow_volume needs closed casters: mesh 'leaves' has 1834 boundary edges";
+  r.scene.built = BuiltScene{};
+  const json j = r.to_json();
+  for (const char* key : {"timing", "metrics", "reference", "visibility_check", "images",
+                          "warnings", "started_at", "duration_s"})
+    EXPECT_FALSE(j.contains(key)) << key;
+  EXPECT_EQ(j["status"], "skipped");
+  EXPECT_TRUE(j["scene"].contains("derived"));
+  const JobRecord back = JobRecord::from_json(j);
+  EXPECT_EQ(back.status, JobStatus::Skipped);
+  EXPECT_FALSE(back.timing || back.metrics || back.reference);
+  EXPECT_EQ(back.to_json(), j);
+}
+
+TEST(JobRecord, FailedSceneRecordHasNoSceneData) {
+  JobRecord r = test::identity_record("gltf/file=x.glb", "64x48", "none", JobStatus::Failed);
+  r.reason = "x.glb: cannot open the file";
+  const json j = r.to_json();
+  EXPECT_EQ(j["scene"],
+            json({{"type", "gltf"}, {"variant", "gltf/file=x.glb"}, {"params", json::object()}}));
+  const JobRecord back = JobRecord::from_json(j);
+  EXPECT_FALSE(back.scene.built.has_value());
+  EXPECT_EQ(back.reason, r.reason);
+  EXPECT_EQ(back.to_json(), j);
+}
+
+// A job that failed after timing (a visibility check): what it got to stays.
+TEST(JobRecord, FailedJobKeepsWhatItMeasured) {
+  JobRecord r = full_record();
+  r.status = JobStatus::Failed;
+  r.reason = "visibility outside [0,1]";
+  r.images = {};
+  r.images.visibility = "jobs/x/visibility.exr";
+  r.metrics.reset();
+  const json j = r.to_json();
+  EXPECT_EQ(j["images"].size(), 1u);
+  EXPECT_FALSE(j.contains("metrics"));
+  EXPECT_EQ(JobRecord::from_json(j).to_json(), j);
+}
+
+// What from_json throws for `j` (a test failure when it reads).
+RecordError error_of(const json& j) {
+  try {
+    JobRecord::from_json(j);
+  } catch (const RecordError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "expected a RecordError";
+  return RecordError("", "");
+}
+
+TEST(JobRecord, AnotherSchemaVersionIsRefused) {
+  json j = full_record().to_json();
+  j["schema_version"] = 2;
+  const RecordError e = error_of(j);
+  EXPECT_EQ(e.pointer(), "/schema_version");
+  const std::string what = e.what();
+  EXPECT_NE(what.find("schema_version 2"), std::string::npos) << what;
+  EXPECT_NE(what.find("reads schema_version 1"), std::string::npos) << what;
+  j.erase("schema_version");
+  EXPECT_EQ(error_of(j).pointer(), "/schema_version");
+  j["schema_version"] = "1";
+  EXPECT_EQ(error_of(j).pointer(), "/schema_version");
+}
+
+TEST(JobRecord, MissingOrIllTypedMembersAreNamedByPointer) {
+  const json good = full_record().to_json();
+  struct Case {
+    const char* pointer;
+    json value;  // null: erase the member
+    const char* problem;
+  } cases[] = {
+      {"/job_id", nullptr, "missing"},
+      {"/width", "64", "expected a whole number, found a string"},
+      {"/status", "done", "expected \"ok\", \"skipped\" or \"failed\""},
+      {"/scene/light/center", json::array({1, 2}), "expected 3 numbers"},
+      {"/timing/frame/median_ms", nullptr, "missing"},
+      {"/timing/frame/samples_ms/1", "fast", "expected a number, found a string"},
+      {"/metrics/visibility/all/rmse", true, "expected a number"},
+      {"/metrics/shaded/penumbra", json::array(), "expected an object, found an array"},
+      {"/reference/from_cache", 1, "expected true or false"},
+      {"/images/shaded", 3, "expected a string"},
+      {"/timing/pass_order/0", "clear", "which \"passes\" lacks"},
+  };
+  for (const auto& c : cases) {
+    json j = good;
+    const json::json_pointer p(c.pointer);
+    if (c.value.is_null())
+      j[p.parent_pointer()].erase(p.back());
+    else
+      j[p] = c.value;
+    const RecordError e = error_of(j);
+    EXPECT_EQ(e.pointer(), c.pointer);
+    EXPECT_NE(e.problem().find(c.problem), std::string::npos) << c.pointer << ": " << e.what();
+  }
+}
+
+// Read from a run folder, the message names the file, the line and the place.
+TEST(JobRecord, RunFolderReadingNamesFileLineAndPointer) {
+  test::TempDir dir("record_file");
+  const JobRecord r = full_record();
+  json bad = r.to_json();
+  bad["metrics"]["visibility"]["all"]["rmse"] = "low";
+  json newer = r.to_json();
+  newer["schema_version"] = 7;
+  for (const auto& [second, pointer, what] :
+       {std::tuple<json, std::string, std::string>{bad, "/metrics/visibility/all/rmse",
+                                                   "expected a number"},
+        {newer, "/schema_version", "schema_version 7"}}) {
+    std::ofstream(dir.file("results.jsonl")) << r.to_json().dump() << "\n" << second.dump() << "\n";
+    try {
+      read_job_records(dir.path().string());
+      FAIL() << "expected an InputError";
+    } catch (const InputError& e) {
+      const std::string msg = e.what();
+      EXPECT_EQ(e.file(), dir.file("results.jsonl"));
+      EXPECT_NE(e.where().find("line 2"), std::string::npos) << msg;
+      EXPECT_NE(e.where().find(pointer), std::string::npos) << msg;
+      EXPECT_NE(msg.find(what), std::string::npos) << msg;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace sb
