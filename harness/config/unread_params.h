@@ -6,7 +6,7 @@
 // promise an effect that does not exist. Each technique variant is created
 // once, right after the config is loaded, on a fresh copy of its Params, and
 // the parameters no get_*() read are reported. No GL context is needed: no
-// technique's constructor touches GL (core/technique.h).
+// technique's constructor touches GL (plugin/technique.h).
 #include <string>
 #include <vector>
 

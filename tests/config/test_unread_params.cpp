@@ -10,7 +10,7 @@
 
 #include "cli_runner.h"
 #include "config/unread_params.h"
-#include "core/registry.h"
+#include "plugin/registry.h"
 
 namespace sb::test {
 namespace {

@@ -4,7 +4,7 @@
 #include <array>
 #include <memory>
 
-#include "core/registry.h"
+#include "plugin/registry.h"
 
 namespace {
 
