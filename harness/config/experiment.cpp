@@ -305,6 +305,42 @@ std::vector<json> expand_sweeps(const json& params, const std::string& file,
   return out;
 }
 
+// The variants of one technique entry: a name, or {"name", "params", "label"}
+// whose list-valued params sweep.
+std::vector<TechniqueVariant> technique_variants(const Reader& r, const Registry& registry,
+                                                 const json& given_entry, const std::string& p,
+                                                 const std::string& file) {
+  json entry = given_entry;
+  if (entry.is_string()) entry = json{{"name", entry}};
+  r.object(entry, p, "a technique (a name or an object)");
+  r.only_keys(entry, p, {"name", "params", "label"});
+  if (!entry.contains("name")) r.fail(p + "/name", "expected a technique name, found nothing");
+  const std::string name = r.string(entry["name"], p + "/name");
+  const TechniqueInfo* info = registry.find(name);
+  if (info == nullptr) {
+    std::string known;
+    for (const auto& t : registry.all()) (known += known.empty() ? "" : ", ") += t.name;
+    r.fail(p + (given_entry.is_string() ? "" : "/name"),
+           ((("unknown technique \"" + name) += "\" (registered: ") += known) += ")");
+  }
+  const std::string label = entry.contains("label") ? r.label(entry["label"], p + "/label") : name;
+  const json params = entry.value("params", json::object());
+  std::vector<TechniqueVariant> out;
+  for (const json& combo : expand_sweeps(params, file, p + "/params")) {
+    TechniqueVariant v;
+    v.info = info;
+    v.pointer = p;
+    v.params = resolve_params(info->params, combo, file, p + "/params");
+    if (info->check) {
+      const auto [param, problem] = info->check(v.params);
+      if (!problem.empty()) r.fail(p + "/params/" += param, problem);
+    }
+    v.name = variant_name(label, info->params, combo);
+    out.push_back(std::move(v));
+  }
+  return out;
+}
+
 Experiment parse_experiment(const json& doc, const std::string& file, const Registry& registry,
                             const ExperimentLimits& limits) {
   Reader r(file);
@@ -393,32 +429,7 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
   names.clear();
   for (size_t i = 0; i < techniques.size(); ++i) {
     const std::string p = "/techniques/" + std::to_string(i);
-    json entry = techniques[i];
-    if (entry.is_string()) entry = json{{"name", entry}};
-    r.object(entry, p, "a technique (a name or an object)");
-    r.only_keys(entry, p, {"name", "params", "label"});
-    if (!entry.contains("name")) r.fail(p + "/name", "expected a technique name, found nothing");
-    const std::string name = r.string(entry["name"], p + "/name");
-    const TechniqueInfo* info = registry.find(name);
-    if (info == nullptr) {
-      std::string known;
-      for (const auto& t : registry.all()) (known += known.empty() ? "" : ", ") += t.name;
-      r.fail(p + (techniques[i].is_string() ? "" : "/name"),
-             ((("unknown technique \"" + name) += "\" (registered: ") += known) += ")");
-    }
-    const std::string label =
-        entry.contains("label") ? r.label(entry["label"], p + "/label") : name;
-    const json given = entry.value("params", json::object());
-    for (const json& combo : expand_sweeps(given, file, p + "/params")) {
-      TechniqueVariant v;
-      v.info = info;
-      v.pointer = p;
-      v.params = resolve_params(info->params, combo, file, p + "/params");
-      if (info->check) {
-        const auto [param, problem] = info->check(v.params);
-        if (!problem.empty()) r.fail(p + "/params/" += param, problem);
-      }
-      v.name = variant_name(label, info->params, combo);
+    for (TechniqueVariant& v : technique_variants(r, registry, techniques[i], p, file)) {
       if (!names.insert(v.name).second)
         r.fail(p, "technique variant \"" + v.name +
                       "\" appears twice; give entries distinct \"label\"s");
@@ -454,9 +465,23 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
 
   if (doc.contains("frames")) {
     const json& f = r.object(doc["frames"], "/frames", "frame counts");
-    r.only_keys(f, "/frames", {"warmup", "timed"});
+    r.only_keys(f, "/frames", {"warmup", "timed", "control"});
     if (f.contains("warmup")) e.warmup_frames = r.integer(f["warmup"], "/frames/warmup", 0, 100000);
     if (f.contains("timed")) e.timed_frames = r.integer(f["timed"], "/frames/timed", 1, 100000);
+  }
+  // The control: "none" unless the config names another, or null for none.
+  const json* control = doc.contains("frames") && doc["frames"].contains("control")
+                            ? &doc["frames"]["control"]
+                            : nullptr;
+  if (control == nullptr && registry.find(kDefaultControl) != nullptr)
+    e.control =
+        technique_variants(r, registry, json(kDefaultControl), "/frames/control", file).front();
+  else if (control != nullptr && !control->is_null()) {
+    auto variants = technique_variants(r, registry, *control, "/frames/control", file);
+    if (variants.size() != 1)
+      r.fail("/frames/control/params",
+             "expected one control variant, found a sweep of " + std::to_string(variants.size()));
+    e.control = std::move(variants.front());
   }
   if (doc.contains("reference")) {
     const json& ref = r.object(doc["reference"], "/reference", "reference settings");

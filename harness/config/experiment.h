@@ -4,6 +4,7 @@
 // one variant with a readable name.
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,9 @@ struct ReferenceConfig {
   std::string embree_config;  // "" (environment or best ISA), "isa=avx2", "max_isa=avx2"
 };
 
+// The G-buffer and shading alone: what every frame pays whatever the technique.
+inline constexpr const char* kDefaultControl = "none";
+
 struct Experiment {
   std::string file;  // as given on the command line
   std::string name;
@@ -56,6 +60,11 @@ struct Experiment {
   std::vector<Resolution> resolutions;
   int warmup_frames = 2;
   int timed_frames = 10;
+  // The control job (frames.control): timed next to every job's frames, in
+  // the same run, so that a job's time is also known as a ratio to it
+  // (record timing.control, docs/ci.md). Absent with "control": null; by
+  // default kDefaultControl with its default parameters.
+  std::optional<TechniqueVariant> control;
   ReferenceConfig reference;
   std::string content_hash;  // of the file's bytes
   // The registry the techniques came from: the planner finds the providers

@@ -51,6 +51,56 @@ TimingSeries TimingSeries::from_json(const Fields& f) {
   return t;
 }
 
+RatioSeries RatioSeries::of(const std::vector<double>& samples) {
+  const TimingStats s = summarize(samples);
+  RatioSeries r;
+  r.count = static_cast<std::int64_t>(s.count);
+  r.median = s.median;
+  r.p10 = s.p10;
+  r.p90 = s.p90;
+  r.mean = s.mean;
+  r.min = s.min;
+  r.max = s.max;
+  r.cv = s.cv;
+  r.samples = samples;
+  return r;
+}
+
+json RatioSeries::to_json() const {
+  json out = json::array();
+  for (const double v : samples) out.push_back(json_number(v));
+  return {{"count", count},          {"median", json_number(median)}, {"p10", json_number(p10)},
+          {"p90", json_number(p90)}, {"mean", json_number(mean)},     {"min", json_number(min)},
+          {"max", json_number(max)}, {"cv", json_number(cv)},         {"samples", std::move(out)}};
+}
+
+RatioSeries RatioSeries::from_json(const Fields& f) {
+  RatioSeries r;
+  r.count = f.get<std::int64_t>("count");
+  r.median = f.get<double>("median");
+  r.p10 = f.get<double>("p10");
+  r.p90 = f.get<double>("p90");
+  r.mean = f.get<double>("mean");
+  r.min = f.get<double>("min");
+  r.max = f.get<double>("max");
+  r.cv = f.get<double>("cv");
+  r.samples = f.get<std::vector<double>>("samples");
+  return r;
+}
+
+json ControlTiming::to_json() const {
+  return {
+      {"technique", technique}, {"frame", frame.to_json()}, {"frame_ratio", frame_ratio.to_json()}};
+}
+
+ControlTiming ControlTiming::from_json(const Fields& f) {
+  ControlTiming c;
+  c.technique = f.get<std::string>("technique");
+  c.frame = TimingSeries::from_json(f.object("frame"));
+  c.frame_ratio = RatioSeries::from_json(f.object("frame_ratio"));
+  return c;
+}
+
 namespace {
 
 json series_map(const std::map<std::string, TimingSeries>& m) {
@@ -79,6 +129,7 @@ json TimingRecord::to_json() const {
                  {"technique", fine->technique.to_json()},
                  {"frame", fine->frame.to_json()}};
   }
+  if (control) t["control"] = control->to_json();
   return t;
 }
 
@@ -109,6 +160,15 @@ TimingRecord TimingRecord::from_json(const Fields& f) {
     fine.technique = TimingSeries::from_json(detail.object("technique"));
     fine.frame = TimingSeries::from_json(detail.object("frame"));
     t.fine = std::move(fine);
+  }
+  if (const auto control = f.find_object("control")) {
+    t.control = ControlTiming::from_json(*control);
+    // Frame i of the control was timed next to frame i of the job.
+    if (t.control->frame.samples_ms.size() != t.frame.samples_ms.size())
+      throw RecordError(control->object("frame").pointer_of("samples_ms"),
+                        "has " + std::to_string(t.control->frame.samples_ms.size()) +
+                            " samples, timing.frame has " +
+                            std::to_string(t.frame.samples_ms.size()) + ": they come in pairs");
   }
   return t;
 }
