@@ -10,15 +10,20 @@
 //                             [--benchmark-out FILE] [--bencher-out FILE]
 //   shadowbench compare BASE_DIR NEW_DIR [--alpha A] [--time-threshold R]
 //                       [--error-threshold E] [--metric PATH] [--timing frame|technique]
+//   shadowbench compare-builds --base BIN_A --new BIN_B CONFIG [--out DIR]
+//                       [--turn-block N] [compare's options]
 //   shadowbench scene export SCENE-SPEC OUT.glb
 //   shadowbench scene info FILE.glb|FILE.gltf|SCENE-SPEC
 // Exit codes: 0 all jobs ok or skipped, 1 some job failed, 2 bad input
 // (config, arguments), 3 environment (no GL context, missing plugins),
 // 4 (compare) a significant regression over threshold.
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +43,7 @@
 #include "results/report.h"
 #include "results/store.h"
 #include "run/runner.h"
+#include "run/take_turns.h"
 #include "scenes/gltf_export.h"
 #include "scenes/gltf_import.h"
 #include "scenes/need_providers.h"
@@ -62,6 +68,10 @@ constexpr const char* kUsage =
     "  shadowbench compare BASE_DIR NEW_DIR [--alpha 0.05] [--time-threshold 0.10]\n"
     "                      [--error-threshold 0.005] [--metric visibility.all.rmse]\n"
     "                      [--timing frame|technique]\n"
+    "  shadowbench compare-builds --base BIN_A --new BIN_B CONFIG [--out DIR]\n"
+    "                      [--turn-block 5] [compare's options]\n"
+    "    (runs both builds on CONFIG taking turns, block of frames by block of\n"
+    "     frames, then compares them: the A/B mode for pull requests, docs/ci.md)\n"
     "  shadowbench scene export SCENE-SPEC OUT.glb\n"
     "  shadowbench scene info FILE.glb|FILE.gltf|SCENE-SPEC\n"
     "SCENE-SPEC: sphere_grid:grid=3,light_size=2 or "
@@ -78,6 +88,10 @@ struct Args {
   gl::PassDetail pass_detail = gl::PassDetail::Coarse;  // run
   ExperimentLimits limits;                              // run, validate
   CompareOptions compare;                               // compare
+  std::string base_binary, new_binary;                  // compare-builds
+  std::string take_turns;                               // run: IN_FD,OUT_FD (compare-builds)
+  int turn_block = 5;                                   // run, compare-builds: frames per turn
+  bool turn_block_given = false;
   bool compare_options_given = false;
   bool metric_given = false;
 };
@@ -92,6 +106,14 @@ double parse_number(const std::string& option, const std::string& text) {
   }
   if (used == 0 || used != text.size())
     throw InputError("", option, "expected a number, found '" + text + "'");
+  return v;
+}
+
+// A whole number in [lo, hi], or InputError naming the option.
+double parse_whole(const std::string& option, const std::string& text, double lo, double hi,
+                   const char* what) {
+  const double v = parse_number(option, text);
+  if (!(v >= lo && v <= hi && v == std::floor(v))) throw InputError("", option, what);
   return v;
 }
 
@@ -117,11 +139,19 @@ Args parse_args(int argc, char** argv) {
       a.benchmark_out = value("--benchmark-out");
     else if (s == "--bencher-out")
       a.bencher_out = value("--bencher-out");
-    else if (s == "--max-jobs") {
-      const double v = parse_number(s, value("--max-jobs"));
-      if (!(v >= 1 && v <= 1e12 && v == std::floor(v)))
-        throw InputError("", "--max-jobs", "expected a whole number in [1, 1e12]");
-      a.limits.max_jobs = uint64_t(v);
+    else if (s == "--base")
+      a.base_binary = value("--base");
+    else if (s == "--new")
+      a.new_binary = value("--new");
+    else if (s == "--take-turns")
+      a.take_turns = value("--take-turns");
+    else if (s == "--turn-block") {
+      a.turn_block = int(parse_whole(s, value("--turn-block"), 1, 100000,
+                                     "expected a whole number of frames in [1, 100000]"));
+      a.turn_block_given = true;
+    } else if (s == "--max-jobs") {
+      a.limits.max_jobs = uint64_t(
+          parse_whole(s, value("--max-jobs"), 1, 1e12, "expected a whole number in [1, 1e12]"));
     } else if (s == "--embree-config") {
       a.embree_config = value("--embree-config");
       try {
@@ -322,8 +352,17 @@ int cmd_run(const Args& a) {
   o.quiet = a.quiet;
   o.embree_config = a.embree_config;
   o.pass_detail = a.pass_detail;
+  o.turn_block_frames = a.turn_block;
+  std::optional<TurnTaker> turns;
+  if (!a.take_turns.empty()) {
+    turns = TurnTaker::parse(a.take_turns);
+    o.take_turn = [&turns](const std::string& what) { turns->take(what); };
+  }
   RunSummary s;
   try {
+    // In an interleaved A/B run nothing, not even the scene's set-up,
+    // overlaps the other build's turn.
+    if (turns) turns->take("start");
     s = run_experiment(e, o);
   } catch (const InputError&) {
     throw;
@@ -400,6 +439,60 @@ int cmd_compare(const Args& a) {
   return kExitOk;
 }
 
+// Both builds run CONFIG taking turns (run/take_turns.h), each into its own
+// folder under --out, then the two are compared as `compare` does.
+int cmd_compare_builds(const Args& a) {
+  if (a.base_binary.empty() || a.new_binary.empty())
+    throw InputError("", "command line",
+                     "compare-builds needs --base BIN_A and --new BIN_B\n" + std::string(kUsage));
+  const std::string config = one_config(a);
+  for (const std::string* bin : {&a.base_binary, &a.new_binary})
+    if (::access(bin->c_str(), X_OK) != 0)
+      throw InputError(*bin, "", "not an executable shadowbench binary");
+  if (!std::filesystem::is_regular_file(config)) throw InputError(config, "", "no such config");
+  check_options(a.compare);
+  const std::string out = a.out.empty() ? "results/" + default_run_id("compare-builds") : a.out;
+  const std::string dirs[2] = {out + "/base", out + "/new"};
+  TurnCommand commands[2];
+  for (int i = 0; i < 2; ++i) {
+    TurnCommand& c = commands[i];
+    c.label = i == 0 ? "base" : "new";
+    c.argv = {i == 0 ? a.base_binary : a.new_binary,
+              "run",
+              config,
+              "--out",
+              dirs[i],
+              "--quiet",
+              "--no-images",
+              "--turn-block",
+              std::to_string(a.turn_block),
+              "--backend",
+              a.backend};
+    if (a.no_cache)
+      c.argv.push_back("--no-cache");
+    else
+      c.argv.insert(c.argv.end(), {"--cache-dir", a.cache_dir});
+    if (!a.embree_config.empty()) c.argv.insert(c.argv.end(), {"--embree-config", a.embree_config});
+  }
+  std::printf("compare-builds: base %s, new %s, taking turns every %d timed frames\n",
+              a.base_binary.c_str(), a.new_binary.c_str(), a.turn_block);
+  std::fflush(stdout);
+  const TurnsResult t = take_turns(commands[0], commands[1]);
+  for (int i = 0; i < 2; ++i) {
+    std::printf("%s: %s, %d turns, exit code %d\n", commands[i].label.c_str(), dirs[i].c_str(),
+                t.turns[i], t.exit_code[i]);
+    // 0: every job ok or skipped; 1: some failed, which compare judges.
+    if (t.exit_code[i] != kExitOk && t.exit_code[i] != kExitJobsFailed) {
+      std::fprintf(stderr, "shadowbench: the %s build's run failed (exit code %d)\n",
+                   commands[i].label.c_str(), t.exit_code[i]);
+      return t.exit_code[i] == kExitBadInput ? kExitBadInput : kExitInternal;
+    }
+  }
+  Args compare = a;
+  compare.positional = {dirs[0], dirs[1]};
+  return cmd_compare(compare);
+}
+
 int cmd_scene(const Args& a) {
   const auto& p = a.positional;
   const std::string sub = p.empty() ? "" : p[0];
@@ -430,12 +523,20 @@ int main(int argc, char** argv) {
         a.command != "report")
       throw InputError("", "command line",
                        "--benchmark-out and --bencher-out go with run or report");
-    if (a.compare_options_given && a.command != "compare")
+    if ((!a.base_binary.empty() || !a.new_binary.empty()) && a.command != "compare-builds")
+      throw InputError("", "command line", "--base and --new go with compare-builds");
+    if (!a.take_turns.empty() && a.command != "run")
+      throw InputError("", "command line", "--take-turns goes with run (compare-builds uses it)");
+    if (a.turn_block_given && a.command != "run" && a.command != "compare-builds")
+      throw InputError("", "command line", "--turn-block goes with run or compare-builds");
+    if (a.compare_options_given && a.command != "compare" && a.command != "compare-builds")
       throw InputError("", "command line",
                        "--alpha, --time-threshold, --error-threshold and --timing go with compare");
-    if (a.metric_given && a.command != "compare" && a.command != "report")
+    if (a.metric_given && a.command != "compare" && a.command != "compare-builds" &&
+        a.command != "report")
       throw InputError("", "command line", "--metric goes with compare or report");
     if (a.command == "compare") return cmd_compare(a);
+    if (a.command == "compare-builds") return cmd_compare_builds(a);
     if (a.command == "run") return cmd_run(a);
     if (a.command == "validate") return cmd_validate(a, false);
     if (a.command == "plan") return cmd_validate(a, true);

@@ -29,6 +29,7 @@
 #include "results/run_lock.h"
 #include "results/store.h"
 #include "run/gbuffer.h"
+#include "run/injected_delay.h"
 #include "run/progress.h"
 #include "scenes/need_providers.h"
 #include "scenes/receiver_inference.h"
@@ -223,6 +224,13 @@ std::vector<MeshDrawFlags> draw_flags(const ScenePlan& st) {
   return flags;
 }
 
+// The control job of one (scene, resolution), prepared once: its frames are
+// timed next to every job's.
+struct Control {
+  std::string name;
+  std::unique_ptr<Technique> technique;
+};
+
 class Runner {
  public:
   Runner(const Experiment& e, const RunOptions& o)
@@ -230,7 +238,8 @@ class Runner {
         o_(o),
         lock_(o.run_dir),
         store_(o.run_dir),
-        progress_(stderr, !o.quiet && isatty(fileno(stderr)), 0) {}
+        progress_(stderr, !o.quiet && isatty(fileno(stderr)), 0),
+        injected_delay_(InjectedDelay::from_environment()) {}
 
   RunSummary run() {
     std::vector<std::string> order;
@@ -538,6 +547,8 @@ class Runner {
     }
     const FrameSetup frame{targets, gpu, st.scene, view_projection, in};
     const Baseline baseline{ref, ref_shaded, regions};
+    std::optional<Control> control;
+    if (e_.control) control = prepare_control(*e_.control, frame);
     for (size_t i : pending) {
       const TechniqueVariant& tv = e_.techniques[i];
       progress_.start_job(sv.name, res.label(), tv.name);
@@ -546,7 +557,7 @@ class Runner {
       r.reference = ref_record;
       const auto t0 = std::chrono::steady_clock::now();
       try {
-        run_job(tv, frame, baseline, r);
+        run_job(tv, frame, baseline, control ? &*control : nullptr, r);
         r.images.add(ref_images);
         r.status = JobStatus::Ok;
       } catch (const std::exception& ex) {
@@ -563,13 +574,15 @@ class Runner {
   // One job: prepare the technique, time it, check and measure its V, write
   // its images. Whatever it got to stays in `r` when it throws.
   void run_job(const TechniqueVariant& tv, const FrameSetup& frame, const Baseline& baseline,
-               JobRecord& r) {
+               Control* control, JobRecord& r) {
     gl::take_debug_errors();
     std::unique_ptr<Technique> technique = tv.info->create(tv.params);
     technique->prepare(frame.in);
     gl::throw_if_errors(tv.name + " prepare");
 
-    r.timing = time_frames(*technique, tv.name, frame);
+    r.timing = time_frames(*technique, tv.name, frame, control);
+    if (injected_delay_ && injected_delay_->applies_to(tv.name))
+      r.warnings.push_back(injected_delay_->describe());
 
     ImageF visibility = frame.targets.read_visibility();
     const VisibilityCheckRecord check = check_visibility(visibility);
@@ -587,54 +600,105 @@ class Runner {
                      " above 1 (tolerance 1e-5)");
   }
 
-  // The compile frame, the warm-up and the timed frames, and with
-  // --pass-timing fine as many frames again with each pass its own bracket.
-  TimingRecord time_frames(Technique& technique, const std::string& name,
-                           const FrameSetup& f) const {
+  // The control, prepared and its shaders compiled before any job's frame.
+  // A control that fails fails the (scene, resolution)'s jobs: their times
+  // would have nothing to be relative to.
+  Control prepare_control(const TechniqueVariant& tv, const FrameSetup& f) const {
+    Control c{tv.name, tv.info->create(tv.params)};
+    gl::take_debug_errors();
+    c.technique->prepare(f.in);
+    gl::throw_if_errors("control " + tv.name + " prepare");
     gl::PassTimer timer(timing_source_);
-    // One frame: the G-buffer, the technique and shading, each in one
-    // harness bracket. In fine detail the technique's own passes are the
-    // brackets instead, and the sum of their times is what it pays for them.
-    const auto run_frame = [&](const std::string& frame_name, gl::PassDetail detail) {
-      timer.set_detail(detail);
-      reset_gl_state();
-      timer.begin_frame();
-      {
-        auto p = timer.bracket("shared:gbuffer");
-        f.targets.render_gbuffer(f.gpu, f.view_projection);
+    run_frame(timer, *c.technique, "control " + tv.name + " compile frame", gl::PassDetail::Coarse,
+              f, nullptr);
+    reset_gl_state();
+    return c;
+  }
+
+  // One frame: the G-buffer, the technique and shading, each in one harness
+  // bracket. In fine detail the technique's own passes are the brackets
+  // instead, and the sum of their times is what it pays for them.
+  gl::PassTimer::Frame run_frame(gl::PassTimer& timer, Technique& technique,
+                                 const std::string& frame_name, gl::PassDetail detail,
+                                 const FrameSetup& f, const InjectedDelay* delay) const {
+    timer.set_detail(detail);
+    reset_gl_state();
+    timer.begin_frame();
+    {
+      auto p = timer.bracket("shared:gbuffer");
+      f.targets.render_gbuffer(f.gpu, f.view_projection);
+    }
+    reset_gl_state();
+    if (detail == gl::PassDetail::Coarse) {
+      auto p = timer.bracket("technique");
+      technique.render(f.in, timer);
+      if (delay != nullptr) delay->wait();
+    } else {
+      technique.render(f.in, timer);
+      if (delay != nullptr) {
+        auto p = timer.bracket("injected delay");
+        delay->wait();
       }
-      reset_gl_state();
-      if (detail == gl::PassDetail::Coarse) {
-        auto p = timer.bracket("technique");
-        technique.render(f.in, timer);
-      } else {
-        technique.render(f.in, timer);
-      }
-      gl::throw_if_errors(name + " " + frame_name);
-      reset_gl_state();
-      {
-        auto p = timer.bracket("shared:shading");
-        f.targets.render_shading(f.scene);
-      }
-      auto frame = timer.end_frame();
-      gl::throw_if_errors(name + " " + frame_name);
-      return frame;
-    };
+    }
+    gl::throw_if_errors(frame_name);
+    reset_gl_state();
+    {
+      auto p = timer.bracket("shared:shading");
+      f.targets.render_shading(f.scene);
+    }
+    auto frame = timer.end_frame();
+    gl::throw_if_errors(frame_name);
+    return frame;
+  }
+
+  // The compile frame, the warm-up and the timed frames, each next to a
+  // control frame (in ABBA order: job-control, control-job, ...), and with
+  // --pass-timing fine as many frames again with each pass its own bracket.
+  TimingRecord time_frames(Technique& technique, const std::string& name, const FrameSetup& f,
+                           Control* control) const {
+    gl::PassTimer timer(timing_source_);
+    const InjectedDelay* delay =
+        injected_delay_ && injected_delay_->applies_to(name) ? &*injected_delay_ : nullptr;
     FrameSamples coarse, fine;
+    std::vector<double> control_ms;
+    const auto frame_name = [&](int i) {
+      return name + (i < 0 ? std::string(" compile frame") : " frame " + std::to_string(i));
+    };
+    const auto control_frame = [&](int i) {
+      return run_frame(timer, *control->technique,
+                       "control " + control->name + " next to " + frame_name(i),
+                       gl::PassDetail::Coarse, f, nullptr);
+    };
     const int frames = e_.warmup_frames + e_.timed_frames;
     // Frame -1 is never timed, whatever the warm-up count: shader compilation
     // and the driver's first-use work must not land in a timed frame (with
     // "warmup": 0 they would, and only for the techniques compiled last).
     for (int i = -1; i < frames; ++i) {
+      const bool timed = i >= e_.warmup_frames;
+      // Interleaved A/B runs (compare-builds) take turns between blocks.
+      if (timed && o_.take_turn && (i - e_.warmup_frames) % o_.turn_block_frames == 0)
+        o_.take_turn(name);
+      const bool control_first = control != nullptr && i >= 0 && i % 2 == 1;
+      gl::PassTimer::Frame before{}, after{};
+      if (control_first) before = control_frame(i);
       const auto frame =
-          run_frame(i < 0 ? "compile frame" : "frame " + std::to_string(i), gl::PassDetail::Coarse);
-      if (i >= e_.warmup_frames) coarse.add(frame);
+          run_frame(timer, technique, frame_name(i), gl::PassDetail::Coarse, f, delay);
+      if (control != nullptr && i >= 0 && !control_first) after = control_frame(i);
+      if (!timed) continue;
+      coarse.add(frame);
+      if (control != nullptr) control_ms.push_back((control_first ? before : after).total_ms);
     }
+    // The visibility that run_job reads must be the job's: when a control
+    // frame came last, one more untimed frame of the job.
+    if (control != nullptr && o_.pass_detail != gl::PassDetail::Fine && frames > 0 &&
+        (frames - 1) % 2 == 0)
+      run_frame(timer, technique, name + " readback frame", gl::PassDetail::Coarse, f, delay);
     // Per-pass detail in frames of its own, so its syncs never reach the
     // technique's time above.
     if (o_.pass_detail == gl::PassDetail::Fine)
       for (int i = 0; i < e_.timed_frames; ++i)
-        fine.add(run_frame("fine frame " + std::to_string(i), gl::PassDetail::Fine));
+        fine.add(run_frame(timer, technique, name + " fine frame " + std::to_string(i),
+                           gl::PassDetail::Fine, f, delay));
 
     // Statistics plus the raw per-frame samples, in frame order: comparisons
     // between runs test the samples themselves (shadowbench compare).
@@ -656,6 +720,15 @@ class Runner {
       detail.technique = TimingSeries::of(fine.technique);
       detail.frame = TimingSeries::of(fine.frame);
       t.fine = std::move(detail);
+    }
+    if (control != nullptr) {
+      ControlTiming c;
+      c.technique = control->name;
+      c.frame = TimingSeries::of(control_ms);
+      std::vector<double> ratio(control_ms.size());
+      for (size_t k = 0; k < ratio.size(); ++k) ratio[k] = coarse.frame[k] / control_ms[k];
+      c.frame_ratio = RatioSeries::of(ratio);
+      t.control = std::move(c);
     }
     return t;
   }
@@ -692,6 +765,8 @@ class Runner {
   size_t total_ = 0;
   size_t done_ = 0;
   mutable Progress progress_;  // drawn around log lines, which are const
+  // SHADOWBENCH_INJECT_DELAY: a known slowdown, to measure the CI gate.
+  std::optional<InjectedDelay> injected_delay_;
 };
 
 }  // namespace

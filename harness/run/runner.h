@@ -26,6 +26,11 @@ struct RunOptions {
   // Coarse: one timing bracket around each technique. Fine: also time each
   // of its passes, in extra frames that never enter the technique's time.
   gl::PassDetail pass_detail = gl::PassDetail::Coarse;
+  // Interleaved A/B runs (`compare-builds`, run/take_turns.h): called with
+  // the technique variant's name before every block of this many timed
+  // frames; it returns when this run may go on. Empty: never waits.
+  std::function<void(const std::string& technique_variant)> take_turn;
+  int turn_block_frames = 5;
 };
 
 struct RunSummary {

@@ -133,6 +133,12 @@ const BadCase kBadCases[] = {
     {"bad_frames",
      R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "frames": {"timed": 0}})",
      "/frames/timed", "expected an integer in [1, 100000], found 0"},
+    {"swept_control",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "frames": {"control": {"name": "pcf_box", "params": {"k": [3, 5]}}}})",
+     "/frames/control/params", "expected one control variant, found a sweep of 2"},
+    {"unknown_control",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "frames": {"control": "nothing"}})",
+     "/frames/control", "unknown technique \"nothing\""},
     {"bad_spp",
      R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "reference": {"spp": 0}})",
      "/reference/spp", "expected an integer in [1, 1048576], found 0"},
@@ -225,6 +231,28 @@ TEST_P(BadConfig, NamesFilePointerAndExpectation) {
 
 INSTANTIATE_TEST_SUITE_P(Config, BadConfig, ::testing::ValuesIn(kBadCases),
                          [](const auto& param_info) { return std::string(param_info.param.name); });
+
+TEST(Config, TheControlIsNoneUnlessTheConfigNamesAnotherOrNull) {
+  const std::string base =
+      R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["pcf_box"], "resolutions": [[8, 8]])";
+  const Experiment by_default =
+      load_experiment(write_temp("control_default.json", base + "}"), registry());
+  ASSERT_TRUE(by_default.control.has_value());
+  EXPECT_EQ(by_default.control->name, "none");
+  EXPECT_EQ(by_default.control->info->name, "none");
+
+  const Experiment other = load_experiment(
+      write_temp("control_other.json",
+                 base + R"(, "frames": {"control": {"name": "pcf_box", "params": {"k": 5}}}})"),
+      registry());
+  ASSERT_TRUE(other.control.has_value());
+  EXPECT_EQ(other.control->name, "pcf_box/k=5");
+  EXPECT_EQ(other.control->params.get_int("k"), 5);
+
+  const Experiment off = load_experiment(
+      write_temp("control_null.json", base + R"(, "frames": {"control": null}})"), registry());
+  EXPECT_FALSE(off.control.has_value());
+}
 
 TEST(Config, MissingFileIsAnInputError) {
   EXPECT_THROW(load_experiment("/nonexistent/quick.json", registry()), InputError);

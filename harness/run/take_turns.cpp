@@ -1,0 +1,177 @@
+#include "run/take_turns.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <optional>
+#include <stdexcept>
+
+#include "core/error.h"
+
+namespace sb {
+namespace {
+
+bool write_all(int fd, const std::string& text) {
+  size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += size_t(n);
+  }
+  return true;
+}
+
+// One line without its '\n'; nullopt at end of file before a full line.
+std::optional<std::string> read_line(int fd) {
+  std::string line;
+  char c = 0;
+  for (;;) {
+    const ssize_t n = ::read(fd, &c, 1);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return std::nullopt;
+    if (c == '\n') return line;
+    if (line.size() > 4096) return std::nullopt;  // no such line in this protocol
+    line += c;
+  }
+}
+
+int parse_fd(const std::string& text, const std::string& all) {
+  char* end = nullptr;
+  const long v = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || v < 0 || v > 65535)
+    throw InputError("", "--take-turns",
+                     "expected IN_FD,OUT_FD (two file descriptors), found '" + all + "'");
+  return int(v);
+}
+
+// A started command: its pid and our ends of its two pipes.
+struct Child {
+  pid_t pid = -1;
+  int to = -1, from = -1;
+  bool running = false;
+  int exit_code = 0;
+};
+
+int wait_exit_code(pid_t pid) {
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
+  return 1;
+}
+
+Child start(const TurnCommand& c) {
+  if (c.argv.empty()) throw std::runtime_error(c.label + ": no command");
+  std::array<int, 2> to{}, from{};
+  if (::pipe2(to.data(), O_CLOEXEC) != 0 || ::pipe2(from.data(), O_CLOEXEC) != 0)
+    throw std::runtime_error(c.label + ": pipe: " + std::strerror(errno));
+  std::vector<std::string> args = c.argv;
+  args.push_back("--take-turns");
+  args.push_back(std::to_string(to[0]) + "," + std::to_string(from[1]));
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error(c.label + ": fork: " + std::strerror(errno));
+  if (pid == 0) {
+    // Only the child's own two ends survive exec (every end is O_CLOEXEC,
+    // so neither build ever holds the other's pipes open).
+    ::fcntl(to[0], F_SETFD, 0);
+    ::fcntl(from[1], F_SETFD, 0);
+    ::execv(argv[0], argv.data());
+    std::fprintf(stderr, "shadowbench: %s: cannot run %s: %s\n", c.label.c_str(), argv[0],
+                 std::strerror(errno));
+    ::_exit(127);
+  }
+  ::close(to[0]);
+  ::close(from[1]);
+  return {pid, to[1], from[0], true, 0};
+}
+
+void finish(Child& c) {
+  c.running = false;
+  ::close(c.to);
+  ::close(c.from);
+  c.exit_code = wait_exit_code(c.pid);
+}
+
+// Waits for the child's next "ready"; on end of file it has exited.
+void await_ready(Child& c, const std::string& label) {
+  const auto line = read_line(c.from);
+  if (!line) return finish(c);
+  if (line->rfind("ready", 0) != 0)
+    throw std::runtime_error(label + " broke the turn protocol: it wrote \"" + *line + "\"");
+}
+
+}  // namespace
+
+TurnTaker TurnTaker::parse(const std::string& fds) {
+  const size_t comma = fds.find(',');
+  if (comma == std::string::npos)
+    throw InputError("", "--take-turns",
+                     "expected IN_FD,OUT_FD (two file descriptors), found '" + fds + "'");
+  return {parse_fd(fds.substr(0, comma), fds), parse_fd(fds.substr(comma + 1), fds)};
+}
+
+void TurnTaker::take(const std::string& what) const {
+  std::string line = "ready " + what;
+  for (char& c : line)
+    if (c == '\n') c = ' ';
+  if (!write_all(out_, line + "\n"))
+    throw std::runtime_error("the driver of --take-turns went away (write failed)");
+  const auto reply = read_line(in_);
+  if (!reply) throw std::runtime_error("the driver of --take-turns went away");
+  if (*reply != "go")
+    throw std::runtime_error("--take-turns: expected \"go\" from the driver, read \"" + *reply +
+                             "\"");
+}
+
+TurnsResult take_turns(const TurnCommand& a, const TurnCommand& b) {
+  // A child that exits while we write "go" must not kill the driver.
+  struct sigaction ignore {};
+  struct sigaction old {};
+  ignore.sa_handler = SIG_IGN;
+  ::sigaction(SIGPIPE, &ignore, &old);
+  const TurnCommand* commands[2] = {&a, &b};
+  std::array<Child, 2> children;
+  TurnsResult result;
+  try {
+    for (int i = 0; i < 2; ++i) children[size_t(i)] = start(*commands[i]);
+    // Each run says "ready" before it does anything at all.
+    for (int i = 0; i < 2; ++i) await_ready(children[size_t(i)], commands[i]->label);
+    for (long k = 0; children[0].running || children[1].running; ++k) {
+      // ABBA: turns 0 and 3 of every four go to A.
+      int i = (k % 4 == 0 || k % 4 == 3) ? 0 : 1;
+      if (!children[size_t(i)].running) i = 1 - i;
+      Child& c = children[size_t(i)];
+      if (!write_all(c.to, "go\n")) {
+        finish(c);
+        continue;
+      }
+      ++result.turns[i];
+      await_ready(c, commands[i]->label);
+    }
+  } catch (...) {
+    for (Child& c : children)
+      if (c.running) {
+        ::kill(c.pid, SIGKILL);
+        finish(c);
+      }
+    ::sigaction(SIGPIPE, &old, nullptr);
+    throw;
+  }
+  ::sigaction(SIGPIPE, &old, nullptr);
+  for (int i = 0; i < 2; ++i) result.exit_code[i] = children[size_t(i)].exit_code;
+  return result;
+}
+
+}  // namespace sb
