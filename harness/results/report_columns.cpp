@@ -20,6 +20,12 @@ std::optional<double> median_ms(const JobRecord& r) {
   return (*r.timing.*Series).median_ms;
 }
 
+// The median of the job's frame time over the control's next to it.
+std::optional<double> ratio_to_control(const JobRecord& r) {
+  if (!r.timing || !r.timing->control) return std::nullopt;
+  return r.timing->control->frame_ratio.median;
+}
+
 std::vector<ReportColumn> make_columns() {
   using I = ImageMetrics;
   using S = RegionStats;
@@ -47,6 +53,7 @@ std::vector<ReportColumn> make_columns() {
       text("status", [](const JobRecord& r) { return std::string(to_string(r.status)); }),
       number("frame_ms", median_ms<&TimingRecord::frame>, "%.3f"),
       number("technique_ms", median_ms<&TimingRecord::technique>, "%.3f"),
+      number("x_control", ratio_to_control, "%.3f"),
       number("rmse", visibility<&I::all, &S::rmse>, "%.5f"),
       number("mae", visibility<&I::all, &S::mae>, "%.5f"),
       number("max_error", visibility<&I::all, &S::max_error>, "%.4f"),

@@ -105,7 +105,8 @@ TEST(report_html, TableCellsAreTheCsvCellsAndSortable) {
   for (const auto& th : test::between(first_head, "<th", "</th>"))
     headers += th.substr(th.find('>') + 1) + ",";
   EXPECT_EQ(headers,
-            "technique,status,frame_ms,technique_ms,rmse,mae,max_error,psnr,ssim,frac_over_0.05,"
+            "technique,status,frame_ms,technique_ms,x_control,rmse,mae,max_error,psnr,ssim,"
+            "frac_over_0.05,"
             "penumbra_rmse,reason,");
   // Numbers formatted as in results.csv ("inf" for an infinite PSNR).
   const std::string csv = make_csv(run.records);
