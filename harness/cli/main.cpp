@@ -9,12 +9,14 @@
 //   shadowbench report RUN_DIR [--out DIR] [--metric PATH]
 //                             [--benchmark-out FILE] [--bencher-out FILE]
 //   shadowbench compare BASE_DIR NEW_DIR [--alpha A] [--time-threshold R]
-//                       [--error-threshold E] [--metric PATH] [--timing frame|technique]
+//                       [--error-threshold E] [--metric PATH]
+//                       [--timing frame|technique|none] [--normalize none|control]
 //   shadowbench scene export SCENE-SPEC OUT.glb
 //   shadowbench scene info FILE.glb|FILE.gltf|SCENE-SPEC
 // Exit codes: 0 all jobs ok or skipped, 1 some job failed, 2 bad input
 // (config, arguments), 3 environment (no GL context, missing plugins),
-// 4 (compare) a significant regression over threshold.
+// 4 (compare) a significant regression over threshold; compare exits 2 too
+// when it could not compare some job's time (other hosts, no control).
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -61,7 +63,7 @@ constexpr const char* kUsage =
     "   and --bencher-out FILE (Bencher Metric Format JSON))\n"
     "  shadowbench compare BASE_DIR NEW_DIR [--alpha 0.05] [--time-threshold 0.10]\n"
     "                      [--error-threshold 0.005] [--metric visibility.all.rmse]\n"
-    "                      [--timing frame|technique]\n"
+    "                      [--timing frame|technique|none] [--normalize none|control]\n"
     "  shadowbench scene export SCENE-SPEC OUT.glb\n"
     "  shadowbench scene info FILE.glb|FILE.gltf|SCENE-SPEC\n"
     "SCENE-SPEC: sphere_grid:grid=3,light_size=2 or "
@@ -146,6 +148,9 @@ Args parse_args(int argc, char** argv) {
       a.metric_given = true;
     } else if (s == "--timing") {
       a.compare.timing = value("--timing");
+      a.compare_options_given = true;
+    } else if (s == "--normalize") {
+      a.compare.normalize = value("--normalize");
       a.compare_options_given = true;
     } else if (s == "--no-cache")
       a.no_cache = true;
@@ -393,11 +398,13 @@ int cmd_compare(const Args& a) {
   std::printf("BASE %s\nNEW  %s\n", describe(runs[0], a.positional[0]).c_str(),
               describe(runs[1], a.positional[1]).c_str());
   std::printf("%s", format_comparison(r, a.compare).c_str());
-  if (r.regressions > 0) {
-    std::fprintf(stderr, "shadowbench: %d job(s) regressed\n", r.regressions);
-    return kExitRegression;
-  }
-  return kExitOk;
+  if (r.regressions > 0) std::fprintf(stderr, "shadowbench: %d job(s) regressed\n", r.regressions);
+  if (r.time_refused > 0)
+    std::fprintf(stderr,
+                 "shadowbench: the time of %d job(s) was not compared (other hosts, or no "
+                 "control timing): use --normalize control, or --timing none for errors only\n",
+                 r.time_refused);
+  return compare_exit_code(r);
 }
 
 int cmd_scene(const Args& a) {
@@ -432,7 +439,8 @@ int main(int argc, char** argv) {
                        "--benchmark-out and --bencher-out go with run or report");
     if (a.compare_options_given && a.command != "compare")
       throw InputError("", "command line",
-                       "--alpha, --time-threshold, --error-threshold and --timing go with compare");
+                       "--alpha, --time-threshold, --error-threshold, --timing and --normalize go "
+                       "with compare");
     if (a.metric_given && a.command != "compare" && a.command != "report")
       throw InputError("", "command line", "--metric goes with compare or report");
     if (a.command == "compare") return cmd_compare(a);
