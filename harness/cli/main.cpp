@@ -400,10 +400,11 @@ int cmd_compare(const Args& a) {
   std::printf("%s", format_comparison(r, a.compare).c_str());
   if (r.regressions > 0) std::fprintf(stderr, "shadowbench: %d job(s) regressed\n", r.regressions);
   if (r.time_refused > 0)
-    std::fprintf(stderr,
-                 "shadowbench: the time of %d job(s) was not compared (other hosts, or no "
-                 "control timing): use --normalize control, or --timing none for errors only\n",
-                 r.time_refused);
+    std::fprintf(
+        stderr,
+        "shadowbench: the time of %d job(s) was not compared (other or unknown hosts, or no "
+        "control timing): use --normalize control, or --timing none for errors only\n",
+        r.time_refused);
   return compare_exit_code(r);
 }
 

@@ -89,8 +89,9 @@ std::string fingerprint_of(std::string_view what,
   return h.hex();
 }
 
+// A value as JSON text; "" (unset, unknown) as (none).
 std::string quoted(const std::string& s) {
-  return json(s).dump(-1, ' ', false, json::error_handler_t::replace);
+  return s.empty() ? "(none)" : json(s).dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
 }  // namespace

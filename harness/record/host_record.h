@@ -96,7 +96,8 @@ std::vector<std::pair<std::string, std::string>> build_fingerprint_fields(const 
 std::string build_fingerprint(const BuildRecord& b);
 
 // The fields of two field lists whose values differ, as
-// `cpu.model: "AMD EPYC 7B13" vs "Intel Xeon Platinum 8481C"`.
+// `cpu.model: "AMD EPYC 7B13" vs "Intel Xeon Platinum 8481C"` (an empty
+// value, unset or unknown, as `(none)`).
 std::vector<std::string> field_differences(
     const std::vector<std::pair<std::string, std::string>>& a,
     const std::vector<std::pair<std::string, std::string>>& b);

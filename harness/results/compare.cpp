@@ -189,7 +189,8 @@ std::string format_hosts(const CompareResult& r, const CompareOptions& o) {
       s += "  times are compared as ratios to the control job, measured on each host "
            "(--normalize control); error metrics are compared whatever the host.\n";
     else
-      s += "  absolute times from different hosts do not compare: those jobs' time is not "
+      s += "  absolute times from different (or unknown) hosts do not compare: those jobs' time is "
+           "not "
            "compared, and compare exits 2 unless something regressed (4).\n"
            "  error metrics are compared whatever the host. To compare times, use "
            "--normalize control (ratios to the control job); for errors only, --timing none.\n";

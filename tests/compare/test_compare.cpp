@@ -363,7 +363,7 @@ TEST(CompareHosts, ADifferentBuildIsShownNotRefused) {
   EXPECT_EQ(r.jobs[0].time, Verdict::kRegression);
   const std::string t = sb::format_comparison(r, CompareOptions{});
   EXPECT_TRUE(has(t, "build: differs (shown, not refused)")) << t;
-  EXPECT_TRUE(has(t, "compiler: \"\" vs \"Clang 16.0.6\"")) << t;
+  EXPECT_TRUE(has(t, "compiler: (none) vs \"Clang 16.0.6\"")) << t;
 }
 
 TEST(CompareHosts, UnknownNormalizeOrTimingIsBadInput) {

@@ -142,6 +142,12 @@ TEST(HostRecord, DifferencesNameTheFields) {
       host_fingerprint_fields(sample_host(), kRenderer, kVersion),
       host_fingerprint_fields(other, "llvmpipe (LLVM 15.0.6, 512 bits)", kVersion));
   ASSERT_EQ(d.size(), 2u);
+  // An unset knob reads as (none).
+  HostRecord threads = sample_host();
+  threads.env.erase("LP_NUM_THREADS");
+  EXPECT_EQ(field_differences(host_fingerprint_fields(threads, kRenderer, kVersion),
+                              host_fingerprint_fields(sample_host(), kRenderer, kVersion)),
+            std::vector<std::string>{"env.LP_NUM_THREADS: (none) vs \"2\""});
   EXPECT_EQ(d[0], "cpu.model: \"AMD EPYC 7B13\" vs \"Intel Xeon Platinum 8481C\"");
   EXPECT_EQ(d[1],
             "gl_renderer: \"llvmpipe (LLVM 15.0.6, 256 bits)\" vs \"llvmpipe (LLVM 15.0.6, 512 "
