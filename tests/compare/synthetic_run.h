@@ -2,6 +2,7 @@
 // Synthetic run directories for the compare tests: whole records
 // (JobRecord, tests/record/sample_records.h) with the frame samples, passes
 // and errors that `compare` and the CI writers read, and a results.jsonl.
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -72,19 +73,19 @@ inline JobRecord make_controlled_record(const std::string& job_id,
                                         const std::vector<double>& control_ms,
                                         const std::vector<double>& ratio, double rmse,
                                         const std::string& control = "none") {
-  std::vector<double> frame;
-  for (size_t i = 0; i < control_ms.size() && i < ratio.size(); ++i)
-    frame.push_back(control_ms[i] * ratio[i]);
+  const size_t n = std::min(control_ms.size(), ratio.size());
+  std::vector<double> frame(n), technique(n), control_frame(n), ratios(n);
+  for (size_t i = 0; i < n; ++i) {
+    frame[i] = control_ms[i] * ratio[i];
+    technique[i] = frame[i] * 2 / 3;
+    control_frame[i] = control_ms[i];
+    ratios[i] = frame[i] / control_ms[i];
+  }
   JobRecord r = make_record(job_id, frame, rmse, 2 * rmse);
-  std::vector<double> technique;
-  for (const double f : frame) technique.push_back(f * 2 / 3);
   r.timing->technique = TimingSeries::of(technique);
   ControlTiming c;
   c.technique = control;
-  c.frame = TimingSeries::of(
-      std::vector<double>(control_ms.begin(), control_ms.begin() + std::ptrdiff_t(frame.size())));
-  std::vector<double> ratios;
-  for (size_t i = 0; i < frame.size(); ++i) ratios.push_back(frame[i] / control_ms[i]);
+  c.frame = TimingSeries::of(control_frame);
   c.frame_ratio = RatioSeries::of(ratios);
   r.timing->control = std::move(c);
   return r;
