@@ -9,14 +9,16 @@
 //   shadowbench report RUN_DIR [--out DIR] [--metric PATH]
 //                             [--benchmark-out FILE] [--bencher-out FILE]
 //   shadowbench compare BASE_DIR NEW_DIR [--alpha A] [--time-threshold R]
-//                       [--error-threshold E] [--metric PATH] [--timing frame|technique]
+//                       [--error-threshold E] [--metric PATH]
+//                       [--timing frame|technique|none] [--normalize none|control]
 //   shadowbench compare-builds --base BIN_A --new BIN_B CONFIG [--out DIR]
 //                       [--turn-block N] [compare's options]
 //   shadowbench scene export SCENE-SPEC OUT.glb
 //   shadowbench scene info FILE.glb|FILE.gltf|SCENE-SPEC
 // Exit codes: 0 all jobs ok or skipped, 1 some job failed, 2 bad input
 // (config, arguments), 3 environment (no GL context, missing plugins),
-// 4 (compare) a significant regression over threshold.
+// 4 (compare) a significant regression over threshold; compare exits 2 too
+// when it could not compare some job's time (other hosts, no control).
 #include <unistd.h>
 
 #include <cmath>
@@ -67,7 +69,7 @@ constexpr const char* kUsage =
     "   and --bencher-out FILE (Bencher Metric Format JSON))\n"
     "  shadowbench compare BASE_DIR NEW_DIR [--alpha 0.05] [--time-threshold 0.10]\n"
     "                      [--error-threshold 0.005] [--metric visibility.all.rmse]\n"
-    "                      [--timing frame|technique]\n"
+    "                      [--timing frame|technique|none] [--normalize none|control]\n"
     "  shadowbench compare-builds --base BIN_A --new BIN_B CONFIG [--out DIR]\n"
     "                      [--turn-block 5] [compare's options]\n"
     "    (runs both builds on CONFIG taking turns, block of frames by block of\n"
@@ -176,6 +178,9 @@ Args parse_args(int argc, char** argv) {
       a.metric_given = true;
     } else if (s == "--timing") {
       a.compare.timing = value("--timing");
+      a.compare_options_given = true;
+    } else if (s == "--normalize") {
+      a.compare.normalize = value("--normalize");
       a.compare_options_given = true;
     } else if (s == "--no-cache")
       a.no_cache = true;
@@ -432,11 +437,14 @@ int cmd_compare(const Args& a) {
   std::printf("BASE %s\nNEW  %s\n", describe(runs[0], a.positional[0]).c_str(),
               describe(runs[1], a.positional[1]).c_str());
   std::printf("%s", format_comparison(r, a.compare).c_str());
-  if (r.regressions > 0) {
-    std::fprintf(stderr, "shadowbench: %d job(s) regressed\n", r.regressions);
-    return kExitRegression;
-  }
-  return kExitOk;
+  if (r.regressions > 0) std::fprintf(stderr, "shadowbench: %d job(s) regressed\n", r.regressions);
+  if (r.time_refused > 0)
+    std::fprintf(
+        stderr,
+        "shadowbench: the time of %d job(s) was not compared (other or unknown hosts, or no "
+        "control timing): use --normalize control, or --timing none for errors only\n",
+        r.time_refused);
+  return compare_exit_code(r);
 }
 
 // Both builds run CONFIG taking turns (run/take_turns.h), each into its own
@@ -531,7 +539,8 @@ int main(int argc, char** argv) {
       throw InputError("", "command line", "--turn-block goes with run or compare-builds");
     if (a.compare_options_given && a.command != "compare" && a.command != "compare-builds")
       throw InputError("", "command line",
-                       "--alpha, --time-threshold, --error-threshold and --timing go with compare");
+                       "--alpha, --time-threshold, --error-threshold, --timing and --normalize go "
+                       "with compare or compare-builds");
     if (a.metric_given && a.command != "compare" && a.command != "compare-builds" &&
         a.command != "report")
       throw InputError("", "command line", "--metric goes with compare or report");

@@ -88,10 +88,8 @@ json JobRecord::to_json() const {
   r["gl_renderer"] = gl_renderer;
   r["gl_version"] = gl_version;
   r["timing_source"] = timing_source;
-  r["host"] = {{"hardware_threads", host.hardware_threads}};
-  if (host.lp_num_threads) r["host"]["lp_num_threads"] = *host.lp_num_threads;
-  if (host.name) r["host"]["name"] = *host.name;
-  r["build"] = {{"version", build_version}};
+  r["host"] = host.to_json();
+  r["build"] = build.to_json();
   r["status"] = to_string(status);
   if (reason) r["reason"] = *reason;
   if (started_at) r["started_at"] = *started_at;
@@ -139,11 +137,8 @@ JobRecord JobRecord::from_json(const json& j) {
   r.gl_renderer = f.get<std::string>("gl_renderer");
   r.gl_version = f.get<std::string>("gl_version");
   r.timing_source = f.get<std::string>("timing_source");
-  const Fields host = f.object("host");
-  r.host.hardware_threads = host.get<std::int64_t>("hardware_threads");
-  r.host.lp_num_threads = host.find<std::string>("lp_num_threads");
-  r.host.name = host.find<std::string>("name");
-  r.build_version = f.object("build").get<std::string>("version");
+  r.host = HostRecord::from_json(f.object("host"));
+  r.build = BuildRecord::from_json(f.object("build"));
 
   r.status = status_from(f);
   r.reason = f.find<std::string>("reason");

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "record/fields.h"
+#include "record/host_record.h"
 #include "record/metrics_record.h"
 #include "record/reference_record.h"
 #include "record/scene_record.h"
@@ -25,12 +26,6 @@ inline constexpr int kRecordSchemaVersion = 1;
 
 enum class JobStatus { Ok, Skipped, Failed };
 const char* to_string(JobStatus s);  // "ok", "skipped", "failed"
-
-struct HostRecord {
-  std::int64_t hardware_threads = 0;
-  std::optional<std::string> lp_num_threads;  // LP_NUM_THREADS, when set
-  std::optional<std::string> name;
-};
 
 // Pixels of the technique's visibility (before the attached-shadow mask)
 // that are not finite or outside [0, 1] by more than the tolerance.
@@ -64,8 +59,8 @@ struct JobRecord {
   SceneRecord scene;
   TechniqueRecord technique;
   std::string backend, gl_platform, gl_renderer, gl_version, timing_source;
-  HostRecord host;
-  std::string build_version;  // "build": {"version"}
+  HostRecord host;    // the machine, and its fingerprint (record/host_record.h)
+  BuildRecord build;  // the build, and its fingerprint
 
   JobStatus status = JobStatus::Ok;
   std::optional<std::string> reason;  // why skipped or failed

@@ -23,6 +23,71 @@ std::vector<double> time_samples(const JobRecord& record, const std::string& key
   return out;
 }
 
+// The per-frame ratios to the control: timing.control.frame_ratio.samples
+// for "frame"; technique frame i / control frame i for "technique". The
+// finite ones; nullopt without timing.control.
+std::optional<std::vector<double>> ratio_samples(const JobRecord& record, const std::string& key) {
+  if (!record.timing || !record.timing->control) return std::nullopt;
+  const ControlTiming& control = *record.timing->control;
+  std::vector<double> out;
+  if (key == "technique") {
+    const auto& job = record.timing->technique.samples_ms;
+    const auto& ctl = control.frame.samples_ms;
+    for (size_t i = 0; i < job.size() && i < ctl.size(); ++i)
+      if (ctl[i] > 0 && std::isfinite(job[i] / ctl[i])) out.push_back(job[i] / ctl[i]);
+  } else {
+    for (const double d : control.frame_ratio.samples)
+      if (std::isfinite(d)) out.push_back(d);
+  }
+  return out;
+}
+
+// What "--timing X" compares, for the table and the notes.
+std::string time_label(const CompareOptions& o) {
+  return o.normalize == "control" ? o.timing + "/control ratio" : o.timing + " time";
+}
+
+// The pair of fingerprints of one job in `pairs`, added when new.
+FingerprintPair& pair_of(std::vector<FingerprintPair>& pairs,
+                         const std::optional<std::string>& base,
+                         const std::optional<std::string>& fresh) {
+  for (auto& p : pairs)
+    if (p.base == base.value_or("") && p.fresh == fresh.value_or("")) return p;
+  FingerprintPair p;
+  p.base = base.value_or("");
+  p.fresh = fresh.value_or("");
+  pairs.push_back(std::move(p));
+  return pairs.back();
+}
+
+// Notes the hosts and builds of a job's two records in `out`; returns the
+// host pair.
+const FingerprintPair& note_fingerprints(const JobRecord& rb, const JobRecord& rn,
+                                         CompareResult& out) {
+  FingerprintPair& host = pair_of(out.hosts, rb.host.fingerprint, rn.host.fingerprint);
+  if (host.jobs++ == 0 && !host.same()) {
+    if (host.base.empty()) host.differences.push_back("BASE's records have no host fingerprint");
+    if (host.fresh.empty()) host.differences.push_back("NEW's records have no host fingerprint");
+    if (!host.base.empty() && !host.fresh.empty())
+      host.differences =
+          field_differences(host_fingerprint_fields(rb.host, rb.gl_renderer, rb.gl_version),
+                            host_fingerprint_fields(rn.host, rn.gl_renderer, rn.gl_version));
+  }
+  FingerprintPair& build = pair_of(out.builds, rb.build.fingerprint, rn.build.fingerprint);
+  if (build.jobs++ == 0 && !build.same())
+    build.differences =
+        field_differences(build_fingerprint_fields(rb.build), build_fingerprint_fields(rn.build));
+  return host;
+}
+
+// The names of the differing fields ("cpu.model, gl_renderer"), for a job's note.
+std::string differing_fields(const FingerprintPair& host) {
+  std::string names;
+  for (const auto& d : host.differences)
+    names += (names.empty() ? "" : ", ") + d.substr(0, d.find(':'));
+  return names;
+}
+
 // "visibility.all.rmse" of a metric option, also spelt "metrics.visibility.all.rmse".
 std::optional<MetricPath> metric_path(const std::string& option) {
   return MetricPath::parse(option.rfind("metrics.", 0) == 0 ? option.substr(8) : option);
@@ -87,14 +152,111 @@ void check_options(const CompareOptions& o) {
   if (!(o.error_threshold >= 0) || !std::isfinite(o.error_threshold))
     throw InputError("", "--error-threshold",
                      "expected an absolute change >= 0, found " + fmt("%g", o.error_threshold));
-  if (o.timing != "frame" && o.timing != "technique")
-    throw InputError("", "--timing", "expected frame or technique, found '" + o.timing + "'");
+  if (o.timing != "frame" && o.timing != "technique" && o.timing != "none")
+    throw InputError("", "--timing", "expected frame, technique or none, found '" + o.timing + "'");
+  if (o.normalize != "none" && o.normalize != "control")
+    throw InputError("", "--normalize", "expected none or control, found '" + o.normalize + "'");
   if (!metric_path(o.metric))
     throw InputError("", "--metric",
                      "no record has metrics." + o.metric +
                          ": expected <visibility|shaded>.<all|penumbra|soft_union>.<key> "
                          "(try visibility.all.rmse, visibility.penumbra.rmse, shaded.all.ssim)");
 }
+
+namespace {
+
+// The lines about hosts and builds under the table's header: whether the
+// timings are from one host, and if not what differs and what was done.
+std::string format_hosts(const CompareResult& r, const CompareOptions& o) {
+  std::string s;
+  const bool all_same = std::all_of(r.hosts.begin(), r.hosts.end(),
+                                    [](const FingerprintPair& p) { return p.same(); });
+  if (!r.hosts.empty() && all_same) {
+    s += "host: same host fingerprint";
+    if (r.hosts.size() == 1) s += " (" + r.hosts[0].base + ")";
+    s += "\n";
+  }
+  for (const auto& p : r.hosts) {
+    if (p.same()) continue;
+    s += "host: the fingerprints differ (BASE " + (p.base.empty() ? "none" : p.base) + ", NEW " +
+         (p.fresh.empty() ? "none" : p.fresh) + ", " + std::to_string(p.jobs) + " job(s)):\n";
+    for (const auto& d : p.differences) s += "  " + d + "\n";
+  }
+  if (!all_same) {
+    if (o.timing == "none")
+      s += "  times are not compared (--timing none); error metrics are, whatever the host.\n";
+    else if (o.normalize == "control")
+      s += "  times are compared as ratios to the control job, measured on each host "
+           "(--normalize control); error metrics are compared whatever the host.\n";
+    else
+      s += "  absolute times from different (or unknown) hosts do not compare: those jobs' time is "
+           "not "
+           "compared, and compare exits 2 unless something regressed (4).\n"
+           "  error metrics are compared whatever the host. To compare times, use "
+           "--normalize control (ratios to the control job); for errors only, --timing none.\n";
+  }
+  for (const auto& p : r.builds) {
+    if (p.same() || p.differences.empty()) continue;
+    s += "build: differs (shown, not refused):\n";
+    for (const auto& d : p.differences) s += "  " + d + "\n";
+  }
+  return s;
+}
+
+// The time verdict of one job that is ok on both sides.
+void compare_time(const JobRecord& rb, const JobRecord& rn, const FingerprintPair& host,
+                  const CompareOptions& o, JobComparison& c) {
+  if (o.timing == "none") return;
+  std::vector<double> sbase, sn;
+  if (o.normalize == "control") {
+    const auto rbase = ratio_samples(rb, o.timing), rnew = ratio_samples(rn, o.timing);
+    if (!rbase || !rnew) {
+      c.time_refused = true;
+      c.note = "time not compared: no timing.control in " +
+               std::string(!rbase && !rnew ? "BASE and NEW"
+                           : !rbase        ? "BASE"
+                                           : "NEW") +
+               " (run with a control job: frames.control, docs/config.md)";
+      return;
+    }
+    if (rb.timing->control->technique != rn.timing->control->technique)
+      throw InputError("", "--normalize control",
+                       c.job_id + ": BASE's control is " + rb.timing->control->technique +
+                           ", NEW's is " + rn.timing->control->technique +
+                           ": ratios to different controls do not compare");
+    sbase = *rbase;
+    sn = *rnew;
+  } else {
+    if (!host.same()) {
+      c.time_refused = true;
+      c.note = "time not compared: the hosts differ (" + differing_fields(host) + "; see above)";
+      return;
+    }
+    sbase = time_samples(rb, o.timing);
+    sn = time_samples(rn, o.timing);
+  }
+  c.base_samples = sbase.size();
+  c.new_samples = sn.size();
+  if (sbase.empty() || sn.empty()) {
+    c.note = "no " + o.timing + " samples (" +
+             (o.normalize == "control" ? std::string("timing.control")
+                                       : "timing." + o.timing + ".samples_ms") +
+             ") in " + std::string(sbase.empty() ? "BASE" : "NEW");
+    return;
+  }
+  c.base_median_ms = summarize(sbase).median;
+  c.new_median_ms = summarize(sn).median;
+  c.change = c.base_median_ms > 0 ? c.new_median_ms / c.base_median_ms - 1 : 0;
+  c.p = mann_whitney_u(sbase, sn).p;
+  if (*c.p < o.alpha && c.change > o.time_threshold)
+    c.time = Verdict::kRegression;
+  else if (*c.p < o.alpha && c.change < -o.time_threshold)
+    c.time = Verdict::kImprovement;
+  else
+    c.time = Verdict::kUnchanged;
+}
+
+}  // namespace
 
 CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector<JobRecord>& fresh,
                            const CompareOptions& o) {
@@ -133,24 +295,8 @@ CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector
     }
 
     // Time.
-    const std::vector<double> sbase = time_samples(rb, o.timing), sn = time_samples(rn, o.timing);
-    c.base_samples = sbase.size();
-    c.new_samples = sn.size();
-    if (!sbase.empty() && !sn.empty()) {
-      c.base_median_ms = summarize(sbase).median;
-      c.new_median_ms = summarize(sn).median;
-      c.change = c.base_median_ms > 0 ? c.new_median_ms / c.base_median_ms - 1 : 0;
-      c.p = mann_whitney_u(sbase, sn).p;
-      if (*c.p < o.alpha && c.change > o.time_threshold)
-        c.time = Verdict::kRegression;
-      else if (*c.p < o.alpha && c.change < -o.time_threshold)
-        c.time = Verdict::kImprovement;
-      else
-        c.time = Verdict::kUnchanged;
-    } else {
-      c.note = "no " + o.timing + " samples (timing." + o.timing + ".samples_ms) in " +
-               std::string(sbase.empty() ? "BASE" : "NEW");
-    }
+    const FingerprintPair& host = note_fingerprints(rb, rn, out);
+    compare_time(rb, rn, host, o, c);
 
     // Error.
     c.base_error = metric_value(rb, o.metric);
@@ -185,6 +331,7 @@ CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector
                      "no record has metrics." + o.metric +
                          " (try visibility.all.rmse, visibility.penumbra.rmse, shaded.all.ssim)");
   for (const auto& c : out.jobs) {
+    if (c.time_refused) ++out.time_refused;
     if (c.regressed())
       ++out.regressions;
     else if (c.time == Verdict::kImprovement || c.error == Verdict::kImprovement)
@@ -193,31 +340,44 @@ CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector
   return out;
 }
 
+int compare_exit_code(const CompareResult& r) {
+  if (r.regressions > 0) return kExitRegression;
+  return r.time_refused > 0 ? kExitBadInput : kExitOk;
+}
+
 std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
   size_t w = 3;
   for (const auto& c : r.jobs) w = std::max(w, c.job_id.size());
   const std::string label = metric_label(o.metric);
+  const bool ratios = o.normalize == "control";
   std::string s;
   char line[1024];
-  std::snprintf(line, sizeof line,
-                "time: Mann-Whitney U on %s times, alpha %g, threshold %.1f %%; "
-                "error: %s, threshold %g (absolute)\n\n",
-                o.timing.c_str(), o.alpha, o.time_threshold * 100, o.metric.c_str(),
-                o.error_threshold);
-  s += line;
-  std::snprintf(line, sizeof line, "%-*s %10s %10s %8s %8s  %-11s %10s %10s  %s\n", int(w), "job",
-                "base ms", "new ms", "change", "p", "time", (label + " base").c_str(),
-                (label + " new").c_str(), "error");
+  if (o.timing == "none")
+    s += "time: not compared (--timing none); ";
+  else
+    s += "time: Mann-Whitney U on " + time_label(o) + "s" +
+         (ratios ? " (--normalize control)" : ", absolute (--normalize none)") +
+         fmt(", alpha %g", o.alpha) + fmt(", threshold %.1f %%; ", o.time_threshold * 100);
+  s += "error: " + o.metric + fmt(", threshold %g (absolute)\n", o.error_threshold);
+  s += format_hosts(r, o);
+  s += "\n";
+  const char* unit = ratios ? "ratio" : "ms";
+  std::snprintf(line, sizeof line, "%-*s %10s %10s %8s %8s  %-12s %10s %10s  %s\n", int(w), "job",
+                (std::string("base ") + unit).c_str(), (std::string("new ") + unit).c_str(),
+                "change", "p", "time", (label + " base").c_str(), (label + " new").c_str(),
+                "error");
   s += line;
   for (const auto& c : r.jobs) {
     const bool timed = c.time != Verdict::kNotCompared;
+    const char* median = ratios ? "%.4f" : "%.3f";
     std::snprintf(
-        line, sizeof line, "%-*s %10s %10s %8s %8s  %-11s %10s %10s  %s\n", int(w),
-        c.job_id.c_str(), timed ? fmt("%.3f", c.base_median_ms).c_str() : "-",
-        timed ? fmt("%.3f", c.new_median_ms).c_str() : "-",
+        line, sizeof line, "%-*s %10s %10s %8s %8s  %-12s %10s %10s  %s\n", int(w),
+        c.job_id.c_str(), timed ? fmt(median, c.base_median_ms).c_str() : "-",
+        timed ? fmt(median, c.new_median_ms).c_str() : "-",
         timed ? fmt("%+.1f%%", std::fabs(c.change) < 5e-4 ? 0.0 : c.change * 100).c_str() : "-",
-        c.p ? fmt(*c.p < 1e-3 ? "%.1e" : "%.4f", *c.p).c_str() : "-", to_string(c.time),
-        error_text(c.base_error).c_str(), error_text(c.new_error).c_str(), to_string(c.error));
+        c.p ? fmt(*c.p < 1e-3 ? "%.1e" : "%.4f", *c.p).c_str() : "-",
+        c.time_refused ? "not compared" : to_string(c.time), error_text(c.base_error).c_str(),
+        error_text(c.new_error).c_str(), to_string(c.error));
     s += line;
   }
   bool notes = false;
@@ -229,7 +389,8 @@ std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
     if (c.regressed()) {
       std::string what;
       if (c.time == Verdict::kRegression)
-        what += fmt("frame time %+.1f %%", c.change * 100) + fmt(" (p = %.2g)", c.p.value_or(1));
+        what +=
+            time_label(o) + fmt(" %+.1f %%", c.change * 100) + fmt(" (p = %.2g)", c.p.value_or(1));
       if (c.error == Verdict::kRegression)
         what += std::string(what.empty() ? "" : ", ") + label + " " + error_text(c.base_error) +
                 " -> " + error_text(c.new_error);
@@ -245,9 +406,11 @@ std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
     s += "\nonly in NEW (" + std::to_string(r.only_new.size()) + "):\n";
     for (const auto& id : r.only_new) s += "  " + id + "\n";
   }
-  std::snprintf(line, sizeof line, "\n%zu job(s) compared: %d regression(s), %d improvement(s)\n",
+  std::snprintf(line, sizeof line, "\n%zu job(s) compared: %d regression(s), %d improvement(s)",
                 r.jobs.size(), r.regressions, r.improvements);
   s += line;
+  if (r.time_refused > 0) s += ", " + std::to_string(r.time_refused) + " with time not compared";
+  s += "\n";
   return s;
 }
 

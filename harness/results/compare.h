@@ -5,10 +5,15 @@
 //     (timing.frame.samples_ms, or timing.technique.samples_ms with
 //     --timing technique) and the relative change of the medians;
 //     a regression is p < alpha AND the new median slower by more than
-//     time_threshold (an improvement likewise, faster);
+//     time_threshold (an improvement likewise, faster). Absolute times are
+//     compared only between equal host fingerprints (record/host_record.h);
+//     otherwise the job's time is refused ("not compared"), which the exit
+//     code reports (compare_exit_code). With --normalize control the same
+//     test runs on the per-frame ratios to the control job, whatever the
+//     hosts; --timing none compares no time at all;
 //   - error: the chosen metric (default metrics.visibility.all.rmse); a
 //     regression is an increase by more than error_threshold (absolute), an
-//     improvement a decrease by more than it.
+//     improvement a decrease by more than it. Compared whatever the hosts.
 // A job that was ok in BASE and is failed in NEW is a regression too.
 #include <optional>
 #include <string>
@@ -27,7 +32,11 @@ struct CompareOptions {
   double time_threshold = 0.10;                // relative change of the median frame time
   double error_threshold = 0.005;              // absolute change of the error metric
   std::string metric = "visibility.all.rmse";  // a path under a record's "metrics"
-  std::string timing = "frame";  // which samples: "frame" or "technique" (its passes' sum)
+  // Which samples: "frame", "technique" (its passes' sum) or "none" (errors only).
+  std::string timing = "frame";
+  // "none": absolute times, same host fingerprint only; "control": the
+  // per-frame ratios to timing.control, whatever the hosts.
+  std::string normalize = "none";
 };
 
 enum class Verdict { kUnchanged, kRegression, kImprovement, kNotCompared };
@@ -36,12 +45,16 @@ const char* to_string(Verdict v);
 struct JobComparison {
   std::string job_id;
   std::string base_status, new_status;
-  // Time (frame = G-buffer + technique + shading, or the technique alone), in ms.
+  // Time (frame = G-buffer + technique + shading, or the technique alone), in
+  // ms; with normalize "control", unitless ratios to the control's frame.
   size_t base_samples = 0, new_samples = 0;
   double base_median_ms = 0, new_median_ms = 0;
   double change = 0;        // new median / base median - 1
   std::optional<double> p;  // absent without samples on both sides
   Verdict time = Verdict::kNotCompared;
+  // The time was not compared because it would mean nothing: other hosts
+  // (absolute times), or no control timing (ratios). The note says which.
+  bool time_refused = false;
   // Error metric; absent where a record lacks it.
   std::optional<double> base_error, new_error;
   Verdict error = Verdict::kNotCompared;
@@ -49,14 +62,33 @@ struct JobComparison {
   bool regressed() const;
 };
 
+// The host (or build) fingerprints of BASE and NEW for some of the jobs.
+struct FingerprintPair {
+  std::string base, fresh;               // "" for a record without one
+  std::vector<std::string> differences;  // `cpu.model: "A" vs "B"`; none when equal
+  int jobs = 0;                          // jobs compared with this pair
+  bool same() const { return !base.empty() && base == fresh; }
+};
+
 struct CompareResult {
   std::vector<JobComparison> jobs;  // in BASE order, then jobs only in NEW are listed apart
   std::vector<std::string> only_base, only_new;
   int regressions = 0, improvements = 0;  // jobs with any regression / any improvement and none
+  int time_refused = 0;                   // jobs whose time was refused (time_refused)
+  // Of the jobs ok on both sides, each distinct pair of fingerprints.
+  std::vector<FingerprintPair> hosts, builds;
 };
+
+// The exit code of `shadowbench compare` for a result: kExitRegression when
+// some job regressed; else 2 (kExitBadInput) when some job's time was
+// refused, so that a gate that could not judge time is not green (use
+// --normalize control, or --timing none to judge errors only); else 0.
+int compare_exit_code(const CompareResult& r);
 
 // Throws InputError for an options value out of range or an unknown metric.
 void check_options(const CompareOptions& o);
+// Throws InputError, besides check_options, when a job's BASE and NEW used
+// different control techniques under normalize "control".
 CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector<JobRecord>& fresh,
                            const CompareOptions& o);
 // The table that `shadowbench compare` prints.

@@ -1,18 +1,14 @@
 #include "run/runner.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <map>
 #include <optional>
-#include <thread>
 
 #include "core/error.h"
 #include "core/hash.h"
@@ -29,6 +25,7 @@
 #include "results/run_lock.h"
 #include "results/store.h"
 #include "run/gbuffer.h"
+#include "run/host_info.h"
 #include "run/injected_delay.h"
 #include "run/progress.h"
 #include "scenes/need_providers.h"
@@ -315,12 +312,9 @@ class Runner {
     r.gl_renderer = context_->renderer();
     r.gl_version = context_->version();
     r.timing_source = gl::to_string(timing_source_);
-    r.host.hardware_threads = std::thread::hardware_concurrency();
-    // llvmpipe's rasteriser threads (read at context creation; default: cores).
-    if (const char* lp = std::getenv("LP_NUM_THREADS")) r.host.lp_num_threads = lp;
-    char host[256] = {};
-    if (gethostname(host, sizeof host - 1) == 0) r.host.name = host;
-    r.build_version = SHADOWBENCH_VERSION;
+    // The machine and the build, with their fingerprints (run/host_info.h).
+    r.host = describe_host(r.gl_renderer, r.gl_version, embree_isa_);
+    r.build = describe_build();
     return r;
   }
 

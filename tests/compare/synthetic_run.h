@@ -2,7 +2,9 @@
 // Synthetic run directories for the compare tests: whole records
 // (JobRecord, tests/record/sample_records.h) with the frame samples, passes
 // and errors that `compare` and the CI writers read, and a results.jsonl.
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -49,6 +51,43 @@ inline JobRecord make_record(const std::string& job_id, const std::vector<double
   m.visibility.all.psnr = -20 * std::log10(rmse);
   m.visibility.penumbra.rmse = penumbra_rmse;
   r.metrics = m;
+  return r;
+}
+
+// The same records as measured on another machine: another CPU model and,
+// when given, another GL renderer string; the host fingerprint follows.
+inline std::vector<JobRecord> on_host(std::vector<JobRecord> records, const std::string& cpu_model,
+                                      const std::string& gl_renderer = "") {
+  for (auto& r : records) {
+    r.host.cpu->model = cpu_model;
+    if (!gl_renderer.empty()) r.gl_renderer = gl_renderer;
+    r.host.fingerprint = host_fingerprint(r.host, r.gl_renderer, r.gl_version);
+  }
+  return records;
+}
+
+// An ok record whose frames were each timed next to a frame of the control
+// job `control` (timing.control): frame i = control_ms[i] × ratio[i], the
+// technique two thirds of it.
+inline JobRecord make_controlled_record(const std::string& job_id,
+                                        const std::vector<double>& control_ms,
+                                        const std::vector<double>& ratio, double rmse,
+                                        const std::string& control = "none") {
+  const size_t n = std::min(control_ms.size(), ratio.size());
+  std::vector<double> frame(n), technique(n), control_frame(n), ratios(n);
+  for (size_t i = 0; i < n; ++i) {
+    frame[i] = control_ms[i] * ratio[i];
+    technique[i] = frame[i] * 2 / 3;
+    control_frame[i] = control_ms[i];
+    ratios[i] = frame[i] / control_ms[i];
+  }
+  JobRecord r = make_record(job_id, frame, rmse, 2 * rmse);
+  r.timing->technique = TimingSeries::of(technique);
+  ControlTiming c;
+  c.technique = control;
+  c.frame = TimingSeries::of(control_frame);
+  c.frame_ratio = RatioSeries::of(ratios);
+  r.timing->control = std::move(c);
   return r;
 }
 

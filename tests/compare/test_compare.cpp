@@ -1,5 +1,8 @@
 // compare_runs on synthetic records: an injected 30 % slowdown is flagged, a
 // 1 % jitter is not, and error regressions are found by an absolute threshold.
+// Absolute times from different hosts are refused (naming what differs);
+// --normalize control compares per-frame ratios to the control whatever the
+// hosts; --timing none compares errors only.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,8 +17,10 @@ using sb::compare_runs;
 using sb::CompareOptions;
 using sb::JobRecord;
 using sb::Verdict;
+using sb::test::make_controlled_record;
 using sb::test::make_record;
 using sb::test::noisy_samples;
+using sb::test::on_host;
 
 constexpr int kFrames = 15;
 constexpr double kNoise = 0.03;  // ±3 %
@@ -189,6 +194,187 @@ TEST(Compare, TableShowsTheVerdicts) {
   for (const char* s : {"grid__320x240__pcf", "REGRESSION", "base ms", "new ms", "rmse base",
                         "1 regression(s)", "+3"})
     EXPECT_NE(t.find(s), std::string::npos) << s << "\n" << t;
+}
+
+// ---- hosts, --normalize control, --timing none ----
+
+constexpr const char* kAmd = "AMD EPYC 7B13";
+constexpr const char* kIntel = "Intel Xeon Platinum 8481C";
+constexpr const char* kWide = "llvmpipe (LLVM 15.0.6, 512 bits)";
+
+bool has(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+TEST(CompareHosts, DifferentCpusRefuseAbsoluteTimes) {
+  // Twice as slow on the other machine: not a regression, not compared.
+  const auto base = on_host(one_job(20.0, 1), kAmd);
+  const auto fresh = on_host(one_job(40.0, 2), kIntel, kWide);
+  const auto r = compare_runs(base, fresh, CompareOptions{});
+  ASSERT_EQ(r.jobs.size(), 1u);
+  const auto& c = r.jobs[0];
+  EXPECT_EQ(c.time, Verdict::kNotCompared);
+  EXPECT_TRUE(c.time_refused);
+  EXPECT_FALSE(c.p.has_value());
+  EXPECT_TRUE(has(c.note, "cpu.model")) << c.note;
+  EXPECT_TRUE(has(c.note, "gl_renderer")) << c.note;
+  EXPECT_EQ(c.error, Verdict::kUnchanged);  // errors are compared whatever the host
+  EXPECT_EQ(r.time_refused, 1);
+  EXPECT_EQ(r.regressions, 0);
+  EXPECT_EQ(sb::compare_exit_code(r), 2);  // a gate that skipped timing is not green
+  ASSERT_EQ(r.hosts.size(), 1u);
+  EXPECT_FALSE(r.hosts[0].same());
+  const std::string t = sb::format_comparison(r, CompareOptions{});
+  for (const char* part :
+       {"cpu.model: \"AMD EPYC 7B13\" vs \"Intel Xeon Platinum 8481C\"",
+        "gl_renderer: \"llvmpipe (test)\" vs \"llvmpipe (LLVM 15.0.6, 512 bits)\"",
+        "error metrics are compared whatever the host", "--normalize control", "not compared",
+        "absolute (--normalize none)", "1 with time not compared"})
+    EXPECT_TRUE(has(t, part)) << part << "\n" << t;
+  EXPECT_FALSE(has(t, "same host fingerprint")) << t;
+
+  // An error regression on top: exit 4, not 2.
+  const auto worse = on_host(one_job(40.0, 2, 0.08), kIntel);
+  const auto w = compare_runs(base, worse, CompareOptions{});
+  EXPECT_EQ(w.jobs[0].error, Verdict::kRegression);
+  EXPECT_EQ(sb::compare_exit_code(w), sb::kExitRegression);
+}
+
+TEST(CompareHosts, SameFingerprintIsCompared) {
+  const auto r = compare_runs(on_host(one_job(20.0, 1), kAmd), on_host(one_job(26.0, 2), kAmd),
+                              CompareOptions{});
+  EXPECT_EQ(r.jobs[0].time, Verdict::kRegression);
+  EXPECT_FALSE(r.jobs[0].time_refused);
+  EXPECT_EQ(r.time_refused, 0);
+  EXPECT_EQ(sb::compare_exit_code(r), sb::kExitRegression);
+  const std::string t = sb::format_comparison(r, CompareOptions{});
+  EXPECT_TRUE(has(t, "host: same host fingerprint (" +
+                         on_host(one_job(20.0, 1), kAmd)[0].host.fingerprint.value() + ")"))
+      << t;
+  // Unchanged code on the same host: exit 0.
+  const auto same = compare_runs(on_host(one_job(20.0, 1), kAmd), on_host(one_job(20.2, 3), kAmd),
+                                 CompareOptions{});
+  EXPECT_EQ(sb::compare_exit_code(same), 0);
+}
+
+TEST(CompareHosts, ARecordWithoutFingerprintIsRefused) {
+  auto old = one_job(20.0, 1);
+  old[0].host = sb::HostRecord{};  // as written before host fingerprints
+  old[0].host.hardware_threads = 2;
+  const auto r = compare_runs(old, one_job(20.0, 2), CompareOptions{});
+  EXPECT_TRUE(r.jobs[0].time_refused);
+  EXPECT_EQ(sb::compare_exit_code(r), 2);
+  EXPECT_TRUE(
+      has(sb::format_comparison(r, CompareOptions{}), "BASE's records have no host fingerprint"));
+}
+
+// n ratios around `median` with ±3 % noise, and a control frame time around
+// `control_ms` with ±3 % noise.
+std::vector<JobRecord> controlled(double control_ms, double ratio, uint32_t seed,
+                                  double rmse = 0.05, const std::string& control = "none") {
+  return {make_controlled_record("grid__320x240__pcf",
+                                 noisy_samples(control_ms, kNoise, kFrames, seed),
+                                 noisy_samples(ratio, kNoise, kFrames, seed + 50), rmse, control)};
+}
+
+CompareOptions normalized(const std::string& timing = "frame") {
+  CompareOptions o;
+  o.normalize = "control";
+  o.timing = timing;
+  return o;
+}
+
+TEST(CompareHosts, NormalizeControlComparesRatiosAcrossHosts) {
+  const auto base = on_host(controlled(10.0, 2.0, 1), kAmd);
+  // The other machine is twice as slow throughout: the ratios do not move.
+  const auto slower_host = on_host(controlled(20.0, 2.0, 2), kIntel, kWide);
+  auto r = compare_runs(base, slower_host, normalized());
+  EXPECT_EQ(r.jobs[0].time, Verdict::kUnchanged);
+  EXPECT_FALSE(r.jobs[0].time_refused);
+  EXPECT_NEAR(r.jobs[0].base_median_ms, 2.0, 0.1);  // a ratio, not ms
+  EXPECT_NEAR(r.jobs[0].change, 0.0, 0.05);
+  EXPECT_EQ(sb::compare_exit_code(r), 0);
+  std::string t = sb::format_comparison(r, normalized());
+  for (const char* part : {"frame/control ratios (--normalize control)", "base ratio",
+                           "times are compared as ratios to the control", "cpu.model"})
+    EXPECT_TRUE(has(t, part)) << part << "\n" << t;
+  // ... while absolutely it is twice as slow, which --normalize none refuses.
+  EXPECT_TRUE(compare_runs(base, slower_host, CompareOptions{}).jobs[0].time_refused);
+
+  // The job itself 30 % slower against its control: a regression.
+  const auto slower_job = on_host(controlled(20.0, 2.6, 3), kIntel, kWide);
+  r = compare_runs(base, slower_job, normalized());
+  EXPECT_EQ(r.jobs[0].time, Verdict::kRegression);
+  EXPECT_NEAR(r.jobs[0].change, 0.30, 0.05);
+  EXPECT_EQ(sb::compare_exit_code(r), sb::kExitRegression);
+  t = sb::format_comparison(r, normalized());
+  EXPECT_TRUE(has(t, "regression: frame/control ratio +")) << t;
+
+  // --timing technique: technique frame i / control frame i (two thirds of the ratio).
+  r = compare_runs(base, slower_job, normalized("technique"));
+  EXPECT_EQ(r.jobs[0].time, Verdict::kRegression);
+  EXPECT_NEAR(r.jobs[0].base_median_ms, 2.0 * 2 / 3, 0.1);
+  r = compare_runs(base, slower_host, normalized("technique"));
+  EXPECT_EQ(r.jobs[0].time, Verdict::kUnchanged);
+}
+
+TEST(CompareHosts, NormalizeControlWithoutControlIsRefused) {
+  const auto base = one_job(20.0, 1);  // no timing.control
+  const auto r = compare_runs(base, controlled(10.0, 2.0, 2), normalized());
+  EXPECT_TRUE(r.jobs[0].time_refused);
+  EXPECT_EQ(r.jobs[0].time, Verdict::kNotCompared);
+  EXPECT_TRUE(has(r.jobs[0].note, "no timing.control in BASE")) << r.jobs[0].note;
+  EXPECT_EQ(r.jobs[0].error, Verdict::kUnchanged);
+  EXPECT_EQ(sb::compare_exit_code(r), 2);
+}
+
+TEST(CompareHosts, DifferentControlTechniquesAreBadInput) {
+  const auto base = controlled(10.0, 2.0, 1, 0.05, "none");
+  const auto fresh = controlled(10.0, 2.0, 2, 0.05, "shadow_map/size=1024");
+  try {
+    compare_runs(base, fresh, normalized());
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const sb::InputError& e) {
+    EXPECT_TRUE(has(e.what(), "shadow_map/size=1024")) << e.what();
+  }
+  // Absolute times do not look at the control.
+  EXPECT_NO_THROW(compare_runs(base, fresh, CompareOptions{}));
+}
+
+TEST(CompareHosts, TimingNoneComparesErrorsOnly) {
+  CompareOptions none;
+  none.timing = "none";
+  const auto base = on_host(one_job(20.0, 1), kAmd);
+  auto r = compare_runs(base, on_host(one_job(40.0, 2), kIntel), none);
+  EXPECT_EQ(r.jobs[0].time, Verdict::kNotCompared);
+  EXPECT_FALSE(r.jobs[0].time_refused);
+  EXPECT_EQ(r.jobs[0].error, Verdict::kUnchanged);
+  EXPECT_EQ(sb::compare_exit_code(r), 0);
+  EXPECT_TRUE(has(sb::format_comparison(r, none), "time: not compared (--timing none)"));
+  r = compare_runs(base, on_host(one_job(40.0, 2, 0.08), kIntel), none);
+  EXPECT_EQ(sb::compare_exit_code(r), sb::kExitRegression);
+}
+
+TEST(CompareHosts, ADifferentBuildIsShownNotRefused) {
+  auto fresh = one_job(26.0, 2);
+  fresh[0].build.compiler = "Clang 16.0.6";
+  fresh[0].build.fingerprint = sb::build_fingerprint(fresh[0].build);
+  const auto r = compare_runs(one_job(20.0, 1), fresh, CompareOptions{});
+  EXPECT_EQ(r.jobs[0].time, Verdict::kRegression);
+  const std::string t = sb::format_comparison(r, CompareOptions{});
+  EXPECT_TRUE(has(t, "build: differs (shown, not refused)")) << t;
+  EXPECT_TRUE(has(t, "compiler: (none) vs \"Clang 16.0.6\"")) << t;
+}
+
+TEST(CompareHosts, UnknownNormalizeOrTimingIsBadInput) {
+  CompareOptions o;
+  o.normalize = "ratio";
+  EXPECT_THROW(sb::check_options(o), sb::InputError);
+  o = CompareOptions{};
+  o.timing = "shading";
+  EXPECT_THROW(sb::check_options(o), sb::InputError);
+  o.timing = "none";
+  EXPECT_NO_THROW(sb::check_options(o));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // `shadowbench compare` as a CI job runs it: exit 0 without a regression,
-// 4 with one, 2 on bad input.
+// 4 with one, 2 on bad input, and 2 when some job's time could not be
+// compared (runs from other hosts, or --normalize control without a control).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -11,8 +12,10 @@
 
 namespace {
 
+using sb::test::make_controlled_record;
 using sb::test::make_record;
 using sb::test::noisy_samples;
+using sb::test::on_host;
 using sb::test::run_cli;
 using sb::test::write_run;
 
@@ -80,6 +83,8 @@ TEST(CompareCli, BadInputExitsWithTwo) {
       {"compare " + base + " " + base + " --time-threshold -1", "--time-threshold"},
       {"compare " + base + " " + base + " --metric visibility.all.nope", "no record has metrics"},
       {"compare " + base + " " + base + " --timing shading", "--timing"},
+      {"compare " + base + " " + base + " --normalize ratio", "--normalize"},
+      {"report " + base + " --normalize control", "go with compare"},
       {"compare " + base + " " + newer,
        newer + "/results.jsonl: at line 2 (/schema_version): the record has schema_version 2; "
                "this shadowbench reads schema_version 1"},
@@ -94,6 +99,51 @@ TEST(CompareCli, BadInputExitsWithTwo) {
   }
   std::filesystem::create_directories(missing + "-norecords");
   EXPECT_EQ(run_cli("compare " + base + " " + missing + "-norecords").exit_code, 2);
+}
+
+TEST(CompareCli, OtherHostsAreNotComparedOnTime) {
+  const auto amd = write_run("cli_amd", on_host(run_of(20.0, 0.10, 1, "amd"), "AMD EPYC 7B13"));
+  const auto intel =
+      write_run("cli_intel", on_host(run_of(40.0, 0.10, 2, "intel"), "Intel Xeon Platinum 8481C"));
+  auto r = run_cli("compare " + amd + " " + intel);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  for (const char* part : {"cpu.model: \"AMD EPYC 7B13\" vs \"Intel Xeon Platinum 8481C\"",
+                           "error metrics are compared whatever the host", "--normalize control",
+                           "the time of 2 job(s) was not compared"})
+    EXPECT_NE(r.output.find(part), std::string::npos) << part << "\n" << r.output;
+  // Errors only, on purpose: green, or 4 on an error regression.
+  r = run_cli("compare " + amd + " " + intel + " --timing none");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("time: not compared (--timing none)"), std::string::npos) << r.output;
+  const auto worse = write_run(
+      "cli_intel_worse", on_host(run_of(40.0, 0.12, 2, "worse"), "Intel Xeon Platinum 8481C"));
+  EXPECT_EQ(run_cli("compare " + amd + " " + worse + " --timing none").exit_code, 4);
+  EXPECT_EQ(run_cli("compare " + amd + " " + worse).exit_code, 4);  // 4 wins over 2
+}
+
+TEST(CompareCli, NormalizeControlComparesAcrossHosts) {
+  auto controlled = [](double control_ms, double ratio, uint32_t seed, const std::string& cpu) {
+    return on_host(
+        {make_controlled_record("grid__320x240__pcf", noisy_samples(control_ms, 0.03, 15, seed),
+                                noisy_samples(ratio, 0.03, 15, seed + 50), 0.05)},
+        cpu);
+  };
+  const auto base = write_run("cli_ctl_base", controlled(10.0, 2.0, 1, "AMD EPYC 7B13"));
+  const auto twice = write_run("cli_ctl_twice", controlled(20.0, 2.0, 2, "Intel Xeon"));
+  const auto slower = write_run("cli_ctl_slower", controlled(20.0, 2.6, 3, "Intel Xeon"));
+  auto r = run_cli("compare " + base + " " + twice + " --normalize control");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("--normalize control"), std::string::npos) << r.output;
+  EXPECT_EQ(run_cli("compare " + base + " " + twice).exit_code, 2);
+  r = run_cli("compare " + base + " " + slower + " --normalize control");
+  EXPECT_EQ(r.exit_code, 4) << r.output;
+  // No control in BASE: its time is not compared.
+  const auto plain =
+      write_run("cli_ctl_plain",
+                {make_record("grid__320x240__pcf", noisy_samples(20, 0.03, 15, 4), 0.05, 0.1)});
+  r = run_cli("compare " + plain + " " + twice + " --normalize control");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("no timing.control in BASE"), std::string::npos) << r.output;
 }
 
 TEST(CompareCli, ListsJobsOnlyOnOneSide) {

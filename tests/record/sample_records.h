@@ -39,7 +39,11 @@ inline JobRecord identity_record(const std::string& scene_variant, const std::st
   r.gl_version = "4.5 (Core Profile) Mesa";
   r.timing_source = "cpu_glfinish";
   r.host.hardware_threads = 2;
-  r.build_version = "0.1.0";
+  r.host.cpu = CpuRecord{"Synthetic CPU", {"sse4.2", "avx", "avx2", "fma"}, 2};
+  r.host.os = "Debian GNU/Linux 12 (bookworm)";
+  r.host.fingerprint = host_fingerprint(r.host, r.gl_renderer, r.gl_version);
+  r.build.version = "0.1.0";
+  r.build.fingerprint = build_fingerprint(r.build);
   r.status = status;
   r.finished_at = "2026-12-01T00:00:00Z";
   return r;
