@@ -19,6 +19,11 @@ namespace {
 std::vector<JobRecord> records() {
   JobRecord ok = test::identity_record("plates/layout=edge", "64x48", "pcf_box/k=3");
   ok.timing = test::coarse_timing({10, 12, 11}, {4, 5, 4.5});
+  ControlTiming control;
+  control.technique = "none";
+  control.frame = TimingSeries::of({8, 8, 8});
+  control.frame_ratio = RatioSeries::of({1.25, 1.5, 1.375});
+  ok.timing->control = control;
   MetricsRecord m;
   m.visibility.all.rmse = 0.0625;
   m.visibility.all.psnr = 24.08;
@@ -74,7 +79,9 @@ TEST(ReportColumns, CellsAgreeAcrossTheTables) {
   test::TempDir dir("report_cells");
   write_html_report(rs, dir.path().string(), dir.file("report"), {}, "title");
   const std::string html = test::read_text(dir.path() / "report" / "index.html");
-  for (const char* name : {"frame_ms", "rmse", "psnr", "penumbra_rmse"}) {
+  // The ratio to the control is the median of the per-frame ratios.
+  EXPECT_EQ(report_column("x_control").cell(rs[0]), "1.375");
+  for (const char* name : {"frame_ms", "x_control", "rmse", "psnr", "penumbra_rmse"}) {
     const std::string cell = report_column(name).cell(rs[0]);
     ASSERT_FALSE(cell.empty()) << name;
     EXPECT_NE(csv.find("," + cell + ","), std::string::npos) << name << ": " << cell;
@@ -84,7 +91,7 @@ TEST(ReportColumns, CellsAgreeAcrossTheTables) {
   // A skipped job has no figures: empty cells, and its reason in the last column.
   EXPECT_EQ(report_column("rmse").cell(rs[1]), "");
   EXPECT_EQ(report_column("reason").cell(rs[1]), "casters are not closed");
-  EXPECT_NE(csv.find(",skipped,,,,,,,,,,casters are not closed\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",skipped,,,,,,,,,,,casters are not closed\n"), std::string::npos) << csv;
   EXPECT_THROW(report_column("nonsense"), std::out_of_range);
 }
 
