@@ -78,6 +78,7 @@ Child start(const TurnCommand& c) {
   args.push_back("--take-turns");
   args.push_back(std::to_string(to[0]) + "," + std::to_string(from[1]));
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   const pid_t pid = ::fork();

@@ -16,7 +16,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("shadowbench_take_turns_" + name);
+  fs::path dir = fs::temp_directory_path() / ("shadowbench_take_turns_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -26,7 +26,7 @@ fs::path fresh_dir(const std::string& name) {
 // says ready again, `blocks` times; then exits. Its last argument is the
 // "IN,OUT" that take_turns appends.
 fs::path write_player(const fs::path& dir, int blocks, const std::string& first_reply = "ready") {
-  const fs::path script = dir / "player.sh";
+  fs::path script = dir / "player.sh";
   std::ofstream(script) << "#!/bin/sh\n"
                            "label=$1; log=$2; fds=$5\n"
                            "in=${fds%,*}; out=${fds#*,}\n"

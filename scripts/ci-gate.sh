@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# The performance gate of `scripts/test.sh` (docs/ci.md, "The gate in this
+# repository's CI"): run configs/ci.json and compare it with the committed
+# baseline, whichever machine recorded it. Times are compared as ratios to
+# the control job measured in the same run (--normalize control), so another
+# CPU is not a regression; errors are compared as they are.
+#   scripts/ci-gate.sh [BUILD_DIR] [extra compare options]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build}
+shift || true
+# Sized from the measured spread of the ratios across runs and llvmpipe
+# configurations (docs/ci.md, "What the gate catches"): well above the
+# false-alarm band, well below a doubled technique.
+threshold=${SHADOWBENCH_GATE_THRESHOLD:-0.25}
+out=$(mktemp -d)/ci
+"$build/shadowbench" run configs/ci.json --out "$out" --no-images --no-cache --quiet
+"$build/shadowbench" compare results/baselines/ci "$out" --normalize control \
+  --time-threshold "$threshold" --alpha 0.01 "$@"
