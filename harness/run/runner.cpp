@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "gl/debug.h"
+#include "gl/gl.h"
 #include "gl/gpu_scene.h"
 #include "metrics/image_io.h"
 #include "metrics/light_horizon.h"
@@ -617,6 +618,7 @@ class Runner {
                                  const FrameSetup& f, const InjectedDelay* delay) const {
     timer.set_detail(detail);
     reset_gl_state();
+    const auto started = std::chrono::steady_clock::now();
     timer.begin_frame();
     {
       auto p = timer.bracket("shared:gbuffer");
@@ -626,19 +628,24 @@ class Runner {
     if (detail == gl::PassDetail::Coarse) {
       auto p = timer.bracket("technique");
       technique.render(f.in, timer);
-      if (delay != nullptr) delay->wait();
     } else {
       technique.render(f.in, timer);
-      if (delay != nullptr) {
-        auto p = timer.bracket("injected delay");
-        delay->wait();
-      }
     }
     gl::throw_if_errors(frame_name);
     reset_gl_state();
     {
       auto p = timer.bracket("shared:shading");
       f.targets.render_shading(f.scene);
+    }
+    if (delay != nullptr) {
+      // At the frame's end, so that a relative delay knows the frame's time;
+      // a bracket of the job's own, so it counts in its technique time too.
+      glFinish();
+      const double so_far =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
+              .count();
+      auto p = timer.bracket("injected delay");
+      delay->wait(so_far);
     }
     auto frame = timer.end_frame();
     gl::throw_if_errors(frame_name);

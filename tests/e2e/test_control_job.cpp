@@ -64,7 +64,7 @@ TEST(ControlJob, TheControlChangesNoMeasuredNumberAndNullTurnsItOff) {
             with.record("none")["metrics"]["visibility"]["all"]["rmse"]);
 }
 
-TEST(ControlJob, AnInjectedDelayIsInsideTheTechniquesBracketAndSaidInItsRecord) {
+TEST(ControlJob, AnInjectedDelayIsInTheJobsOwnTimeAndSaidInItsRecord) {
   ::setenv(kInjectDelayVariable, "pcf_box/k=3,size=256@25", 1);
   const auto out = run_config(control_config({{"warmup", 0}, {"timed", 3}}), "control_delay");
   ::unsetenv(kInjectDelayVariable);
@@ -77,6 +77,19 @@ TEST(ControlJob, AnInjectedDelayIsInsideTheTechniquesBracketAndSaidInItsRecord) 
   EXPECT_LT(slowed["timing"]["control"]["frame"]["min_ms"].get<double>(),
             slowed["timing"]["frame"]["min_ms"].get<double>());
   EXPECT_FALSE(out.record("none").contains("warnings"));
+}
+
+TEST(ControlJob, ARelativeDelayMakesEveryFrameThatMuchLonger) {
+  // 100 %: the busy-wait lasts as long as the frame before it, so it is
+  // half of every timed frame, and it counts in the technique's time.
+  ::setenv(kInjectDelayVariable, "pcf_box/k=3,size=256@100%", 1);
+  const auto out = run_config(control_config({{"warmup", 0}, {"timed", 4}}), "control_relative");
+  ::unsetenv(kInjectDelayVariable);
+  const json& t = out.record("pcf_box/k=3,size=256")["timing"];
+  const auto frame = t["frame"]["samples_ms"].get<std::vector<double>>();
+  const auto technique = t["technique"]["samples_ms"].get<std::vector<double>>();
+  ASSERT_EQ(frame.size(), 4u);
+  for (size_t i = 0; i < frame.size(); ++i) EXPECT_GE(technique[i], 0.5 * frame[i] - 0.05) << i;
 }
 
 }  // namespace

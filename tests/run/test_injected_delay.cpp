@@ -15,14 +15,24 @@ TEST(InjectedDelay, NamesTheVariantBeforeTheLastAtAndTheMillisecondsAfter) {
   EXPECT_TRUE(d.applies_to("pcf_box/k=3,size=1024"));
   EXPECT_FALSE(d.applies_to("pcf_box/k=5,size=1024"));
   EXPECT_FALSE(d.applies_to("pcf_box"));
-  EXPECT_DOUBLE_EQ(d.milliseconds(), 2.5);
+  EXPECT_DOUBLE_EQ(d.milliseconds(40.0), 2.5);  // fixed, whatever the frame took
   EXPECT_NE(d.describe().find("SHADOWBENCH_INJECT_DELAY"), std::string::npos);
   EXPECT_NE(d.describe().find("not a measurement"), std::string::npos);
 }
 
+TEST(InjectedDelay, APercentIsAShareOfTheFramesOwnTime) {
+  const InjectedDelay d = InjectedDelay::parse("pcf_box/k=3,size=1024@20%");
+  EXPECT_TRUE(d.applies_to("pcf_box/k=3,size=1024"));
+  EXPECT_DOUBLE_EQ(d.milliseconds(40.0), 8.0);
+  EXPECT_DOUBLE_EQ(d.milliseconds(100.0), 20.0);
+  EXPECT_NE(d.describe().find("20.0"), std::string::npos) << d.describe();
+  EXPECT_NE(d.describe().find("% of the frame"), std::string::npos) << d.describe();
+}
+
 TEST(InjectedDelay, AMalformedValueIsBadInputNamingTheVariable) {
-  for (const char* bad : {"pcf_box", "@3", "pcf_box@", "pcf_box@-1", "pcf_box@0", "pcf_box@2ms",
-                          "pcf_box@nan", "pcf_box@1e9"}) {
+  for (const char* bad :
+       {"pcf_box", "@3", "pcf_box@", "pcf_box@-1", "pcf_box@0", "pcf_box@2ms", "pcf_box@nan",
+        "pcf_box@1e9", "pcf_box@%", "pcf_box@-5%", "pcf_box@5000%", "pcf_box@5%%"}) {
     try {
       InjectedDelay::parse(bad);
       ADD_FAILURE() << bad << ": accepted";
@@ -49,7 +59,7 @@ TEST(InjectedDelay, UnsetOrEmptyMeansNone) {
 TEST(InjectedDelay, WaitsAtLeastTheGivenTime) {
   const InjectedDelay d = InjectedDelay::parse("x@20");
   const auto t0 = std::chrono::steady_clock::now();
-  d.wait();
+  d.wait(1.0);
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_GE(ms, 20.0);
