@@ -73,7 +73,8 @@ constexpr const char* kUsage =
     "  shadowbench compare-builds --base BIN_A --new BIN_B CONFIG [--out DIR]\n"
     "                      [--turn-block 5] [compare's options]\n"
     "    (runs both builds on CONFIG taking turns, block of frames by block of\n"
-    "     frames, then compares them: the A/B mode for pull requests, docs/ci.md)\n"
+    "     frames, then compares them, by default --normalize control: the A/B\n"
+    "     mode for pull requests, docs/ci.md)\n"
     "  shadowbench scene export SCENE-SPEC OUT.glb\n"
     "  shadowbench scene info FILE.glb|FILE.gltf|SCENE-SPEC\n"
     "SCENE-SPEC: sphere_grid:grid=3,light_size=2 or "
@@ -95,6 +96,7 @@ struct Args {
   int turn_block = 5;                                   // run, compare-builds: frames per turn
   bool turn_block_given = false;
   bool compare_options_given = false;
+  bool normalize_given = false;  // compare-builds defaults to "control"
   bool metric_given = false;
 };
 
@@ -182,6 +184,7 @@ Args parse_args(int argc, char** argv) {
     } else if (s == "--normalize") {
       a.compare.normalize = value("--normalize");
       a.compare_options_given = true;
+      a.normalize_given = true;
     } else if (s == "--no-cache")
       a.no_cache = true;
     else if (s == "--gbuffer")
@@ -498,6 +501,9 @@ int cmd_compare_builds(const Args& a) {
   }
   Args compare = a;
   compare.positional = {dirs[0], dirs[1]};
+  // Both runs timed the control next to every frame: their ratios are the
+  // steadier measure (docs/ci.md, "What the gate catches").
+  if (!a.normalize_given) compare.compare.normalize = "control";
   return cmd_compare(compare);
 }
 

@@ -37,6 +37,7 @@ TEST(CompareBuilds, BothBuildsTakeTurnsAndTheirRunsAreComplete) {
               " --out " + (dir / "out").string() +
               " --turn-block 2 --time-threshold 10 --cache-dir " + (dir / "cache").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("host: same host fingerprint"), std::string::npos) << r.output;
   // 1 start + 3 blocks per job × 2 jobs.
   EXPECT_NE(r.output.find("base: " + (dir / "out" / "base").string() + ", 7 turns, exit code 0"),
             std::string::npos)
@@ -69,7 +70,10 @@ TEST(CompareBuilds, AnInjectedSlowdownInTheNewBuildIsItsJobsRegressionOnly) {
                          " " + config + " --out " + (dir / "out").string() +
                          " --time-threshold 1.0 --cache-dir " + (dir / "cache").string());
   EXPECT_EQ(r.exit_code, 4) << r.output;
-  EXPECT_NE(r.output.find("__shadow_map--size=256: regression: frame time"), std::string::npos)
+  // By default the builds are compared on the ratios to the control.
+  EXPECT_NE(r.output.find("(--normalize control)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("__shadow_map--size=256: regression: frame/control ratio"),
+            std::string::npos)
       << r.output;
   EXPECT_EQ(r.output.find("__none: regression"), std::string::npos) << r.output;
 }
