@@ -37,7 +37,7 @@ from pathlib import Path
 from scipy.stats import mannwhitneyu
 
 SLOWDOWNS = (0.10, 0.20)
-ALPHAS = (0.05, 0.01, 0.001)
+ALPHAS = (0.05, 0.02, 0.01, 0.001)
 THRESHOLDS = (0.05, 0.10, 0.15, 0.20)
 
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # README command 2: install what is missing, build, and pass every test:
 #   1. clang-format check of the project's sources,
-#   2. the Release build and its tests that drive Mesa (label "gl"),
+#   2. the Release build and its tests that drive Mesa (label "gl"), then
+#      the performance gate (scripts/ci-gate.sh),
 #   3. an ASan/UBSan build of the tests that do not drive Mesa's JIT
 #      (every test without the label "gl").
 set -euo pipefail
@@ -29,6 +30,11 @@ else
   scripts/build.sh -DSHADOWBENCH_NON_GL_TESTS=ON
 fi
 ctest --test-dir build --output-on-failure -j2
+
+# configs/ci.json against the committed baseline, as ratios to the control
+# job, so that it holds on any CPU (docs/ci.md, "The gate in this repository").
+echo "== performance gate"
+scripts/ci-gate.sh build
 
 if [[ $sanitize == 1 ]]; then
   echo "== ASan/UBSan build, tests without the label 'gl'"

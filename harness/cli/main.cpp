@@ -67,7 +67,7 @@ constexpr const char* kUsage =
     "  shadowbench report RUN_DIR [--out DIR] [--metric visibility.all.rmse]\n"
     "  (run and report also take --benchmark-out FILE (Google Benchmark JSON)\n"
     "   and --bencher-out FILE (Bencher Metric Format JSON))\n"
-    "  shadowbench compare BASE_DIR NEW_DIR [--alpha 0.05] [--time-threshold 0.10]\n"
+    "  shadowbench compare BASE_DIR NEW_DIR [--alpha 0.02] [--time-threshold 0.10]\n"
     "                      [--error-threshold 0.005] [--metric visibility.all.rmse]\n"
     "                      [--timing frame|technique|none] [--normalize none|control]\n"
     "  shadowbench compare-builds --base BIN_A --new BIN_B CONFIG [--out DIR]\n"
