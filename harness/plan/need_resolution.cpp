@@ -8,11 +8,18 @@
 namespace sb {
 
 const NeedProvider* find_need_provider(const std::string& name, const Registry* plugins) {
-  if (plugins != nullptr)
-    if (const NeedProvider* p = plugins->find_provider(name)) return p;
+  const NeedProvider* from_plugin = plugins != nullptr ? plugins->find_provider(name) : nullptr;
   for (const auto& p : builtin_need_providers())
-    if (p.name == name) return &p;
-  return nullptr;
+    if (p.name == name) {
+      // A plugin must not quietly change what a harness need means for
+      // every other technique of the run.
+      if (from_plugin != nullptr)
+        throw std::logic_error("a plugin provides the need '" + name +
+                               "', which the harness provides already; give the plugin's need a "
+                               "name of its own");
+      return &p;
+    }
+  return from_plugin;
 }
 
 namespace {

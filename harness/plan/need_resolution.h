@@ -25,7 +25,8 @@ struct ResolvedNeeds {
   std::vector<std::string> log;  // one line per datum derived or deferred
 };
 
-// The provider of `name`: `plugins`' first (may be null), then the harness's.
+// The provider of `name`: the harness's, else `plugins`' (may be null).
+// Throws std::logic_error when a plugin provides a need the harness has.
 const NeedProvider* find_need_provider(const std::string& name, const Registry* plugins);
 
 ResolvedNeeds resolve_needs(const Scene& scene, const std::vector<const TechniqueInfo*>& techniques,

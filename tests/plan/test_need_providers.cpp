@@ -141,6 +141,22 @@ TEST(NeedProviders, TwoProvidersOfOneNeedAreRefused) {
                std::logic_error);
 }
 
+TEST(NeedProviders, APluginCannotReplaceAHarnessNeed) {
+  Counted c;
+  NeedProvider p = counting_provider(&c, NeedProvider::When::Plan);
+  p.name = need::kPlanarReceiver;
+  Registry plugins;
+  plugins.add_provider(p);
+  try {
+    find_need_provider(need::kPlanarReceiver, &plugins);
+    FAIL() << "a plugin replaced the harness's planar_receiver";
+  } catch (const std::logic_error& e) {
+    EXPECT_NE(std::string(e.what()).find("'planar_receiver'"), std::string::npos) << e.what();
+  }
+  // Without the clash, the harness's provider is found as before.
+  EXPECT_NE(find_need_provider(need::kPlanarReceiver, nullptr), nullptr);
+}
+
 TEST(SilhouetteEdges, AClosedBoxHasEighteenEdgesEachWithTwoFaces) {
   // 6 faces × 2 triangles: 12 face edges and 6 face diagonals.
   const Mesh box = make_box("box", {0, 1, 0}, {0.5f, 1.0f, 1.5f});
