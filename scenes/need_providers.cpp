@@ -161,6 +161,24 @@ NeedProvider edge_adjacency() {
   return p;
 }
 
+NeedProvider caster_edges() {
+  NeedProvider p;
+  p.name = need::kCasterEdges;
+  p.summary = "every edge of the casters with the triangles on either side, on the CPU";
+  p.derive = [](const Scene& scene, DerivedData& data, std::vector<std::string>& log) {
+    auto edges = std::make_shared<CasterEdges>(scene.meshes.size());
+    size_t count = 0;
+    for (size_t i = 0; i < scene.meshes.size(); ++i) {
+      if (!scene.meshes[i].casts_shadow) continue;
+      (*edges)[i] = mesh_edges(scene.meshes[i]);
+      count += (*edges)[i].size();
+    }
+    data.put<CasterEdges>(need::kCasterEdges, std::move(edges));
+    log.push_back("listed " + std::to_string(count) + " caster edges");
+  };
+  return p;
+}
+
 NeedProvider silhouette_edges() {
   NeedProvider p;
   p.name = need::kSilhouetteEdges;
@@ -212,9 +230,9 @@ SilhouetteEdgeRecords pack_silhouette_edges(const Scene& scene) {
 }
 
 const std::vector<NeedProvider>& builtin_need_providers() {
-  static const std::vector<NeedProvider> providers = {caster_closedness(), closed_casters(),
-                                                      opaque_casters(),    planar_receiver(),
-                                                      edge_adjacency(),    silhouette_edges()};
+  static const std::vector<NeedProvider> providers = {
+      caster_closedness(), closed_casters(), opaque_casters(),  planar_receiver(),
+      edge_adjacency(),    caster_edges(),   silhouette_edges()};
   return providers;
 }
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/scene.h"
+#include "plugin/need_data.h"
 
 namespace sb {
 
@@ -27,16 +28,7 @@ MeshTopology analyse_topology(const Mesh& mesh);
 // edge repeats the triangle's own opposite vertex.
 std::vector<uint32_t> build_adjacency_indices(const Mesh& mesh);
 
-// Every edge of a mesh once, vertices welded by position as above. An edge
-// with exactly two oppositely wound triangles names both; any other edge
-// (boundary, non-manifold, inconsistently wound) appears once per triangle
-// using it, with only that triangle, so no face is ever paired with the wrong
-// neighbour.
-struct MeshEdge {
-  uint32_t v0 = 0, v1 = 0;  // mesh vertex indices, as triangle `left` winds them
-  uint32_t left = 0;        // the triangle that winds v0 → v1
-  int64_t right = -1;       // the triangle that winds v1 → v0, or -1
-};
+// Every edge of a mesh once (MeshEdge, plugin/need_data.h).
 std::vector<MeshEdge> mesh_edges(const Mesh& mesh);
 
 }  // namespace sb

@@ -68,12 +68,12 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>&
       info.cullable = m.casts_shadow && flags[i].closed;
       info.in_receiver_maps = !m.casts_shadow && flags[i].nothing_behind;
     }
-    ranges_.push_back(
-        {GLsizei(m.indices.size()), GLsizeiptr(index_data.size() * 4), base, m.casts_shadow, info});
+    ranges_.push_back({GLsizei(m.indices.size()), GLsizeiptr(index_data.size() * 4), base,
+                       m.casts_shadow, info, i});
     index_data.insert(index_data.end(), m.indices.begin(), m.indices.end());
     if (i < adjacency.size() && !adjacency[i].empty() && m.casts_shadow) {
-      adjacency_ranges_.push_back(
-          {GLsizei(adjacency[i].size()), GLsizeiptr(adjacency_data.size() * 4), base, true, info});
+      adjacency_ranges_.push_back({GLsizei(adjacency[i].size()),
+                                   GLsizeiptr(adjacency_data.size() * 4), base, true, info, i});
       adjacency_data.insert(adjacency_data.end(), adjacency[i].begin(), adjacency[i].end());
     }
     base += GLint(m.positions.size());
@@ -143,6 +143,13 @@ void GpuScene::draw_casters_adjacency() const {
   if (!has_adjacency()) throw std::logic_error("adjacency was not built for this scene");
   glBindVertexArray(adjacency_vao_.get());
   for (const auto& r : adjacency_ranges_) draw(r, GL_TRIANGLES_ADJACENCY);
+}
+
+void GpuScene::draw_casters_adjacency(const std::function<bool(size_t mesh)>& include) const {
+  if (!has_adjacency()) throw std::logic_error("adjacency was not built for this scene");
+  glBindVertexArray(adjacency_vao_.get());
+  for (const auto& r : adjacency_ranges_)
+    if (include(r.mesh)) draw(r, GL_TRIANGLES_ADJACENCY);
 }
 
 }  // namespace sb

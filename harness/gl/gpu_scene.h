@@ -55,6 +55,8 @@ class GpuScene {
   bool has_adjacency() const { return adjacency_count_ > 0; }
   // Casters as GL_TRIANGLES_ADJACENCY (6 indices per triangle).
   void draw_casters_adjacency() const;
+  // Only the casters whose scene mesh index `include` accepts.
+  void draw_casters_adjacency(const std::function<bool(size_t mesh)>& include) const;
 
   // Read-only views for techniques that read the scene in their own shaders
   // (bind as GL_SHADER_STORAGE_BUFFER; never write them) instead of
@@ -79,6 +81,7 @@ class GpuScene {
     GLint base_vertex;
     bool casts_shadow;
     DrawInfo info;
+    size_t mesh = 0;  // index into Scene::meshes
   };
   void draw(const Range& r, GLenum mode) const;
   const Scene* scene_;

@@ -32,6 +32,9 @@ inline constexpr const char* kPlanarReceiver = "planar_receiver";
 // GL_TRIANGLES_ADJACENCY indices of the casters: GpuScene::draw_casters_adjacency
 // (CasterAdjacency).
 inline constexpr const char* kEdgeAdjacency = "edge_adjacency";
+// Every edge of the casters once with the triangles on either side
+// (MeshEdge), on the CPU. Data: CasterEdges.
+inline constexpr const char* kCasterEdges = "caster_edges";
 // An SSBO of the casters' edges, each with the planes of its two faces
 // (plugin/silhouette_edges.h), so a shader can find silhouettes without
 // uploading the scene again. Data: SilhouetteEdges.

@@ -194,31 +194,46 @@ void error_time_charts(const std::vector<const JobRecord*>& ok, const std::strin
   }
 }
 
-// One series per technique variant of (x, frame time) over `records`.
-json time_series(const std::vector<const JobRecord*>& records,
-                 const std::function<double(const JobRecord&)>& x, Palette& styles, Chart& c) {
+// One series per technique variant of (x, y) points over `records`: y is a
+// point's JSON ({"y", "ylo", "yhi"}) or null to leave the record out.
+json line_series(const std::vector<const JobRecord*>& records,
+                 const std::function<double(const JobRecord&)>& x,
+                 const std::function<json(const JobRecord&)>& y, Palette& styles, Chart& c) {
   json series = json::array();
   std::vector<double> ys;
   for (const auto& [label, rs] :
        group_by(records, [](const JobRecord& r) { return r.technique_variant; })) {
-    std::vector<std::pair<double, Timing>> pts;
+    std::vector<std::pair<double, json>> pts;
     for (const JobRecord* r : rs) {
-      const Timing t = timing_of(*r, &TimingRecord::frame);
-      if (std::isfinite(t.median) && std::isfinite(x(*r))) pts.push_back({x(*r), t});
+      json point = y(*r);
+      if (!point.is_null() && std::isfinite(x(*r))) pts.emplace_back(x(*r), std::move(point));
     }
     if (pts.empty()) continue;
     std::stable_sort(pts.begin(), pts.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
     json p = json::array();
-    for (const auto& [xv, t] : pts) {
-      p.push_back(timed_point(xv, t));
-      ys.push_back(t.median);
+    for (auto& [xv, point] : pts) {
+      point["x"] = xv;
+      ys.push_back(point["y"].get<double>());
+      p.push_back(std::move(point));
     }
     c.file.series.push_back(label);
     series.push_back({{"label", label}, {"style", styles(label)}, {"points", p}});
   }
   c.data["ylog"] = spans_decade(ys);
   return series;
+}
+
+// One series per technique variant of (x, frame time) over `records`.
+json time_series(const std::vector<const JobRecord*>& records,
+                 const std::function<double(const JobRecord&)>& x, Palette& styles, Chart& c) {
+  return line_series(
+      records, x,
+      [](const JobRecord& r) -> json {
+        const Timing t = timing_of(r, &TimingRecord::frame);
+        return std::isfinite(t.median) ? timed_point(0.0, t) : json(nullptr);
+      },
+      styles, c);
 }
 
 double triangles_of(const JobRecord& r) {
@@ -229,9 +244,13 @@ double pixels_of(const JobRecord& r) {
   return static_cast<double>(r.width) * static_cast<double>(r.height);
 }
 
-// Frame time against scene.triangles per (scene type, resolution).
-void time_triangles_charts(const std::vector<const JobRecord*>& ok, Palette& styles,
-                           const std::string& out_dir, std::vector<Chart>& out) {
+// One chart of `kind` per (scene type, resolution) whose scene variants have
+// two or more triangle counts, x = scene.triangles; `y` names the y axis and
+// fills the series.
+void triangles_charts(const std::vector<const JobRecord*>& ok, const std::string& kind,
+                      const std::string& quantity, const std::string& ylabel,
+                      const std::function<json(const std::vector<const JobRecord*>&, Chart&)>& y,
+                      const std::string& out_dir, std::vector<Chart>& out) {
   const auto groups =
       group_by(ok, [](const JobRecord& r) { return r.scene.type + "\n" + r.resolution; });
   for (const auto& [key, records] : groups) {
@@ -241,17 +260,49 @@ void time_triangles_charts(const std::vector<const JobRecord*>& ok, Palette& sty
     if (counts.size() < 2) continue;
     const std::string& type = records[0]->scene.type;
     const std::string& res = records[0]->resolution;
-    std::string title = "frame time vs triangles: ";
+    std::string title = quantity + " vs triangles: ";
     title.append(type).append(" @ ").append(res);
     Chart c =
-        make_chart("time_triangles", "time_triangles__" + file_safe(type) + "__" + file_safe(res),
-                   title, out_dir);
-    c.data["series"] = time_series(records, triangles_of, styles, c);
+        make_chart(kind, kind + "__" + file_safe(type) + "__" + file_safe(res), title, out_dir);
+    c.data["series"] = y(records, c);
     c.data.update({{"xlabel", "triangles (scene.triangles)"},
-                   {"ylabel", kTimeLabel},
+                   {"ylabel", ylabel},
                    {"xlog", spans_decade({counts.begin(), counts.end()})}});
     out.push_back(std::move(c));
   }
+}
+
+// Frame time against scene.triangles.
+void time_triangles_charts(const std::vector<const JobRecord*>& ok, Palette& styles,
+                           const std::string& out_dir, std::vector<Chart>& out) {
+  triangles_charts(
+      ok, "time_triangles", "frame time", kTimeLabel,
+      [&](const std::vector<const JobRecord*>& records, Chart& c) {
+        return time_series(records, triangles_of, styles, c);
+      },
+      out_dir, out);
+}
+
+// The error metric against scene.triangles: how a technique's error follows
+// the tessellation of the same shapes.
+void error_triangles_charts(const std::vector<const JobRecord*>& ok, const std::string& metric,
+                            Palette& styles, const std::string& out_dir, std::vector<Chart>& out) {
+  const MetricPath path = metric_path(metric);
+  const bool higher = higher_is_better(path);
+  triangles_charts(
+      ok, "error_triangles", metric,
+      metric + (higher ? " (higher is better)" : " (lower is better)"),
+      [&](const std::vector<const JobRecord*>& records, Chart& c) {
+        return line_series(
+            records, triangles_of,
+            [&](const JobRecord& r) -> json {
+              const double e = metric_of(r, path);
+              if (!std::isfinite(e)) return nullptr;
+              return {{"y", e}, {"ylo", nullptr}, {"yhi", nullptr}};
+            },
+            styles, c);
+      },
+      out_dir, out);
 }
 
 // Frame time against width×height per scene variant.
@@ -396,6 +447,7 @@ std::vector<ChartFile> write_charts(const std::vector<JobRecord>& records,
   std::vector<Chart> charts;
   error_time_charts(ok, options.error_metric, styles, out_dir, charts);
   time_triangles_charts(ok, styles, out_dir, charts);
+  error_triangles_charts(ok, options.error_metric, styles, out_dir, charts);
   time_resolution_charts(ok, styles, out_dir, charts);
   passes_charts(ok, pass_colours, out_dir, charts);
   if (charts.empty()) return {};

@@ -10,6 +10,7 @@
 //                     resolution); the Pareto front as a step line, labelled;
 //  - time_triangles:  frame time against scene.triangles, per (scene type,
 //                     resolution), when the type has >= 2 triangle counts;
+//  - error_triangles: the error metric against scene.triangles, likewise;
 //  - time_resolution: frame time against width×height, per scene variant,
 //                     when it ran at >= 2 resolutions;
 //  - passes:          per-pass stacked bars per (scene variant, resolution):
@@ -31,7 +32,7 @@ struct ChartOptions {
 };
 
 struct ChartFile {
-  std::string kind;   // error_time, time_triangles, time_resolution, passes
+  std::string kind;   // error_time, time_triangles, error_triangles, time_resolution, passes
   std::string title;  // as drawn above the chart
   std::string svg;    // paths of the written files (out_dir/<name>.svg, .png)
   std::string png;

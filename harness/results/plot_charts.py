@@ -4,7 +4,7 @@
 usage: plot_charts.py DATA.json...
 
 Each DATA.json is one chart prepared by harness/results/charts.cpp (kinds
-error_time, time_triangles, time_resolution, passes); it names its own
+error_time, time_triangles, error_triangles, time_resolution, passes); it names its own
 output files. Exit codes: 0 all drawn, 1 some chart failed (tracebacks on
 stderr, the other charts are still drawn), 2 usage, 3 matplotlib missing.
 No network is used; text stays text in the SVG (svg.fonttype none).
@@ -217,7 +217,7 @@ def draw(data_path):
         height += 0.12 * max(0, len(d["front"]) - 6)
     fig, ax = plt.subplots(figsize=(width, height))
     try:
-        {"error_time": error_time, "time_triangles": time_lines, "time_resolution": time_lines,
+        {"error_time": error_time, "time_triangles": time_lines, "error_triangles": time_lines, "time_resolution": time_lines,
          "passes": passes}[kind](fig, ax, d)
         ax.set_title(d["title"])
         if "xlabel" in d:

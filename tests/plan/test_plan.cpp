@@ -9,8 +9,11 @@
 #include "../config/cli_runner.h"
 #include "config/experiment.h"
 #include "gl/context.h"
+#include "plan/need_resolution.h"
 #include "plan/plan.h"
 #include "plugin/registry.h"
+#include "scenes/mesh_builders.h"
+#include "scenes/sphere_grid.h"
 
 namespace sb::test {
 namespace {
@@ -55,6 +58,43 @@ TEST(PlanStage, ListsTheFoliageShadowVolumeSkipBeforeAnyGlContext) {
   EXPECT_NE(logs(0).find("edge adjacency"), std::string::npos) << logs(0);
   EXPECT_EQ(logs(2).find("edge adjacency"), std::string::npos) << logs(2);
   EXPECT_NE(logs(2).find("closedness"), std::string::npos) << logs(2);
+}
+
+// Every technique that needs closed casters (the shadow-volume family) is
+// skipped on an open caster and on an alpha-tested one, with the reason.
+TEST(PlanStage, EveryVolumeTechniqueSkipsOpenAndAlphaTestedCastersWithAReason) {
+  std::vector<const TechniqueInfo*> volumes;
+  for (const TechniqueInfo& t : registry().all())
+    if (t.needs.has(need::kClosedCasters)) volumes.push_back(&t);
+  ASSERT_FALSE(volumes.empty());
+  const auto scene = [](bool open, bool alpha_tested) {
+    Scene s;
+    Mesh box = make_box("box", {0, 1, 0}, {0.5f, 1.0f, 1.5f});
+    if (open) box.indices.resize(box.indices.size() - 3);
+    if (alpha_tested) {
+      s.textures.push_back(TextureImage{"holes", 1, 1, {255, 255, 255, 0}});
+      box.base_color_texture = 0;
+      box.alpha_mode = AlphaMode::Mask;
+      box.uvs.assign(box.positions.size(), glm::vec2(0.5f));
+    }
+    s.meshes.push_back(box);
+    s.meshes.push_back(make_ground_plane("ground", glm::vec3(0), 5.0f));
+    return s;
+  };
+  const auto reasons = [&](const Scene& s) {
+    return resolve_needs(s, volumes, &registry(), Derive::Decide).skip_reason;
+  };
+  for (size_t i = 0; i < volumes.size(); ++i) {
+    SCOPED_TRACE(volumes[i]->name);
+    EXPECT_EQ(reasons(scene(false, false))[i], "");
+    EXPECT_NE(reasons(scene(true, false))[i].find("needs closed casters: mesh 'box' has 3 "
+                                                  "boundary edges"),
+              std::string::npos)
+        << reasons(scene(true, false))[i];
+    EXPECT_NE(reasons(scene(false, true))[i].find("cannot honour alpha masks: mesh 'box'"),
+              std::string::npos)
+        << reasons(scene(false, true))[i];
+  }
 }
 
 TEST(PlanStage, ABadSceneFailsItsJobsAndTheRestArePlanned) {

@@ -106,6 +106,7 @@ TEST(Charts, EveryChartIsWrittenWithItsSeries) {
   for (const auto& c : charts) ++kinds[c.kind];
   EXPECT_EQ(kinds["error_time"], 4);       // 2 scenes × 2 resolutions
   EXPECT_EQ(kinds["time_triangles"], 2);   // jeep at 2 resolutions
+  EXPECT_EQ(kinds["error_triangles"], 2);  // likewise
   EXPECT_EQ(kinds["time_resolution"], 2);  // per scene
   EXPECT_EQ(kinds["passes"], 4);
 
@@ -128,6 +129,20 @@ TEST(Charts, EveryChartIsWrittenWithItsSeries) {
     EXPECT_EQ(svg.find("broken_technique"), std::string::npos);
     EXPECT_EQ(svg.find("skipped_technique"), std::string::npos);
     EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(c.svg).replace_extension(".json")));
+    if (c.kind == "error_triangles") {
+      // Each technique's error at each triangle count, as its records hold it.
+      const auto data = nlohmann::json::parse(
+          read(std::filesystem::path(c.svg).replace_extension(".json").string()));
+      for (const auto& s : data["series"]) {
+        const auto t = std::find_if(kTechniques.begin(), kTechniques.end(),
+                                    [&](const Technique& k) { return k.variant == s["label"]; });
+        ASSERT_NE(t, kTechniques.end());
+        ASSERT_EQ(s["points"].size(), 2u);
+        EXPECT_EQ(s["points"][0]["x"], 10000.0);
+        EXPECT_EQ(s["points"][1]["x"], 40000.0);
+        for (const auto& p : s["points"]) EXPECT_EQ(p["y"].get<double>(), t->rmse);
+      }
+    }
     if (c.kind == "error_time") {
       EXPECT_NE(svg.find("visibility.all.rmse"), std::string::npos) << "axis names the metric";
       const std::vector<std::string> front = {"none", "shadow_map/size=1024",
