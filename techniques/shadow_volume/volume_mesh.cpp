@@ -33,7 +33,7 @@ VolumeVertices::Range append_volume(const Silhouette& silhouette, const glm::vec
   if (has_strip) {
     // The strip's triangles at infinity, reversed (they follow the sides
     // above: six vertices per loop edge, then six of strip where present).
-    const size_t sides_end = size_t(range.first + range.sides);
+    const size_t sides_end = size_t(range.first) + size_t(range.sides);
     for (size_t i = size_t(range.first); i < sides_end; i += 6) {
       if (v[i + 1].w == 0.0f) continue;  // a side quad, not a strip quad
       for (size_t t = i; t < i + 6; t += 3)
