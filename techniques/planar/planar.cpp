@@ -153,7 +153,7 @@ class Planar final : public Technique {
   void project(const FrameInputs& in) const {
     glDisable(GL_DEPTH_TEST);  // the flattened casters lie in the plane: no depth test
     glDepthMask(GL_FALSE);
-    glDisable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
     glEnable(GL_CLIP_DISTANCE0);
     glEnable(GL_STENCIL_TEST);
     glStencilMask(0xff);
@@ -180,11 +180,21 @@ class Planar final : public Technique {
       if (glm::dot(in.receiver_plane, glm::vec4(l, 1.0f)) <= 0.0f) continue;
       glStencilFunc(GL_NOTEQUAL, ref, 0xff);
       project_.set("shadow_projection", planar_projection(in.receiver_plane, l));
-      in.gpu->draw_casters();
+      in.gpu->draw_casters([](const DrawInfo& d) {
+        // A closed caster's shadow is the flattened image of its light-facing
+        // faces, which keep their winding seen from the plane's lit side,
+        // where the camera is for every pixel the plane can shade: cull the
+        // rest, half the fragments.
+        if (d.cullable)
+          glEnable(GL_CULL_FACE);
+        else
+          glDisable(GL_CULL_FACE);
+      });
     }
     glDisable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glDisable(GL_STENCIL_TEST);
+    glDisable(GL_CULL_FACE);
     glDisable(GL_CLIP_DISTANCE0);
     glDepthMask(GL_TRUE);
   }
@@ -206,7 +216,7 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
        "planar",
        "Blinn's projected shadow: casters flattened onto the receiver plane from the "
        "light's centre; hard, on the plane only",
-       Needs{need::kPlanarReceiver, need::kOpaqueCasters},
+       Needs{need::kPlanarReceiver, need::kOpaqueCasters, need::kCasterClosedness},
        {},
        [](const Params&) { return std::make_unique<Planar>("planar", std::vector<glm::vec2>{}); }});
   registry.add(
@@ -214,7 +224,7 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
        "planar",
        "N projected planar shadows from stratified points on the area light, averaged; on the "
        "plane only",
-       Needs{need::kPlanarReceiver, need::kOpaqueCasters},
+       Needs{need::kPlanarReceiver, need::kOpaqueCasters, need::kCasterClosedness},
        {int_param("samples", 64, 1, 65536,
                   "light points: an m×n grid of strata if N = m·n with n <= 2m, else the "
                   "Hammersley set"),

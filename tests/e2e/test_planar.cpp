@@ -160,9 +160,12 @@ TEST(Planar, SoftPenumbraErrorIsSmallAndFallsWithSamples) {
   EXPECT_LT(rmse64, 0.6 * rmse16);
 }
 
-// Every projected triangle of a closed caster overlaps another (its front and
-// back faces), and stacked plates overlap each other: each light point
-// darkens a pixel once, so V takes only the values k/N, down to exactly 0.
+// The stacked plates' shadows overlap on the ground (the upper plate's falls
+// in the lower one's umbra), and so do the flattened faces of one caster
+// (light-facing ones meet along shared edges; an open caster's back faces
+// cover its front faces'): each light point darkens a pixel once, so V takes
+// only the values k/N, down to exactly 0. Without the stencil the harness
+// fails these jobs (V = -1 on the overlap).
 TEST(Planar, OverlappingCastersDarkenOnce) {
   const json scenes = json::array(
       {small_scene(1.0), json{{"type", "plates"}, {"params", {{"layout", "stacked"}}}}});
