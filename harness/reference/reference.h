@@ -13,12 +13,14 @@
 // on the triangles. A tessellation lies inside its sphere, so a ray from one
 // of its own points would leave through the sphere: a ray whose origin lies
 // within the sphere's radius (plus four ray offsets, embree_scene.cpp) passes
-// it. The mesh is convex, so a ray that leaves a point above its facet's
+// it. A UV sphere is convex, so a ray that leaves a point above its facet's
 // plane (the horizon rule below) never meets the mesh again: the rule keeps
 // a mesh's self-shadowing exactly what its triangles give, the facet's
 // plane, while every other point (other meshes', the ground) is occluded by
-// the exact sphere. Points of one mesh inside another's sphere (casters that
-// interpenetrate) are not occluded by that sphere either.
+// the exact sphere. (A non-convex mesh inside its sphere would lose the
+// shadows it casts on itself.) Points of another mesh inside a sphere, or
+// outside it by less than the tolerance (casters that interpenetrate or
+// touch), are not occluded by that sphere either.
 //
 // Sampling: `spp` stratified samples on the light (n×n jittered grid when
 // spp = n*n, near-square equal-area cells otherwise; see stratify.h), drawn
