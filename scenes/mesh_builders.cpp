@@ -175,9 +175,26 @@ void transform_mesh(Mesh& mesh, const glm::mat4& transform) {
   if (glm::determinant(linear) < 0.0f)
     for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
       std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
+  if (mesh.analytic.kind == AnalyticShape::Kind::Sphere) {
+    // A sphere stays one under a similarity (rotation, mirror, uniform scale).
+    const float scale = std::cbrt(std::fabs(glm::determinant(linear)));
+    const glm::mat3 gram = glm::transpose(linear) * linear;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (std::fabs(gram[i][j] - (i == j ? scale * scale : 0.0f)) > 1e-5f * scale * scale)
+          throw std::invalid_argument("transform_mesh: mesh '" + mesh.name +
+                                      "' has an analytic sphere, which a transform that is no "
+                                      "similarity does not keep a sphere");
+    mesh.analytic.center = glm::vec3(transform * glm::vec4(mesh.analytic.center, 1.0f));
+    mesh.analytic.radius *= scale;
+  }
 }
 
 void append_mesh(Mesh& dst, const Mesh& src) {
+  if (dst.analytic.has() || src.analytic.has())
+    throw std::invalid_argument("append_mesh: '" + src.name + "' into '" + dst.name +
+                                "': a mesh with an analytic shape cannot be merged (the shape "
+                                "would not describe the result)");
   const uint32_t offset = next_index(dst);
   const size_t old_count = dst.positions.size();
   dst.positions.insert(dst.positions.end(), src.positions.begin(), src.positions.end());

@@ -29,11 +29,13 @@ Mesh make_torus(const std::string& name, glm::vec3 center, glm::vec3 axis, float
 
 // Applies `transform` to positions, and its inverse transpose to normals. A
 // mirroring transform (negative determinant) also reverses every triangle so
-// the mesh stays counter-clockwise outward.
+// the mesh stays counter-clockwise outward. An analytic sphere moves with the
+// mesh; a transform that is not a similarity throws std::invalid_argument.
 void transform_mesh(Mesh& mesh, const glm::mat4& transform);
 
 // Appends `src`'s geometry to `dst` (dst keeps its name and material). The
-// result is closed when both are closed and share no vertex position.
+// result is closed when both are closed and share no vertex position. Meshes
+// with an analytic shape are not merged (std::invalid_argument).
 void append_mesh(Mesh& dst, const Mesh& src);
 
 }  // namespace sb

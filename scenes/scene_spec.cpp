@@ -94,13 +94,15 @@ std::string describe_scene(const Scene& s) {
     closed += t.closed() ? 1 : 0;
     const bool infer = m.casts_shadow && can_shadow_nothing(s, i);
     inferred += infer ? 1 : 0;
-    std::snprintf(line, sizeof line, "  %-24s %9zu tris  %-8s %-6s %s%s\n", m.name.c_str(),
-                  m.triangle_count(),
-                  infer            ? "inferred"
-                  : m.casts_shadow ? "caster"
-                                   : "receiver",
-                  t.closed() ? "closed" : "open", m.alpha_tested() ? "alpha-mask " : "",
-                  m.double_sided ? "double-sided" : "");
+    std::snprintf(
+        line, sizeof line, "  %-24s %9zu tris  %-8s %-6s %s%s%s\n", m.name.c_str(),
+        m.triangle_count(),
+        infer            ? "inferred"
+        : m.casts_shadow ? "caster"
+                         : "receiver",
+        t.closed() ? "closed" : "open", m.alpha_tested() ? "alpha-mask " : "",
+        m.double_sided ? "double-sided " : "",
+        m.analytic.has() ? (std::string("analytic-") + to_string(m.analytic.kind)).c_str() : "");
     meshes += line;
   }
   const Bounds b = s.bounds();

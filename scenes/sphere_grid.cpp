@@ -65,6 +65,7 @@ Scene build_sphere_grid(const Params& p) {
   const float height = p.get_float("height");
   const int slices = p.get_int("slices");
   const int stacks = p.get_int("stacks");
+  const bool analytic = p.get_bool("analytic");
 
   Scene s;
   s.name = "sphere_grid";
@@ -78,6 +79,7 @@ Scene build_sphere_grid(const Params& p) {
                                          "_" + std::to_string(col),
                                      c, radius, slices, stacks);
         sphere.albedo = glm::vec3(0.85f, 0.32f, 0.25f);
+        if (analytic) sphere.analytic = AnalyticShape::sphere(c, radius);
         s.meshes.push_back(std::move(sphere));
       }
   Mesh ground = make_ground_plane("ground", glm::vec3(0), 4.0f * (extent + spacing) + 20.0f);
@@ -121,7 +123,10 @@ SceneType sphere_grid_scene_type() {
            float_param("height", 1.2, 0.0, 1e4, "height of the first layer's centres"),
            float_param("light_size", 2.0, 0.0, 1e4, "side of the square area light"),
            float_param("light_height", 10.0, 1e-2, 1e5,
-                       "distance scale of the light (placed at light_height*(0.35,1,0.25))")},
+                       "distance scale of the light (placed at light_height*(0.35,1,0.25))"),
+           bool_param("analytic", false,
+                      "the reference occludes with the exact spheres, not their triangles "
+                      "(the G-buffer and the techniques keep the triangles)")},
           build_sphere_grid,
           check_sphere_grid};
 }

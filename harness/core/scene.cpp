@@ -16,6 +16,16 @@ float sample_alpha(const TextureImage& texture, glm::vec2 uv) {
   return float(texture.rgba[(y * size_t(texture.width) + x) * 4 + 3]) / 255.0f;
 }
 
+const char* to_string(AnalyticShape::Kind kind) {
+  switch (kind) {
+    case AnalyticShape::Kind::None:
+      return "none";
+    case AnalyticShape::Kind::Sphere:
+      return "sphere";
+  }
+  return "unknown";
+}
+
 glm::mat4 Camera::view() const { return glm::lookAt(eye, target, up); }
 
 glm::mat4 Camera::projection(float aspect) const {
@@ -32,6 +42,13 @@ size_t Scene::caster_triangle_count() const {
   size_t n = 0;
   for (const auto& m : meshes)
     if (m.casts_shadow) n += m.triangle_count();
+  return n;
+}
+
+size_t Scene::analytic_caster_count() const {
+  size_t n = 0;
+  for (const auto& m : meshes)
+    if (m.casts_shadow && m.analytic.has()) ++n;
   return n;
 }
 

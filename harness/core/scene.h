@@ -20,6 +20,24 @@ struct TextureImage {
 
 enum class AlphaMode { Opaque, Mask };
 
+// The smooth surface a mesh tessellates, for the ray-traced reference only:
+// the rasteriser, the G-buffer and every technique use the triangles, and the
+// reference, when a mesh has a shape, occludes with the shape instead (so its
+// error measures the distance to the smooth surface). Only convex shapes: the
+// reference's self-shadowing rule relies on it (reference/reference.h).
+struct AnalyticShape {
+  enum class Kind : uint8_t { None, Sphere };
+  Kind kind = Kind::None;
+  glm::vec3 center{0.0f};  // Sphere
+  float radius = 0.0f;     // Sphere
+
+  static AnalyticShape sphere(glm::vec3 center, float radius) {
+    return {Kind::Sphere, center, radius};
+  }
+  bool has() const { return kind != Kind::None; }
+};
+const char* to_string(AnalyticShape::Kind kind);  // "none", "sphere"
+
 // The texel alpha (0..1) at `uv`, nearest texel, wrapping: texel index
 // floor(u * width) mod width, as GL_NEAREST + GL_REPEAT computes it.
 float sample_alpha(const TextureImage& texture, glm::vec2 uv);
@@ -41,6 +59,8 @@ struct Mesh {
   bool casts_shadow = true;
   // Thin surfaces seen and casting from both sides (leaves): never culled.
   bool double_sided = false;
+  // For the reference: the smooth shape these triangles approximate, or none.
+  AnalyticShape analytic;
 
   size_t triangle_count() const { return indices.size() / 3; }
   bool alpha_tested() const { return alpha_mode == AlphaMode::Mask && base_color_texture >= 0; }
@@ -101,6 +121,8 @@ struct Scene {
 
   size_t triangle_count() const;
   size_t caster_triangle_count() const;
+  // Casters the reference traces as their analytic shape.
+  size_t analytic_caster_count() const;
   // Of the vertices some triangle references (unreferenced ones are ignored).
   Bounds bounds() const;
   Bounds caster_bounds() const;

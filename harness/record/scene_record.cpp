@@ -29,6 +29,7 @@ json SceneRecord::to_json() const {
   if (built) {
     s["triangles"] = built->triangles;
     s["caster_triangles"] = built->caster_triangles;
+    s["analytic_casters"] = built->analytic_casters;
     const LightRecord& l = built->light;
     s["light"] = {{"center", numbers(l.center)},
                   {"target", numbers(l.target)},
@@ -57,6 +58,7 @@ SceneRecord SceneRecord::from_json(const Fields& f) {
     BuiltScene b;
     b.triangles = f.get<std::int64_t>("triangles");
     b.caster_triangles = f.get<std::int64_t>("caster_triangles");
+    b.analytic_casters = f.find<std::int64_t>("analytic_casters").value_or(0);  // older records
     const Fields light = f.object("light");
     b.light.center = numbers<3>(light, "center");
     b.light.target = numbers<3>(light, "target");

@@ -35,6 +35,9 @@ struct DerivedRecord {
 struct BuiltScene {
   std::int64_t triangles = 0;
   std::int64_t caster_triangles = 0;
+  // Casters the reference traces as their analytic shape instead of their
+  // triangles (Mesh::analytic; records before it have none).
+  std::int64_t analytic_casters = 0;
   LightRecord light;
   CameraRecord camera;
   DerivedRecord derived;

@@ -3,11 +3,14 @@
 #include <pmmintrin.h>
 #include <xmmintrin.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <glm/glm.hpp>
 
 #include "core/error.h"
+#include "reference/ray_offset.h"
 
 namespace sb::reference::detail {
 
@@ -45,6 +48,20 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
     const glm::vec2 uv = (1.0f - u - v) * m.uvs[m.indices[3 * prim]] +
                          u * m.uvs[m.indices[3 * prim + 1]] + v * m.uvs[m.indices[3 * prim + 2]];
     if (sample_alpha(*mask->texture, uv) < m.alpha_cutoff) args->valid[i] = 0;
+  }
+}
+
+// Lets a ray pass an analytic sphere when it starts on that sphere's own
+// mesh: its origin lies within radius + own_tolerance of the centre.
+void own_sphere_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* sphere = static_cast<const FlatScene::OwnSphere*>(args->geometryUserPtr);
+  const double reach = sphere->radius + sphere->own_tolerance;
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const glm::dvec3 o(RTCRayN_org_x(args->ray, args->N, i), RTCRayN_org_y(args->ray, args->N, i),
+                       RTCRayN_org_z(args->ray, args->N, i));
+    const glm::dvec3 d = o - sphere->center;
+    if (glm::dot(d, d) <= reach * reach) args->valid[i] = 0;
   }
 }
 
@@ -146,16 +163,80 @@ void FlatScene::add(const Mesh& mesh, size_t index) {
     }
     masks_.push_back(std::make_unique<AlphaMask>(
         AlphaMask{&mesh, &source_.textures[size_t(mesh.base_color_texture)]}));
-    rtcSetGeometryUserData(geom, masks_.back().get());
-    rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);
-    rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
+    filter(geom, masks_.back().get(), alpha_filter);
   }
+  attach(geom, index, AnalyticShape::Kind::None, "adding a triangle mesh");
+}
+
+void FlatScene::add_shape(const Mesh& mesh, size_t index) {
+  const AnalyticShape& shape = mesh.analytic;
+  if (shape.kind != AnalyticShape::Kind::Sphere)
+    throw InputError("", "mesh '" + mesh.name + "'",
+                     std::string("analytic shape '") + to_string(shape.kind) +
+                         "' is not one the reference traces");
+  const glm::vec3 c = shape.center;
+  if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z) ||
+      !std::isfinite(shape.radius) || !(shape.radius > 0.0f))
+    throw InputError("", "mesh '" + mesh.name + "'",
+                     "analytic sphere with a non-finite centre or a radius that is not positive");
+  if (mesh.alpha_tested())
+    throw InputError("", "mesh '" + mesh.name + "'",
+                     "an alpha-tested mesh cannot have an analytic shape (the mask has no "
+                     "meaning on it)");
+  if (rtcGetDeviceProperty(device_.get(), RTC_DEVICE_PROPERTY_POINT_GEOMETRY_SUPPORTED) == 0)
+    throw JobError("Embree: this build has no point geometry; analytic spheres need it");
+
+  // The mesh's points lie inside the sphere (its vertices on it, for an
+  // inscribed tessellation), and a shadow ray starts at most the ray offset
+  // (kOffsetRelative times the point's largest coordinate, itself at most
+  // max|c_i| + r) off them: four offsets of room, far below any gap
+  // between two shapes of a scene.
+  const double largest =
+      double(std::max({std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)})) + double(shape.radius);
+  const OwnSphere own{glm::dvec3(c), double(shape.radius), 4.0 * double(kOffsetRelative) * largest};
+  // The rule needs every point of the mesh within the sphere (plus the
+  // tolerance): true of an inscribed tessellation, whose vertices lie on it.
+  for (const glm::vec3& p : mesh.positions)
+    if (glm::length(glm::dvec3(p) - own.center) > own.radius + own.own_tolerance) {
+      throw InputError("", "mesh '" + mesh.name + "'",
+                       "a vertex lies outside its analytic sphere (the reference needs the "
+                       "mesh inside its shape)");
+    }
+  RTCGeometry geom = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_SPHERE_POINT);
+  device_.check("rtcNewGeometry(sphere)");
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                        RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+  if (!v) {
+    rtcReleaseGeometry(geom);
+    device_.check("rtcSetNewGeometryBuffer");
+    throw JobError("Embree: rtcSetNewGeometryBuffer returned no buffer");
+  }
+  v[0] = c.x;
+  v[1] = c.y;
+  v[2] = c.z;
+  v[3] = shape.radius;
+  spheres_.push_back(std::make_unique<OwnSphere>(own));
+  filter(geom, spheres_.back().get(), own_sphere_filter);
+  attach(geom, index, AnalyticShape::Kind::Sphere, "adding an analytic sphere");
+}
+
+void FlatScene::filter(RTCGeometry geom, void* data, RTCFilterFunctionN function) {
+  rtcSetGeometryUserData(geom, data);
+  rtcSetGeometryOccludedFilterFunction(geom, function);
+  rtcSetGeometryIntersectFilterFunction(geom, function);
+}
+
+void FlatScene::attach(RTCGeometry geom, size_t index, AnalyticShape::Kind kind, const char* what) {
   rtcCommitGeometry(geom);
   const unsigned id = rtcAttachGeometry(scene_, geom);
   rtcReleaseGeometry(geom);
-  device_.check("adding a triangle mesh");
-  if (mesh_of_geometry.size() <= id) mesh_of_geometry.resize(size_t(id) + 1);
+  device_.check(what);
+  if (mesh_of_geometry.size() <= id) {
+    mesh_of_geometry.resize(size_t(id) + 1);
+    shape_of_geometry.resize(size_t(id) + 1, AnalyticShape::Kind::None);
+  }
   mesh_of_geometry[id] = index;
+  shape_of_geometry[id] = kind;
 }
 
 void FlatScene::commit() {

@@ -1,5 +1,6 @@
 #pragma once
-// RAII around an Embree device and a flat triangle scene (internal).
+// RAII around an Embree device and a flat scene of triangles and, for meshes
+// with an analytic shape (Mesh::analytic), of that shape (internal).
 #include <embree3/rtcore.h>
 
 #include <memory>
@@ -35,14 +36,22 @@ class Device {
 
 class FlatScene {
  public:
-  // Every mesh for which `take(mesh)` is true becomes one triangle geometry
-  // (flattened: no instances). mesh_of_geometry maps geomID to mesh index.
+  // Every mesh for which `take(mesh)` is true becomes one geometry
+  // (flattened: no instances): its triangles, or with `analytic_shapes` and
+  // a mesh that has one, its analytic shape. mesh_of_geometry maps geomID to
+  // mesh index, shape_of_geometry to what that geometry is.
   template <typename Pred>
-  FlatScene(Device& device, const Scene& scene, Pred take) : device_(device), source_(scene) {
+  FlatScene(Device& device, const Scene& scene, Pred take, bool analytic_shapes = false)
+      : device_(device), source_(scene) {
     begin();
     try {
-      for (size_t i = 0; i < scene.meshes.size(); ++i)
-        if (take(scene.meshes[i])) add(scene.meshes[i], i);
+      for (size_t i = 0; i < scene.meshes.size(); ++i) {
+        if (!take(scene.meshes[i])) continue;
+        if (analytic_shapes && scene.meshes[i].analytic.has())
+          add_shape(scene.meshes[i], i);
+        else
+          add(scene.meshes[i], i);
+      }
       commit();
     } catch (...) {
       rtcReleaseScene(scene_);  // the destructor does not run for a throwing constructor
@@ -56,6 +65,7 @@ class FlatScene {
   RTCScene get() const { return scene_; }
   bool empty() const { return mesh_of_geometry.empty(); }
   std::vector<size_t> mesh_of_geometry;
+  std::vector<AnalyticShape::Kind> shape_of_geometry;  // None: the mesh's triangles
 
   // What an alpha-tested geometry's filter needs: the mesh (uvs, indices)
   // and its texture. Hits on texels below the cutoff are rejected, exactly
@@ -65,14 +75,29 @@ class FlatScene {
     const TextureImage* texture;
   };
 
+  // What an analytic sphere's filter needs. A ray whose origin lies within
+  // radius + own_tolerance of the centre starts on (or in) this sphere's own
+  // mesh, and the sphere does not occlude it (reference.h says why).
+  struct OwnSphere {
+    glm::dvec3 center;
+    double radius;
+    double own_tolerance;
+  };
+
  private:
   void begin();
   void add(const Mesh& mesh, size_t index);
+  void add_shape(const Mesh& mesh, size_t index);
+  // Both queries' filter, with its data.
+  static void filter(RTCGeometry geom, void* data, RTCFilterFunctionN function);
+  // Commits geom, attaches it as mesh `index` (of `kind`) and releases it.
+  void attach(RTCGeometry geom, size_t index, AnalyticShape::Kind kind, const char* what);
   void commit();
   Device& device_;
   const Scene& source_;
   RTCScene scene_ = nullptr;
   std::vector<std::unique_ptr<AlphaMask>> masks_;
+  std::vector<std::unique_ptr<OwnSphere>> spheres_;
 };
 
 // Sets flush-to-zero and denormals-are-zero for the current thread (Embree

@@ -16,6 +16,7 @@ double largest_coordinate(const glm::dvec3& v) {
 struct Gather {
   const Scene* scene;
   const std::vector<size_t>* mesh_of_geometry;
+  const std::vector<AnalyticShape::Kind>* shape_of_geometry;
   glm::dvec3 p;
   double largest = 0.0;
 };
@@ -24,6 +25,11 @@ struct Gather {
 // Returns false: the query radius stays as it is.
 bool on_triangle(RTCPointQueryFunctionArguments* args) {
   auto* g = static_cast<Gather*>(args->userPtr);
+  // An analytic shape (whether or not Embree's point query visits it) adds
+  // nothing: a ray never meets its own mesh's shape (the sphere filter in
+  // embree_scene.cpp), and a point lies on another mesh's shape only where
+  // two casters touch.
+  if ((*g->shape_of_geometry)[args->geomID] != AnalyticShape::Kind::None) return false;
   const Mesh& m = g->scene->meshes[(*g->mesh_of_geometry)[args->geomID]];
   const size_t first = size_t(args->primID) * 3;
   const glm::dvec3 a(m.positions[m.indices[first]]), b(m.positions[m.indices[first + 1]]),
@@ -47,7 +53,7 @@ bool on_triangle(RTCPointQueryFunctionArguments* args) {
 float RayOffset::at(const glm::vec3& p) const {
   const float own = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
   if (casters_.empty()) return kOffsetRelative * own;
-  Gather g{&scene_, &casters_.mesh_of_geometry, glm::dvec3(p)};
+  Gather g{&scene_, &casters_.mesh_of_geometry, &casters_.shape_of_geometry, glm::dvec3(p)};
   RTCPointQuery query;
   query.x = p.x;
   query.y = p.y;

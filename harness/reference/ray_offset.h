@@ -13,7 +13,9 @@
 // hit). Nothing farther away enters: a huge ground does not blur the contact
 // shadow of a small object elsewhere on it (it did with an offset scaled by
 // the whole scene's radius), though points on a huge caster get the offset
-// that caster's coordinates need.
+// that caster's coordinates need. Analytic shapes (Mesh::analytic) add
+// nothing to M: the own mesh's shape never occludes its points (reference.h),
+// and other meshes' shapes only touch them where two casters touch.
 #include <embree3/rtcore.h>
 
 #include <glm/vec3.hpp>

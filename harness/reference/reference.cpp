@@ -36,8 +36,10 @@ constexpr const char* kMethod = "embree_stratified_packet16";
 // Bump whenever the estimate changes for the same inputs (sampling, offsets,
 // error estimate): it is part of every cache key.
 // 2: horizon test, viewer-facing normals; 3: alpha masks; 4: ray offsets from
-// the point and its own triangles, not the scene's radius (ray_offset.h).
-constexpr uint32_t kMethodVersion = 4;
+// the point and its own triangles, not the scene's radius (ray_offset.h);
+// 5: analytic shapes (Mesh::analytic) occlude instead of their meshes and
+// join the key.
+constexpr uint32_t kMethodVersion = 5;
 constexpr char kMagic[8] = {'S', 'B', 'R', 'E', 'F', '\r', '\n', '\x1a'};
 constexpr uint32_t kFileVersion = 1;
 
@@ -345,7 +347,8 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
   const auto t0 = std::chrono::steady_clock::now();
   {
     Device device(r.isa);
-    FlatScene casters(device, scene, [](const Mesh& m) { return m.casts_shadow; });
+    FlatScene casters(
+        device, scene, [](const Mesh& m) { return m.casts_shadow; }, /*analytic_shapes=*/true);
     trace(scene, casters, positions, geometric_normals, s, r);
     device.check("rtcOccluded16");
   }
@@ -377,6 +380,12 @@ std::string cache_key(const Scene& scene, const ImageF& positions, const ImageF&
       h.add(m.alpha_cutoff).add(int32_t(t.width)).add(int32_t(t.height));
       h.add(m.uvs.data(), m.uvs.size() * sizeof(glm::vec2));
       h.add(t.rgba.data(), t.rgba.size());
+    }
+    // The shape the reference traces instead of the triangles, if any.
+    h.add(m.analytic.kind);
+    if (m.analytic.has()) {
+      hash_vec3(h, m.analytic.center);
+      h.add(m.analytic.radius);
     }
   }
   h.add(casters);

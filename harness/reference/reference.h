@@ -8,6 +8,20 @@
 // (no cosine weight: that belongs to shading). Background pixels get V = 1
 // and std error 0.
 //
+// Analytic shapes: a caster with Mesh::analytic set occludes with that shape
+// (an Embree sphere), not with its triangles; the points stay the G-buffer's,
+// on the triangles. A tessellation lies inside its sphere, so a ray from one
+// of its own points would leave through the sphere: a ray whose origin lies
+// within the sphere's radius (plus four ray offsets, embree_scene.cpp) passes
+// it. A UV sphere is convex, so a ray that leaves a point above its facet's
+// plane (the horizon rule below) never meets the mesh again: the rule keeps
+// a mesh's self-shadowing exactly what its triangles give, the facet's
+// plane, while every other point (other meshes', the ground) is occluded by
+// the exact sphere. (A non-convex mesh inside its sphere would lose the
+// shadows it casts on itself.) Points of another mesh inside a sphere, or
+// outside it by less than the tolerance (casters that interpenetrate or
+// touch), are not occluded by that sphere either.
+//
 // Sampling: `spp` stratified samples on the light (n×n jittered grid when
 // spp = n*n, near-square equal-area cells otherwise; see stratify.h), drawn
 // from a counter-based RNG keyed by (seed, pixel index, spp): results are
@@ -80,7 +94,8 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
 
 // As compute(), but looked up in / stored to cache_dir/<key>.sbref. The key
 // hashes everything V depends on: caster geometry (in order), the light
-// rectangle (centre, half_u, half_v; not target or intensity), both
+// rectangle (centre, half_u, half_v; not target or intensity), every caster's
+// analytic shape (kind, centre, radius), both
 // buffers' shapes and bytes, the settings, the method and its
 // version, and the Embree version and ISA. Corrupt or mismatched files are ignored
 // and recomputed; writes go to a temp file renamed into place. An unwritable

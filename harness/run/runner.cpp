@@ -295,6 +295,7 @@ class Runner {
       BuiltScene b;
       b.triangles = static_cast<std::int64_t>(st->scene.triangle_count());
       b.caster_triangles = static_cast<std::int64_t>(st->scene.caster_triangle_count());
+      b.analytic_casters = static_cast<std::int64_t>(st->scene.analytic_caster_count());
       const auto& l = st->scene.light;
       b.light = {vec3(l.center), vec3(l.target), {l.width(), l.height()}, l.intensity};
       const auto& c = st->scene.camera;

@@ -48,6 +48,7 @@ JobRecord full_record() {
   BuiltScene b;
   b.triangles = 61562;
   b.caster_triangles = 61560;
+  b.analytic_casters = 81;
   b.light = {{0, 10, 0}, {0, 0, 0}, {2, 2}, 1.5};
   b.camera = {{0, 12.125, 14.5}, {0, 0, 1.875}, 50};
   b.derived = {true, false, true, {"ground"}};
@@ -117,6 +118,16 @@ TEST(JobRecord, FullRecordRoundTrips) {
   EXPECT_TRUE(std::isnan(back.metrics->shaded.penumbra.ssim));
   EXPECT_EQ(back.timing->fine->pass_order, (std::vector<std::string>{"depth", "lookup"}));
   EXPECT_DOUBLE_EQ(back.timing->frame.median_ms, 11.0);
+}
+
+TEST(JobRecord, AnalyticCastersAreRecordedAndOlderRecordsReadAsNone) {
+  json j = full_record().to_json();
+  EXPECT_EQ(j["scene"]["analytic_casters"], 81);
+  j["scene"].erase("analytic_casters");  // a record from before the field
+  const JobRecord back = JobRecord::from_json(j);
+  ASSERT_TRUE(back.scene.built.has_value());
+  EXPECT_EQ(back.scene.built->analytic_casters, 0);
+  EXPECT_EQ(back.to_json()["scene"]["analytic_casters"], 0);
 }
 
 TEST(JobRecord, CoarseTimingHasNoPassDetail) {

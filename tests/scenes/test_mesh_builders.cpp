@@ -209,6 +209,24 @@ TEST(TransformMesh, MovesPositionsAndNormalsAndKeepsWindingUnderMirrors) {
   }
 }
 
+TEST(TransformMesh, MovesAnAnalyticSphereUnderSimilaritiesOnly) {
+  Mesh m = make_box("b", {0, 0, 0}, {1.0f, 1.0f, 1.0f});
+  m.analytic = AnalyticShape::sphere({1, 2, 3}, 2.0f);
+  const glm::mat4 t = glm::scale(
+      glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(5, 1, -2)), 0.7f, glm::vec3(0, 1, 0)),
+      glm::vec3(-1.5f, 1.5f, 1.5f));
+  Mesh moved = m;
+  transform_mesh(moved, t);
+  EXPECT_NEAR(glm::distance(moved.analytic.center, glm::vec3(t * glm::vec4(1, 2, 3, 1))), 0.0f,
+              1e-5f);
+  EXPECT_NEAR(moved.analytic.radius, 3.0f, 1e-5f);
+  Mesh squashed = m;
+  EXPECT_THROW(transform_mesh(squashed, glm::scale(glm::mat4(1.0f), glm::vec3(1, 0.5f, 1))),
+               std::invalid_argument);
+  Mesh other = make_box("c", {4, 0, 0}, {1.0f, 1.0f, 1.0f});
+  EXPECT_THROW(append_mesh(other, m), std::invalid_argument);
+}
+
 TEST(AppendMesh, MergesDisjointClosedPartsIntoAClosedMesh) {
   Mesh m = make_box("parts", {0, 0, 0}, {0.5f, 0.5f, 0.5f});
   m.albedo = glm::vec3(0.1f, 0.2f, 0.3f);

@@ -36,6 +36,23 @@ TEST(SphereGrid, SpheresFloatAboveTheGroundUnderTheLight) {
   EXPECT_NEAR(glm::dot(s.light.half_v, s.light.direction()), 0.0f, 1e-5f);
 }
 
+TEST(SphereGrid, AnalyticGivesEverySphereItsExactShape) {
+  for (const Mesh& m : build(nlohmann::json::object()).meshes)
+    EXPECT_FALSE(m.analytic.has()) << m.name;  // off by default
+  const Scene s = build({{"grid", 2}, {"layers", 2}, {"analytic", true}, {"radius", 0.4}});
+  EXPECT_EQ(s.analytic_caster_count(), 8u);
+  for (const Mesh& m : s.meshes) {
+    if (!m.casts_shadow) {
+      EXPECT_FALSE(m.analytic.has()) << m.name;  // the ground keeps its triangles
+      continue;
+    }
+    ASSERT_EQ(m.analytic.kind, AnalyticShape::Kind::Sphere) << m.name;
+    EXPECT_FLOAT_EQ(m.analytic.radius, 0.4f);
+    for (const glm::vec3& p : m.positions)  // the tessellation is inscribed
+      EXPECT_NEAR(glm::distance(p, m.analytic.center), 0.4f, 1e-5f) << m.name;
+  }
+}
+
 TEST(UvSphere, WindsCounterClockwiseOutwards) {
   const glm::vec3 c(1, 2, 3);
   const Mesh m = make_uv_sphere("s", c, 0.5f, 12, 7);
