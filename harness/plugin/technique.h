@@ -31,7 +31,8 @@ struct FrameInputs {
   glm::mat4 projection{1.0f};
   glm::mat4 view_projection{1.0f};
   // G-buffer (camera view): world position (RGBA32F, w = 1 on geometry, 0 on
-  // background) and the triangle's geometric normal (RGBA32F).
+  // background) and the triangle's geometric normal (RGBA32F; w = 1 on a
+  // caster, 0 on a mesh that casts no shadow).
   GLuint gbuffer_position = 0;
   GLuint gbuffer_normal = 0;
   // The shading normal (interpolated, RGBA32F) and albedo (RGBA8, texture ×

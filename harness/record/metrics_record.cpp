@@ -1,5 +1,6 @@
 #include "record/metrics_record.h"
 
+#include <limits>
 #include <vector>
 
 namespace sb {
@@ -67,14 +68,19 @@ RegionStats RegionStats::from_json(const Fields& f) {
 }
 
 json ImageMetrics::to_json() const {
-  return {{"all", all.to_json()},
-          {"penumbra", penumbra.to_json()},
-          {"soft_union", soft_union.to_json()}};
+  json j = {{"all", all.to_json()},
+            {"penumbra", penumbra.to_json()},
+            {"soft_union", soft_union.to_json()}};
+  if (receivers) j["receivers"] = receivers->to_json();
+  return j;
 }
 
 ImageMetrics ImageMetrics::from_json(const Fields& f) {
-  return {RegionStats::from_json(f.object("all")), RegionStats::from_json(f.object("penumbra")),
-          RegionStats::from_json(f.object("soft_union"))};
+  ImageMetrics m{RegionStats::from_json(f.object("all")),
+                 RegionStats::from_json(f.object("penumbra")),
+                 RegionStats::from_json(f.object("soft_union"))};
+  if (f.has("receivers")) m.receivers = RegionStats::from_json(f.object("receivers"));
+  return m;
 }
 
 json MetricsRecord::to_json() const {
@@ -100,11 +106,13 @@ std::optional<MetricPath> MetricPath::parse(const std::string& dotted) {
   else if (image == "shaded")
     p.image_ = &MetricsRecord::shaded;
   if (region == "all")
-    p.region_ = &ImageMetrics::all;
+    p.region_ = [](const ImageMetrics& m) { return &m.all; };
   else if (region == "penumbra")
-    p.region_ = &ImageMetrics::penumbra;
+    p.region_ = [](const ImageMetrics& m) { return &m.penumbra; };
   else if (region == "soft_union")
-    p.region_ = &ImageMetrics::soft_union;
+    p.region_ = [](const ImageMetrics& m) { return &m.soft_union; };
+  else if (region == "receivers")
+    p.region_ = [](const ImageMetrics& m) { return m.receivers ? &*m.receivers : nullptr; };
   bool known = false;
   for (const auto& k : kNumberKeys) known = known || p.key_ == k.key;
   if (p.image_ == nullptr || p.region_ == nullptr || !known) return std::nullopt;
@@ -112,9 +120,10 @@ std::optional<MetricPath> MetricPath::parse(const std::string& dotted) {
 }
 
 double MetricPath::of(const MetricsRecord& m) const {
-  const RegionStats& s = m.*image_.*region_;
+  const RegionStats* s = region_(m.*image_);
+  if (s == nullptr) return std::numeric_limits<double>::quiet_NaN();
   for (const auto& k : kNumberKeys)
-    if (key_ == k.key) return k.get(s);
+    if (key_ == k.key) return k.get(*s);
   return 0.0;  // parse() admits known keys only
 }
 

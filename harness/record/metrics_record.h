@@ -24,10 +24,13 @@ struct RegionStats {
   static RegionStats from_json(const Fields& f);
 };
 
-// The three regions: all measured pixels, the reference's penumbra, and the
-// soft pixels of either image.
+// The regions: all measured pixels, the reference's penumbra, the soft
+// pixels of either image, and the measured pixels on meshes that cast no
+// shadow (a ground: where the seed papers compare shadows; absent when the
+// image has none, and in records written before it existed).
 struct ImageMetrics {
   RegionStats all, penumbra, soft_union;
+  std::optional<RegionStats> receivers = std::nullopt;
 
   nlohmann::json to_json() const;
   static ImageMetrics from_json(const Fields& f);
@@ -41,8 +44,9 @@ struct MetricsRecord {
 };
 
 // A metric named by its dotted path under "metrics":
-// <visibility|shaded>.<all|penumbra|soft_union>.<key>, e.g.
+// <visibility|shaded>.<all|penumbra|soft_union|receivers>.<key>, e.g.
 // visibility.all.rmse or visibility.all.frac_over_0.05 (a key may hold dots).
+// A region the record lacks (receivers) reads as NaN.
 class MetricPath {
  public:
   // nullopt when `dotted` names no number of the schema.
@@ -52,7 +56,7 @@ class MetricPath {
 
  private:
   ImageMetrics MetricsRecord::*image_ = nullptr;
-  RegionStats ImageMetrics::*region_ = nullptr;
+  const RegionStats* (*region_)(const ImageMetrics&) = nullptr;
   std::string key_;
 };
 

@@ -59,6 +59,7 @@ uniform vec3 albedo;
 uniform bool textured;
 uniform bool alpha_test;
 uniform float alpha_cutoff;
+uniform bool casts_shadow;
 layout(location = 0) out vec4 out_position;
 layout(location = 1) out vec4 out_geometric_normal;
 layout(location = 2) out vec4 out_shading_normal;
@@ -69,7 +70,8 @@ void main() {
   // Seen from behind, a surface shows its back: flip both normals.
   float side = gl_FrontFacing ? 1.0 : -1.0;
   out_position = vec4(g_world, 1.0);
-  out_geometric_normal = vec4(side * g_face_normal, 0.0);
+  // w: 1 on a caster, 0 on a mesh that casts no shadow (a receiver).
+  out_geometric_normal = vec4(side * g_face_normal, casts_shadow ? 1.0 : 0.0);
   out_shading_normal = vec4(side * normalize(g_normal), 0.0);
   out_albedo = vec4(albedo * c.rgb, 1.0);
 }
@@ -138,6 +140,7 @@ void FrameTargets::render_gbuffer(const GpuScene& gpu, const glm::mat4& view_pro
     prog.set("textured", d.texture != 0 ? 1 : 0);
     prog.set("alpha_test", d.alpha_tested ? 1 : 0);
     prog.set("alpha_cutoff", d.alpha_cutoff);
+    prog.set("casts_shadow", d.casts_shadow ? 1 : 0);
     if (d.texture != 0) glBindTextureUnit(0, d.texture);
   });
   gl::throw_if_errors("G-buffer pass");
@@ -205,6 +208,15 @@ ImageF FrameTargets::read_positions() const {
 }
 ImageF FrameTargets::read_geometric_normals() const {
   return read_texture(geometric_normal_.get(), width_, height_, 3);
+}
+ImageF FrameTargets::read_receiver_mask() const {
+  const ImageF normals = read_texture(geometric_normal_.get(), width_, height_, 4);
+  const ImageF positions = read_positions();
+  ImageF mask(width_, height_, 1);
+  for (size_t i = 0; i < mask.data.size(); ++i)
+    mask.data[i] =
+        positions.data[4 * i + 3] != 0.0f && normals.data[4 * i + 3] == 0.0f ? 1.0f : 0.0f;
+  return mask;
 }
 ImageF FrameTargets::read_visibility() const {
   return read_texture(visibility_.get(), width_, height_, 1);

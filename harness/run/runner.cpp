@@ -122,9 +122,11 @@ void reset_gl_state() { gl::reset_state(); }
 
 // Pixel sets shared by every job of one (scene, resolution).
 struct Regions {
-  std::vector<uint8_t> measured;  // all but the pixels whose tangent plane cuts the light
-  std::vector<uint8_t> penumbra;  // the reference's soft pixels, measured ones only
-  std::vector<uint8_t> attached;  // the light wholly below the tangent plane: V = 0
+  std::vector<uint8_t> measured;   // all but the pixels whose tangent plane cuts the light
+  std::vector<uint8_t> penumbra;   // the reference's soft pixels, measured ones only
+  std::vector<uint8_t> attached;   // the light wholly below the tangent plane: V = 0
+  std::vector<uint8_t> receivers;  // measured pixels on meshes that cast no shadow
+  bool any_receiver = false;
 };
 
 // What every job of one (scene, resolution) draws with.
@@ -150,20 +152,24 @@ ImageF shade(const FrameSetup& f, const ImageF& visibility) {
   return f.targets.read_shaded();
 }
 
-// Three regions, each only over the measured pixels (all but those whose
-// tangent plane cuts the light; see metrics/light_horizon.h): every pixel;
-// the reference's penumbra; and the soft pixels of either the technique or
-// the reference (`soft_union`), which also sees light bleeding into a true
-// umbra and blur outside the true penumbra.
+// Regions, each only over the measured pixels (all but those whose tangent
+// plane cuts the light; see metrics/light_horizon.h): every pixel; the
+// reference's penumbra; the soft pixels of either the technique or the
+// reference (`soft_union`), which also sees light bleeding into a true umbra
+// and blur outside the true penumbra; and, when the view holds any, the
+// pixels on meshes that cast no shadow (`receivers`).
 //
 // SSIM's windows reach past the mask, so the unmeasured pixels take the
 // reference's values first: they add no error to a neighbour either.
 ImageMetrics compare_images(const ImageF& test, const ImageF& ref, const Regions& regions,
                             const std::vector<uint8_t>& soft_union) {
   const ImageF t = with_unmeasured_from(test, ref, regions.measured);
-  return {region_stats(metrics::compare(t, ref, &regions.measured)),
-          region_stats(metrics::compare(t, ref, &regions.penumbra)),
-          region_stats(metrics::compare(t, ref, &soft_union))};
+  ImageMetrics m{region_stats(metrics::compare(t, ref, &regions.measured)),
+                 region_stats(metrics::compare(t, ref, &regions.penumbra)),
+                 region_stats(metrics::compare(t, ref, &soft_union))};
+  if (regions.any_receiver)
+    m.receivers = region_stats(metrics::compare(t, ref, &regions.receivers));
+  return m;
 }
 
 // The visibility buffer's and the shaded image's error against the reference's.
@@ -525,6 +531,14 @@ class Runner {
     for (auto& m : regions.measured) m = m ? 0 : 1;
     apply_attached_shadow(regions.attached, ref.visibility);
     regions.penumbra = mask_and(metrics::penumbra_mask(ref.visibility), regions.measured);
+    {
+      const ImageF receiver = targets.read_receiver_mask();
+      regions.receivers.resize(receiver.data.size());
+      for (size_t i = 0; i < receiver.data.size(); ++i)
+        regions.receivers[i] = receiver.data[i] != 0.0f && regions.measured[i] ? 1 : 0;
+      regions.any_receiver = std::find(regions.receivers.begin(), regions.receivers.end(), 1) !=
+                             regions.receivers.end();
+    }
 
     targets.upload_visibility(ref.visibility);
     targets.render_shading(st.scene);

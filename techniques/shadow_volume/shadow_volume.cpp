@@ -306,7 +306,7 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
       "stencil shadow volumes from the light's centre (z-pass, z-fail with caps, or auto per "
       "caster); discrete silhouettes in a geometry shader, or discrete, accurate or smooth "
       "silhouettes (Mattausch et al. 2012) on the CPU",
-      Needs{need::kClosedCasters, need::kOpaqueCasters, need::kEdgeAdjacency, need::kCasterEdges},
+      Needs{need::kClosedCasters, need::kEdgeAdjacency, need::kOpaqueCasters, need::kCasterEdges},
       {choice_param("mode", "zfail", {"zpass", "zfail", "auto"},
                     "zpass counts in front of the surface; zfail behind (robust); auto uses zfail "
                     "only for casters whose volume can reach the camera's near plane"),

@@ -130,6 +130,22 @@ TEST(JobRecord, AnalyticCastersAreRecordedAndOlderRecordsReadAsNone) {
   EXPECT_EQ(back.to_json()["scene"]["analytic_casters"], 0);
 }
 
+TEST(JobRecord, TheReceiversRegionRoundTripsAndOlderRecordsLackIt) {
+  JobRecord r = full_record();
+  r.metrics->visibility.receivers = region(0.125);
+  const json j = r.to_json();
+  EXPECT_EQ(j["metrics"]["visibility"]["receivers"]["rmse"], 0.125);
+  EXPECT_FALSE(j["metrics"]["shaded"].contains("receivers"));
+  const JobRecord back = JobRecord::from_json(j);
+  EXPECT_EQ(back.to_json(), j);
+  const auto path = MetricPath::parse("visibility.receivers.rmse");
+  ASSERT_TRUE(path.has_value());
+  EXPECT_EQ(path->of(*back.metrics), 0.125);
+  // Absent (an older record, or no receiver in view): NaN, never 0.
+  EXPECT_TRUE(std::isnan(MetricPath::parse("shaded.receivers.rmse")->of(*back.metrics)));
+  EXPECT_FALSE(MetricPath::parse("visibility.ground.rmse").has_value());
+}
+
 TEST(JobRecord, CoarseTimingHasNoPassDetail) {
   JobRecord r = full_record();
   r.timing->fine.reset();
