@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "gl/debug.h"
 
 namespace sb::gl {
 namespace {
@@ -29,6 +30,9 @@ GLuint compile(const std::string& program, GLenum stage, const std::string& sour
                        : stage == GL_TESS_EVALUATION_SHADER ? "tessellation evaluation"
                        : stage == GL_COMPUTE_SHADER         ? "compute"
                                                             : "fragment";
+    // The driver may also have queued the error as a debug message: it is in
+    // this exception, and must not fail the next unrelated throw_if_errors.
+    (void)gl::take_debug_errors();
     throw JobError("shader '" + program + "' (" + kind + ") failed to compile: " + log.data());
   }
   return s;
@@ -86,6 +90,7 @@ Program::Program(std::string name, const std::vector<std::pair<GLenum, std::stri
     glGetProgramInfoLog(id_, len, nullptr, log.data());
     glDeleteProgram(id_);
     id_ = 0;
+    (void)gl::take_debug_errors();  // as for a compile error
     throw JobError("program '" + name_ + "' failed to link: " + log.data());
   }
 }
