@@ -30,8 +30,8 @@ class FrameTargets {
   ImageF read_geometric_normals() const;  // 3 channels
   // 1 where the surface belongs to a mesh that casts no shadow, else 0.
   ImageF read_receiver_mask() const;
-  ImageF read_visibility() const;         // 1 channel
-  ImageF read_shaded() const;             // 3 channels
+  ImageF read_visibility() const;  // 1 channel
+  ImageF read_shaded() const;      // 3 channels
   // Overwrites the visibility target (used to shade the reference).
   void upload_visibility(const ImageF& v);
 
