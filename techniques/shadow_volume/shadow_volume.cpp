@@ -28,11 +28,8 @@
 #include "gl/gpu_scene.h"
 #include "gl/objects.h"
 #include "gl/program.h"
-#include "plugin/need_data.h"
 #include "plugin/registry.h"
-#include "shadow_volume/near_plane_pyramid.h"
-#include "shadow_volume/silhouette.h"
-#include "shadow_volume/volume_mesh.h"
+#include "shadow_volume/caster_volumes.h"
 
 namespace sb {
 namespace {
@@ -84,87 +81,23 @@ void main() {
 }
 )";
 
-const char* const kResolveFragment = R"(#version 450 core
-in vec2 uv;
-layout(binding = 0) uniform sampler2D position_tex;
-out float visibility;
-void main() {
-  // Drawn where the stencil count is non-zero: inside a volume, unless there
-  // is no surface at all (background).
-  vec4 pos = texelFetch(position_tex, ivec2(gl_FragCoord.xy), 0);
-  visibility = pos.w == 0.0 ? 1.0 : 0.0;
-}
-)";
-
-// The CPU path's volumes: homogeneous positions, w = 0 at infinity.
-const char* const kCpuVolumeVertex = R"(#version 450 core
-layout(location = 0) in vec4 position;
-uniform mat4 view_projection;
-void main() { gl_Position = view_projection * position; }
-)";
-
-enum class Mode { ZPass, ZFail, Auto };
-Mode mode_from_string(const std::string& s) {
-  if (s == "zpass") return Mode::ZPass;
-  if (s == "zfail") return Mode::ZFail;
-  return Mode::Auto;
-}
-
-void set_stencil_ops(bool zfail) {
-  if (zfail) {
-    glStencilOpSeparate(GL_BACK, GL_KEEP, GL_INCR_WRAP, GL_KEEP);
-    glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_DECR_WRAP, GL_KEEP);
-  } else {
-    glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_KEEP, GL_INCR_WRAP);
-    glStencilOpSeparate(GL_BACK, GL_KEEP, GL_KEEP, GL_DECR_WRAP);
-  }
-}
-
 class ShadowVolume final : public Technique {
  public:
   explicit ShadowVolume(const Params& p)
-      : mode_(mode_from_string(p.get_string("mode"))),
-        offset_(p.get_float("offset")),
-        cpu_(p.get_string("silhouettes") == "cpu") {
-    settings_.mode = volume::silhouette_mode_from_string(p.get_string("silhouette"));
-    settings_.epsilon = p.get_float("epsilon");
-    settings_.offset = p.get_float("smooth_offset");
-  }
+      : offset_(p.get_float("offset")),
+        cpu_(p.get_string("silhouettes") == "cpu"),
+        volumes_(volume::count_mode_from_string(p.get_string("mode")), cpu_,
+                 volume::silhouette_settings(p)) {}
 
   void prepare(const FrameInputs& in) override {
     // A scene without casters (a lone ground, inferred a receiver) has no
     // volumes to draw, and no adjacency: every point is lit.
     if (!cpu_ && !in.gpu->has_adjacency() && in.scene->caster_triangle_count() > 0)
       throw JobError("shadow_volume: the scene has no adjacency");
-    // Scene data only: each caster's box (for `auto`) and, on the CPU path,
-    // its triangles and edges.
-    casters_.clear();
-    const auto* edges = cpu_ ? &in.derived->get<CasterEdges>(need::kCasterEdges) : nullptr;
-    for (size_t i = 0; i < in.scene->meshes.size(); ++i) {
-      const Mesh& m = in.scene->meshes[i];
-      if (!m.casts_shadow || m.indices.empty()) continue;
-      Caster c;
-      c.mesh = i;
-      for (uint32_t v : m.indices) c.box.extend(m.positions[v]);
-      if (cpu_) c.shape = volume::make_silhouette_mesh(m, (*edges)[i]);
-      casters_.push_back(std::move(c));
-    }
-    if (cpu_) {
-      volume_ = gl::Program("shadow_volume_cpu", {kCpuVolumeVertex, "", ""});
-      GLuint buffer = 0, vao = 0;
-      glCreateBuffers(1, &buffer);
-      vertices_ = gl::Buffer(buffer);
-      glCreateVertexArrays(1, &vao);
-      vao_ = gl::VertexArray(vao);
-      glVertexArrayVertexBuffer(vao, 0, buffer, 0, sizeof(glm::vec4));
-      glEnableVertexArrayAttrib(vao, 0);
-      glVertexArrayAttribFormat(vao, 0, 4, GL_FLOAT, GL_FALSE, 0);
-      glVertexArrayAttribBinding(vao, 0, 0);
-    } else {
-      volume_ = gl::Program("shadow_volume", {kVolumeVertex, kVolumeGeometry, ""});
-    }
-    resolve_ =
-        gl::Program("shadow_volume_resolve", {gl::kFullscreenVertexShader, "", kResolveFragment});
+    volumes_.prepare(in);
+    if (!cpu_) volume_ = gl::Program("shadow_volume", {kVolumeVertex, kVolumeGeometry, ""});
+    resolve_ = gl::Program("shadow_volume_resolve",
+                           {gl::kFullscreenVertexShader, "", volume::kStencilResolveFragment});
     gl::throw_if_errors("shadow_volume prepare");
   }
 
@@ -172,58 +105,34 @@ class ShadowVolume final : public Technique {
     const glm::vec3 light = in.scene->light.center;
     if (cpu_) {
       auto pass = timer.scope("silhouettes");
-      choose_zfail(in);
-      silhouettes_.resize(casters_.size());
-      for (size_t i = 0; i < casters_.size(); ++i)
-        volume::extract_silhouette(casters_[i].shape, light, settings_, silhouettes_[i]);
+      volumes_.choose_zfail(in);
+      volumes_.find_silhouettes(light);
     }
     if (cpu_) {
       auto pass = timer.scope("extrusion");
-      mesh_.clear();
-      for (size_t i = 0; i < casters_.size(); ++i)
-        casters_[i].range = volume::append_volume(silhouettes_[i], light, casters_[i].zfail, mesh_);
+      volumes_.extrude(light);
     }
     if (cpu_) {
       auto pass = timer.scope("upload");
-      // Orphaned and refilled every frame, as a dynamic vertex stream.
-      glNamedBufferData(vertices_.get(), GLsizeiptr(mesh_.vertices.size() * sizeof(glm::vec4)),
-                        mesh_.vertices.data(), GL_STREAM_DRAW);
+      volumes_.upload();
     }
     glBindFramebuffer(GL_FRAMEBUFFER, in.visibility_framebuffer);
     glViewport(0, 0, in.width, in.height);
     {
       auto pass = timer.scope("stencil");
-      if (!cpu_) choose_zfail(in);
-      glClearStencil(0);
-      glClear(GL_STENCIL_BUFFER_BIT);
-      glEnable(GL_DEPTH_TEST);
-      glDepthFunc(GL_LESS);
-      glDepthMask(GL_FALSE);
-      glEnable(GL_DEPTH_CLAMP);  // volumes reach infinity; don't clip them at the far plane
-      glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-      glDisable(GL_CULL_FACE);
-      glEnable(GL_STENCIL_TEST);
-      glStencilFunc(GL_ALWAYS, 0, 0xff);
-      glStencilMask(0xff);
-      if (offset_ != 0.0f) {
-        glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(0.0f, offset_);
-      }
-      volume_.use();
-      volume_.set("view_projection", in.view_projection);
+      if (!cpu_) volumes_.choose_zfail(in);
+      volume::begin_stencil_count(offset_);
       for (const bool zfail : {false, true}) {
-        set_stencil_ops(zfail);
+        volume::set_stencil_ops(zfail);
         if (cpu_)
-          draw_cpu_volumes(zfail);
+          volumes_.draw(in, zfail);
         else
           draw_gpu_volumes(in, zfail);
       }
-      glDisable(GL_POLYGON_OFFSET_FILL);
-      glDisable(GL_DEPTH_CLAMP);
+      volume::end_stencil_count();
     }
     auto pass = timer.scope("resolve");
     const std::array<float, 4> one{1.0f, 1.0f, 1.0f, 1.0f};
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glClearBufferfv(GL_COLOR, 0, one.data());
     glDisable(GL_DEPTH_TEST);
     glStencilFunc(GL_NOTEQUAL, 0, 0xff);
@@ -236,63 +145,26 @@ class ShadowVolume final : public Technique {
   }
 
  private:
-  struct Caster {
-    size_t mesh = 0;  // index into Scene::meshes
-    Bounds box;
-    volume::SilhouetteMesh shape;  // CPU path only
-    bool zfail = true;
-    volume::VolumeVertices::Range range;
-  };
-
-  // Per caster, this frame: z-fail or z-pass (the camera and light may move).
-  void choose_zfail(const FrameInputs& in) {
-    if (mode_ != Mode::Auto) {
-      for (Caster& c : casters_) c.zfail = mode_ == Mode::ZFail;
-      return;
-    }
-    const volume::NearPlanePyramid pyramid(in.scene->light.center, in.view_projection);
-    for (Caster& c : casters_) c.zfail = pyramid.may_intersect(c.box);
-  }
-
-  void draw_cpu_volumes(bool zfail) {
-    firsts_.clear();
-    counts_.clear();
-    for (const Caster& c : casters_)
-      if (c.zfail == zfail && c.range.sides + c.range.caps > 0) {
-        firsts_.push_back(c.range.first);
-        counts_.push_back(zfail ? c.range.sides + c.range.caps : c.range.sides);
-      }
-    if (firsts_.empty()) return;
-    glBindVertexArray(vao_.get());
-    glMultiDrawArrays(GL_TRIANGLES, firsts_.data(), counts_.data(), GLsizei(firsts_.size()));
-  }
-
   void draw_gpu_volumes(const FrameInputs& in, bool zfail) {
     if (!in.gpu->has_adjacency()) return;
     include_.assign(in.scene->meshes.size(), false);
     bool any = false;
-    for (const Caster& c : casters_)
+    for (const auto& c : volumes_.casters())
       if (c.zfail == zfail) include_[c.mesh] = true, any = true;
     if (!any) return;
+    volume_.use();
+    volume_.set("view_projection", in.view_projection);
     volume_.set("light_position", in.scene->light.center);
     volume_.set("caps", zfail ? 1 : 0);
     in.gpu->draw_casters_adjacency([this](size_t mesh) { return bool(include_[mesh]); });
   }
 
-  Mode mode_;
   float offset_;
   bool cpu_;
-  volume::SilhouetteSettings settings_;
-  std::vector<Caster> casters_;
-  std::vector<volume::Silhouette> silhouettes_;
-  volume::VolumeVertices mesh_;
-  std::vector<GLint> firsts_;
-  std::vector<GLsizei> counts_;
+  volume::CasterVolumes volumes_;
   std::vector<char> include_;
   gl::Program volume_;
   gl::Program resolve_;
-  gl::Buffer vertices_;
-  gl::VertexArray vao_;
 };
 
 }  // namespace
@@ -314,17 +186,13 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
                    "glPolygonOffset units pushing volume faces away from the camera"),
        choice_param("silhouettes", "gpu", {"gpu", "cpu"},
                     "where silhouettes are found and extruded: a geometry shader, or the CPU "
-                    "with the volume uploaded every frame"),
-       choice_param("silhouette", "discrete", {"discrete", "accurate", "smooth"},
-                    "discrete: edges between lit and unlit faces; accurate: where the vertex "
-                    "normals' n·(l−v) crosses zero; smooth: accurate lifted onto the curved "
-                    "surface and subdivided (cpu only)"),
-       float_param("epsilon", 0.01, 1e-6, 1e6,
-                   "smooth: subdivide until the curve is within this of its chords (world units)"),
-       float_param("smooth_offset", 0.0, 0.0, 1e6,
-                   "smooth: move the silhouette this far along the negative normal (world units) "
-                   "against light leaks")},
+                    "with the volume uploaded every frame")},
       [](const Params& p) { return std::make_unique<ShadowVolume>(p); }};
+  for (ParamSpec& spec : volume::silhouette_params(
+           "discrete: edges between lit and unlit faces; accurate: where the vertex normals' "
+           "n·(l−v) crosses zero; smooth: accurate lifted onto the curved surface and subdivided "
+           "(cpu only)"))
+    info.params.push_back(std::move(spec));
   info.check = [](const Params& p) -> std::pair<std::string, std::string> {
     if (p.get_string("silhouettes") == "gpu" && p.get_string("silhouette") != "discrete")
       return {"silhouette",

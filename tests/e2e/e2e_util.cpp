@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 
@@ -103,6 +104,13 @@ std::string fresh_test_folder(const std::string& prefix) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();
+}
+
+std::vector<bool> ground_pixels(const ImageF& positions) {
+  std::vector<bool> ground(positions.pixel_count());
+  for (size_t i = 0; i < ground.size(); ++i)
+    ground[i] = positions.data[i * 4 + 3] != 0.0f && std::abs(positions.data[i * 4 + 1]) < 1e-4f;
+  return ground;
 }
 
 nlohmann::json small_scene(double light_size) {

@@ -38,6 +38,10 @@ RunOutput run_config_with(const nlohmann::json& config, const std::string& name,
 RunOutput run_with_registry(const nlohmann::json& config, const Registry& registry,
                             const std::string& name);
 
+// Pixels on the ground plane y = 0 (the sphere grid's and the test scenes'),
+// from a run's G-buffer positions.
+std::vector<bool> ground_pixels(const ImageF& positions);
+
 // A small sphere grid seen from close by, for fast runs.
 nlohmann::json small_scene(double light_size);
 

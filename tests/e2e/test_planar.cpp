@@ -31,14 +31,6 @@ json experiment(const json& scenes, const json& techniques, int spp) {
           {"reference", {{"spp", spp}}}};
 }
 
-// Pixels of the sphere grid's ground (y = 0): the plane the techniques shade.
-std::vector<bool> ground_pixels(const ImageF& positions) {
-  std::vector<bool> ground(positions.pixel_count());
-  for (size_t i = 0; i < ground.size(); ++i)
-    ground[i] = positions.data[i * 4 + 3] != 0.0f && std::abs(positions.data[i * 4 + 1]) < 1e-4f;
-  return ground;
-}
-
 // Within `r` pixels of a shadow edge of `v` (its (2r+1)² window holds both
 // V < ½ and V >= ½).
 bool near_edge(const ImageF& v, int x, int y, int r) {

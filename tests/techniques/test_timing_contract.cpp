@@ -24,6 +24,7 @@
 #include "gl/gpu_scene.h"
 #include "gl/objects.h"
 #include "gl/pass_timer.h"
+#include "plan/need_resolution.h"
 #include "plugin/registry.h"
 #include "run/gbuffer.h"
 #include "scenes/need_providers.h"
@@ -98,6 +99,12 @@ class TimingContract : public ::testing::Test {
     PlanarReceiver receiver;
     in_.has_receiver_plane = find_planar_receiver(scene_, receiver);
     in_.receiver_plane = receiver.plane;
+    // The CPU data every technique's needs ask for (the caster edges of the
+    // CPU silhouettes), as the planner derives it for a run.
+    std::vector<const TechniqueInfo*> all;
+    for (const TechniqueInfo& t : plugins_.all()) all.push_back(&t);
+    derived_ = resolve_needs(scene_, all, &plugins_, Derive::All).data;
+    in_.derived = &derived_;
   }
 
   // One frame as the runner draws it: the G-buffer, then the technique.
@@ -124,6 +131,7 @@ class TimingContract : public ::testing::Test {
   std::unique_ptr<GpuScene> gpu_;
   std::unique_ptr<FrameTargets> targets_;
   glm::mat4 view_projection_{1.0f};
+  DerivedData derived_;
   FrameInputs in_;
 };
 

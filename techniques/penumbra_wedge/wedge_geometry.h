@@ -1,0 +1,99 @@
+#pragma once
+// Penumbra wedges on the CPU (Akenine-Möller & Assarsson 2002; Assarsson &
+// Akenine-Möller 2003): for a silhouette edge a → b and a rectangular area
+// light L, the wedge is the set of points whose view of L the edge can cut,
+//   S = { y : the segment from some light point l to y meets the edge }.
+//
+// In the light's frame (light_frame below: the light in z = 0, the scene at
+// z > 0), S cut at a plane z = Z beyond the edge is the convex hull of two
+// rectangles: L seen through each end point and projected onto z = Z
+// (point-reflected and scaled by Z/z − 1 about the end point's own
+// projection). So S ∩ {z <= Z} is exactly the convex hull of the two end
+// points and those two rectangles' eight corners. We build that hull with Z
+// beyond every scene point; its faces are wound outwards, so a pixel whose
+// surface point may lie in the wedge is drawn exactly once by the hull's back
+// faces (the exit of the view ray), with the depth test rejecting surfaces
+// behind the exit.
+//
+// Beside the hull, each wedge carries the planes of Lengyel's half-wedge
+// test (GDC 2005): the plane through the edge and the light's centre splits
+// the wedge in two, and a point in one half is inside the wedge iff it is on
+// the inner side of that half's bounding plane, the plane through the edge
+// and the light corner that bounds it.
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "core/scene.h"
+
+namespace sb::wedge {
+
+// The light's own orthonormal frame: u along half_u, n towards the light's
+// target (the lit side), v = n × u, origin at the light's centre.
+struct LightFrame {
+  glm::vec3 center{0.0f};
+  glm::vec3 u{1.0f, 0.0f, 0.0f}, v{0.0f, 1.0f, 0.0f}, n{0.0f, 0.0f, 1.0f};
+  float half_width = 0.5f, half_height = 0.5f;
+
+  explicit LightFrame(const AreaLight& light);
+  glm::vec3 to_light(const glm::vec3& world) const {
+    const glm::vec3 d = world - center;
+    return {glm::dot(d, u), glm::dot(d, v), glm::dot(d, n)};
+  }
+  glm::vec3 to_world(const glm::vec3& local) const {
+    return center + local.x * u + local.y * v + local.z * n;
+  }
+  // Light-frame z of the farthest corner of `box`.
+  float farthest(const Bounds& box) const;
+};
+
+// One wedge as the fragment shader reads it (std430: five vec4).
+struct WedgeRecord {
+  glm::vec4 a{0.0f}, b{0.0f};  // the edge's ends, light frame (w unused)
+  // World-space planes (n, d), |n| = 1: n·x + d. The centre plane splits the
+  // wedge; where it is negative the point must have first_bound >= −τ,
+  // elsewhere second_bound >= −τ, with τ = kHalfWedgeTolerance × the point's
+  // distance from the light's centre (points on the edge itself round either
+  // way). All zero: no rejection (the edge's line meets the
+  // light, and the wedge is not bounded by two planes).
+  glm::vec4 centre_plane{0.0f};
+  glm::vec4 first_bound{0.0f};
+  glm::vec4 second_bound{0.0f};
+};
+
+constexpr float kHalfWedgeTolerance = 1e-5f;
+
+struct WedgeVertex {
+  glm::vec3 position;  // world
+  uint32_t wedge;      // index of its WedgeRecord
+};
+
+struct WedgeBatch {
+  std::vector<WedgeVertex> vertices;
+  std::vector<uint32_t> indices;  // triangles, wound outwards
+  std::vector<WedgeRecord> wedges;
+  void clear() {
+    vertices.clear();
+    indices.clear();
+    wedges.clear();
+  }
+};
+
+// Where the wedges are cut: edge parts closer to the light's plane than
+// `near` (light-frame z) are dropped, since through them the light would be
+// projected to near infinity; parts beyond `far` (no scene point lies there)
+// too. The hull's far cap lies beyond `far`.
+struct WedgeRange {
+  float near = 1e-3f;
+  float far = 1.0f;
+};
+// A range for a scene whose farthest point from the light's plane is at
+// light-frame z = `scene_far` (> 0).
+WedgeRange wedge_range(float scene_far);
+
+// Appends the wedge of the edge a → b (world). Returns false, appending
+// nothing, when no part of the edge lies within `range` or it has no length.
+bool append_wedge(const LightFrame& frame, const glm::vec3& a, const glm::vec3& b,
+                  const WedgeRange& range, WedgeBatch& out);
+
+}  // namespace sb::wedge

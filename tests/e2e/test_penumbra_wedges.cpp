@@ -1,0 +1,246 @@
+// penumbra_wedges (techniques/penumbra_wedge/): the exact visibility under a
+// square occluder parallel to the light, the ray-traced reference on the
+// sphere grid (discrete and smooth silhouettes on coarse spheres), the
+// over-darkening where two occluders' penumbrae overlap, and edges that cross
+// the light's plane.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "../gltf/gltf_builder.h"
+#include "e2e_util.h"
+#include "scenes/gltf_export.h"
+#include "scenes/mesh_builders.h"
+#include "scenes/sphere_grid.h"
+
+namespace sb::test {
+namespace {
+
+using json = nlohmann::json;
+
+json experiment(const json& scenes, const json& techniques, int spp, int width, int height) {
+  return {{"name", "penumbra_wedges"},
+          {"scenes", scenes},
+          {"techniques", techniques},
+          {"resolutions", json::array({json::array({width, height})})},
+          {"frames", {{"warmup", 0}, {"timed", 1}}},
+          {"reference", {{"spp", spp}}}};
+}
+
+// A thin axis-aligned square plate: x ∈ [x0, x1], z ∈ [z0, z1] at height h.
+struct Plate {
+  float x0, x1, z0, z1, h;
+};
+
+// A square light of side `size`, centred at (0, H, 0) and facing down.
+constexpr float kLightHeight = 3.0f;
+
+// Exact V at the ground point (x, 0, z) for one plate: the plate projected
+// from the point onto the light's plane is the rectangle scaled by H / h
+// about the point, and V = 1 − its overlap with the light / the light's area.
+double exact_visibility(const Plate& p, double x, double z, double size) {
+  const double k = kLightHeight / p.h, half = 0.5 * size;
+  const auto overlap = [&](double lo, double hi, double at) {
+    const double a = at + (lo - at) * k, b = at + (hi - at) * k;
+    return std::max(0.0, std::min(b, half) - std::max(a, -half));
+  };
+  return 1.0 - overlap(p.x0, p.x1, x) * overlap(p.z0, p.z1, z) / (size * size);
+}
+
+std::string write_plates(const std::filesystem::path& dir, const std::vector<Plate>& plates,
+                         const glm::vec3& eye) {
+  Scene s;
+  s.meshes.push_back(make_ground_plane("ground", {0.0f, 0.0f, 0.0f}, 20.0f));
+  for (size_t i = 0; i < plates.size(); ++i) {
+    const Plate& p = plates[i];
+    // 0.2 mm thick: its bottom moves the shadow's edges by under 1e-3 of V.
+    s.meshes.push_back(make_box("plate" + std::to_string(i),
+                                {0.5f * (p.x0 + p.x1), p.h, 0.5f * (p.z0 + p.z1)},
+                                {0.5f * (p.x1 - p.x0), 1e-4f, 0.5f * (p.z1 - p.z0)}));
+  }
+  s.light.center = {0.0f, kLightHeight, 0.0f};
+  s.light.target = {0.0f, 0.0f, 0.0f};
+  s.camera.eye = eye;
+  s.camera.target = {0.0f, 0.0f, 0.0f};
+  const auto file = dir / "plates.glb";
+  export_glb(s, file.string());
+  return file.string();
+}
+
+json plate_scene(const std::string& file, double size) {
+  return {{"type", "gltf"},
+          {"params", {{"file", file}}},
+          {"light", {{"center", {0.0, kLightHeight, 0.0}}, {"target", {0, 0, 0}}, {"size", size}}}};
+}
+
+// One plate under the light: the wedges' fan about the light's centre is
+// exact for an occluder whose silhouette every light point shares, so V
+// matches the closed form on every ground pixel. The plate's edge x = 0
+// lies straight under the light's centre, and the image's middle column
+// (odd width, camera in the plane x = 0) puts pixels on that edge's centre
+// plane, where the stencil and the wedge must agree on the side.
+TEST(PenumbraWedges, MatchTheExactVisibilityOfASquareOccluderParallelToTheLight) {
+  TempDir dir;
+  const Plate plate{0.0f, 1.0f, -0.6f, 0.4f, 1.0f};
+  const double size = 1.0;
+  const auto out = run_config(
+      experiment(
+          json::array({plate_scene(write_plates(dir.path, {plate}, {0.0f, 4.0f, 3.0f}), size)}),
+          json::array({"penumbra_wedges"}), 16, 161, 121),
+      "wedges_square", gl::Backend::OSMesa, true, /*write_gbuffer=*/true);
+  ASSERT_EQ(out.summary.ok, 1) << out.records.at(0).value("reason", "");
+  const ImageF positions = out.gbuffer_positions();
+  const std::vector<bool> ground = ground_pixels(positions);
+  const ImageF v = out.visibility("penumbra_wedges");
+  size_t n = 0, penumbra = 0, umbra = 0, on_centre_plane = 0;
+  double worst = 0.0;
+  for (size_t i = 0; i < ground.size(); ++i) {
+    if (!ground[i]) continue;
+    const double x = positions.data[i * 4], z = positions.data[i * 4 + 2];
+    const double exact = exact_visibility(plate, x, z, size);
+    worst = std::max(worst, std::abs(double(v.data[i]) - exact));
+    ++n;
+    penumbra += exact > 0.01 && exact < 0.99;
+    umbra += exact < 1e-6;
+    on_centre_plane += std::abs(x) < 1e-6 && exact < 0.99;
+  }
+  std::printf(
+      "%zu ground px (%zu penumbra, %zu umbra, %zu on the centre plane): max |V - exact| %.5f\n", n,
+      penumbra, umbra, on_centre_plane, worst);
+  ASSERT_GT(penumbra, 1000u);
+  ASSERT_GT(umbra, 100u);
+  EXPECT_GT(on_centre_plane, 5u);
+  EXPECT_LT(worst, 0.01);
+}
+
+// Two plates at different heights whose penumbrae overlap on the ground:
+// the wedges add each silhouette's covered area, so where both cover parts
+// of the light that overlap, they darken too much (V below the truth).
+TEST(PenumbraWedges, OverDarkenWhereTwoOccludersOverlap) {
+  TempDir dir;
+  const std::vector<Plate> plates{{-1.2f, 0.1f, -0.8f, 0.8f, 1.0f},
+                                  {-0.1f, 0.9f, -0.7f, 0.7f, 1.6f}};
+  const double size = 1.5;
+  const auto out = run_config(
+      experiment(
+          json::array({plate_scene(write_plates(dir.path, plates, {0.0f, 5.0f, 3.5f}), size)}),
+          json::array({"penumbra_wedges"}), 256, 160, 120),
+      "wedges_overlap", gl::Backend::OSMesa, true, /*write_gbuffer=*/true);
+  ASSERT_EQ(out.summary.ok, 1) << out.records.at(0).value("reason", "");
+  const ImageF positions = out.gbuffer_positions();
+  const std::vector<bool> ground = ground_pixels(positions);
+  const ImageF v = out.visibility("penumbra_wedges");
+  const ImageF ref = out.reference_visibility();
+  double overlap_sum = 0.0, single_sum = 0.0;
+  size_t overlap = 0, single = 0;
+  for (size_t i = 0; i < ground.size(); ++i) {
+    if (!ground[i]) continue;
+    const double x = positions.data[i * 4], z = positions.data[i * 4 + 2];
+    const double v0 = exact_visibility(plates[0], x, z, size);
+    const double v1 = exact_visibility(plates[1], x, z, size);
+    const double err = double(v.data[i]) - double(ref.data[i]);
+    // Both occlude part of the light, the truth is not yet umbra, and the
+    // sum of their occlusions exceeds their union's by a clear margin.
+    if (v0 < 0.95 && v1 < 0.95 && ref.data[i] > 0.05f &&
+        (1 - v0) + (1 - v1) > (1 - ref.data[i]) + 0.1)
+      overlap_sum += err, ++overlap;
+    else if ((v0 < 0.95) != (v1 < 0.95) && std::min(v0, v1) > 0.05)
+      single_sum += std::abs(err), ++single;
+  }
+  const double overlap_mean = overlap_sum / double(std::max<size_t>(overlap, 1));
+  const double single_mean = single_sum / double(std::max<size_t>(single, 1));
+  std::printf("overlap: %zu px, mean signed error %.4f; one penumbra: %zu px, mean |error| %.4f\n",
+              overlap, overlap_mean, single, single_mean);
+  ASSERT_GT(overlap, 200u);
+  ASSERT_GT(single, 200u);
+  EXPECT_LT(overlap_mean, -0.03);
+  // Where one plate alone shadows, the wedges are exact up to the reference's noise.
+  EXPECT_LT(single_mean, 0.02);
+}
+
+// Coarse spheres (8 slices) against the ray-traced true spheres: the smooth
+// silhouette follows the curved surface, the discrete one the facets.
+TEST(PenumbraWedges, SmoothSilhouettesOnCoarseSpheresBeatDiscreteOnes) {
+  json scene = small_scene(1.0);
+  scene["params"]["slices"] = 8;
+  scene["params"]["stacks"] = 6;
+  scene["params"]["analytic"] = true;
+  const auto out = run_config(
+      experiment(
+          json::array({scene}),
+          json::array({json{{"name", "penumbra_wedges"},
+                            {"params", {{"silhouette", json::array({"discrete", "smooth"})}}}}}),
+          256, 160, 120),
+      "wedges_smooth", gl::Backend::OSMesa, true, /*write_gbuffer=*/true);
+  ASSERT_EQ(out.summary.failed, 0);
+  const std::vector<bool> ground = ground_pixels(out.gbuffer_positions());
+  const ImageF ref = out.reference_visibility();
+  const auto ground_rmse = [&](const std::string& variant) {
+    const ImageF v = out.visibility(variant);
+    double sum = 0.0;
+    size_t n = 0;
+    for (size_t i = 0; i < ground.size(); ++i)
+      if (ground[i] && (ref.data[i] < 0.99f || v.data[i] < 0.99f)) {
+        const double d = double(v.data[i]) - double(ref.data[i]);
+        sum += d * d;
+        ++n;
+      }
+    return std::sqrt(sum / double(std::max<size_t>(n, 1)));
+  };
+  const double discrete = ground_rmse("penumbra_wedges/silhouette=discrete");
+  const double smooth = ground_rmse("penumbra_wedges/silhouette=smooth");
+  std::printf("ground shadow RMSE against true spheres: discrete %.4f, smooth %.4f\n", discrete,
+              smooth);
+  EXPECT_LT(smooth, discrete);
+  EXPECT_LT(smooth, 0.08);
+}
+
+// A pillar that reaches through the light's plane beside a low light: its
+// silhouette edges cross the plane, and the sphere's run close to it. The
+// job must finish with V finite in [0, 1] (the runner fails it otherwise)
+// and near the reference on the ground.
+TEST(PenumbraWedges, EdgesCrossingTheLightsPlaneStayFiniteAndClose) {
+  TempDir dir;
+  Scene s;
+  s.meshes.push_back(make_ground_plane("ground", {0.0f, 0.0f, 0.0f}, 30.0f));
+  s.meshes.push_back(make_box("pillar", {1.5f, 2.5f, 0.0f}, {0.3f, 2.5f, 0.3f}));
+  s.meshes.push_back(make_uv_sphere("ball", {-1.5f, 0.8f, 1.0f}, 0.6f, 16, 12));
+  s.light.center = {0.0f, 3.0f, 0.0f};
+  s.light.target = {0.0f, 0.0f, 0.0f};
+  s.camera.eye = {-5.0f, 6.0f, 4.0f};
+  s.camera.target = {1.0f, 0.0f, 0.0f};
+  const auto file = dir.path / "pillar.glb";
+  export_glb(s, file.string());
+  const json scene = {
+      {"type", "gltf"},
+      {"params", {{"file", file.string()}}},
+      {"light", {{"center", {0.0, 3.0, 0.0}}, {"target", {0, 0, 0}}, {"size", 0.8}}}};
+  const auto out =
+      run_config(experiment(json::array({scene}), json::array({"penumbra_wedges"}), 256, 160, 120),
+                 "wedges_crossing", gl::Backend::OSMesa, true, /*write_gbuffer=*/true);
+  ASSERT_EQ(out.summary.ok, 1) << out.records.at(0).value("reason", "");
+  const std::vector<bool> ground = ground_pixels(out.gbuffer_positions());
+  const ImageF v = out.visibility("penumbra_wedges");
+  const ImageF ref = out.reference_visibility();
+  double sum = 0.0;
+  size_t n = 0, shadowed = 0;
+  for (size_t i = 0; i < ground.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(v.data[i]) && v.data[i] >= 0.0f && v.data[i] <= 1.0f) << i;
+    if (!ground[i]) continue;
+    sum += std::abs(double(v.data[i]) - double(ref.data[i]));
+    ++n;
+    shadowed += ref.data[i] < 0.5f;
+  }
+  std::printf("ground %zu px, %zu shadowed; mean |V - reference| %.4f\n", n, shadowed,
+              sum / double(n));
+  ASSERT_GT(shadowed, n / 20);
+  EXPECT_LT(sum / double(n), 0.01);
+}
+
+}  // namespace
+}  // namespace sb::test
