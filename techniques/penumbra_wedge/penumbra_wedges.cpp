@@ -45,125 +45,34 @@
 #include "gl/debug.h"
 #include "gl/objects.h"
 #include "gl/program.h"
-#include "penumbra_wedge/wedge_geometry.h"
+#include "penumbra_wedge/silhouette_wedges.h"
+#include "penumbra_wedge/wedge_stream.h"
+#include "penumbra_wedge/wedge_variants.h"
 #include "plugin/registry.h"
 #include "shadow_volume/caster_volumes.h"
 
 namespace sb {
 namespace {
 
-const char* const kWedgeVertex = R"(#version 450 core
-layout(location = 0) in vec3 position;
-layout(location = 1) in uint wedge;
-uniform mat4 view_projection;
-flat out uint v_wedge;
-void main() {
-  v_wedge = wedge;
-  gl_Position = view_projection * vec4(position, 1.0);
-}
-)";
-
-const char* const kWedgeFragment = R"(#version 450 core
-flat in uint v_wedge;
+// The fragment's term: its edge's fan term over the light's area (kWedgeGlsl
+// for the projection and clipping).
+const char* const kWedgeMain = R"(
 layout(binding = 0) uniform sampler2D position_tex;
 layout(binding = 1) uniform sampler2D umbra_tex;  // 1 − the stencil's count: 1 outside every umbra
-struct Wedge {
-  vec4 a, b;  // the edge's ends in the light's frame
-  vec4 centre_plane, first_bound, second_bound;
-};
-layout(std430, binding = 0) readonly buffer Wedges { Wedge wedges[]; };
-uniform vec3 light_center;
-uniform vec3 light_u;
-uniform vec3 light_v;
-uniform vec3 light_n;
-uniform vec2 half_size;
-uniform float orientation;
-uniform float half_wedge_tolerance;  // +1 or −1: how silhouette loops wind seen from a shadowed point
 out float delta;
-
-float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }
-
-// Area of the light's rectangle on the non-negative side of three lines
-// h.x·x + h.y·y + h.z (Sutherland–Hodgman, then the shoelace formula).
-float clipped_area(vec3 h0, vec3 h1, vec3 h2) {
-  vec2 poly[8];
-  vec2 next[8];
-  poly[0] = -half_size;
-  poly[1] = vec2(half_size.x, -half_size.y);
-  poly[2] = half_size;
-  poly[3] = vec2(-half_size.x, half_size.y);
-  int n = 4;
-  vec3 lines[3] = vec3[3](h0, h1, h2);
-  for (int l = 0; l < 3; ++l) {
-    int m = 0;
-    for (int i = 0; i < n; ++i) {
-      vec2 p = poly[i];
-      vec2 q = poly[(i + 1) % n];
-      float dp = dot(lines[l].xy, p) + lines[l].z;
-      float dq = dot(lines[l].xy, q) + lines[l].z;
-      if (dp >= 0.0) next[m++] = p;
-      if ((dp >= 0.0) != (dq >= 0.0)) next[m++] = mix(p, q, dp / (dp - dq));
-    }
-    if (m < 3) return 0.0;
-    n = m;
-    for (int i = 0; i < n; ++i) poly[i] = next[i];
-  }
-  float twice = 0.0;
-  for (int i = 0; i < n; ++i) twice += cross2(poly[i], poly[(i + 1) % n]);
-  return 0.5 * twice;
-}
-
-// The light's area in the sector from the centre through a, counter-clockwise
-// to b (cross(a, b) >= 0), beyond the segment a b.
-float beyond_area(vec2 a, vec2 b) {
-  vec2 e = b - a;
-  return clipped_area(vec3(-a.y, a.x, 0.0), vec3(b.y, -b.x, 0.0),
-                      vec3(e.y, -e.x, e.x * a.y - e.y * a.x));
-}
 
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec4 pos = texelFetch(position_tex, pixel, 0);
-  if (pos.w == 0.0) discard;
-  Wedge w = wedges[v_wedge];
-  // Lengyel: one plane decides the half, one more whether p is inside it.
-  vec4 p4 = vec4(pos.xyz, 1.0);
-  vec3 d = pos.xyz - light_center;
-  float bound = dot(w.centre_plane, p4) < 0.0 ? dot(w.first_bound, p4) : dot(w.second_bound, p4);
-  if (bound < -half_wedge_tolerance * length(d)) discard;
-
-  vec3 p = vec3(dot(d, light_u), dot(d, light_v), dot(d, light_n));
-  // The local near plane: only the edge's part between p and the light can
-  // cut p's view of it (and beyond it the projection would flip).
-  float z_near = p.z * (1.0 - 1e-4);
-  vec3 A = w.a.xyz, B = w.b.xyz;
-  if (A.z >= z_near && B.z >= z_near) discard;
-  if (A.z > z_near) A = mix(A, B, (A.z - z_near) / (A.z - B.z));
-  if (B.z > z_near) B = mix(B, A, (B.z - z_near) / (B.z - A.z));
-  vec2 a = p.xy + (A.xy - p.xy) * (p.z / (p.z - A.z));
-  vec2 b = p.xy + (B.xy - p.xy) * (p.z / (p.z - B.z));
-  // A projected edge that misses the light adds nothing.
-  if (max(a.x, b.x) <= -half_size.x || min(a.x, b.x) >= half_size.x ||
-      max(a.y, b.y) <= -half_size.y || min(a.y, b.y) >= half_size.y)
-    discard;
-
-  float turn = cross2(a, b);
-  float s = orientation;
-  if (turn < 0.0) {
-    vec2 t = a;
-    a = b;
-    b = t;
-    s = -s;
-  }
+  vec2 a, b;
+  float s;
+  if (pos.w == 0.0 || !fan_edge(pos.xyz, a, b, s)) discard;
+  // Where the centre is on the edge's line, keep the side that agrees with
+  // the stencil here: where it is lit this edge's term must darken (s < 0),
+  // in umbra lighten (s > 0); the term is s × an area.
+  if (centre_on_edge(a, b) && (texelFetch(umbra_tex, pixel, 0).r > 0.5) == (s > 0.0))
+    swap_ends(a, b, s);
   float term = s * beyond_area(a, b);
-  if (abs(turn) <= 1e-3 * length(a) * length(b) && dot(a, b) < 0.0) {
-    // The centre on the edge's line, between its ends: the other half-plane
-    // is as likely; keep the one that agrees with the stencil here (lit:
-    // this edge darkens; umbra: it lightens).
-    float other = -s * beyond_area(b, a);
-    bool lit = texelFetch(umbra_tex, pixel, 0).r > 0.5;
-    term = lit ? min(term, other) : max(term, other);
-  }
   delta = term / (4.0 * half_size.x * half_size.y);
 }
 )";
@@ -198,20 +107,12 @@ void main() {
 }
 )";
 
-// How a silhouette loop (wound as the lit region, counter-clockwise seen
-// from the light) turns when a point behind it projects it onto the
-// light's plane, in the frame (u, v) with n = u × v towards the point.
-constexpr float kLoopOrientation = -1.0f;
-
 class PenumbraWedges final : public Technique {
  public:
-  explicit PenumbraWedges(const Params& p)
-      : offset_(p.get_float("offset")),
-        volumes_(volume::count_mode_from_string(p.get_string("mode")), /*cpu=*/true,
-                 volume::silhouette_settings(p)) {}
+  explicit PenumbraWedges(const Params& p) : offset_(p.get_float("offset")), wedges_(p) {}
 
   void prepare(const FrameInputs& in) override {
-    volumes_.prepare(in);
+    wedges_.prepare(in);
     umbra_ =
         gl::Program("penumbra_wedges_umbra", {gl::kFullscreenVertexShader, "", kUmbraFragment});
     umbra_framebuffer_ = gl::make_framebuffer({in.visibility_texture}, 0);
@@ -222,61 +123,19 @@ class PenumbraWedges final : public Technique {
     glTextureParameteri(view, GL_DEPTH_STENCIL_TEXTURE_MODE, GL_STENCIL_INDEX);
     glTextureParameteri(view, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(view, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    wedge_program_ = gl::Program("penumbra_wedges", {kWedgeVertex, "", kWedgeFragment});
+    wedge_program_ = gl::Program(
+        "penumbra_wedges", {wedge::kWedgeVertex, "",
+                            std::string("#version 450 core\n") + wedge::kWedgeGlsl + kWedgeMain});
     combine_ =
         gl::Program("penumbra_wedges_combine", {gl::kFullscreenVertexShader, "", kCombineFragment});
     delta_ = gl::make_texture_2d(GL_R32F, in.width, in.height);
     delta_framebuffer_ =
         gl::make_framebuffer({delta_.get()}, in.depth_stencil, GL_DEPTH_STENCIL_ATTACHMENT);
-    std::array<GLuint, 3> buffers{};
-    glCreateBuffers(3, buffers.data());
-    vertices_ = gl::Buffer(buffers[0]);
-    indices_ = gl::Buffer(buffers[1]);
-    records_ = gl::Buffer(buffers[2]);
-    GLuint vao = 0;
-    glCreateVertexArrays(1, &vao);
-    vao_ = gl::VertexArray(vao);
-    glVertexArrayVertexBuffer(vao, 0, vertices_.get(), 0, sizeof(wedge::WedgeVertex));
-    glVertexArrayElementBuffer(vao, indices_.get());
-    glEnableVertexArrayAttrib(vao, 0);
-    glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE,
-                              offsetof(wedge::WedgeVertex, position));
-    glVertexArrayAttribBinding(vao, 0, 0);
-    glEnableVertexArrayAttrib(vao, 1);
-    glVertexArrayAttribIFormat(vao, 1, 1, GL_UNSIGNED_INT, offsetof(wedge::WedgeVertex, wedge));
-    glVertexArrayAttribBinding(vao, 1, 0);
     gl::throw_if_errors("penumbra_wedges prepare");
   }
 
   void render(const FrameInputs& in, gl::PassTimer& timer) override {
-    const AreaLight& light = in.scene->light;
-    {
-      auto pass = timer.scope("silhouettes");
-      volumes_.choose_zfail(in);
-      volumes_.find_silhouettes(light.center);
-    }
-    {
-      auto pass = timer.scope("volumes");
-      volumes_.extrude(light.center);
-    }
-    const wedge::LightFrame frame(light);
-    {
-      auto pass = timer.scope("wedges");
-      build_wedges(frame, frame.farthest(in.scene->bounds()));
-    }
-    {
-      auto pass = timer.scope("upload");
-      volumes_.upload();
-      // Orphaned and refilled every frame, as dynamic streams.
-      glNamedBufferData(vertices_.get(),
-                        GLsizeiptr(batch_.vertices.size() * sizeof(wedge::WedgeVertex)),
-                        batch_.vertices.data(), GL_STREAM_DRAW);
-      glNamedBufferData(indices_.get(), GLsizeiptr(batch_.indices.size() * sizeof(uint32_t)),
-                        batch_.indices.data(), GL_STREAM_DRAW);
-      glNamedBufferData(records_.get(),
-                        GLsizeiptr(batch_.wedges.size() * sizeof(wedge::WedgeRecord)),
-                        batch_.wedges.data(), GL_STREAM_DRAW);
-    }
+    wedges_.build(in, timer);
     glBindFramebuffer(GL_FRAMEBUFFER, in.visibility_framebuffer);
     glViewport(0, 0, in.width, in.height);
     {
@@ -284,7 +143,7 @@ class PenumbraWedges final : public Technique {
       volume::begin_stencil_count(offset_);
       for (const bool zfail : {false, true}) {
         volume::set_stencil_ops(zfail);
-        volumes_.draw(in, zfail);
+        wedges_.volumes().draw(in, zfail);
       }
       volume::end_stencil_count();
     }
@@ -301,11 +160,24 @@ class PenumbraWedges final : public Technique {
     }
     {
       auto pass = timer.scope("penumbra");
-      draw_wedges(in, frame);
+      glBindFramebuffer(GL_FRAMEBUFFER, delta_framebuffer_.get());
+      const std::array<float, 4> zero{0.0f, 0.0f, 0.0f, 0.0f};
+      glClearBufferfv(GL_COLOR, 0, zero.data());
+      wedge::begin_hull_draw();
+      glEnable(GL_BLEND);
+      glBlendEquation(GL_FUNC_ADD);
+      glBlendFunc(GL_ONE, GL_ONE);
+      wedge_program_.use();
+      wedge::set_wedge_uniforms(wedge_program_, wedges_.frame(), in.view_projection);
+      glBindTextureUnit(0, in.gbuffer_position);
+      glBindTextureUnit(1, in.visibility_texture);
+      wedges_.stream().bind();
+      wedge::WedgeStream::draw({0, uint32_t(wedges_.batch().indices.size())});
+      glDisable(GL_BLEND);
+      wedge::end_hull_draw();
     }
     auto pass = timer.scope("combine");
     glBindFramebuffer(GL_FRAMEBUFFER, in.visibility_framebuffer);
-    glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
     glTextureBarrier();  // each pixel reads its own umbra value, then writes V
     combine_.use();
@@ -315,59 +187,8 @@ class PenumbraWedges final : public Technique {
   }
 
  private:
-  // One wedge per edge of every silhouette loop (the smooth positions: the
-  // curve the volume's sides start from).
-  void build_wedges(const wedge::LightFrame& frame, float scene_far) {
-    batch_.clear();
-    if (scene_far <= 0.0f) return;  // the whole scene behind the light
-    const wedge::WedgeRange range = wedge::wedge_range(scene_far);
-    for (const volume::Silhouette& s : volumes_.silhouettes())
-      for (const auto& loop : s.loops)
-        for (size_t i = 0; i < loop.size(); ++i)
-          wedge::append_wedge(frame, loop[i].smooth, loop[(i + 1) % loop.size()].smooth, range,
-                              batch_);
-  }
-
-  void draw_wedges(const FrameInputs& in, const wedge::LightFrame& frame) {
-    glBindFramebuffer(GL_FRAMEBUFFER, delta_framebuffer_.get());
-    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glClearBufferfv(GL_COLOR, 0, zero);
-    if (batch_.indices.empty()) return;
-    // Back faces only, each pixel once per wedge; the hull's exit point must
-    // lie at or behind the surface (a surface behind the wedge is outside
-    // it), and the hull reaches past the far plane (depth clamp).
-    glEnable(GL_CULL_FACE);
-    glCullFace(GL_FRONT);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_GEQUAL);
-    glDepthMask(GL_FALSE);
-    glEnable(GL_DEPTH_CLAMP);
-    glEnable(GL_BLEND);
-    glBlendEquation(GL_FUNC_ADD);
-    glBlendFunc(GL_ONE, GL_ONE);
-    wedge_program_.use();
-    wedge_program_.set("view_projection", in.view_projection);
-    wedge_program_.set("light_center", frame.center);
-    wedge_program_.set("light_u", frame.u);
-    wedge_program_.set("light_v", frame.v);
-    wedge_program_.set("light_n", frame.n);
-    wedge_program_.set("half_size", glm::vec2(frame.half_width, frame.half_height));
-    wedge_program_.set("orientation", kLoopOrientation);
-    wedge_program_.set("half_wedge_tolerance", wedge::kHalfWedgeTolerance);
-    glBindTextureUnit(0, in.gbuffer_position);
-    glBindTextureUnit(1, in.visibility_texture);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, records_.get());
-    glBindVertexArray(vao_.get());
-    glDrawElements(GL_TRIANGLES, GLsizei(batch_.indices.size()), GL_UNSIGNED_INT, nullptr);
-    glDisable(GL_BLEND);
-    glDisable(GL_DEPTH_CLAMP);
-    glDisable(GL_CULL_FACE);
-    glDepthFunc(GL_LESS);
-  }
-
   float offset_;
-  volume::CasterVolumes volumes_;
-  wedge::WedgeBatch batch_;
+  wedge::SilhouetteWedges wedges_;
   gl::Program umbra_;
   gl::Program wedge_program_;
   gl::Program combine_;
@@ -375,35 +196,35 @@ class PenumbraWedges final : public Technique {
   gl::Framebuffer delta_framebuffer_;
   gl::Framebuffer umbra_framebuffer_;
   gl::Texture stencil_view_;  // the G-buffer's depth-stencil, read as stencil counts
-  gl::Buffer vertices_;
-  gl::Buffer indices_;
-  gl::Buffer records_;
-  gl::VertexArray vao_;
 };
 
 }  // namespace
-}  // namespace sb
 
-SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
-  using namespace sb;
-  TechniqueInfo info{
-      "penumbra_wedges",
-      "penumbra_wedge",
-      "soft shadow volumes (Akenine-Möller & Assarsson 2002): an umbra from the light centre's "
-      "shadow volumes, then one wedge per silhouette edge whose fragments add the light area "
-      "that the edge, projected from the point, uncovers or covers (analytic clipping to the "
-      "rectangle)",
-      Needs{need::kClosedCasters, need::kOpaqueCasters, need::kCasterEdges},
-      {choice_param("mode", "zfail", {"zpass", "zfail", "auto"},
-                    "umbra volumes: zpass counts in front of the surface; zfail behind (robust); "
-                    "auto uses zfail only for casters whose volume can reach the camera's near "
-                    "plane"),
-       float_param("offset", 1.0, -1e6, 1e6,
-                   "glPolygonOffset units pushing umbra volume faces away from the camera")},
-      [](const Params& p) { return std::make_unique<PenumbraWedges>(p); }};
+std::vector<ParamSpec> wedge::umbra_params() {
+  std::vector<ParamSpec> params{
+      choice_param("mode", "zfail", {"zpass", "zfail", "auto"},
+                   "umbra volumes: zpass counts in front of the surface; zfail behind (robust); "
+                   "auto uses zfail only for casters whose volume can reach the camera's near "
+                   "plane"),
+      float_param("offset", 1.0, -1e6, 1e6,
+                  "glPolygonOffset units pushing umbra volume faces away from the camera")};
   for (ParamSpec& spec : volume::silhouette_params(
            "the light centre's silhouette (shadow_volume's modes, Mattausch et al. 2012); the "
            "wedges follow the same loops"))
-    info.params.push_back(std::move(spec));
-  registry.add(std::move(info));
+    params.push_back(std::move(spec));
+  return params;
 }
+
+TechniqueInfo wedge::penumbra_wedges_info() {
+  return {"penumbra_wedges",
+          "penumbra_wedge",
+          "soft shadow volumes (Akenine-Möller & Assarsson 2002): an umbra from the light centre's "
+          "shadow volumes, then one wedge per silhouette edge whose fragments add the light area "
+          "that the edge, projected from the point, uncovers or covers (analytic clipping to the "
+          "rectangle)",
+          Needs{need::kClosedCasters, need::kOpaqueCasters, need::kCasterEdges},
+          umbra_params(),
+          [](const Params& p) { return std::make_unique<PenumbraWedges>(p); }};
+}
+
+}  // namespace sb

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 namespace sb::wedge {
 namespace {
@@ -37,6 +39,60 @@ glm::vec4 plane_through(const glm::vec3& p0, const glm::vec3& p1, const glm::vec
   return {n / length, -glm::dot(n / length, p0)};
 }
 
+// Where the segment p q meets the plane, computed from the lesser end so that
+// both faces that share the edge get the bit-identical point.
+glm::vec3 cut(glm::vec3 p, glm::vec3 q, const glm::vec4& plane) {
+  if (std::tie(q.x, q.y, q.z) < std::tie(p.x, p.y, p.z)) std::swap(p, q);
+  const float dp = glm::dot(glm::vec3(plane), p) + plane.w;
+  const float dq = glm::dot(glm::vec3(plane), q) + plane.w;
+  return p + (q - p) * (dp / (dp - dq));
+}
+
+// Cuts a convex polyhedron (faces wound outwards) to the side where `plane`
+// is <= 0, closing it with the cut's polygon.
+void clip_faces(std::vector<std::vector<glm::vec3>>& faces, const glm::vec4& plane,
+                WedgeScratch& scratch) {
+  auto& kept = scratch.kept;
+  auto& rim = scratch.rim;
+  kept.clear();
+  rim.clear();
+  const auto distance = [&](const glm::vec3& p) { return glm::dot(glm::vec3(plane), p) + plane.w; };
+  for (const auto& face : faces) {
+    std::vector<glm::vec3> part;
+    for (size_t i = 0; i < face.size(); ++i) {
+      const glm::vec3 &p = face[i], &q = face[(i + 1) % face.size()];
+      const float dp = distance(p), dq = distance(q);
+      if (dp <= 0.0f) part.push_back(p);
+      if (dp == 0.0f) rim.push_back(p);
+      if ((dp < 0.0f && dq > 0.0f) || (dp > 0.0f && dq < 0.0f)) {
+        part.push_back(cut(p, q, plane));
+        rim.push_back(part.back());
+      }
+    }
+    if (part.size() >= 3) kept.push_back(std::move(part));
+  }
+  // The cut polygon: its points (each found by two faces) in order about
+  // their centre, counter-clockwise seen from outside (along the normal).
+  std::sort(rim.begin(), rim.end(), [](const glm::vec3& a, const glm::vec3& b) {
+    return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+  });
+  rim.erase(std::unique(rim.begin(), rim.end()), rim.end());
+  if (rim.size() >= 3) {
+    glm::vec3 centre(0.0f);
+    for (const glm::vec3& p : rim) centre += p;
+    centre /= float(rim.size());
+    const glm::vec3 n(plane);
+    const glm::vec3 u = glm::normalize(rim[0] - centre);
+    const glm::vec3 v = glm::cross(n, u);
+    std::sort(rim.begin(), rim.end(), [&](const glm::vec3& a, const glm::vec3& b) {
+      return std::atan2(glm::dot(a - centre, v), glm::dot(a - centre, u)) <
+             std::atan2(glm::dot(b - centre, v), glm::dot(b - centre, u));
+    });
+    kept.push_back(rim);
+  }
+  faces.swap(kept);
+}
+
 }  // namespace
 
 LightFrame::LightFrame(const AreaLight& light) : center(light.center) {
@@ -58,9 +114,15 @@ float LightFrame::farthest(const Bounds& box) const {
   return z;
 }
 
-WedgeRange wedge_range(float scene_far) {
-  const float far = std::max(scene_far, 1e-6f);
-  return {1e-3f * far, far};
+WedgeRange wedge_range(const LightFrame& frame, const Bounds& scene) {
+  WedgeRange r;
+  r.far = std::max(frame.farthest(scene), 1e-6f);
+  r.near = 1e-3f * r.far;
+  // A margin, so that a surface on the box's face is inside the cut hull.
+  const glm::vec3 margin(1e-3f * std::max(glm::length(scene.hi - scene.lo), 1e-6f));
+  r.box.lo = scene.lo - margin;
+  r.box.hi = scene.hi + margin;
+  return r;
 }
 
 bool append_wedge(const LightFrame& frame, const glm::vec3& a, const glm::vec3& b,
@@ -103,17 +165,17 @@ bool append_wedge(const LightFrame& frame, const glm::vec3& a, const glm::vec3& 
   for (int i = 0; i < m + 2; ++i) interior += hull[size_t(i)];
   interior /= float(m + 2);
 
-  const auto index = uint32_t(out.wedges.size());
-  const auto base = uint32_t(out.vertices.size());
-  for (int i = 0; i < m + 2; ++i) out.vertices.push_back({frame.to_world(hull[size_t(i)]), index});
+  // The hull's faces, wound outwards, in world space.
+  auto& faces = out.scratch.faces;
+  faces.clear();
   const auto triangle = [&](int i0, int i1, int i2) {
     const glm::vec3 &p0 = hull[size_t(i0)], &p1 = hull[size_t(i1)], &p2 = hull[size_t(i2)];
     const glm::vec3 normal = glm::cross(p1 - p0, p2 - p0);
     const float outward = glm::dot(normal, p0 - interior);
     if (outward == 0.0f) return;  // degenerate (flat) triangle: covers no pixel
     if (outward < 0.0f) std::swap(i1, i2);
-    out.indices.insert(out.indices.end(),
-                       {base + uint32_t(i0), base + uint32_t(i1), base + uint32_t(i2)});
+    faces.push_back({frame.to_world(hull[size_t(i0)]), frame.to_world(hull[size_t(i1)]),
+                     frame.to_world(hull[size_t(i2)])});
   };
   for (int i = 1; i + 1 < m; ++i) triangle(0, i, i + 1);  // the far cap
   // Each cap edge closes with the apex (A or B) that the plane turning about
@@ -131,6 +193,27 @@ bool append_wedge(const LightFrame& frame, const glm::vec3& a, const glm::vec3& 
   }
   for (int j = 0; j < m; ++j)
     if (apex[size_t(j)] != apex[size_t((j + 1) % m)]) triangle((j + 1) % m, ia, ib);
+
+  // Only the part inside the scene's box can hold a surface point: cut the
+  // rest away, so that its pixels are not shaded for nothing.
+  if (!range.box.empty()) {
+    for (int axis = 0; axis < 3; ++axis)
+      for (const float side : {-1.0f, 1.0f}) {
+        glm::vec4 plane(0.0f);  // outside where positive
+        plane[axis] = side;
+        plane.w = side > 0.0f ? -range.box.hi[axis] : range.box.lo[axis];
+        clip_faces(faces, plane, out.scratch);
+      }
+    if (faces.empty()) return false;
+  }
+
+  const auto index = uint32_t(out.wedges.size());
+  for (const auto& face : faces)
+    for (size_t i = 1; i + 1 < face.size(); ++i)
+      for (const glm::vec3& p : {face[0], face[i], face[i + 1]}) {
+        out.indices.push_back(uint32_t(out.vertices.size()));
+        out.vertices.push_back({p, index});
+      }
 
   // Lengyel's planes: the light corners' angles about the edge, from the
   // light's centre.
@@ -174,6 +257,17 @@ bool append_wedge(const LightFrame& frame, const glm::vec3& a, const glm::vec3& 
   }
   out.wedges.push_back(w);
   return true;
+}
+
+IndexRange append_silhouette_wedges(const LightFrame& frame, const volume::Silhouette& silhouette,
+                                    const WedgeRange& range, WedgeBatch& out) {
+  IndexRange r;
+  r.first = uint32_t(out.indices.size());
+  for (const auto& loop : silhouette.loops)
+    for (size_t i = 0; i < loop.size(); ++i)
+      append_wedge(frame, loop[i].smooth, loop[(i + 1) % loop.size()].smooth, range, out);
+  r.count = uint32_t(out.indices.size()) - r.first;
+  return r;
 }
 
 }  // namespace sb::wedge

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "core/scene.h"
+#include "shadow_volume/silhouette.h"
 
 namespace sb::wedge {
 
@@ -35,6 +36,7 @@ struct LightFrame {
   glm::vec3 u{1.0f, 0.0f, 0.0f}, v{0.0f, 1.0f, 0.0f}, n{0.0f, 0.0f, 1.0f};
   float half_width = 0.5f, half_height = 0.5f;
 
+  LightFrame() = default;
   explicit LightFrame(const AreaLight& light);
   glm::vec3 to_light(const glm::vec3& world) const {
     const glm::vec3 d = world - center;
@@ -68,10 +70,17 @@ struct WedgeVertex {
   uint32_t wedge;      // index of its WedgeRecord
 };
 
+// append_wedge's working storage, kept so that a frame allocates little.
+struct WedgeScratch {
+  std::vector<std::vector<glm::vec3>> faces, kept;
+  std::vector<glm::vec3> rim;
+};
+
 struct WedgeBatch {
   std::vector<WedgeVertex> vertices;
   std::vector<uint32_t> indices;  // triangles, wound outwards
   std::vector<WedgeRecord> wedges;
+  WedgeScratch scratch;
   void clear() {
     vertices.clear();
     indices.clear();
@@ -82,18 +91,29 @@ struct WedgeBatch {
 // Where the wedges are cut: edge parts closer to the light's plane than
 // `near` (light-frame z) are dropped, since through them the light would be
 // projected to near infinity; parts beyond `far` (no scene point lies there)
-// too. The hull's far cap lies beyond `far`.
+// too. The hull's far cap lies beyond `far`, and the hull is cut to `box`
+// (world; none when empty), where every surface point lies.
 struct WedgeRange {
   float near = 1e-3f;
   float far = 1.0f;
+  Bounds box;
 };
-// A range for a scene whose farthest point from the light's plane is at
-// light-frame z = `scene_far` (> 0).
-WedgeRange wedge_range(float scene_far);
+// The range for a scene within `scene` (world): `far` at its farthest corner
+// from the light's plane, the box a little larger than `scene`.
+WedgeRange wedge_range(const LightFrame& frame, const Bounds& scene);
 
 // Appends the wedge of the edge a → b (world). Returns false, appending
 // nothing, when no part of the edge lies within `range` or it has no length.
 bool append_wedge(const LightFrame& frame, const glm::vec3& a, const glm::vec3& b,
                   const WedgeRange& range, WedgeBatch& out);
+
+// A silhouette's wedges: one per edge of every loop (its smooth positions,
+// the curve the volume's sides start from), as a range of `out.indices`.
+struct IndexRange {
+  uint32_t first = 0;
+  uint32_t count = 0;
+};
+IndexRange append_silhouette_wedges(const LightFrame& frame, const volume::Silhouette& silhouette,
+                                    const WedgeRange& range, WedgeBatch& out);
 
 }  // namespace sb::wedge

@@ -71,6 +71,9 @@ class CasterVolumes {
   // CPU path: draws the casters counted by the given rule (stencil ops set
   // by the caller), with the program bound here.
   void draw(const FrameInputs& in, bool zfail);
+  // CPU path: one caster's volume alone, with its own counting rule's
+  // stencil ops.
+  void draw_caster(const FrameInputs& in, size_t caster);
 
   const std::vector<Caster>& casters() const { return casters_; }
   const std::vector<Silhouette>& silhouettes() const { return silhouettes_; }

@@ -83,45 +83,50 @@ json plate_scene(const std::string& file, double size) {
 // matches the closed form on every ground pixel. The plate's edge x = 0
 // lies straight under the light's centre, and the image's middle column
 // (odd width, camera in the plane x = 0) puts pixels on that edge's centre
-// plane, where the stencil and the wedge must agree on the side.
-TEST(PenumbraWedges, MatchTheExactVisibilityOfASquareOccluderParallelToTheLight) {
+// plane, where the stencil and the wedge must agree on the side. With one
+// silhouette, blending has nothing to blend: it must be exact as well.
+TEST(PenumbraWedges, PlainAndBlendedMatchTheExactVisibilityOfASquareOccluderParallelToTheLight) {
   TempDir dir;
   const Plate plate{0.0f, 1.0f, -0.6f, 0.4f, 1.0f};
   const double size = 1.0;
   const auto out = run_config(
       experiment(
           json::array({plate_scene(write_plates(dir.path, {plate}, {0.0f, 4.0f, 3.0f}), size)}),
-          json::array({"penumbra_wedges"}), 16, 161, 121),
+          json::array({"penumbra_wedges", "penumbra_wedges_blend"}), 16, 161, 121),
       "wedges_square", gl::Backend::OSMesa, true, /*write_gbuffer=*/true);
-  ASSERT_EQ(out.summary.ok, 1) << out.records.at(0).value("reason", "");
+  ASSERT_EQ(out.summary.ok, 2) << out.records.at(0).value("reason", "");
   const ImageF positions = out.gbuffer_positions();
   const std::vector<bool> ground = ground_pixels(positions);
-  const ImageF v = out.visibility("penumbra_wedges");
-  size_t n = 0, penumbra = 0, umbra = 0, on_centre_plane = 0;
-  double worst = 0.0;
-  for (size_t i = 0; i < ground.size(); ++i) {
-    if (!ground[i]) continue;
-    const double x = positions.data[i * 4], z = positions.data[i * 4 + 2];
-    const double exact = exact_visibility(plate, x, z, size);
-    worst = std::max(worst, std::abs(double(v.data[i]) - exact));
-    ++n;
-    penumbra += exact > 0.01 && exact < 0.99;
-    umbra += exact < 1e-6;
-    on_centre_plane += std::abs(x) < 1e-6 && exact < 0.99;
+  for (const std::string technique : {"penumbra_wedges", "penumbra_wedges_blend"}) {
+    const ImageF v = out.visibility(technique);
+    size_t n = 0, penumbra = 0, umbra = 0, on_centre_plane = 0;
+    double worst = 0.0;
+    for (size_t i = 0; i < ground.size(); ++i) {
+      if (!ground[i]) continue;
+      const double x = positions.data[i * 4], z = positions.data[i * 4 + 2];
+      const double exact = exact_visibility(plate, x, z, size);
+      worst = std::max(worst, std::abs(double(v.data[i]) - exact));
+      ++n;
+      penumbra += exact > 0.01 && exact < 0.99;
+      umbra += exact < 1e-6;
+      on_centre_plane += std::abs(x) < 1e-6 && exact < 0.99;
+    }
+    std::printf(
+        "%s: %zu ground px (%zu penumbra, %zu umbra, %zu on the centre plane): "
+        "max |V - exact| %.5f\n",
+        technique.c_str(), n, penumbra, umbra, on_centre_plane, worst);
+    ASSERT_GT(penumbra, 1000u);
+    ASSERT_GT(umbra, 100u);
+    EXPECT_GT(on_centre_plane, 5u);
+    EXPECT_LT(worst, 0.01) << technique;
   }
-  std::printf(
-      "%zu ground px (%zu penumbra, %zu umbra, %zu on the centre plane): max |V - exact| %.5f\n", n,
-      penumbra, umbra, on_centre_plane, worst);
-  ASSERT_GT(penumbra, 1000u);
-  ASSERT_GT(umbra, 100u);
-  EXPECT_GT(on_centre_plane, 5u);
-  EXPECT_LT(worst, 0.01);
 }
 
 // Two plates at different heights whose penumbrae overlap on the ground:
 // the wedges add each silhouette's covered area, so where both cover parts
-// of the light that overlap, they darken too much (V below the truth).
-TEST(PenumbraWedges, OverDarkenWhereTwoOccludersOverlap) {
+// of the light that overlap, they darken too much (V below the truth);
+// blending estimates the overlap and comes closer there.
+TEST(PenumbraWedges, OverDarkenWhereTwoOccludersOverlapAndBlendingComesCloser) {
   TempDir dir;
   const std::vector<Plate> plates{{-1.2f, 0.1f, -0.8f, 0.8f, 1.0f},
                                   {-0.1f, 0.9f, -0.7f, 0.7f, 1.6f}};
@@ -129,14 +134,16 @@ TEST(PenumbraWedges, OverDarkenWhereTwoOccludersOverlap) {
   const auto out = run_config(
       experiment(
           json::array({plate_scene(write_plates(dir.path, plates, {0.0f, 5.0f, 3.5f}), size)}),
-          json::array({"penumbra_wedges"}), 256, 160, 120),
+          json::array({"penumbra_wedges", "penumbra_wedges_blend"}), 256, 160, 120),
       "wedges_overlap", gl::Backend::OSMesa, true, /*write_gbuffer=*/true);
-  ASSERT_EQ(out.summary.ok, 1) << out.records.at(0).value("reason", "");
+  ASSERT_EQ(out.summary.ok, 2) << out.records.at(0).value("reason", "");
   const ImageF positions = out.gbuffer_positions();
   const std::vector<bool> ground = ground_pixels(positions);
   const ImageF v = out.visibility("penumbra_wedges");
+  const ImageF blend = out.visibility("penumbra_wedges_blend");
   const ImageF ref = out.reference_visibility();
-  double overlap_sum = 0.0, single_sum = 0.0;
+  double overlap_sum = 0.0, overlap_abs = 0.0, blend_abs = 0.0, blend_signed = 0.0;
+  double single_sum = 0.0;
   size_t overlap = 0, single = 0;
   for (size_t i = 0; i < ground.size(); ++i) {
     if (!ground[i]) continue;
@@ -147,18 +154,29 @@ TEST(PenumbraWedges, OverDarkenWhereTwoOccludersOverlap) {
     // Both occlude part of the light, the truth is not yet umbra, and the
     // sum of their occlusions exceeds their union's by a clear margin.
     if (v0 < 0.95 && v1 < 0.95 && ref.data[i] > 0.05f &&
-        (1 - v0) + (1 - v1) > (1 - ref.data[i]) + 0.1)
-      overlap_sum += err, ++overlap;
-    else if ((v0 < 0.95) != (v1 < 0.95) && std::min(v0, v1) > 0.05)
+        (1 - v0) + (1 - v1) > (1 - ref.data[i]) + 0.1) {
+      overlap_sum += err;
+      overlap_abs += std::abs(err);
+      const double blend_err = double(blend.data[i]) - double(ref.data[i]);
+      blend_abs += std::abs(blend_err);
+      blend_signed += blend_err;
+      ++overlap;
+    } else if ((v0 < 0.95) != (v1 < 0.95) && std::min(v0, v1) > 0.05)
       single_sum += std::abs(err), ++single;
   }
   const double overlap_mean = overlap_sum / double(std::max<size_t>(overlap, 1));
+  const double wedges_abs = overlap_abs / double(std::max<size_t>(overlap, 1));
+  const double blended_abs = blend_abs / double(std::max<size_t>(overlap, 1));
   const double single_mean = single_sum / double(std::max<size_t>(single, 1));
-  std::printf("overlap: %zu px, mean signed error %.4f; one penumbra: %zu px, mean |error| %.4f\n",
-              overlap, overlap_mean, single, single_mean);
+  std::printf(
+      "overlap: %zu px, wedges mean signed error %.4f (|error| %.4f), blend %.4f (|error| %.4f); "
+      "one penumbra: %zu px, wedges mean |error| %.4f\n",
+      overlap, overlap_mean, wedges_abs, blend_signed / double(std::max<size_t>(overlap, 1)),
+      blended_abs, single, single_mean);
   ASSERT_GT(overlap, 200u);
   ASSERT_GT(single, 200u);
   EXPECT_LT(overlap_mean, -0.03);
+  EXPECT_LT(blended_abs, 0.7 * wedges_abs);
   // Where one plate alone shadows, the wedges are exact up to the reference's noise.
   EXPECT_LT(single_mean, 0.02);
 }

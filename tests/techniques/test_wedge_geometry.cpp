@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <tuple>
 #include <utility>
 
 #include "penumbra_wedge/wedge_geometry.h"
@@ -22,6 +23,14 @@ AreaLight square_light(float size, const glm::vec3& centre = {0.0f, 10.0f, 0.0f}
   l.half_v = {0.0f, 0.0f, 0.5f * size};
   l.target = centre - glm::vec3(0.0f, 1.0f, 0.0f);
   return l;
+}
+
+// The scene of these tests: a ground at y = 0 under the light at y = 10.
+WedgeRange scene_range(const LightFrame& frame) {
+  Bounds scene;
+  scene.lo = {-40.0f, 0.0f, -40.0f};
+  scene.hi = {40.0f, 8.0f, 40.0f};
+  return wedge_range(frame, scene);
 }
 
 struct Face {
@@ -54,14 +63,16 @@ bool half_wedge_accepts(const WedgeRecord& w, const glm::vec3& y,
   return bound >= -kHalfWedgeTolerance * glm::length(y - light);
 }
 
-// Directed edges (by vertex index) that lack their reverse.
+// Directed edges (by position) that lack their reverse.
 size_t unmatched_edges(const WedgeBatch& batch) {
-  std::map<std::pair<uint32_t, uint32_t>, int> count;
+  using Key = std::tuple<float, float, float, float, float, float>;
+  std::map<Key, int> count;
   for (size_t t = 0; t < batch.indices.size(); t += 3)
     for (size_t k = 0; k < 3; ++k) {
-      const uint32_t a = batch.indices[t + k], b = batch.indices[t + (k + 1) % 3];
-      count[{a, b}] += 1;
-      count[{b, a}] -= 1;
+      const glm::vec3 a = batch.vertices[batch.indices[t + k]].position;
+      const glm::vec3 b = batch.vertices[batch.indices[t + (k + 1) % 3]].position;
+      count[{a.x, a.y, a.z, b.x, b.y, b.z}] += 1;
+      count[{b.x, b.y, b.z, a.x, a.y, a.z}] -= 1;
     }
   size_t unmatched = 0;
   for (const auto& [edge, c] : count) unmatched += c != 0;
@@ -80,7 +91,7 @@ TEST(WedgeGeometry, TheHullAndTheHalfWedgeTestContainEveryPointTheEdgeCanShadow)
   for (const float size : {0.01f, 1.0f, 4.0f}) {
     const AreaLight light = square_light(size);
     const LightFrame frame(light);
-    const WedgeRange range = wedge_range(10.0f);  // the ground at y = 0
+    const WedgeRange range = scene_range(frame);
     for (int e = 0; e < 200; ++e) {
       const glm::vec3 a(4.0f * unit(rng) - 2.0f, 0.5f + 6.0f * unit(rng), 4.0f * unit(rng) - 2.0f);
       const glm::vec3 b =
@@ -89,6 +100,9 @@ TEST(WedgeGeometry, TheHullAndTheHalfWedgeTestContainEveryPointTheEdgeCanShadow)
       ASSERT_TRUE(append_wedge(frame, a, b, range, batch));
       ASSERT_EQ(batch.wedges.size(), 1u);
       EXPECT_EQ(unmatched_edges(batch), 0u);
+      for (const WedgeVertex& v : batch.vertices)  // cut to the scene's box
+        EXPECT_TRUE(glm::all(glm::greaterThanEqual(v.position, range.box.lo)) &&
+                    glm::all(glm::lessThanEqual(v.position, range.box.hi)));
       const std::vector<Face> fs = faces(batch);
       for (int s = 0; s < 200; ++s) {
         const glm::vec3 x = a + unit(rng) * (b - a);
@@ -114,7 +128,7 @@ TEST(WedgeGeometry, FacesAreWoundOutwards) {
   const LightFrame frame(square_light(2.0f));
   WedgeBatch batch;
   ASSERT_TRUE(
-      append_wedge(frame, {-0.7f, 3.0f, 0.2f}, {0.5f, 3.4f, -0.3f}, wedge_range(10.0f), batch));
+      append_wedge(frame, {-0.7f, 3.0f, 0.2f}, {0.5f, 3.4f, -0.3f}, scene_range(frame), batch));
   const std::vector<Face> fs = faces(batch);
   ASSERT_GE(fs.size(), 4u);
   for (const Face& f : fs)
@@ -129,7 +143,7 @@ TEST(WedgeGeometry, TheHalfWedgeTestRejectsPointsTheEdgeCannotShadow) {
   WedgeBatch batch;
   // An edge along x at height 5, beside the light's axis.
   ASSERT_TRUE(
-      append_wedge(frame, {-1.0f, 5.0f, 1.0f}, {1.0f, 5.0f, 1.0f}, wedge_range(10.0f), batch));
+      append_wedge(frame, {-1.0f, 5.0f, 1.0f}, {1.0f, 5.0f, 1.0f}, scene_range(frame), batch));
   const WedgeRecord& w = batch.wedges[0];
   EXPECT_TRUE(half_wedge_accepts(w, {0.0f, 0.0f, 2.0f}));    // under it, along the centre's ray
   EXPECT_FALSE(half_wedge_accepts(w, {0.0f, 7.5f, 1.0f}));   // above it, towards the light
@@ -140,7 +154,7 @@ TEST(WedgeGeometry, TheHalfWedgeTestRejectsPointsTheEdgeCannotShadow) {
 // Edges the shader must survive: their wedges are finite, closed, or absent.
 TEST(WedgeGeometry, DegenerateAndCrossingEdgesGiveFiniteClosedHullsOrNone) {
   const LightFrame frame(square_light(1.0f));
-  const WedgeRange range = wedge_range(10.0f);
+  const WedgeRange range = scene_range(frame);
   const auto finite = [](const WedgeBatch& b) {
     for (const WedgeVertex& v : b.vertices)
       if (!std::isfinite(v.position.x) || !std::isfinite(v.position.y) ||

@@ -1,0 +1,59 @@
+#include "penumbra_wedge/silhouette_wedges.h"
+
+namespace sb::wedge {
+
+SilhouetteWedges::SilhouetteWedges(const Params& p)
+    : volumes_(volume::count_mode_from_string(p.get_string("mode")), /*cpu=*/true,
+               volume::silhouette_settings(p)) {}
+
+void SilhouetteWedges::prepare(const FrameInputs& in) {
+  volumes_.prepare(in);
+  stream_.create();
+}
+
+void SilhouetteWedges::build(const FrameInputs& in, gl::PassTimer& timer) {
+  const AreaLight& light = in.scene->light;
+  {
+    auto pass = timer.scope("silhouettes");
+    volumes_.choose_zfail(in);
+    volumes_.find_silhouettes(light.center);
+  }
+  {
+    auto pass = timer.scope("volumes");
+    volumes_.extrude(light.center);
+  }
+  {
+    auto pass = timer.scope("wedges");
+    frame_ = LightFrame(light);
+    batch_.clear();
+    caster_wedges_.assign(volumes_.silhouettes().size(), IndexRange{});
+    const Bounds scene = in.scene->bounds();
+    if (frame_.farthest(scene) > 0.0f) {  // else the whole scene is behind the light
+      const WedgeRange range = wedge_range(frame_, scene);
+      for (size_t i = 0; i < caster_wedges_.size(); ++i)
+        caster_wedges_[i] =
+            append_silhouette_wedges(frame_, volumes_.silhouettes()[i], range, batch_);
+    }
+  }
+  auto pass = timer.scope("upload");
+  volumes_.upload();
+  stream_.upload(batch_);  // orphaned and refilled every frame
+}
+
+void begin_hull_draw() {
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_FRONT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GEQUAL);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_DEPTH_CLAMP);
+}
+
+void end_hull_draw() {
+  glDisable(GL_DEPTH_CLAMP);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+}
+
+}  // namespace sb::wedge

@@ -1,0 +1,12 @@
+#pragma once
+// The penumbra-wedge family: plain wedges, and Forest et al.'s blending.
+#include <vector>
+
+#include "plugin/registry.h"
+
+namespace sb::wedge {
+TechniqueInfo penumbra_wedges_info();
+TechniqueInfo penumbra_wedges_blend_info();
+// The umbra volumes' and silhouettes' parameters, which both share.
+std::vector<ParamSpec> umbra_params();
+}  // namespace sb::wedge
