@@ -27,11 +27,10 @@
 // linear: with V = 0 for "in any umbra" instead, a point in two umbrae would
 // get both silhouettes' lit parts added back, a light leak.
 //
-// Where the light's centre lies on a projected edge's line (p on that edge's
-// hard shadow boundary, within 1e-3 rad), the sector is a half-plane on
-// either side, and rounding decides which; the term is then taken on the
-// side that the stencil's umbra test took at this pixel, so the two can
-// never disagree by a whole light.
+// Where the light's centre lies on a projected edge (p on that edge's hard
+// shadow boundary), the sector is a half-plane on either side, and rounding
+// decides which; where no volume holds the pixel, the term is taken on the
+// side the stencil took (docs/penumbra_wedges.md).
 //
 // Parameters, defaults and ranges: docs/parameters.md (generated from their
 // declarations by `shadowbench list --markdown`).
@@ -67,11 +66,15 @@ void main() {
   vec2 a, b;
   float s;
   if (pos.w == 0.0 || !fan_edge(pos.xyz, a, b, s)) discard;
-  // Where the centre is on the edge's line, keep the side that agrees with
-  // the stencil here: where it is lit this edge's term must darken (s < 0),
-  // in umbra lighten (s > 0); the term is s × an area.
-  if (centre_on_edge(a, b) && (texelFetch(umbra_tex, pixel, 0).r > 0.5) == (s > 0.0))
-    swap_ends(a, b, s);
+  // Where the centre is on the edge, keep the side that agrees with the
+  // stencil: where no volume holds the pixel every edge must darken (s < 0;
+  // the term is s × an area), where one does it is taken to be this edge's
+  // silhouette's, which must lighten. Where two or more do, the stencil
+  // cannot say whose they are, and the shader keeps its own side.
+  if (centre_on_edge(a, b)) {
+    float umbra = texelFetch(umbra_tex, pixel, 0).r;  // 1 − count
+    if ((umbra > 0.5 && s > 0.0) || (umbra > -0.5 && umbra < 0.5 && s < 0.0)) swap_ends(a, b, s);
+  }
   float term = s * beyond_area(a, b);
   delta = term / (4.0 * half_size.x * half_size.y);
 }

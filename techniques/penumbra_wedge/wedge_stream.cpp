@@ -125,11 +125,16 @@ bool fan_edge(vec3 world, out vec2 a, out vec2 b, out float s) {
   return true;
 }
 
-// The light's centre on the projected edge's line, between its ends (within
-// 1e-3 rad): the sector is a half-plane on either side, and rounding decides
-// which; swap_ends gives the other.
+// The light's centre on the projected edge, between its ends (within 1e-2
+// of the light's half-size): the sector is a half-plane on either side, and
+// rounding decides which; swap_ends gives the other. The band is that wide
+// because the stencil's own test (depth-buffer precision and the volumes'
+// polygon offset, magnified by the projection) was measured to disagree
+// with the shader's this far on the sphere grid.
 bool centre_on_edge(vec2 a, vec2 b) {
-  return abs(cross2(a, b)) <= 1e-3 * length(a) * length(b) && dot(a, b) < 0.0;
+  vec2 e = b - a;
+  float t = -dot(a, e) / max(dot(e, e), 1e-30);
+  return t > 0.0 && t < 1.0 && length(a + t * e) <= 1e-2 * max(half_size.x, half_size.y);
 }
 
 // The piece of segment a b inside the box [lo, hi] (Liang–Barsky).
