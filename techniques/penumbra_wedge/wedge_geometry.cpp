@@ -149,7 +149,8 @@ bool append_wedge(const LightFrame& frame, const glm::vec3& a, const glm::vec3& 
     const glm::vec2 centre = k * glm::vec2(end);
     const glm::vec2 h = (k - 1.0f) * half;
     for (int c = 0; c < 4; ++c)
-      corners[size_t(4 * e + c)] = centre + glm::vec2((c & 1) ? h.x : -h.x, (c & 2) ? h.y : -h.y);
+      corners[(4 * size_t(e)) + size_t(c)] =
+          centre + glm::vec2((c & 1) ? h.x : -h.x, (c & 2) ? h.y : -h.y);
   }
   std::array<glm::vec2, 16> cap{};
   const int m = convex_hull(corners, cap);
