@@ -85,18 +85,14 @@ void main() {
 // its wedges add or remove parts of it: V = 1 − Σ occlusion, summed over
 // silhouettes (the count is read through a stencil view of the G-buffer's
 // depth-stencil texture; counts wrap in 8 bits).
-const char* const kUmbraFragment = R"(#version 450 core
+const char* const kUmbraMain = R"(
 layout(binding = 0) uniform sampler2D position_tex;
 layout(binding = 1) uniform usampler2D stencil_tex;
 out float visibility;
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
-  if (texelFetch(position_tex, pixel, 0).w == 0.0) {
-    visibility = 1.0;  // background
-    return;
-  }
-  uint count = texelFetch(stencil_tex, pixel, 0).r;
-  visibility = 1.0 - float(count >= 128u ? int(count) - 256 : int(count));
+  bool background = texelFetch(position_tex, pixel, 0).w == 0.0;
+  visibility = background ? 1.0 : 1.0 - stencil_count(stencil_tex, pixel);
 }
 )";
 
@@ -116,16 +112,11 @@ class PenumbraWedges final : public Technique {
 
   void prepare(const FrameInputs& in) override {
     wedges_.prepare(in);
-    umbra_ =
-        gl::Program("penumbra_wedges_umbra", {gl::kFullscreenVertexShader, "", kUmbraFragment});
+    umbra_ = gl::Program("penumbra_wedges_umbra", {gl::kFullscreenVertexShader, "",
+                                                   std::string("#version 450 core\n") +
+                                                       wedge::kStencilCountGlsl + kUmbraMain});
     umbra_framebuffer_ = gl::make_framebuffer({in.visibility_texture}, 0);
-    GLuint view = 0;
-    glGenTextures(1, &view);
-    glTextureView(view, GL_TEXTURE_2D, in.depth_stencil, GL_DEPTH24_STENCIL8, 0, 1, 0, 1);
-    stencil_view_ = gl::Texture(view);
-    glTextureParameteri(view, GL_DEPTH_STENCIL_TEXTURE_MODE, GL_STENCIL_INDEX);
-    glTextureParameteri(view, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(view, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    stencil_view_ = wedge::make_stencil_view(in.depth_stencil);
     wedge_program_ = gl::Program(
         "penumbra_wedges", {wedge::kWedgeVertex, "",
                             std::string("#version 450 core\n") + wedge::kWedgeGlsl + kWedgeMain});

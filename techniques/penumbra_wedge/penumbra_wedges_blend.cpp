@@ -6,8 +6,9 @@
 //
 // Per silhouette s, in its screen rectangle (the scissor: the projection of
 // its wedges' hulls, which hold its umbra too), into float MRTs:
-//  - its umbra from its own volume in the stencil (whether the light's
-//    centre is hidden, c_s);
+//  - its umbra from its own volume in the stencil: c_s, the count of its
+//    loops that hide the light's centre (a caster may have several, and
+//    they may overlap; the merge reads the count, not just "hidden");
 //  - its wedges, adding per quadrant of the light (the light split at its
 //    centre into four radial parts) the fan terms of penumbra_wedges; the
 //    quadrant's occluded area is then A = c_s·|L_q| − Σ terms (with c_s
@@ -28,7 +29,7 @@
 // the silhouette leaves unoccluded is skipped (the merge discards it).
 // Last, V = 1 − Σ_q A_q / |L|.
 //
-// Storage is float MRTs (7 for a silhouette, 5 accumulated); the paper's
+// Storage is float MRTs (8 for a silhouette, 5 accumulated); the paper's
 // 8-bit packing is not offered. One silhouette per caster: the loops of one
 // caster are added, as in penumbra_wedges.
 //
@@ -66,6 +67,7 @@ layout(location = 0) out vec4 quadrant_terms;  // Σ fan terms per quadrant, / |
 layout(location = 1) out vec4 corner_counts;   // Σ s·[corner q in the term's region]
 layout(location = 2) out vec4 middle_counts;   // Σ s·[mid-side m in the term's region]
 layout(location = 3) out vec4 edge_box[4];     // (max x, max y, −min x, −min y) per quadrant
+layout(location = 7) out float near_centre;    // 1: an edge passes the light's centre here
 
 bool in_region(vec2 a, vec2 b, vec2 x) {
   vec2 e = b - a;
@@ -116,6 +118,7 @@ void main() {
   vec2 a, b;
   float s;
   if (pos.w == 0.0 || !fan_edge(pos.xyz, a, b, s)) discard;
+  near_centre = centre_on_edge(a, b) ? 1.0 : 0.0;
   float light_area = 4.0 * half_size.x * half_size.y;
   vec4 area = beyond_quadrants(a, b);
   for (int q = 0; q < 4; ++q) {
@@ -139,7 +142,8 @@ layout(binding = 3) uniform sampler2D middles_tex;
 layout(binding = 4) uniform sampler2D edge_box_tex[4];
 layout(binding = 8) uniform sampler2D area_tex;
 layout(binding = 9) uniform sampler2D rect_tex[4];
-uniform float centre_hidden;
+layout(binding = 13) uniform usampler2D stencil_tex;  // this silhouette's volume count
+layout(binding = 14) uniform sampler2D near_centre_tex;
 uniform vec2 half_size;
 layout(location = 0) out vec4 area_out;     // occluded area per quadrant, / |L|
 layout(location = 1) out vec4 rect_out[4];  // (min x, min y, max x, max y) per quadrant
@@ -153,16 +157,24 @@ void main() {
   if (texelFetch(position_tex, pixel, 0).w == 0.0) discard;
   float quarter = 0.25;
   // The silhouette's winding about the light's centre, from its stencil:
-  // where the centre lies on a projected edge's line, rounding may have
-  // put the edge's term on the other side, which moves every quadrant by a
-  // whole quarter (and every lattice point by one turn); such a pixel is
-  // found by a quadrant outside [0, |L_q|], and its winding corrected.
-  float winding = centre_hidden;
+  // where the centre lies on a projected edge, rounding may have put the
+  // edge's term on the other side than the stencil, which moves every
+  // quadrant by a whole quarter (and every lattice point by one turn). Where
+  // an edge passes the centre here (its wedges flagged it), all four
+  // quadrants at or below 0 with one well below, or at or above a quarter
+  // with one well above, is that rounding, and the winding is corrected.
+  // Elsewhere such values are the silhouette's own (loops of one caster that
+  // overlap, a loop that crosses itself seen from the point) and are left to
+  // the clamp.
+  float winding = stencil_count(stencil_tex, pixel);
   vec4 raw = winding * quarter - texelFetch(terms_tex, pixel, 0);
-  if (any(lessThan(raw, vec4(-1e-4))))
-    winding += 1.0;
-  else if (any(greaterThan(raw, vec4(quarter + 1e-4))))
-    winding -= 1.0;
+  if (texelFetch(near_centre_tex, pixel, 0).r > 0.5) {
+    if (all(lessThanEqual(raw, vec4(1e-4))) && any(lessThan(raw, vec4(-0.05))))
+      winding += 1.0;
+    else if (all(greaterThanEqual(raw, vec4(quarter - 1e-4))) &&
+             any(greaterThan(raw, vec4(quarter + 0.05))))
+      winding -= 1.0;
+  }
   vec4 occluded = clamp(winding * quarter - texelFetch(terms_tex, pixel, 0), 0.0, quarter);
   // Dynamic skip: this silhouette hides nothing of the light here.
   if (all(lessThanEqual(occluded, vec4(1e-7)))) discard;
@@ -217,7 +229,7 @@ void main() {
 }
 )";
 
-constexpr int kSilhouetteTargets = 7;   // terms, corners, middles, 4 edge boxes
+constexpr int kSilhouetteTargets = 8;   // terms, corners, middles, 4 edge boxes, centre flag
 constexpr int kAccumulatedTargets = 5;  // areas, 4 rectangles
 
 class PenumbraWedgesBlend final : public Technique {
@@ -231,7 +243,7 @@ class PenumbraWedgesBlend final : public Technique {
     silhouette_program_ = gl::Program("penumbra_wedges_blend_silhouette",
                                       {wedge::kWedgeVertex, "", header + kSilhouetteMain});
     std::string merge = kMergeFragment;
-    merge.insert(merge.find('\n') + 1, kQuadrantGlsl);
+    merge.insert(merge.find('\n') + 1, std::string(kQuadrantGlsl) + wedge::kStencilCountGlsl);
     merge_ = gl::Program("penumbra_wedges_blend_merge", {gl::kFullscreenVertexShader, "", merge});
     resolve_ = gl::Program("penumbra_wedges_blend_resolve",
                            {gl::kFullscreenVertexShader, "", kResolveFragment});
@@ -241,12 +253,14 @@ class PenumbraWedgesBlend final : public Technique {
     silhouette_framebuffer_ = gl::make_framebuffer(
         {silhouette_targets_[0].get(), silhouette_targets_[1].get(), silhouette_targets_[2].get(),
          silhouette_targets_[3].get(), silhouette_targets_[4].get(), silhouette_targets_[5].get(),
-         silhouette_targets_[6].get()},
+         silhouette_targets_[6].get(), silhouette_targets_[7].get()},
         in.depth_stencil, GL_DEPTH_STENCIL_ATTACHMENT);
+    // No depth-stencil here: the merge reads the silhouette's stencil counts.
     accumulated_framebuffer_ =
         gl::make_framebuffer({accumulated_[0].get(), accumulated_[1].get(), accumulated_[2].get(),
                               accumulated_[3].get(), accumulated_[4].get()},
-                             in.depth_stencil, GL_DEPTH_STENCIL_ATTACHMENT);
+                             0);
+    stencil_view_ = wedge::make_stencil_view(in.depth_stencil);
     gl::throw_if_errors("penumbra_wedges_blend prepare");
   }
 
@@ -336,7 +350,6 @@ class PenumbraWedgesBlend final : public Technique {
     glBindTextureUnit(0, in.gbuffer_position);
     wedges_.stream().bind();
     wedge::WedgeStream::draw(wedges_.caster_wedges()[caster]);
-    glEnable(GL_STENCIL_TEST);
     for (int k = 0; k < kSilhouetteTargets; ++k) glDisablei(GL_BLEND, GLuint(k));
     wedge::end_hull_draw();
     // Blend into the accumulated buffers, each pixel reading its own texels.
@@ -345,15 +358,14 @@ class PenumbraWedgesBlend final : public Technique {
     merge_.use();
     merge_.set("half_size", glm::vec2(frame.half_width, frame.half_height));
     glBindTextureUnit(0, in.gbuffer_position);
-    for (int k = 0; k < kSilhouetteTargets; ++k)
+    for (int k = 0; k < 7; ++k)
       glBindTextureUnit(GLuint(1 + k), silhouette_targets_[size_t(k)].get());
+    glBindTextureUnit(14, silhouette_targets_[7].get());
     for (int k = 0; k < kAccumulatedTargets; ++k)
       glBindTextureUnit(GLuint(8 + k), accumulated_[size_t(k)].get());
-    for (const bool hidden : {false, true}) {
-      glStencilFunc(hidden ? GL_NOTEQUAL : GL_EQUAL, 0, 0xff);
-      merge_.set("centre_hidden", hidden ? 1.0f : 0.0f);
-      gl::draw_fullscreen_triangle();
-    }
+    glBindTextureUnit(13, stencil_view_.get());
+    gl::draw_fullscreen_triangle();
+    glBindTextureUnit(13, 0);
     glTextureBarrier();
   }
 
@@ -366,6 +378,7 @@ class PenumbraWedgesBlend final : public Technique {
   std::array<gl::Texture, kAccumulatedTargets> accumulated_;
   gl::Framebuffer silhouette_framebuffer_;
   gl::Framebuffer accumulated_framebuffer_;
+  gl::Texture stencil_view_;  // the G-buffer's depth-stencil, read as stencil counts
 };
 
 }  // namespace

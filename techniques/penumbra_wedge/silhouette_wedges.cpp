@@ -56,4 +56,22 @@ void end_hull_draw() {
   glDepthFunc(GL_LESS);
 }
 
+gl::Texture make_stencil_view(GLuint depth_stencil) {
+  GLuint view = 0;
+  glGenTextures(1, &view);
+  glTextureView(view, GL_TEXTURE_2D, depth_stencil, GL_DEPTH24_STENCIL8, 0, 1, 0, 1);
+  gl::Texture texture(view);
+  glTextureParameteri(view, GL_DEPTH_STENCIL_TEXTURE_MODE, GL_STENCIL_INDEX);
+  glTextureParameteri(view, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(view, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  return texture;
+}
+
+const char* const kStencilCountGlsl = R"(
+float stencil_count(usampler2D stencil, ivec2 pixel) {
+  uint count = texelFetch(stencil, pixel, 0).r;
+  return float(count >= 128u ? int(count) - 256 : int(count));
+}
+)";
+
 }  // namespace sb::wedge

@@ -44,4 +44,11 @@ class SilhouetteWedges {
 void begin_hull_draw();
 void end_hull_draw();
 
+// A view of the G-buffer's depth-stencil texture that shaders read as
+// stencil counts (usampler2D; 8-bit counts, wrapped).
+gl::Texture make_stencil_view(GLuint depth_stencil);
+
+// GLSL: the signed count from such a view's texel.
+extern const char* const kStencilCountGlsl;
+
 }  // namespace sb::wedge
