@@ -58,6 +58,7 @@ namespace {
 const char* const kWedgeMain = R"(
 layout(binding = 0) uniform sampler2D position_tex;
 layout(binding = 1) uniform sampler2D umbra_tex;  // 1 − the stencil's count: 1 outside every umbra
+layout(binding = 2) uniform sampler2D owner_tex;  // Σ (number + 1) of the volumes holding the pixel
 out float delta;
 
 void main() {
@@ -68,12 +69,14 @@ void main() {
   if (pos.w == 0.0 || !fan_edge(pos.xyz, a, b, s)) discard;
   // Where the centre is on the edge, keep the side that agrees with the
   // stencil: where no volume holds the pixel every edge must darken (s < 0;
-  // the term is s × an area), where one does it is taken to be this edge's
-  // silhouette's, which must lighten. Where two or more do, the stencil
-  // cannot say whose they are, and the shader keeps its own side.
+  // the term is s × an area); where one does, this edge must lighten if the
+  // volume is its own silhouette's (the owner pass says whose), else darken.
+  // Where two or more do, the shader keeps its own side.
   if (centre_on_edge(a, b)) {
     float umbra = texelFetch(umbra_tex, pixel, 0).r;  // 1 − count
-    if ((umbra > 0.5 && s > 0.0) || (umbra > -0.5 && umbra < 0.5 && s < 0.0)) swap_ends(a, b, s);
+    bool own = abs(texelFetch(owner_tex, pixel, 0).r - (wedges[v_wedge].a.w + 1.0)) < 0.5;
+    if ((umbra > 0.5 && s > 0.0) || (umbra > -0.5 && umbra < 0.5 && (s > 0.0) != own))
+      swap_ends(a, b, s);
   }
   float term = s * beyond_area(a, b);
   delta = term / (4.0 * half_size.x * half_size.y);
@@ -94,6 +97,22 @@ void main() {
   bool background = texelFetch(position_tex, pixel, 0).w == 0.0;
   visibility = background ? 1.0 : 1.0 - stencil_count(stencil_tex, pixel);
 }
+)";
+
+// Which caster's volume holds a pixel: each volume adds ±(its number + 1)
+// under the same rule the stencil counts by, so where one volume holds the
+// pixel the sum is its number + 1.
+const char* const kOwnerVertex = R"(#version 450 core
+layout(location = 0) in vec4 position;
+uniform mat4 view_projection;
+void main() { gl_Position = view_projection * position; }
+)";
+
+const char* const kOwnerFragment = R"(#version 450 core
+uniform float owner;       // the caster's number + 1
+uniform float front_sign;  // z-fail: −1 (front faces behind the surface), z-pass: +1
+out float owners;
+void main() { owners = gl_FrontFacing ? front_sign * owner : -front_sign * owner; }
 )";
 
 const char* const kCombineFragment = R"(#version 450 core
@@ -122,6 +141,10 @@ class PenumbraWedges final : public Technique {
                             std::string("#version 450 core\n") + wedge::kWedgeGlsl + kWedgeMain});
     combine_ =
         gl::Program("penumbra_wedges_combine", {gl::kFullscreenVertexShader, "", kCombineFragment});
+    owner_program_ = gl::Program("penumbra_wedges_owners", {kOwnerVertex, "", kOwnerFragment});
+    owners_ = gl::make_texture_2d(GL_R32F, in.width, in.height);
+    owner_framebuffer_ =
+        gl::make_framebuffer({owners_.get()}, in.depth_stencil, GL_DEPTH_STENCIL_ATTACHMENT);
     delta_ = gl::make_texture_2d(GL_R32F, in.width, in.height);
     delta_framebuffer_ =
         gl::make_framebuffer({delta_.get()}, in.depth_stencil, GL_DEPTH_STENCIL_ATTACHMENT);
@@ -140,6 +163,10 @@ class PenumbraWedges final : public Technique {
         wedges_.volumes().draw(in, zfail);
       }
       volume::end_stencil_count();
+    }
+    {
+      auto pass = timer.scope("owners");
+      draw_owners(in);
     }
     {
       auto pass = timer.scope("umbra");
@@ -165,6 +192,7 @@ class PenumbraWedges final : public Technique {
       wedge::set_wedge_uniforms(wedge_program_, wedges_.frame(), in.view_projection);
       glBindTextureUnit(0, in.gbuffer_position);
       glBindTextureUnit(1, in.visibility_texture);
+      glBindTextureUnit(2, owners_.get());
       wedges_.stream().bind();
       wedge::WedgeStream::draw({0, uint32_t(wedges_.batch().indices.size())});
       glDisable(GL_BLEND);
@@ -181,11 +209,47 @@ class PenumbraWedges final : public Technique {
   }
 
  private:
+  // The owners pass: every caster's volume, counted as the stencil counts
+  // it, adds ±(its number + 1).
+  void draw_owners(const FrameInputs& in) {
+    glBindFramebuffer(GL_FRAMEBUFFER, owner_framebuffer_.get());
+    const std::array<float, 4> zero{0.0f, 0.0f, 0.0f, 0.0f};
+    glClearBufferfv(GL_COLOR, 0, zero.data());
+    glDisable(GL_STENCIL_TEST);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_DEPTH_CLAMP);
+    glDisable(GL_CULL_FACE);
+    if (offset_ != 0.0f) {
+      glEnable(GL_POLYGON_OFFSET_FILL);
+      glPolygonOffset(0.0f, offset_);
+    }
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ONE);
+    owner_program_.set("view_projection", in.view_projection);
+    const auto& casters = wedges_.volumes().casters();
+    for (size_t i = 0; i < casters.size(); ++i) {
+      // z-fail counts fragments that fail GL_LESS, z-pass those that pass.
+      glDepthFunc(casters[i].zfail ? GL_GEQUAL : GL_LESS);
+      owner_program_.set("owner", float(i + 1));
+      owner_program_.set("front_sign", casters[i].zfail ? -1.0f : 1.0f);
+      wedges_.volumes().draw_caster(in, i, &owner_program_);
+    }
+    glDisable(GL_BLEND);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glDisable(GL_DEPTH_CLAMP);
+    glDepthFunc(GL_LESS);
+  }
+
   float offset_;
   wedge::SilhouetteWedges wedges_;
   gl::Program umbra_;
   gl::Program wedge_program_;
   gl::Program combine_;
+  gl::Program owner_program_;
+  gl::Texture owners_;  // Σ ±(number + 1) of the volumes around each pixel
+  gl::Framebuffer owner_framebuffer_;
   gl::Texture delta_;
   gl::Framebuffer delta_framebuffer_;
   gl::Framebuffer umbra_framebuffer_;

@@ -32,7 +32,7 @@ void SilhouetteWedges::build(const FrameInputs& in, gl::PassTimer& timer) {
       const WedgeRange range = wedge_range(frame_, scene);
       for (size_t i = 0; i < caster_wedges_.size(); ++i)
         caster_wedges_[i] =
-            append_silhouette_wedges(frame_, volumes_.silhouettes()[i], range, batch_);
+            append_silhouette_wedges(frame_, volumes_.silhouettes()[i], range, float(i), batch_);
     }
   }
   auto pass = timer.scope("upload");

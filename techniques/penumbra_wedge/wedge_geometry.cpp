@@ -261,12 +261,13 @@ bool append_wedge(const LightFrame& frame, const glm::vec3& a, const glm::vec3& 
 }
 
 IndexRange append_silhouette_wedges(const LightFrame& frame, const volume::Silhouette& silhouette,
-                                    const WedgeRange& range, WedgeBatch& out) {
+                                    const WedgeRange& range, float tag, WedgeBatch& out) {
   IndexRange r;
   r.first = uint32_t(out.indices.size());
   for (const auto& loop : silhouette.loops)
     for (size_t i = 0; i < loop.size(); ++i)
-      append_wedge(frame, loop[i].smooth, loop[(i + 1) % loop.size()].smooth, range, out);
+      if (append_wedge(frame, loop[i].smooth, loop[(i + 1) % loop.size()].smooth, range, out))
+        out.wedges.back().a.w = tag;
   r.count = uint32_t(out.indices.size()) - r.first;
   return r;
 }

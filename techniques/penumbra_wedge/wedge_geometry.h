@@ -51,7 +51,8 @@ struct LightFrame {
 
 // One wedge as the fragment shader reads it (std430: five vec4).
 struct WedgeRecord {
-  glm::vec4 a{0.0f}, b{0.0f};  // the edge's ends, light frame (w unused)
+  glm::vec4 a{0.0f};  // the edge's start, light frame; w: its silhouette's number (a tag)
+  glm::vec4 b{0.0f};  // the edge's end, light frame (w unused)
   // World-space planes (n, d), |n| = 1: n·x + d. The centre plane splits the
   // wedge; where it is negative the point must have first_bound >= −τ,
   // elsewhere second_bound >= −τ, with τ = kHalfWedgeTolerance × the point's
@@ -113,7 +114,8 @@ struct IndexRange {
   uint32_t first = 0;
   uint32_t count = 0;
 };
+// Each record's a.w holds `tag`.
 IndexRange append_silhouette_wedges(const LightFrame& frame, const volume::Silhouette& silhouette,
-                                    const WedgeRange& range, WedgeBatch& out);
+                                    const WedgeRange& range, float tag, WedgeBatch& out);
 
 }  // namespace sb::wedge

@@ -159,12 +159,16 @@ void CasterVolumes::draw(const FrameInputs& in, bool zfail) {
   glMultiDrawArrays(GL_TRIANGLES, firsts_.data(), counts_.data(), GLsizei(firsts_.size()));
 }
 
-void CasterVolumes::draw_caster(const FrameInputs& in, size_t caster) {
+void CasterVolumes::draw_caster(const FrameInputs& in, size_t caster, const gl::Program* program) {
   const Caster& c = casters_[caster];
   if (c.range.sides + c.range.caps == 0) return;
   set_stencil_ops(c.zfail);
-  program_.use();
-  program_.set("view_projection", in.view_projection);
+  if (program != nullptr) {
+    program->use();
+  } else {
+    program_.use();
+    program_.set("view_projection", in.view_projection);
+  }
   glBindVertexArray(vao_.get());
   glDrawArrays(GL_TRIANGLES, c.range.first, c.zfail ? c.range.sides + c.range.caps : c.range.sides);
 }

@@ -72,8 +72,9 @@ class CasterVolumes {
   // by the caller), with the program bound here.
   void draw(const FrameInputs& in, bool zfail);
   // CPU path: one caster's volume alone, with its own counting rule's
-  // stencil ops.
-  void draw_caster(const FrameInputs& in, size_t caster);
+  // stencil ops; with `program` (vertex input: location 0, vec4; its
+  // uniforms set by the caller) instead of the volumes' own.
+  void draw_caster(const FrameInputs& in, size_t caster, const gl::Program* program = nullptr);
 
   const std::vector<Caster>& casters() const { return casters_; }
   const std::vector<Silhouette>& silhouettes() const { return silhouettes_; }
