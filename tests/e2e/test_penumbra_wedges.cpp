@@ -181,6 +181,44 @@ TEST(PenumbraWedges, OverDarkenWhereTwoOccludersOverlapAndBlendingComesCloser) {
   EXPECT_LT(single_mean, 0.02);
 }
 
+// A small plate above a large one: the small plate's hard-shadow boundary
+// falls inside the large plate's umbra, where the stencil counts one volume
+// that is not the small plate's. Taking the edge's side from the stencil
+// must not assume the volume is its own (which lightened a thin band there
+// by half the light): in the large plate's umbra V stays 0.
+TEST(PenumbraWedges, AnotherCastersUmbraAroundAnEdgeStaysDark) {
+  TempDir dir;
+  const std::vector<Plate> plates{{-2.0f, 2.0f, -2.0f, 2.0f, 1.0f},
+                                  {-0.5f, 0.5f, -0.5f, 0.5f, 2.0f}};
+  const double size = 1.0;
+  const auto out = run_config(
+      experiment(
+          json::array({plate_scene(write_plates(dir.path, plates, {0.0f, 6.0f, 5.0f}), size)}),
+          json::array({"penumbra_wedges"}), 16, 160, 120),
+      "wedges_nested", gl::Backend::OSMesa, true, /*write_gbuffer=*/true);
+  ASSERT_EQ(out.summary.ok, 1) << out.records.at(0).value("reason", "");
+  const ImageF positions = out.gbuffer_positions();
+  const std::vector<bool> ground = ground_pixels(positions);
+  const ImageF v = out.visibility("penumbra_wedges");
+  size_t umbra = 0, near_boundary = 0;
+  double brightest = 0.0;
+  for (size_t i = 0; i < ground.size(); ++i) {
+    if (!ground[i]) continue;
+    const double x = positions.data[i * 4], z = positions.data[i * 4 + 2];
+    if (exact_visibility(plates[0], x, z, size) > 0.0) continue;
+    ++umbra;
+    // The small plate's hard boundary, projected from the light's centre: |x| or |z| = 1.5.
+    near_boundary += std::abs(std::max(std::abs(x), std::abs(z)) - 1.5) < 0.02;
+    brightest = std::max(brightest, double(v.data[i]));
+  }
+  std::printf(
+      "large plate's umbra: %zu ground px (%zu by the small plate's boundary), max V %.4f\n", umbra,
+      near_boundary, brightest);
+  ASSERT_GT(umbra, 2000u);
+  ASSERT_GT(near_boundary, 20u);
+  EXPECT_LT(brightest, 0.01);
+}
+
 // Coarse spheres (8 slices) against the ray-traced true spheres: the smooth
 // silhouette follows the curved surface, the discrete one the facets.
 TEST(PenumbraWedges, SmoothSilhouettesOnCoarseSpheresBeatDiscreteOnes) {
