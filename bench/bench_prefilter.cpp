@@ -44,6 +44,7 @@
 #include "gl/context.h"
 #include "gl/debug.h"
 #include "gl/gl.h"
+#include "gl_bench_main.h"
 
 namespace {
 
@@ -190,23 +191,7 @@ void register_benchmarks() {
 
 }  // namespace
 
-// One OSMesa context for the process, made before the benchmarks run and
-// destroyed after the last GL object.
 int main(int argc, char** argv) {
   register_benchmarks();
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  std::unique_ptr<sb::gl::Context> context;
-  try {
-    context = sb::gl::create_context(sb::gl::Backend::OSMesa);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "bench_prefilter: no GL context: %s\n", e.what());
-    return 3;
-  }
-  benchmark::AddCustomContext("gl_renderer", context->renderer());
-  benchmark::RunSpecifiedBenchmarks();
-  g_fixture.reset();
-  context.reset();
-  benchmark::Shutdown();
-  return 0;
+  return run_gl_benchmarks(argc, argv, "bench_prefilter", [] { g_fixture.reset(); });
 }
