@@ -272,6 +272,18 @@ class PenumbraWedgesBlend final : public Technique {
       glBindFramebuffer(GL_FRAMEBUFFER, accumulated_framebuffer_.get());
       const std::array<float, 4> zero{0.0f, 0.0f, 0.0f, 0.0f};
       glClearBufferfv(GL_COLOR, 0, zero.data());  // no area occluded yet
+      // What every silhouette's passes share: uniforms, and the textures on
+      // the units the programs read (a program never reads the targets it
+      // draws into).
+      wedge::set_wedge_uniforms(silhouette_program_, wedges_.frame(), in.view_projection);
+      merge_.set("half_size", glm::vec2(wedges_.frame().half_width, wedges_.frame().half_height));
+      glBindTextureUnit(0, in.gbuffer_position);
+      for (int k = 0; k < 7; ++k)
+        glBindTextureUnit(GLuint(1 + k), silhouette_targets_[size_t(k)].get());
+      for (int k = 0; k < kAccumulatedTargets; ++k)
+        glBindTextureUnit(GLuint(8 + k), accumulated_[size_t(k)].get());
+      glBindTextureUnit(13, stencil_view_.get());
+      glBindTextureUnit(14, silhouette_targets_[7].get());
       for (size_t i = 0; i < wedges_.caster_wedges().size(); ++i) {
         std::array<int, 4> scissor{};
         if (screen_rectangle(in, wedges_.caster_wedges()[i], scissor))
@@ -279,6 +291,7 @@ class PenumbraWedgesBlend final : public Technique {
       }
       glDisable(GL_SCISSOR_TEST);
       glDisable(GL_STENCIL_TEST);
+      glBindTextureUnit(13, 0);  // the depth-stencil is the visibility target's too
     }
     auto pass = timer.scope("resolve");
     glBindFramebuffer(GL_FRAMEBUFFER, in.visibility_framebuffer);
@@ -297,7 +310,10 @@ class PenumbraWedgesBlend final : public Technique {
   // lies behind the camera; false when empty or off screen.
   bool screen_rectangle(const FrameInputs& in, const wedge::IndexRange& wedges,
                         std::array<int, 4>& scissor) const {
-    if (wedges.count == 0) return false;
+    if (wedges.count == 0) {  // its umbra alone (a point light): wherever it falls
+      scissor = {0, 0, in.width, in.height};
+      return true;
+    }
     glm::vec2 lo(1e30f), hi(-1e30f);
     bool behind = false;
     const auto& vertices = wedges_.batch().vertices;
@@ -323,7 +339,6 @@ class PenumbraWedgesBlend final : public Technique {
   }
 
   void blend_silhouette(const FrameInputs& in, size_t caster, const std::array<int, 4>& scissor) {
-    const wedge::LightFrame& frame = wedges_.frame();
     glEnable(GL_SCISSOR_TEST);
     glScissor(scissor[0], scissor[1], scissor[2], scissor[3]);
     glBindFramebuffer(GL_FRAMEBUFFER, silhouette_framebuffer_.get());
@@ -336,7 +351,7 @@ class PenumbraWedgesBlend final : public Technique {
     volume::begin_stencil_count(offset_);
     wedges_.volumes().draw_caster(in, caster);
     volume::end_stencil_count();
-    // Its wedges, once where its volume holds the pixel, once elsewhere.
+    // Its wedges.
     wedge::begin_hull_draw();
     for (int k = 0; k < kSilhouetteTargets; ++k) {
       glEnablei(GL_BLEND, GLuint(k));
@@ -346,8 +361,6 @@ class PenumbraWedgesBlend final : public Technique {
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
     glDisable(GL_STENCIL_TEST);
     silhouette_program_.use();
-    wedge::set_wedge_uniforms(silhouette_program_, frame, in.view_projection);
-    glBindTextureUnit(0, in.gbuffer_position);
     wedges_.stream().bind();
     wedge::WedgeStream::draw(wedges_.caster_wedges()[caster]);
     for (int k = 0; k < kSilhouetteTargets; ++k) glDisablei(GL_BLEND, GLuint(k));
@@ -356,16 +369,7 @@ class PenumbraWedgesBlend final : public Technique {
     glBindFramebuffer(GL_FRAMEBUFFER, accumulated_framebuffer_.get());
     glTextureBarrier();
     merge_.use();
-    merge_.set("half_size", glm::vec2(frame.half_width, frame.half_height));
-    glBindTextureUnit(0, in.gbuffer_position);
-    for (int k = 0; k < 7; ++k)
-      glBindTextureUnit(GLuint(1 + k), silhouette_targets_[size_t(k)].get());
-    glBindTextureUnit(14, silhouette_targets_[7].get());
-    for (int k = 0; k < kAccumulatedTargets; ++k)
-      glBindTextureUnit(GLuint(8 + k), accumulated_[size_t(k)].get());
-    glBindTextureUnit(13, stencil_view_.get());
     gl::draw_fullscreen_triangle();
-    glBindTextureUnit(13, 0);
     glTextureBarrier();
   }
 

@@ -28,7 +28,9 @@ void SilhouetteWedges::build(const FrameInputs& in, gl::PassTimer& timer) {
     batch_.clear();
     caster_wedges_.assign(volumes_.silhouettes().size(), IndexRange{});
     const Bounds scene = in.scene->bounds();
-    if (frame_.farthest(scene) > 0.0f) {  // else the whole scene is behind the light
+    // No wedges when the whole scene is behind the light, or the light is a
+    // point (no penumbra: V is the umbra's).
+    if (frame_.has_area() && frame_.farthest(scene) > 0.0f) {
       const WedgeRange range = wedge_range(frame_, scene);
       for (size_t i = 0; i < caster_wedges_.size(); ++i)
         caster_wedges_[i] =

@@ -38,6 +38,7 @@ struct LightFrame {
 
   LightFrame() = default;
   explicit LightFrame(const AreaLight& light);
+  bool has_area() const { return half_width > 0.0f && half_height > 0.0f; }
   glm::vec3 to_light(const glm::vec3& world) const {
     const glm::vec3 d = world - center;
     return {glm::dot(d, u), glm::dot(d, v), glm::dot(d, n)};

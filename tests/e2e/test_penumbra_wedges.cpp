@@ -219,6 +219,28 @@ TEST(PenumbraWedges, AnotherCastersUmbraAroundAnEdgeStaysDark) {
   EXPECT_LT(brightest, 0.01);
 }
 
+// A light of no area has no penumbra: both techniques give the centre's hard
+// shadow, which is the reference's, up to pixels on its edge.
+TEST(PenumbraWedges, APointLightGivesTheHardShadow) {
+  const auto out =
+      run_config(experiment(json::array({small_scene(0.0)}),
+                            json::array({"penumbra_wedges", "penumbra_wedges_blend"}), 4, 160, 120),
+                 "wedges_point_light");
+  ASSERT_EQ(out.summary.ok, 2);
+  const ImageF ref = out.reference_visibility();
+  size_t dark = 0;
+  for (const float r : ref.data) dark += r < 0.5f;
+  ASSERT_GT(dark, ref.data.size() / 20);  // there is a shadow
+  for (const std::string technique : {"penumbra_wedges", "penumbra_wedges_blend"}) {
+    const ImageF v = out.visibility(technique);
+    size_t differ = 0;
+    for (size_t i = 0; i < v.data.size(); ++i) differ += std::abs(v.data[i] - ref.data[i]) > 0.5f;
+    std::printf("%s: %zu of %zu pixels differ from the hard reference\n", technique.c_str(), differ,
+                v.data.size());
+    EXPECT_LT(double(differ), 0.005 * double(v.data.size())) << technique;
+  }
+}
+
 // Coarse spheres (8 slices) against the ray-traced true spheres: the smooth
 // silhouette follows the curved surface, the discrete one the facets.
 TEST(PenumbraWedges, SmoothSilhouettesOnCoarseSpheresBeatDiscreteOnes) {

@@ -199,5 +199,20 @@ TEST(WedgeGeometry, DegenerateAndCrossingEdgesGiveFiniteClosedHullsOrNone) {
   }
 }
 
+// A light of no area (light_size 0) still gets an orthonormal frame, facing
+// its target, and says it has no area (so no wedges are built for it).
+TEST(WedgeGeometry, APointLightHasAFiniteFrameAndNoArea) {
+  AreaLight point = square_light(0.0f);
+  const LightFrame frame(point);
+  EXPECT_FALSE(frame.has_area());
+  EXPECT_TRUE(LightFrame(square_light(1.0f)).has_area());
+  for (const glm::vec3& axis : {frame.u, frame.v, frame.n}) {
+    EXPECT_TRUE(std::isfinite(axis.x) && std::isfinite(axis.y) && std::isfinite(axis.z));
+    EXPECT_NEAR(glm::length(axis), 1.0f, 1e-6f);
+  }
+  EXPECT_NEAR(glm::dot(frame.u, frame.v), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::dot(frame.n, glm::vec3(0.0f, -1.0f, 0.0f)), 1.0f, 1e-6f);  // towards the target
+}
+
 }  // namespace
 }  // namespace sb::wedge
