@@ -96,7 +96,17 @@ void draw_fullscreen_triangle() {
 
 void reset_state() {
   glDisable(GL_BLEND);
+  // A technique that failed mid-pass may have left a blend equation (MAX)
+  // that the next technique's additive passes would silently inherit.
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFunc(GL_ONE, GL_ZERO);
+  glDisable(GL_SCISSOR_TEST);
   glDisable(GL_STENCIL_TEST);
+  glStencilFunc(GL_ALWAYS, 0, 0xff);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  glDepthFunc(GL_LESS);
+  glFrontFace(GL_CCW);
+  glCullFace(GL_BACK);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   glDisable(GL_POLYGON_OFFSET_FILL);

@@ -61,9 +61,11 @@ Buffer make_buffer(GLsizeiptr bytes, const void* data, GLbitfield flags = 0);
 
 // Draws one triangle covering the viewport (no vertex buffer: uses gl_VertexID).
 void draw_fullscreen_triangle();
-// Undoes whatever state a technique left behind: no blending, stencil or
-// depth test, culling, polygon offset or depth clamp; every write mask on;
-// no program; the default framebuffer bound.
+// Undoes whatever state a technique left behind: no blending (and the
+// default blend equation and factors), scissor, stencil or depth test (and
+// their default functions), culling (back faces, CCW front), polygon offset
+// or depth clamp; every write mask on; no program; the default framebuffer
+// bound.
 void reset_state();
 // Called when a context is made: drops names that belonged to the last one.
 void forget_context_objects();

@@ -31,6 +31,57 @@ class Throws final : public Technique {
   void render(const FrameInputs& /*in*/, gl::PassTimer& /*timer*/) override {}
 };
 
+// Fails mid-frame with the pipeline in a state no technique expects.
+class FailsWithOddState final : public Technique {
+ public:
+  void prepare(const FrameInputs& /*in*/) override {}
+  void render(const FrameInputs& /*in*/, gl::PassTimer& timer) override {
+    auto pass = timer.scope("odd_state");
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_MAX);
+    glBlendFunc(GL_ZERO, GL_ONE);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, 0, 1, 1);
+    glStencilFunc(GL_NEVER, 1, 0xff);
+    glStencilOp(GL_INVERT, GL_INVERT, GL_INVERT);
+    glDepthFunc(GL_NEVER);
+    glFrontFace(GL_CW);
+    glCullFace(GL_FRONT);
+    throw JobError("failed mid-frame");
+  }
+};
+
+// Accumulation blends its passes additively: a blend equation, scissor or
+// depth function left behind by a failed job must not reach it.
+TEST(Failures, AJobThatFailsMidFrameLeavesNoStateToTheNextJob) {
+  Registry registry;
+  registry.load_plugins(SHADOWBENCH_PLUGIN_DIR);
+  registry.add({"odd_state", "test", "fails with odd GL state", Needs{}, {}, [](const Params&) {
+                  return std::make_unique<FailsWithOddState>();
+                }});
+  const auto run = [&](const nlohmann::json& techniques, const std::string& name) {
+    const nlohmann::json config = {
+        {"name", name},
+        {"scenes", {{{"type", "sphere_grid"}, {"params", {{"grid", 2}}}}}},
+        {"techniques", techniques},
+        {"resolutions", {{48, 36}}},
+        {"frames", {{"warmup", 0}, {"timed", 1}}},
+        {"reference", {{"spp", 4}}}};
+    return run_with_registry(config, registry, name);
+  };
+  const nlohmann::json accumulation = {{"name", "accumulation"},
+                                       {"params", {{"samples", 8}, {"size", 256}}}};
+  const RunOutput alone = run(nlohmann::json::array({accumulation}), "state_alone");
+  const RunOutput after = run(nlohmann::json::array({"odd_state", accumulation}), "state_after");
+  ASSERT_EQ(after.records.size(), 2u);
+  EXPECT_EQ(after.records[0]["status"], "failed");
+  ASSERT_EQ(after.records[1]["status"], "ok") << after.records[1].dump();
+  EXPECT_EQ(after.records[1]["metrics"]["visibility"]["all"]["rmse"],
+            alone.records[0]["metrics"]["visibility"]["all"]["rmse"]);
+  EXPECT_EQ(after.records[1]["metrics"]["visibility"]["all"]["mean_signed"],
+            alone.records[0]["metrics"]["visibility"]["all"]["mean_signed"]);
+}
+
 TEST(Failures, AFailingJobLeavesTheOthersIntact) {
   Registry registry;
   registry.load_plugins(SHADOWBENCH_PLUGIN_DIR);
