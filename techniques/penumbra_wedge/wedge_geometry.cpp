@@ -95,34 +95,6 @@ void clip_faces(std::vector<std::vector<glm::vec3>>& faces, const glm::vec4& pla
 
 }  // namespace
 
-LightFrame::LightFrame(const AreaLight& light) : center(light.center) {
-  half_width = glm::length(light.half_u);
-  half_height = glm::length(light.half_v);
-  // A light of no area (a config's light_size 0) keeps a frame about its
-  // direction, so that nothing here divides by zero; it has no penumbra.
-  const glm::vec3 normal = glm::cross(light.half_u, light.half_v);
-  n = glm::length(normal) > 0.0f ? glm::normalize(normal)
-                                 : glm::normalize(light.target - light.center);
-  if (glm::dot(n, light.target - light.center) < 0.0f) n = -n;
-  if (half_width > 0.0f) {
-    u = light.half_u / half_width;
-  } else {
-    const glm::vec3 across = std::fabs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-    u = glm::normalize(glm::cross(across, n));
-  }
-  v = glm::cross(n, u);
-}
-
-float LightFrame::farthest(const Bounds& box) const {
-  float z = -1e30f;
-  for (int i = 0; i < 8; ++i) {
-    const glm::vec3 corner((i & 1) ? box.hi.x : box.lo.x, (i & 2) ? box.hi.y : box.lo.y,
-                           (i & 4) ? box.hi.z : box.lo.z);
-    z = std::max(z, to_light(corner).z);
-  }
-  return z;
-}
-
 WedgeRange wedge_range(const LightFrame& frame, const Bounds& scene) {
   WedgeRange r;
   r.far = std::max(frame.farthest(scene), 1e-6f);

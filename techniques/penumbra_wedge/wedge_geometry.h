@@ -4,7 +4,7 @@
 // light L, the wedge is the set of points whose view of L the edge can cut,
 //   S = { y : the segment from some light point l to y meets the edge }.
 //
-// In the light's frame (light_frame below: the light in z = 0, the scene at
+// In the light's frame (common/light_frame.h: the light in z = 0, the scene at
 // z > 0), S cut at a plane z = Z beyond the edge is the convex hull of two
 // rectangles: L seen through each end point and projected onto z = Z
 // (point-reflected and scaled by Z/z − 1 about the end point's own
@@ -24,31 +24,13 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "common/light_frame.h"
 #include "core/scene.h"
 #include "shadow_volume/silhouette.h"
 
 namespace sb::wedge {
 
-// The light's own orthonormal frame: u along half_u, n towards the light's
-// target (the lit side), v = n × u, origin at the light's centre.
-struct LightFrame {
-  glm::vec3 center{0.0f};
-  glm::vec3 u{1.0f, 0.0f, 0.0f}, v{0.0f, 1.0f, 0.0f}, n{0.0f, 0.0f, 1.0f};
-  float half_width = 0.5f, half_height = 0.5f;
-
-  LightFrame() = default;
-  explicit LightFrame(const AreaLight& light);
-  bool has_area() const { return half_width > 0.0f && half_height > 0.0f; }
-  glm::vec3 to_light(const glm::vec3& world) const {
-    const glm::vec3 d = world - center;
-    return {glm::dot(d, u), glm::dot(d, v), glm::dot(d, n)};
-  }
-  glm::vec3 to_world(const glm::vec3& local) const {
-    return center + local.x * u + local.y * v + local.z * n;
-  }
-  // Light-frame z of the farthest corner of `box`.
-  float farthest(const Bounds& box) const;
-};
+using shadow::LightFrame;
 
 // One wedge as the fragment shader reads it (std430: five vec4).
 struct WedgeRecord {
