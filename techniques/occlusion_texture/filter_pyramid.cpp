@@ -170,3 +170,86 @@ GLuint FilterPyramid::filtered() const {
 }
 
 }  // namespace sb::occlusion
+
+namespace sb::occlusion {
+namespace {
+
+const char* const kMipmapBoxMean = R"(
+layout(binding = 4) uniform sampler2D pyramid[TEXTURES];
+vec4 box_mean(int t, vec2 lo, vec2 hi) {
+  vec2 side = hi - lo;
+  float lod = 0.5 * log2(max(side.x * side.y, 1e-12));
+  return textureLod(pyramid[t], 0.5 * (lo + hi) / float(size), max(lod, 0.0));
+}
+vec4 source_texel(int t, ivec2 p) { return texelFetch(pyramid[t], p, 0); }
+)";
+
+const char* const kNBuffersBoxMean = R"(
+layout(binding = 4) uniform sampler2DArray pyramid[TEXTURES];
+vec4 box_mean(int t, vec2 lo, vec2 hi) {
+  ivec2 i0 = clamp(ivec2(round(lo)), ivec2(0), ivec2(size - 1));
+  ivec2 i1 = clamp(ivec2(round(hi)), i0 + 1, ivec2(size));
+  ivec2 side = i1 - i0;
+  int level = findMSB(min(side.x, side.y));  // 2^level <= the shorter side
+  int b = 1 << level;
+  return 0.25 * (texelFetch(pyramid[t], ivec3(i0, level), 0) +
+                 texelFetch(pyramid[t], ivec3(i1.x - b, i0.y, level), 0) +
+                 texelFetch(pyramid[t], ivec3(i0.x, i1.y - b, level), 0) +
+                 texelFetch(pyramid[t], ivec3(i1 - b, level), 0));
+}
+vec4 source_texel(int t, ivec2 p) { return texelFetch(pyramid[t], ivec3(p, 0), 0); }
+)";
+
+// F(x, y): the sum of the texels in [0, x) × [0, y), x and y integers in
+// [0, size]; the table holds F(x + 1, y + 1) at texel (x, y).
+const char* const kSatBoxMean = R"(
+layout(binding = 4) uniform sampler2D pyramid[TEXTURES];
+vec4 sat_sum(int t, int x, int y) {
+  if (x <= 0 || y <= 0) return vec4(0.0);
+  return texelFetch(pyramid[t], ivec2(min(x, size), min(y, size)) - 1, 0);
+}
+// The integral over [lo.x, hi.x] × [0, y) (continuous x, whole rows): each
+// difference spans whole texels and is exact before the fractions weigh it.
+vec4 sat_strip(int t, int x0, int x1, float f0, float f1, int y) {
+  vec4 a0 = sat_sum(t, x0, y), a1 = sat_sum(t, x0 + 1, y);
+  vec4 b0 = sat_sum(t, x1, y), b1 = sat_sum(t, x1 + 1, y);
+  return (b0 - a0) + f1 * (b1 - b0) - f0 * (a1 - a0);
+}
+vec4 box_mean(int t, vec2 lo, vec2 hi) {
+  ivec2 i0 = ivec2(floor(lo)), i1 = ivec2(floor(hi));
+  vec2 f0 = lo - vec2(i0), f1 = hi - vec2(i1);
+  vec4 s0 = sat_strip(t, i0.x, i1.x, f0.x, f1.x, i0.y);
+  vec4 s1 = sat_strip(t, i0.x, i1.x, f0.x, f1.x, i0.y + 1);
+  vec4 s2 = sat_strip(t, i0.x, i1.x, f0.x, f1.x, i1.y);
+  vec4 s3 = sat_strip(t, i0.x, i1.x, f0.x, f1.x, i1.y + 1);
+  vec4 integral = (s2 - s0) + f1.y * (s3 - s2) - f0.y * (s1 - s0);
+  return integral / ((hi.x - lo.x) * (hi.y - lo.y));
+}
+vec4 source_texel(int t, ivec2 p) {
+  return sat_sum(t, p.x + 1, p.y + 1) - sat_sum(t, p.x, p.y + 1) - sat_sum(t, p.x + 1, p.y) +
+         sat_sum(t, p.x, p.y);
+}
+)";
+
+}  // namespace
+
+Filter filter_from_string(const std::string& s) {
+  if (s == "mipmap") return Filter::Mipmap;
+  if (s == "nbuffers") return Filter::NBuffers;
+  if (s == "sat") return Filter::Sat;
+  throw std::logic_error("unknown occlusion filter '" + s + "'");
+}
+
+std::string box_mean_glsl(Filter filter) {
+  switch (filter) {
+    case Filter::Mipmap:
+      return kMipmapBoxMean;
+    case Filter::NBuffers:
+      return kNBuffersBoxMean;
+    case Filter::Sat:
+      return kSatBoxMean;
+  }
+  return "";
+}
+
+}  // namespace sb::occlusion

@@ -17,12 +17,35 @@
 //
 // Each is built on the GPU from an RGBA texture (four slices, as the paper
 // packs them), with compute programs for nbuffers and sat.
+#include <string>
+
 #include "gl/objects.h"
 #include "gl/program.h"
 
 namespace sb::occlusion {
 
 enum class Filter { Mipmap, NBuffers, Sat };
+
+Filter filter_from_string(const std::string& s);  // "mipmap" | "nbuffers" | "sat"
+
+// The texture unit of pyramid 0's filtered form in lookups; pyramid t is at
+// kFirstLookupUnit + t.
+constexpr int kFirstLookupUnit = 4;
+
+// GLSL that reads TEXTURES pyramids bound from kFirstLookupUnit on (it needs
+// `#define TEXTURES n` and `uniform int size` before it):
+//   vec4 box_mean(int t, vec2 lo, vec2 hi)  pyramid t's source averaged over
+//                                           the box [lo, hi] of texel
+//                                           coordinates, inside [0, size]²
+//                                           and of positive area;
+//   vec4 source_texel(int t, ivec2 p)       one texel of the source.
+// mipmap: one trilinear lookup at the box's centre, at the level of its
+// mean side. nbuffers: the four boxes of side 2^k (the box's shorter side
+// rounded down to a power of two) at its corners, averaged. sat: the exact
+// integral of the texels over the box, fractional edges included (bilinear
+// between the table's entries), differenced before it is weighted so that
+// 32-bit sums stay exact.
+std::string box_mean_glsl(Filter filter);
 
 class FilterPyramid {
  public:
@@ -35,6 +58,8 @@ class FilterPyramid {
   GLuint source() const { return source_.get(); }
   // Builds the filtered form from the source's level 0.
   void build();
+  // Binds what box_mean_glsl reads to `unit`.
+  void bind_for_lookup(GLuint unit) const { glBindTextureUnit(unit, filtered()); }
   // What lookups read: the source itself (mipmap), the N-buffer array
   // (RGBA16F, levels() layers), or the SAT (RGBA32F or RGBA16F).
   GLuint filtered() const;

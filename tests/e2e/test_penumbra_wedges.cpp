@@ -14,6 +14,7 @@
 
 #include "../gltf/gltf_builder.h"
 #include "e2e_util.h"
+#include "plate_scenes.h"
 #include "scenes/gltf_export.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/sphere_grid.h"
@@ -30,52 +31,6 @@ json experiment(const json& scenes, const json& techniques, int spp, int width, 
           {"resolutions", json::array({json::array({width, height})})},
           {"frames", {{"warmup", 0}, {"timed", 1}}},
           {"reference", {{"spp", spp}}}};
-}
-
-// A thin axis-aligned square plate: x ∈ [x0, x1], z ∈ [z0, z1] at height h.
-struct Plate {
-  float x0, x1, z0, z1, h;
-};
-
-// A square light of side `size`, centred at (0, H, 0) and facing down.
-constexpr float kLightHeight = 3.0f;
-
-// Exact V at the ground point (x, 0, z) for one plate: the plate projected
-// from the point onto the light's plane is the rectangle scaled by H / h
-// about the point, and V = 1 − its overlap with the light / the light's area.
-double exact_visibility(const Plate& p, double x, double z, double size) {
-  const double k = kLightHeight / p.h, half = 0.5 * size;
-  const auto overlap = [&](double lo, double hi, double at) {
-    const double a = at + (lo - at) * k, b = at + (hi - at) * k;
-    return std::max(0.0, std::min(b, half) - std::max(a, -half));
-  };
-  return 1.0 - overlap(p.x0, p.x1, x) * overlap(p.z0, p.z1, z) / (size * size);
-}
-
-std::string write_plates(const std::filesystem::path& dir, const std::vector<Plate>& plates,
-                         const glm::vec3& eye) {
-  Scene s;
-  s.meshes.push_back(make_ground_plane("ground", {0.0f, 0.0f, 0.0f}, 20.0f));
-  for (size_t i = 0; i < plates.size(); ++i) {
-    const Plate& p = plates[i];
-    // 0.2 mm thick: its bottom moves the shadow's edges by under 1e-3 of V.
-    s.meshes.push_back(make_box("plate" + std::to_string(i),
-                                {0.5f * (p.x0 + p.x1), p.h, 0.5f * (p.z0 + p.z1)},
-                                {0.5f * (p.x1 - p.x0), 1e-4f, 0.5f * (p.z1 - p.z0)}));
-  }
-  s.light.center = {0.0f, kLightHeight, 0.0f};
-  s.light.target = {0.0f, 0.0f, 0.0f};
-  s.camera.eye = eye;
-  s.camera.target = {0.0f, 0.0f, 0.0f};
-  const auto file = dir / "plates.glb";
-  export_glb(s, file.string());
-  return file.string();
-}
-
-json plate_scene(const std::string& file, double size) {
-  return {{"type", "gltf"},
-          {"params", {{"file", file}}},
-          {"light", {{"center", {0.0, kLightHeight, 0.0}}, {"target", {0, 0, 0}}, {"size", size}}}};
 }
 
 // One plate under the light: the wedges' fan about the light's centre is
@@ -128,13 +83,11 @@ TEST(PenumbraWedges, PlainAndBlendedMatchTheExactVisibilityOfASquareOccluderPara
 // blending estimates the overlap and comes closer there.
 TEST(PenumbraWedges, OverDarkenWhereTwoOccludersOverlapAndBlendingComesCloser) {
   TempDir dir;
-  const std::vector<Plate> plates{{-1.2f, 0.1f, -0.8f, 0.8f, 1.0f},
-                                  {-0.1f, 0.9f, -0.7f, 0.7f, 1.6f}};
-  const double size = 1.5;
+  const std::vector<Plate> plates = overlapping_plates();
+  const double size = kOverlapLightSize;
   const auto out = run_config(
-      experiment(
-          json::array({plate_scene(write_plates(dir.path, plates, {0.0f, 5.0f, 3.5f}), size)}),
-          json::array({"penumbra_wedges", "penumbra_wedges_blend"}), 256, 160, 120),
+      experiment(json::array({plate_scene(write_plates(dir.path, plates, kOverlapEye), size)}),
+                 json::array({"penumbra_wedges", "penumbra_wedges_blend"}), 256, 160, 120),
       "wedges_overlap", gl::Backend::OSMesa, true, /*write_gbuffer=*/true);
   ASSERT_EQ(out.summary.ok, 2) << out.records.at(0).value("reason", "");
   const ImageF positions = out.gbuffer_positions();

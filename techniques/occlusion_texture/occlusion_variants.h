@@ -1,0 +1,6 @@
+#pragma once
+#include "plugin/registry.h"
+
+namespace sb::occlusion {
+TechniqueInfo occlusion_textures_info();
+}  // namespace sb::occlusion
