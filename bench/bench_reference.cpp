@@ -3,42 +3,21 @@
 // casting (not timed). Arg = samples per pixel; Mrays/s counts shadow rays.
 #include <benchmark/benchmark.h>
 
-#include <nlohmann/json.hpp>
-#include <stdexcept>
-
-#include "core/params.h"
-#include "core/scene_types.h"
 #include "reference/reference.h"
+#include "sphere_grid_workload.h"
 
 namespace {
 
-struct Workload {
-  sb::Scene scene;
-  sb::reference::GBuffer gbuffer;
-  size_t covered = 0;
-};
-
-const Workload& workload() {
-  static const Workload w = [] {
-    const sb::SceneType* type = sb::find_scene_type("sphere_grid");
-    if (!type) throw std::runtime_error("no sphere_grid scene type");
-    nlohmann::json defaults = nlohmann::json::object();
-    for (const auto& p : type->params) defaults[p.name] = p.default_value;
-    Workload out;
-    out.scene = type->build(sb::Params(defaults));
-    out.gbuffer = sb::reference::trace_gbuffer(out.scene, 800, 600);
-    for (size_t i = 0; i < out.gbuffer.positions.pixel_count(); ++i)
-      out.covered += out.gbuffer.positions.data[i * 4 + 3] > 0.5f;
-    return out;
-  }();
+const sb::bench::SphereGrid& workload() {
+  static const sb::bench::SphereGrid w = sb::bench::default_sphere_grid();
   return w;
 }
 
 void BM_Reference(benchmark::State& state) {
-  const Workload& w = workload();
+  const sb::bench::SphereGrid& w = workload();
   const sb::reference::Settings settings{int(state.range(0)), 1};
   double traced = 0;
-  for (auto _ : state) {
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
     const sb::reference::Result r =
         sb::reference::compute(w.scene, w.gbuffer.positions, w.gbuffer.normals, settings);
     benchmark::DoNotOptimize(r.visibility.data.data());
@@ -62,8 +41,8 @@ BENCHMARK(BM_Reference)
 
 // The cache key hashes both 800×600 buffers (13 MB) on every get().
 void BM_CacheKey(benchmark::State& state) {
-  const Workload& w = workload();
-  for (auto _ : state)
+  const sb::bench::SphereGrid& w = workload();
+  for (auto _ : state)  // NOLINT(clang-analyzer-deadcode.DeadStores)
     benchmark::DoNotOptimize(
         sb::reference::cache_key(w.scene, w.gbuffer.positions, w.gbuffer.normals, {256, 1}));
 }

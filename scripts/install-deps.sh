@@ -9,7 +9,7 @@ packages=(
   python3-glad python3-matplotlib
   libopenimageio-dev openimageio-tools
   libtinygltf-dev libglm-dev nlohmann-json3-dev
-  libembree-dev libtbb-dev
+  libembree-dev libtbb-dev libpolyclipping-dev libboost-dev
   libbenchmark-dev libgtest-dev libgmock-dev
 )
 if [[ "${1:-}" == "--test" ]]; then

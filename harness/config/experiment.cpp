@@ -485,7 +485,14 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
   }
   if (doc.contains("reference")) {
     const json& ref = r.object(doc["reference"], "/reference", "reference settings");
-    r.only_keys(ref, "/reference", {"spp", "seed", "cache", "embree_config"});
+    r.only_keys(ref, "/reference", {"method", "spp", "seed", "cache", "embree_config"});
+    if (ref.contains("method")) {
+      const std::string method = r.string(ref["method"], "/reference/method");
+      if (method != "monte_carlo" && method != "exact")
+        r.fail("/reference/method",
+               "expected \"monte_carlo\" or \"exact\", found \"" + method + "\"");
+      e.reference.exact = method == "exact";
+    }
     if (ref.contains("spp")) e.reference.spp = r.integer(ref["spp"], "/reference/spp", 1, 1 << 20);
     if (ref.contains("seed"))
       e.reference.seed =

@@ -42,6 +42,7 @@ struct Resolution {
 };
 
 struct ReferenceConfig {
+  bool exact = false;  // "method": "exact" (else "monte_carlo", the default)
   int spp = 256;
   uint64_t seed = 1;
   bool cache = true;

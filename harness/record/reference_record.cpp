@@ -3,25 +3,28 @@
 namespace sb {
 
 nlohmann::json ReferenceRecord::to_json() const {
-  return {{"method", method},
-          {"spp", spp},
-          {"seed", seed},
-          {"embree_isa", embree_isa},
-          {"embree_config", embree_config},
-          {"mean_std_error", json_number(mean_std_error)},
-          {"penumbra_mean_std_error", json_number(penumbra_mean_std_error)},
-          {"penumbra_rms_std_error", json_number(penumbra_rms_std_error)},
-          {"penumbra_pixels", penumbra_pixels},
-          {"attached_shadow_pixels", attached_shadow_pixels},
-          {"horizon_cut_pixels", horizon_cut_pixels},
-          {"cache_key", cache_key},
-          {"from_cache", from_cache},
-          {"seconds", json_number(seconds)}};
+  nlohmann::json j = {{"method", method},
+                      {"spp", spp},
+                      {"seed", seed},
+                      {"embree_isa", embree_isa},
+                      {"embree_config", embree_config},
+                      {"mean_std_error", json_number(mean_std_error)},
+                      {"penumbra_mean_std_error", json_number(penumbra_mean_std_error)},
+                      {"penumbra_rms_std_error", json_number(penumbra_rms_std_error)},
+                      {"penumbra_pixels", penumbra_pixels},
+                      {"attached_shadow_pixels", attached_shadow_pixels},
+                      {"horizon_cut_pixels", horizon_cut_pixels},
+                      {"cache_key", cache_key},
+                      {"from_cache", from_cache},
+                      {"seconds", json_number(seconds)}};
+  if (!exact_fallback.empty()) j["exact_fallback"] = exact_fallback;
+  return j;
 }
 
 ReferenceRecord ReferenceRecord::from_json(const Fields& f) {
   ReferenceRecord r;
   r.method = f.get<std::string>("method");
+  r.exact_fallback = f.find<std::string>("exact_fallback").value_or("");
   r.spp = f.get<int>("spp");
   r.seed = f.get<std::uint64_t>("seed");
   r.embree_isa = f.get<std::string>("embree_isa");

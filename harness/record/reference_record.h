@@ -10,7 +10,10 @@
 namespace sb {
 
 struct ReferenceRecord {
-  std::string method;  // "embree_stratified_packet16"
+  std::string method;  // "embree_stratified_packet16", or "exact_clipper"
+  // Why a reference asked to be exact is Monte Carlo ("" otherwise; absent
+  // from the JSON then).
+  std::string exact_fallback;
   int spp = 0;
   std::uint64_t seed = 0;
   std::string embree_isa;     // the ISA that traced it

@@ -20,6 +20,7 @@
 #include "core/hash.h"
 #include "reference/embree_isa.h"
 #include "reference/embree_scene.h"
+#include "reference/exact_visibility.h"
 #include "reference/ray_offset.h"
 #include "reference/shadow_packet.h"
 #include "reference/stratify.h"
@@ -33,6 +34,7 @@ using detail::FlatScene;
 using detail::FtzDazScope;
 
 constexpr const char* kMethod = "embree_stratified_packet16";
+constexpr const char* kExactMethod = "exact_clipper";
 // Bump whenever the estimate changes for the same inputs (sampling, offsets,
 // error estimate): it is part of every cache key.
 // 2: horizon test, viewer-facing normals; 3: alpha masks; 4: ray offsets from
@@ -40,6 +42,8 @@ constexpr const char* kMethod = "embree_stratified_packet16";
 // 5: analytic shapes (Mesh::analytic) occlude instead of their meshes and
 // join the key.
 constexpr uint32_t kMethodVersion = 5;
+// Bumped whenever the exact reference's answer may change.
+constexpr uint32_t kExactMethodVersion = 1;
 constexpr char kMagic[8] = {'S', 'B', 'R', 'E', 'F', '\r', '\n', '\x1a'};
 constexpr uint32_t kFileVersion = 1;
 
@@ -49,6 +53,8 @@ constexpr float kTfar = 1.0f - 1e-4f;  // direction = light sample - origin
 std::string embree_config_of(const Settings& s) {
   return s.embree_config.empty() ? default_embree_config() : s.embree_config;
 }
+
+const char* method_of(const Settings& s) { return s.exact ? kExactMethod : kMethod; }
 
 void check_inputs(const ImageF& positions, const ImageF& normals, const Settings& s) {
   if (s.spp < 1 || s.spp > (1 << 20))
@@ -263,8 +269,8 @@ bool deserialise(const std::string& bytes, const std::string& key, const ImageF&
   if (!in.get(magic) || !in.get(version) || version != kFileVersion || !in.get(w) || !in.get(h) ||
       !in.get(spp) || !in.get(seed) || !in.get(method, 256) || !in.get(stored_key, 256))
     return false;
-  if (w != positions.width || h != positions.height || spp != s.spp || seed != s.seed ||
-      method != kMethod || stored_key != key)
+  if (w != positions.width || h != positions.height || spp != (s.exact ? 0 : s.spp) ||
+      seed != s.seed || method != method_of(s) || stored_key != key)
     return false;
   const size_t n = positions.pixel_count();
   ImageF vis(w, h, 1), se(w, h, 1);
@@ -336,6 +342,27 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
                                   std::to_string(i / size_t(positions.width)) + ")");
   }
 
+  if (s.exact) {
+    const std::string why = ExactVisibility::unsupported_reason(scene);
+    if (!why.empty()) {
+      Settings sampled = s;
+      sampled.exact = false;
+      Result r = compute(scene, positions, geometric_normals, sampled);
+      r.exact_fallback = why;
+      return r;
+    }
+    Result r;
+    r.seed = s.seed;
+    r.method = kExactMethod;
+    const auto t0 = std::chrono::steady_clock::now();
+    const ExactVisibility exact(scene);
+    r.visibility = exact.image(positions, geometric_normals);
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.std_error = ImageF(positions.width, positions.height, 1, 0.0f);
+    summarise(r, positions);
+    return r;
+  }
+
   Result r;
   r.visibility = ImageF(positions.width, positions.height, 1, 1.0f);
   r.std_error = ImageF(positions.width, positions.height, 1, 0.0f);
@@ -360,9 +387,13 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
 std::string cache_key(const Scene& scene, const ImageF& positions, const ImageF& geometric_normals,
                       const Settings& s) {
   Hasher h;
-  h.add("shadowbench.reference").add(kMethod).add(kMethodVersion).add(RTC_VERSION_STRING);
-  h.add(resolve_isa(embree_config_of(s)));
-  h.add(int32_t(s.spp)).add(s.seed);
+  h.add("shadowbench.reference").add(method_of(s)).add(kMethodVersion);
+  if (s.exact) {
+    h.add(kExactMethodVersion);
+  } else {
+    h.add(RTC_VERSION_STRING).add(resolve_isa(embree_config_of(s)));
+    h.add(int32_t(s.spp)).add(s.seed);
+  }
   hash_vec3(h, scene.light.center);
   hash_vec3(h, scene.light.half_u);
   hash_vec3(h, scene.light.half_v);
@@ -397,16 +428,26 @@ std::string cache_key(const Scene& scene, const ImageF& positions, const ImageF&
 Result get(const Scene& scene, const ImageF& positions, const ImageF& geometric_normals,
            const Settings& s, const std::string& cache_dir) {
   check_inputs(positions, geometric_normals, s);
+  if (s.exact) {
+    const std::string why = ExactVisibility::unsupported_reason(scene);
+    if (!why.empty()) {
+      Settings sampled = s;
+      sampled.exact = false;
+      Result r = get(scene, positions, geometric_normals, sampled, cache_dir);
+      r.exact_fallback = why;
+      return r;
+    }
+  }
   const std::string key = cache_key(scene, positions, geometric_normals, s);
   const std::filesystem::path path = std::filesystem::path(cache_dir) / (key + ".sbref");
 
   std::string bytes;
   Result cached;
   if (read_file(path, bytes) && deserialise(bytes, key, positions, s, cached)) {
-    cached.spp = s.spp;
+    cached.spp = s.exact ? 0 : s.spp;
     cached.seed = s.seed;
-    cached.method = kMethod;
-    cached.isa = resolve_isa(embree_config_of(s));
+    cached.method = method_of(s);
+    cached.isa = s.exact ? "" : resolve_isa(embree_config_of(s));
     cached.from_cache = true;
     cached.cache_key = key;
     summarise(cached, positions);

@@ -64,6 +64,11 @@ struct Settings {
   // Embree's device config: "isa=NAME" or "max_isa=NAME" (embree_isa.h);
   // empty: default_embree_config(), i.e. the environment's or the best ISA.
   std::string embree_config;
+  // The exact reference (exact_visibility.h) instead of sampling: V without
+  // noise, std_error 0, spp 0. A scene it cannot do (alpha masks, analytic
+  // shapes, a light of no area) gets the Monte Carlo reference, and
+  // Result::exact_fallback says why.
+  bool exact = false;
 };
 
 struct Result {
@@ -76,7 +81,8 @@ struct Result {
   double penumbra_rms_std_error = 0;
   int spp = 0;
   uint64_t seed = 0;
-  std::string method;  // "embree_stratified_packet16"
+  std::string method;          // "embree_stratified_packet16", or "exact_clipper"
+  std::string exact_fallback;  // why an exact reference asked for is Monte Carlo instead
   std::string isa;     // the Embree ISA that traced it ("avx2"), from Settings::embree_config
   double seconds = 0;  // wall time of BVH build + ray tracing (0 if loaded from cache)
   bool from_cache = false;

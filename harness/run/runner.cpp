@@ -330,17 +330,21 @@ class Runner {
   // same folder keeps a finished record only when its hash is the same.
   std::string spec_hash(const SceneVariant& sv, const Resolution& res,
                         const TechniqueVariant& tv) const {
-    const json spec = {{"scene",
-                        {{"type", sv.type},
-                         {"params", sv.params.json()},
-                         {"light", sv.light},
-                         {"camera", sv.camera},
-                         {"infer_receivers", sv.infer_receivers}}},
-                       {"resolution", res.label()},
-                       {"technique", {{"name", tv.info->name}, {"params", tv.params.json()}}},
-                       {"frames", {e_.warmup_frames, e_.timed_frames}},
-                       {"reference", {e_.reference.spp, e_.reference.seed, embree_isa_}},
-                       {"backend", gl::to_string(o_.backend)}};
+    const json spec = {
+        {"scene",
+         {{"type", sv.type},
+          {"params", sv.params.json()},
+          {"light", sv.light},
+          {"camera", sv.camera},
+          {"infer_receivers", sv.infer_receivers}}},
+        {"resolution", res.label()},
+        {"technique", {{"name", tv.info->name}, {"params", tv.params.json()}}},
+        {"frames", {e_.warmup_frames, e_.timed_frames}},
+        // Monte Carlo's as it always was, so old runs still resume.
+        {"reference", e_.reference.exact
+                          ? json::array({"exact"})
+                          : json::array({e_.reference.spp, e_.reference.seed, embree_isa_})},
+        {"backend", gl::to_string(o_.backend)}};
     Hasher h;
     h.add(json_text(spec));
     return h.hex();
@@ -458,6 +462,7 @@ class Runner {
   ReferenceRecord reference_record(const reference::Result& ref, const Regions& regions) const {
     ReferenceRecord r;
     r.method = ref.method;
+    r.exact_fallback = ref.exact_fallback;
     r.spp = ref.spp;
     r.seed = ref.seed;
     r.embree_isa = ref.isa;
@@ -517,13 +522,17 @@ class Runner {
     rs.spp = e_.reference.spp;
     rs.seed = e_.reference.seed;
     rs.embree_config = embree_config_;
+    rs.exact = e_.reference.exact;
     const bool cache = e_.reference.cache && !o_.cache_dir.empty();
     progress_.start_job(sv.name, res.label(), "(reference)");
     reference::Result ref = cache ? reference::get(st.scene, positions, normals, rs, o_.cache_dir)
                                   : reference::compute(st.scene, positions, normals, rs);
-    log("reference " + sv.name + " @ " + res.label() + ": " + std::to_string(ref.spp) + " spp, " +
-        (ref.from_cache ? std::string("from cache") : std::to_string(ref.seconds) + " s") +
+    log("reference " + sv.name + " @ " + res.label() + ": " +
+        (ref.method == "exact_clipper" ? std::string("exact") : std::to_string(ref.spp) + " spp") +
+        ", " + (ref.from_cache ? std::string("from cache") : std::to_string(ref.seconds) + " s") +
         ", mean std error " + std::to_string(ref.mean_std_error));
+    if (!ref.exact_fallback.empty())
+      log("reference " + sv.name + ": Monte Carlo, not exact: " + ref.exact_fallback);
     const auto horizon = metrics::classify_light_horizon(positions, normals, st.scene.light);
     Regions regions;
     regions.attached = metrics::horizon_mask(horizon, metrics::LightHorizon::Below);

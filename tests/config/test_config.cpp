@@ -54,7 +54,14 @@ TEST(Config, ValidConfigExpandsSweeps) {
   EXPECT_EQ(e.timed_frames, 2);
   EXPECT_EQ(e.reference.spp, 16);
   EXPECT_EQ(e.reference.seed, 3u);
+  EXPECT_FALSE(e.reference.exact);  // Monte Carlo unless the config says "exact"
   EXPECT_EQ(e.content_hash.size(), 16u);
+}
+
+TEST(Config, ReferenceMethodExactIsRead) {
+  std::string text = kValid;
+  text.replace(text.find(R"("spp": 16)"), 9, R"("method": "exact", "spp": 16)");
+  EXPECT_TRUE(load_experiment(write_temp("exact.json", text), registry()).reference.exact);
 }
 
 TEST(Config, SweepIsACrossProduct) {
@@ -145,6 +152,9 @@ const BadCase kBadCases[] = {
     {"bad_embree_config",
      R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "reference": {"embree_config": "isa=avx9"}})",
      "/reference/embree_config", "Embree device config \"isa=avx9\": unknown ISA \"avx9\""},
+    {"bad_reference_method",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "reference": {"method": "analytic"}})",
+     "/reference/method", "expected \"monte_carlo\" or \"exact\", found \"analytic\""},
     {"embree_config_other_key",
      R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "reference": {"embree_config": "threads=4"}})",
      "/reference/embree_config", "expected \"isa=NAME\" or \"max_isa=NAME\""},

@@ -1,0 +1,140 @@
+// The exact reference (harness/reference/exact_visibility.h) on the default
+// sphere grid (81 UV spheres of 760 triangles over a ground plane), 800×600
+// G-buffer made by primary ray casting (not timed), beside the Monte Carlo
+// reference at 256 and 1024 spp; and the polygon union it needs, by Clipper
+// (integer coordinates, the library it uses) and by Boost.Geometry
+// (floating point, union_ one polygon at a time), on the polygon sets of the
+// grid's penumbra pixels.
+#include <benchmark/benchmark.h>
+
+// Boost 1.74's rescaling of coordinates before an overlay reads an
+// uninitialised factor (GCC 12 and clang-tidy both say so); without it the
+// overlay works in the input's doubles.
+#define BOOST_GEOMETRY_NO_ROBUSTNESS
+#include <boost/geometry.hpp>
+#include <boost/geometry/geometries/point_xy.hpp>
+#include <boost/geometry/geometries/polygon.hpp>
+#include <cmath>
+#include <vector>
+
+#include "reference/exact_visibility.h"
+#include "sphere_grid_workload.h"
+
+namespace {
+
+namespace bg = boost::geometry;
+using BoostPoint = bg::model::d2::point_xy<double>;
+using BoostPolygon = bg::model::polygon<BoostPoint, /*clockwise=*/false>;
+using BoostMulti = bg::model::multi_polygon<BoostPolygon>;
+using Polygons = std::vector<std::vector<glm::dvec2>>;
+
+struct Workload {
+  sb::bench::SphereGrid grid;
+  // The occluding polygons of every 7th penumbra pixel (of the Monte Carlo
+  // reference at 64 spp), for the union benchmarks.
+  std::vector<Polygons> penumbra_sets;
+};
+
+const Workload& workload() {
+  static const Workload w = [] {
+    Workload out{sb::bench::default_sphere_grid(), {}};
+    const sb::reference::GBuffer& g = out.grid.gbuffer;
+    const sb::reference::Result mc =
+        sb::reference::compute(out.grid.scene, g.positions, g.normals, {64, 1});
+    const sb::reference::ExactVisibility exact(out.grid.scene);
+    size_t penumbra = 0;
+    for (size_t i = 0; i < g.positions.pixel_count(); ++i) {
+      const float* p = &g.positions.data[i * 4];
+      const float v = mc.visibility.data[i];
+      if (!(p[3] > 0.5f) || v <= 0.0f || v >= 1.0f || penumbra++ % 7 != 0) continue;
+      const float* n = &g.normals.data[i * size_t(g.normals.channels)];
+      out.penumbra_sets.push_back(
+          exact.occluding_polygons(glm::dvec3(p[0], p[1], p[2]), glm::dvec3(n[0], n[1], n[2])));
+    }
+    return out;
+  }();
+  return w;
+}
+
+void BM_ExactReference(benchmark::State& state) {
+  const Workload& w = workload();
+  const sb::reference::ExactVisibility exact(w.grid.scene);
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
+    const sb::ImageF v = exact.image(w.grid.gbuffer.positions, w.grid.gbuffer.normals);
+    benchmark::DoNotOptimize(v.data.data());
+  }
+  state.counters["covered_px"] = double(w.grid.covered);
+  state.counters["caster_tris"] = double(exact.triangle_count());
+}
+BENCHMARK(BM_ExactReference)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_MonteCarloReference(benchmark::State& state) {
+  const Workload& w = workload();
+  const sb::reference::Settings settings{int(state.range(0)), 1};
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
+    const sb::reference::Result r = sb::reference::compute(w.grid.scene, w.grid.gbuffer.positions,
+                                                           w.grid.gbuffer.normals, settings);
+    benchmark::DoNotOptimize(r.visibility.data.data());
+  }
+}
+BENCHMARK(BM_MonteCarloReference)
+    ->ArgName("spp")
+    ->Arg(256)
+    ->Arg(1024)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The default sphere grid's light is 2×2: half sizes 1.
+double clipper_union_area(const Polygons& set) {
+  return sb::reference::ExactVisibility::union_area(set, 1.0, 1.0);
+}
+
+double boost_union_area(const Polygons& set) {
+  BoostMulti united;
+  for (const auto& polygon : set) {
+    BoostPolygon b;
+    for (const glm::dvec2& q : polygon) bg::append(b.outer(), BoostPoint(q.x, q.y));
+    bg::correct(b);
+    BoostMulti next;
+    bg::union_(united, b, next);
+    united = std::move(next);
+  }
+  return bg::area(united);
+}
+
+void BM_UnionClipper(benchmark::State& state) {
+  const Workload& w = workload();
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
+    double sum = 0.0;
+    for (const Polygons& set : w.penumbra_sets) sum += clipper_union_area(set);
+    benchmark::DoNotOptimize(sum);
+  }
+  state.counters["sets"] = double(w.penumbra_sets.size());
+}
+BENCHMARK(BM_UnionClipper)->Unit(benchmark::kMillisecond);
+
+void BM_UnionBoostGeometry(benchmark::State& state) {
+  const Workload& w = workload();
+  double worst = 0.0;
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
+    double sum = 0.0;
+    for (const Polygons& set : w.penumbra_sets) sum += boost_union_area(set);
+    benchmark::DoNotOptimize(sum);
+  }
+  // How far the two libraries' areas lie apart (as a fraction of the 2×2
+  // light's area 4), and on how many sets by more than 1e-6.
+  double differ = 0.0;
+  for (const Polygons& set : w.penumbra_sets) {
+    const double d = std::abs(boost_union_area(set) - clipper_union_area(set)) / 4.0;
+    worst = std::max(worst, d);
+    differ += d > 1e-6;
+  }
+  state.counters["sets"] = double(w.penumbra_sets.size());
+  state.counters["sets_differing"] = differ;
+  state.counters["max_area_difference"] = worst;
+}
+BENCHMARK(BM_UnionBoostGeometry)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,270 @@
+#include "reference/exact_visibility.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <clipper.hpp>
+#include <cmath>
+#include <numeric>
+
+#include "reference/ray_offset.h"
+
+namespace sb::reference {
+namespace {
+
+using Polygon3 = std::vector<glm::dvec3>;
+
+struct Plane {
+  glm::dvec3 normal;  // inside: dot(normal, x - point) >= 0
+  glm::dvec3 point;
+  double distance(const glm::dvec3& x) const { return glm::dot(normal, x - point); }
+};
+
+// Sutherland–Hodgman against one plane, keeping the inside.
+Polygon3 clip(const Polygon3& in, const Plane& plane) {
+  Polygon3 out;
+  if (in.empty()) return out;
+  out.reserve(in.size() + 1);
+  for (size_t i = 0; i < in.size(); ++i) {
+    const glm::dvec3& a = in[i];
+    const glm::dvec3& b = in[(i + 1) % in.size()];
+    const double da = plane.distance(a), db = plane.distance(b);
+    if (da >= 0.0) out.push_back(a);
+    if ((da >= 0.0) != (db >= 0.0)) out.push_back(a + (b - a) * (da / (da - db)));
+  }
+  return out;
+}
+
+// The light's frame: centre, unit axes along half_u and half_v, the unit
+// normal, and the half sizes.
+struct Frame {
+  glm::dvec3 centre, u, v, normal;
+  double hw = 0.0, hh = 0.0;
+  explicit Frame(const AreaLight& l)
+      : centre(l.center),
+        hw(glm::length(glm::dvec3(l.half_u))),
+        hh(glm::length(glm::dvec3(l.half_v))) {
+    u = hw > 0.0 ? glm::dvec3(l.half_u) / hw : glm::dvec3(1, 0, 0);
+    v = hh > 0.0 ? glm::dvec3(l.half_v) / hh : glm::dvec3(0, 0, 1);
+    normal = glm::normalize(glm::cross(u, v));
+  }
+  std::array<glm::dvec3, 4> corners() const {
+    const glm::dvec3 a = hw * u, b = hh * v;
+    return {centre - a - b, centre + a - b, centre + a + b, centre - a + b};
+  }
+  glm::dvec2 plane_coords(const glm::dvec3& x) const {
+    const glm::dvec3 d = x - centre;
+    return {glm::dot(d, u), glm::dot(d, v)};
+  }
+};
+
+// The pyramid from p to the light: four sides and the light's plane.
+std::array<Plane, 5> pyramid(const Frame& f, const glm::dvec3& p) {
+  const auto corners = f.corners();
+  std::array<Plane, 5> planes;
+  for (int i = 0; i < 4; ++i) {
+    glm::dvec3 m = glm::cross(corners[size_t(i)] - p, corners[size_t((i + 1) % 4)] - p);
+    if (glm::dot(m, f.centre - p) < 0.0) m = -m;
+    planes[size_t(i)] = {m, p};
+  }
+  const double side = glm::dot(p - f.centre, f.normal) >= 0.0 ? 1.0 : -1.0;
+  planes[4] = {side * f.normal, f.centre};
+  return planes;
+}
+
+bool box_outside(const glm::dvec3& lo, const glm::dvec3& hi, const Plane& plane) {
+  const glm::dvec3 far(plane.normal.x >= 0.0 ? hi.x : lo.x, plane.normal.y >= 0.0 ? hi.y : lo.y,
+                       plane.normal.z >= 0.0 ? hi.z : lo.z);
+  return plane.distance(far) < 0.0;
+}
+
+constexpr double kIntegerRange = 1073741824.0;  // 2^30: the light's larger half-size
+
+}  // namespace
+
+std::string ExactVisibility::unsupported_reason(const Scene& scene) {
+  if (!(glm::length(scene.light.half_u) > 0.0f && glm::length(scene.light.half_v) > 0.0f))
+    return "the light has no area (the Monte Carlo reference is exact there)";
+  for (const Mesh& mesh : scene.meshes) {
+    if (!mesh.casts_shadow) continue;
+    if (mesh.alpha_tested())
+      return "caster mesh '" + mesh.name +
+             "' is alpha-masked: its mask has no exact polygonal form here";
+    if (mesh.analytic.kind != AnalyticShape::Kind::None)
+      return "caster mesh '" + mesh.name +
+             "' occludes as an analytic shape, which has no polygonal form";
+  }
+  return "";
+}
+
+ExactVisibility::ExactVisibility(const Scene& scene, const std::vector<bool>& closed)
+    : light_(scene.light), unsupported_(unsupported_reason(scene)) {
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
+    if (!mesh.casts_shadow) continue;
+    const bool is_closed = m < closed.size() && closed[m] && !mesh.double_sided;
+    for (const glm::vec3& x : mesh.positions)
+      caster_extent_ = std::max(
+          {caster_extent_, double(std::fabs(x.x)), double(std::fabs(x.y)), double(std::fabs(x.z))});
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
+      triangles_.push_back({glm::dvec3(mesh.positions[mesh.indices[i]]),
+                            glm::dvec3(mesh.positions[mesh.indices[i + 1]]),
+                            glm::dvec3(mesh.positions[mesh.indices[i + 2]]), is_closed});
+  }
+  if (!triangles_.empty()) build(0, uint32_t(triangles_.size()));
+}
+
+ExactVisibility::~ExactVisibility() = default;
+
+uint32_t ExactVisibility::build(uint32_t first, uint32_t count) {
+  Node node;
+  node.lo = glm::dvec3(1e300);
+  node.hi = glm::dvec3(-1e300);
+  for (uint32_t i = first; i < first + count; ++i)
+    for (const glm::dvec3& x : {triangles_[i].a, triangles_[i].b, triangles_[i].c}) {
+      node.lo = glm::min(node.lo, x);
+      node.hi = glm::max(node.hi, x);
+    }
+  const auto index = uint32_t(nodes_.size());
+  nodes_.push_back(node);
+  if (count <= 4) {
+    nodes_[index].first = first;
+    nodes_[index].count = count;
+    return index;
+  }
+  const glm::dvec3 extent = node.hi - node.lo;
+  const int axis =
+      extent.x > extent.y ? (extent.x > extent.z ? 0 : 2) : (extent.y > extent.z ? 1 : 2);
+  const auto centroid = [axis](const Triangle& t) { return t.a[axis] + t.b[axis] + t.c[axis]; };
+  const uint32_t half = count / 2;
+  std::nth_element(triangles_.begin() + first, triangles_.begin() + first + half,
+                   triangles_.begin() + first + count,
+                   [&](const Triangle& x, const Triangle& y) { return centroid(x) < centroid(y); });
+  const uint32_t left = build(first, half);
+  const uint32_t right = build(first + half, count - half);
+  nodes_[index].left = left;
+  nodes_[index].right = right;
+  return index;
+}
+
+std::vector<std::vector<glm::dvec2>> ExactVisibility::occluding_polygons(
+    const glm::dvec3& surface, const glm::dvec3& n) const {
+  std::vector<std::vector<glm::dvec2>> out;
+  const Frame f(light_);
+  // The light below the tangent plane through the surface point.
+  const auto corners = f.corners();
+  const Polygon3 below = clip(Polygon3(corners.begin(), corners.end()), Plane{-n, surface});
+  // The occluders are seen from just above the surface, as the Monte Carlo
+  // reference's shadow rays start (ray_offset.h's 2^-16 relative offset):
+  // from the point itself, a neighbouring facet of a convex mesh, which
+  // meets it at an edge within rounding of p, would project onto half the
+  // light.
+  const double eps = detail::kOffsetRelative * std::max({std::fabs(surface.x), std::fabs(surface.y),
+                                                         std::fabs(surface.z), caster_extent_});
+  const glm::dvec3 p = surface + eps * n;
+  const double zp = glm::dot(p - f.centre, f.normal);
+  if (zp == 0.0) return out;
+  const auto planes = pyramid(f, p);
+  const auto add = [&](const Polygon3& poly, bool project) {
+    if (poly.size() < 3) return;
+    std::vector<glm::dvec2> flat;
+    flat.reserve(poly.size());
+    for (const glm::dvec3& x : poly) {
+      glm::dvec3 onto = x;
+      if (project) {
+        const double dz = zp - glm::dot(x - f.centre, f.normal);
+        if (!(std::fabs(dz) > 0.0)) return;  // the apex itself: no area
+        onto = p + (x - p) * (zp / dz);
+      }
+      const glm::dvec2 q = f.plane_coords(onto);
+      flat.push_back({std::clamp(q.x, -f.hw, f.hw), std::clamp(q.y, -f.hh, f.hh)});
+    }
+    double area = 0.0;
+    for (size_t i = 0; i < flat.size(); ++i) {
+      const glm::dvec2 &a = flat[i], &b = flat[(i + 1) % flat.size()];
+      area += a.x * b.y - a.y * b.x;
+    }
+    if (area < 0.0) std::reverse(flat.begin(), flat.end());
+    if (area != 0.0) out.push_back(std::move(flat));
+  };
+  add(below, false);
+  if (nodes_.empty()) return out;
+  // Triangles whose plane passes this close to p contain it, as seen from
+  // p: their projection has no area.
+  const double on_plane = 1e-12 * std::max(glm::length(p), 1.0);
+  std::vector<uint32_t> stack{0};
+  while (!stack.empty()) {
+    const Node& node = nodes_[stack.back()];
+    stack.pop_back();
+    bool outside = false;
+    for (const Plane& plane : planes) outside = outside || box_outside(node.lo, node.hi, plane);
+    if (outside) continue;
+    if (node.count == 0) {
+      stack.push_back(node.left);
+      stack.push_back(node.right);
+      continue;
+    }
+    for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+      const Triangle& t = triangles_[i];
+      const glm::dvec3 normal = glm::cross(t.b - t.a, t.c - t.a);
+      const double facing = glm::dot(normal, p - t.a);
+      if (std::fabs(facing) <= on_plane * glm::length(normal)) continue;
+      if (t.closed && facing < 0.0) continue;  // a closed caster's far side
+      Polygon3 poly{t.a, t.b, t.c};
+      for (const Plane& plane : planes) poly = clip(poly, plane);
+      add(poly, true);
+    }
+  }
+  return out;
+}
+
+double ExactVisibility::union_area(const std::vector<std::vector<glm::dvec2>>& polygons,
+                                   double half_width, double half_height) {
+  const double scale = kIntegerRange / std::max(half_width, half_height);
+  const double light_area = (2.0 * half_width * scale) * (2.0 * half_height * scale);
+  ClipperLib::Paths paths;
+  paths.reserve(polygons.size());
+  for (const auto& polygon : polygons) {
+    ClipperLib::Path path;
+    path.reserve(polygon.size());
+    for (const glm::dvec2& q : polygon)
+      path.emplace_back(ClipperLib::cInt(std::llround(q.x * scale)),
+                        ClipperLib::cInt(std::llround(q.y * scale)));
+    const double area = ClipperLib::Area(path);
+    // One polygon covers the light: the union is the light.
+    if (area >= light_area * (1.0 - 1e-12)) return 4.0 * half_width * half_height;
+    if (area > 0.0) paths.push_back(std::move(path));
+  }
+  ClipperLib::Clipper clipper;
+  clipper.AddPaths(paths, ClipperLib::ptSubject, true);
+  ClipperLib::Paths united;
+  clipper.Execute(ClipperLib::ctUnion, united, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  double covered = 0.0;
+  for (const auto& path : united) covered += ClipperLib::Area(path);
+  return std::clamp(covered, 0.0, light_area) / (scale * scale);
+}
+
+double ExactVisibility::visibility(const glm::dvec3& p, const glm::dvec3& n) const {
+  const Frame f(light_);
+  const auto polygons = occluding_polygons(p, n);
+  if (polygons.empty()) return 1.0;
+  return std::clamp(1.0 - union_area(polygons, f.hw, f.hh) / (4.0 * f.hw * f.hh), 0.0, 1.0);
+}
+
+ImageF ExactVisibility::image(const ImageF& positions, const ImageF& normals) const {
+  ImageF out(positions.width, positions.height, 1, 1.0f);
+  tbb::parallel_for(0, positions.height, [&](int y) {
+    for (int x = 0; x < positions.width; ++x) {
+      const size_t i = size_t(y) * size_t(positions.width) + size_t(x);
+      const float* pos = &positions.data[i * 4];
+      if (!(pos[3] > 0.5f)) continue;
+      const float* nor = &normals.data[i * size_t(normals.channels)];
+      out.data[i] =
+          float(visibility(glm::dvec3(pos[0], pos[1], pos[2]), glm::dvec3(nor[0], nor[1], nor[2])));
+    }
+  });
+  return out;
+}
+
+}  // namespace sb::reference

@@ -1,0 +1,91 @@
+#pragma once
+// Exact visibility of a rectangular area light, without sampling (the exact
+// reference's core; docs/results.md). For a point p and polygonal casters:
+//   - each candidate triangle is clipped to the pyramid spanned by p and the
+//     light rectangle (its four side planes and the light's plane), so only
+//     the part between p and the light remains;
+//   - that part is projected from p onto the light's plane, where it lies
+//     inside the rectangle;
+//   - the light's part below p's tangent plane is added as one more polygon
+//     (the surface occludes it itself: the one definition of V the Monte
+//     Carlo reference and every technique share);
+//   - V = 1 − area(union of the polygons) / area(light).
+// The union is Clipper's (libpolyclipping, integer coordinates): the light's
+// half-size maps to 2^30, so a vertex moves by at most 2^-31 of it and the
+// area by under 1e-8 of the light's.
+//
+// The occluders are seen from p + ε·n, ε = 2^-16 · max(|p|∞, the casters'
+// largest |coordinate|): the Monte Carlo reference's ray offset, with the
+// casters' extent for its per-triangle one (ray_offset.h); the tangent plane
+// stays p's own.
+//
+// Candidates come from a bounding-volume hierarchy over the casters'
+// triangles, culled by the pyramid's five planes. A closed caster keeps only
+// the triangles that face p: their projections cover its shadow once, as
+// all of its triangles would. Open and double-sided casters keep every
+// triangle. Casters with an alpha mask or an analytic shape have no exact
+// polygonal form here: `unsupported()` names the first.
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "core/scene.h"
+
+namespace sb::reference {
+
+class ExactVisibility {
+ public:
+  // `closed`: per mesh of `scene`, whether it is a closed caster (empty: none
+  // is, which is correct, only slower).
+  ExactVisibility(const Scene& scene, const std::vector<bool>& closed = {});
+  ~ExactVisibility();
+  ExactVisibility(const ExactVisibility&) = delete;
+  ExactVisibility& operator=(const ExactVisibility&) = delete;
+
+  // "" when every caster has an exact polygonal form, else why not.
+  const std::string& unsupported() const { return unsupported_; }
+  // The same, without building anything.
+  static std::string unsupported_reason(const Scene& scene);
+
+  // V at p, whose surface has the geometric normal n (facing the viewer).
+  double visibility(const glm::dvec3& p, const glm::dvec3& n) const;
+
+  // The polygons whose union hides the light from p, in the light's plane
+  // (coordinates along half_u and half_v, the light spanning ±half sizes),
+  // counter-clockwise: for benchmarks and tests of the union itself.
+  std::vector<std::vector<glm::dvec2>> occluding_polygons(const glm::dvec3& p,
+                                                          const glm::dvec3& n) const;
+
+  // The area of the union of `polygons` (counter-clockwise, inside the light
+  // rectangle of the given half sizes), by Clipper.
+  static double union_area(const std::vector<std::vector<glm::dvec2>>& polygons, double half_width,
+                           double half_height);
+
+  // Every covered pixel of a G-buffer (positions.w > 0.5; normals: RGB),
+  // in parallel over rows; background pixels get 1.
+  ImageF image(const ImageF& positions, const ImageF& normals) const;
+
+  size_t triangle_count() const { return triangles_.size(); }
+
+ private:
+  struct Triangle {
+    glm::dvec3 a, b, c;
+    bool closed = false;
+  };
+  struct Node {
+    glm::dvec3 lo, hi;
+    uint32_t first = 0, count = 0;  // leaf: triangles [first, first + count)
+    uint32_t left = 0, right = 0;   // inner: children (count == 0)
+  };
+  uint32_t build(uint32_t first, uint32_t count);
+
+  AreaLight light_;
+  std::vector<Triangle> triangles_;
+  std::vector<Node> nodes_;
+  std::string unsupported_;
+  double caster_extent_ = 0.0;  // the largest |coordinate| of any caster vertex
+};
+
+}  // namespace sb::reference

@@ -1,0 +1,208 @@
+// The exact reference's visibility (harness/reference/exact_visibility.h),
+// no GL: a plate parallel to the light against the closed form, the
+// horizon alone against the light's part above an axis-aligned tangent
+// plane, random triangles against a dense stratified ray count, closed-caster
+// culling against keeping every triangle, and the scenes it cannot do.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "reference/exact_visibility.h"
+#include "test_scenes.h"
+
+namespace {
+
+using sb::reference::ExactVisibility;
+
+// An axis-aligned box, outward counter-clockwise faces.
+sb::Mesh box(const std::string& name, glm::vec3 lo, glm::vec3 hi) {
+  sb::Mesh m;
+  m.name = name;
+  for (int i = 0; i < 8; ++i)
+    m.positions.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
+  m.indices = {0, 2, 3, 0, 3, 1,   // -z
+               4, 5, 7, 4, 7, 6,   // +z
+               0, 1, 5, 0, 5, 4,   // -y
+               2, 6, 7, 2, 7, 3,   // +y
+               0, 4, 6, 0, 6, 2,   // -x
+               1, 3, 7, 1, 7, 5};  // +x
+  return m;
+}
+
+double signed_volume(const sb::Mesh& m) {
+  double v = 0.0;
+  for (size_t i = 0; i < m.indices.size(); i += 3)
+    v += glm::dot(glm::dvec3(m.positions[m.indices[i]]),
+                  glm::cross(glm::dvec3(m.positions[m.indices[i + 1]]),
+                             glm::dvec3(m.positions[m.indices[i + 2]])));
+  return v / 6.0;
+}
+
+// The light of test_scenes.h: 2×2 at y = 10, facing down.
+sb::Scene plate_scene(bool with_ground) {
+  sb::Scene s;
+  s.light = sbtest::square_light();
+  s.light.target = {0, 0, 0};
+  // One open quad: a closed box's sides and bottom would widen its shadow
+  // beyond the top face's closed form.
+  s.meshes.push_back(sbtest::quad("plate", {-0.7f, 4.0f, -1.3f}, {1.1f, 4.0f, -1.3f},
+                                  {1.1f, 4.0f, 0.4f}, {-0.7f, 4.0f, 0.4f}, true));
+  if (with_ground)
+    s.meshes.push_back(
+        sbtest::quad("ground", {-20, 0, -20}, {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}, false));
+  return s;
+}
+
+// The plate projected from the point (x, y, z) below it onto the light's
+// plane is the rectangle scaled by (H − y) / (h − y) about the point.
+double plate_visibility(double x, double y, double z) {
+  const double k = (10.0 - y) / (4.0 - y), half = 1.0;
+  const auto overlap = [&](double lo, double hi, double at) {
+    const double a = at + (lo - at) * k, b = at + (hi - at) * k;
+    return std::max(0.0, std::min(b, half) - std::max(a, -half));
+  };
+  return 1.0 - overlap(-0.7, 1.1, x) * overlap(-1.3, 0.4, z) / 4.0;
+}
+
+TEST(ReferenceExact, APlateParallelToTheLightMatchesTheClosedForm) {
+  const sb::Scene scene = plate_scene(true);
+  {
+    const ExactVisibility exact(scene);
+    EXPECT_EQ(exact.unsupported(), "");
+    double worst = 0.0;
+    int penumbra = 0;
+    for (int i = 0; i <= 346; ++i)
+      for (int j = 0; j <= 314; ++j) {
+        const double x = -3.0 + 0.0173 * i, z = -3.0 + 0.0191 * j;
+        // The reference looks from 2^-16 · max(|p|∞, the casters' largest
+        // coordinate, 4) above the surface, as Monte Carlo's rays start.
+        const double eps = 0x1p-16 * std::max({std::abs(x), std::abs(z), 4.0});
+        const double truth = plate_visibility(x, eps, z);
+        worst = std::max(worst, std::abs(exact.visibility({x, 0.0, z}, {0, 1, 0}) - truth));
+        penumbra += truth > 0.0 && truth < 1.0;
+      }
+    std::printf("%d penumbra points, max |V - closed form| %.2e\n", penumbra, worst);
+    EXPECT_GT(penumbra, 10000);
+    EXPECT_LT(worst, 1e-5);
+  }
+}
+
+// No caster; the tangent plane's normal tilts about z, so the plane meets
+// the light's plane in a line x = const, and V is the part of the light on
+// its upper side.
+TEST(ReferenceExact, TheHorizonAloneHidesTheLightBelowTheTangentPlane) {
+  sb::Scene scene;
+  scene.light = sbtest::square_light();
+  scene.light.target = {0, 0, 0};
+  const ExactVisibility exact(scene);
+  for (const double tilt : {0.0, 0.05, 0.1, 0.2, -0.15, 0.5}) {
+    const glm::dvec3 n = glm::normalize(glm::dvec3(std::sin(tilt), std::cos(tilt), 0.0));
+    const glm::dvec3 p(0.3, 2.0, -0.4);
+    // n·(X − p) = 0 on y = 10: x = p.x − (10 − p.y)·n.y/n.x; above it where n·(X − p) > 0.
+    double lit = 1.0;
+    if (n.x != 0.0) {
+      const double line = p.x - (10.0 - p.y) * n.y / n.x;
+      const double above =
+          n.x > 0.0 ? std::clamp(1.0 - line, 0.0, 2.0) : std::clamp(line + 1.0, 0.0, 2.0);
+      lit = above / 2.0;
+    }
+    EXPECT_NEAR(exact.visibility(p, n), lit, 1e-7) << "tilt " << tilt;
+  }
+}
+
+// Möller–Trumbore: does the segment from o to o + d (t in (0, 1)) cross the triangle?
+bool crosses(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& a, const glm::dvec3& b,
+             const glm::dvec3& c) {
+  const glm::dvec3 e1 = b - a, e2 = c - a, q = glm::cross(d, e2);
+  const double det = glm::dot(e1, q);
+  if (std::abs(det) < 1e-14) return false;
+  const glm::dvec3 s = o - a;
+  const double u = glm::dot(s, q) / det;
+  if (u < 0.0 || u > 1.0) return false;
+  const glm::dvec3 r = glm::cross(s, e1);
+  const double v = glm::dot(d, r) / det;
+  if (v < 0.0 || u + v > 1.0) return false;
+  const double t = glm::dot(e2, r) / det;
+  return t > 0.0 && t < 1.0;
+}
+
+// Random overlapping triangles between the light and points on the ground,
+// against a count of rays to the centres of 400×400 cells of the light (a
+// midpoint rule, whose error is a fraction of a cell row per edge that
+// crosses the light: here it agreed to 3e-5).
+TEST(ReferenceExact, RandomTrianglesAgreeWithADenseRayCount) {
+  sb::Scene scene;
+  scene.light = sbtest::square_light();
+  scene.light.target = {0, 0, 0};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> xz(-1.5f, 1.5f), y(3.0f, 8.0f), d(-0.8f, 0.8f);
+  sb::Mesh m;
+  m.name = "triangles";
+  for (int i = 0; i < 12; ++i) {
+    const glm::vec3 c(xz(rng), y(rng), xz(rng));
+    for (int k = 0; k < 3; ++k) {
+      m.indices.push_back(uint32_t(m.positions.size()));
+      m.positions.push_back(c + glm::vec3(d(rng), 0.3f * d(rng), d(rng)));
+    }
+  }
+  scene.meshes.push_back(m);
+  const ExactVisibility exact(scene);
+  std::uniform_real_distribution<double> ground(-1.5, 1.5);
+  constexpr int kCells = 400;
+  int soft = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    const glm::dvec3 p(ground(rng), 0.0, ground(rng));
+    int visible = 0;
+    for (int i = 0; i < kCells; ++i)
+      for (int j = 0; j < kCells; ++j) {
+        const glm::dvec3 l(-1.0 + (i + 0.5) * 2.0 / kCells, 10.0, -1.0 + (j + 0.5) * 2.0 / kCells);
+        bool hit = false;
+        for (size_t t = 0; t < m.indices.size() && !hit; t += 3)
+          hit = crosses(p, l - p, m.positions[m.indices[t]], m.positions[m.indices[t + 1]],
+                        m.positions[m.indices[t + 2]]);
+        visible += !hit;
+      }
+    const double counted = double(visible) / (kCells * kCells);
+    const double v = exact.visibility(p, {0, 1, 0});
+    soft += v > 0.01 && v < 0.99;
+    std::printf("point %d: exact %.5f, counted %.5f\n", trial, v, counted);
+    EXPECT_NEAR(v, counted, 5e-4) << "point " << trial;
+  }
+  EXPECT_GE(soft, 6) << "too few points see overlapping penumbrae";
+}
+
+// A closed box seen from points around it: culling the triangles that face
+// away from the point changes nothing.
+TEST(ReferenceExact, ClosedCastersKeepOnlyTheirFacingTrianglesAndGetTheSameAnswer) {
+  sb::Scene scene;
+  scene.light = sbtest::square_light();
+  scene.light.target = {0, 0, 0};
+  scene.meshes.push_back(box("box", {-0.5f, 3.0f, -0.3f}, {0.6f, 4.5f, 0.7f}));
+  ASSERT_GT(signed_volume(scene.meshes[0]), 0.0) << "faces must wind outwards";
+  const ExactVisibility all(scene, {false}), culled(scene, {true});
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> g(-2.0, 2.0);
+  for (int i = 0; i < 400; ++i) {
+    const glm::dvec3 p(g(rng), 0.0, g(rng));
+    EXPECT_NEAR(all.visibility(p, {0, 1, 0}), culled.visibility(p, {0, 1, 0}), 1e-7);
+  }
+}
+
+TEST(ReferenceExact, MasksAnalyticShapesAndLightsOfNoAreaAreNamedAsUnsupported) {
+  sb::Scene masked = plate_scene(false);
+  masked.meshes[0].alpha_mode = sb::AlphaMode::Mask;
+  masked.meshes[0].base_color_texture = 0;
+  EXPECT_NE(ExactVisibility(masked).unsupported().find("'plate' is alpha-masked"),
+            std::string::npos);
+  sb::Scene analytic = plate_scene(false);
+  analytic.meshes[0].analytic = sb::AnalyticShape::sphere({0, 4, 0}, 1.0f);
+  EXPECT_NE(ExactVisibility(analytic).unsupported().find("analytic"), std::string::npos);
+  sb::Scene point = plate_scene(false);
+  point.light.half_u = {0, 0, 0};
+  EXPECT_NE(ExactVisibility(point).unsupported().find("no area"), std::string::npos);
+}
+
+}  // namespace
