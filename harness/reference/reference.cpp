@@ -24,6 +24,7 @@
 #include "reference/ray_offset.h"
 #include "reference/shadow_packet.h"
 #include "reference/stratify.h"
+#include "scenes/topology.h"
 
 namespace sb::reference {
 
@@ -355,7 +356,12 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
     r.seed = s.seed;
     r.method = kExactMethod;
     const auto t0 = std::chrono::steady_clock::now();
-    const ExactVisibility exact(scene);
+    // Closed casters keep only the triangles that face the point: either
+    // side of a closed mesh covers its shadow once, whichever way it winds.
+    std::vector<bool> closed;
+    for (const Mesh& m : scene.meshes)
+      closed.push_back(m.casts_shadow && !m.double_sided && analyse_topology(m).closed());
+    const ExactVisibility exact(scene, closed);
     r.visibility = exact.image(positions, geometric_normals);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     r.std_error = ImageF(positions.width, positions.height, 1, 0.0f);
