@@ -23,8 +23,9 @@
 // triangles, culled by the pyramid's five planes. A closed caster keeps only
 // the triangles that face p: their projections cover its shadow once, as
 // all of its triangles would (so would its far side's, whichever way the
-// mesh winds). Open and double-sided casters keep every triangle. Casters with an alpha mask or an
-// analytic shape have no exact polygonal form here: `unsupported()` names the first.
+// mesh winds). Open and double-sided casters keep every triangle. Casters
+// with an alpha mask or an analytic shape have no exact polygonal form
+// here: `unsupported()` names the first.
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <string>
