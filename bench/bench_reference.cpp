@@ -4,17 +4,17 @@
 #include <benchmark/benchmark.h>
 
 #include "reference/reference.h"
-#include "sphere_grid_workload.h"
+#include "reference_workload.h"
 
 namespace {
 
-const sb::bench::SphereGrid& workload() {
-  static const sb::bench::SphereGrid w = sb::bench::default_sphere_grid();
+const sb::bench::SceneWorkload& workload() {
+  static const sb::bench::SceneWorkload w = sb::bench::default_sphere_grid();
   return w;
 }
 
 void BM_Reference(benchmark::State& state) {
-  const sb::bench::SphereGrid& w = workload();
+  const sb::bench::SceneWorkload& w = workload();
   const sb::reference::Settings settings{int(state.range(0)), 1};
   double traced = 0;
   for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
@@ -41,7 +41,7 @@ BENCHMARK(BM_Reference)
 
 // The cache key hashes both 800×600 buffers (13 MB) on every get().
 void BM_CacheKey(benchmark::State& state) {
-  const sb::bench::SphereGrid& w = workload();
+  const sb::bench::SceneWorkload& w = workload();
   for (auto _ : state)  // NOLINT(clang-analyzer-deadcode.DeadStores)
     benchmark::DoNotOptimize(
         sb::reference::cache_key(w.scene, w.gbuffer.positions, w.gbuffer.normals, {256, 1}));

@@ -164,7 +164,6 @@ std::vector<std::vector<glm::dvec2>> ExactVisibility::occluding_polygons(
                                                          std::fabs(surface.z), caster_extent_});
   const glm::dvec3 p = surface + eps * n;
   const double zp = glm::dot(p - f.centre, f.normal);
-  if (zp == 0.0) return out;
   const auto planes = pyramid(f, p);
   const auto add = [&](const Polygon3& poly, bool project) {
     if (poly.size() < 3) return;
@@ -189,7 +188,8 @@ std::vector<std::vector<glm::dvec2>> ExactVisibility::occluding_polygons(
     if (area != 0.0) out.push_back(std::move(flat));
   };
   add(below, false);
-  if (nodes_.empty()) return out;
+  // From the light's own plane the light has no solid angle: nothing projects.
+  if (zp == 0.0 || nodes_.empty()) return out;
   // Triangles whose plane passes this close to p contain it, as seen from
   // p: their projection has no area.
   const double on_plane = 1e-12 * std::max(glm::length(p), 1.0);

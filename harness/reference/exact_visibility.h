@@ -68,6 +68,7 @@ class ExactVisibility {
   // in parallel over rows; background pixels get 1.
   ImageF image(const ImageF& positions, const ImageF& normals) const;
 
+  // The casters' triangles it keeps (a closed caster's, all of them).
   size_t triangle_count() const { return triangles_.size(); }
 
  private:
