@@ -485,13 +485,23 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
   }
   if (doc.contains("reference")) {
     const json& ref = r.object(doc["reference"], "/reference", "reference settings");
-    r.only_keys(ref, "/reference", {"method", "spp", "seed", "cache", "embree_config"});
-    if (ref.contains("method")) {
-      const std::string method = r.string(ref["method"], "/reference/method");
+    r.only_keys(ref, "/reference",
+                {"method", "second_method", "spp", "seed", "cache", "embree_config"});
+    // true for "exact", false for "monte_carlo".
+    const auto is_exact = [&](const char* key) {
+      const std::string pointer = std::string("/reference/") + key;
+      const std::string method = r.string(ref[key], pointer);
       if (method != "monte_carlo" && method != "exact")
-        r.fail("/reference/method",
-               "expected \"monte_carlo\" or \"exact\", found \"" + method + "\"");
-      e.reference.exact = method == "exact";
+        r.fail(pointer, "expected \"monte_carlo\" or \"exact\", found \"" + method + "\"");
+      return method == "exact";
+    };
+    if (ref.contains("method")) e.reference.exact = is_exact("method");
+    if (ref.contains("second_method")) {
+      e.reference.second_exact = is_exact("second_method");
+      if (*e.reference.second_exact == e.reference.exact)
+        r.fail("/reference/second_method",
+               std::string("expected the other method than /reference/method (") +
+                   (e.reference.exact ? "exact" : "monte_carlo") + "), found the same");
     }
     if (ref.contains("spp")) e.reference.spp = r.integer(ref["spp"], "/reference/spp", 1, 1 << 20);
     if (ref.contains("seed"))

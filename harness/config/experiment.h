@@ -43,6 +43,9 @@ struct Resolution {
 
 struct ReferenceConfig {
   bool exact = false;  // "method": "exact" (else "monte_carlo", the default)
+  // "second_method": every job is also measured against a reference of the
+  // other method (true: exact; false: Monte Carlo), record second_reference.
+  std::optional<bool> second_exact;
   int spp = 256;
   uint64_t seed = 1;
   bool cache = true;

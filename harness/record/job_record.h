@@ -17,6 +17,7 @@
 #include "record/metrics_record.h"
 #include "record/reference_record.h"
 #include "record/scene_record.h"
+#include "record/second_reference_record.h"
 #include "record/timing_record.h"
 
 namespace sb {
@@ -73,8 +74,9 @@ struct JobRecord {
   std::optional<TimingRecord> timing;
   std::optional<VisibilityCheckRecord> visibility_check;
   std::optional<MetricsRecord> metrics;
-  std::vector<std::string> warnings;  // written only when there are some
-  ImagesRecord images;                // written only when some image was
+  std::optional<SecondReferenceRecord> second_reference;  // reference.second_method
+  std::vector<std::string> warnings;                      // written only when there are some
+  ImagesRecord images;                                    // written only when some image was
 
   nlohmann::json to_json() const;
   // Throws RecordError: at /schema_version for another version, else at the

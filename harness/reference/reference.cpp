@@ -35,7 +35,6 @@ using detail::FlatScene;
 using detail::FtzDazScope;
 
 constexpr const char* kMethod = "embree_stratified_packet16";
-constexpr const char* kExactMethod = "exact_clipper";
 // Bump whenever the estimate changes for the same inputs (sampling, offsets,
 // error estimate): it is part of every cache key.
 // 2: horizon test, viewer-facing normals; 3: alpha masks; 4: ray offsets from

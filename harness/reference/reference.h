@@ -71,6 +71,9 @@ struct Settings {
   bool exact = false;
 };
 
+// Result::method of the exact reference (exact_visibility.h).
+inline constexpr const char* kExactMethod = "exact_clipper";
+
 struct Result {
   ImageF visibility;                   // 1 channel
   ImageF std_error;                    // 1 channel, per-pixel standard error of the estimate
@@ -81,7 +84,7 @@ struct Result {
   double penumbra_rms_std_error = 0;
   int spp = 0;
   uint64_t seed = 0;
-  std::string method;          // "embree_stratified_packet16", or "exact_clipper"
+  std::string method;          // "embree_stratified_packet16", or kExactMethod
   std::string exact_fallback;  // why an exact reference asked for is Monte Carlo instead
   std::string isa;     // the Embree ISA that traced it ("avx2"), from Settings::embree_config
   double seconds = 0;  // wall time of BVH build + ray tracing (0 if loaded from cache)

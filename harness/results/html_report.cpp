@@ -272,9 +272,8 @@ class Page {
     out_ += "<section id=\"summary\">\n<h2>Summary</h2>\n<p class=\"note\">Times are medians in ";
     out_ += "milliseconds; error figures are on the visibility buffer over all pixels, except ";
     out_ += "penumbra_rmse (reference penumbra only). Click a column header to sort.</p>\n";
-    std::vector<const ReportColumn*> shown;  // scene and resolution are the group's
-    for (const auto& c : report_columns())
-      if (!c.per_group) shown.push_back(&c);
+    // Scene and resolution are the group's.
+    const std::vector<const ReportColumn*> shown = group_table_columns(records_);
     for (size_t g = 0; g < groups_.size(); ++g) {
       out_ += "<h3 id=\"summary-" + std::to_string(g) + "\">" + html_escape(groups_[g].key) +
               "<a href=\"#images-" + std::to_string(g) + "\">images</a></h3>\n";
@@ -372,10 +371,15 @@ class Page {
     return out + "</dl>";
   }
 
-  // "method, N spp" of a record's reference (", spp" without one).
+  // The record's reference, as the tables say it ("" without one); and its
+  // second reference, if it has one.
   static std::string reference_method(const JobRecord& r) {
-    if (!r.reference) return ", spp";
-    return html_escape(r.reference->method) + ", " + std::to_string(r.reference->spp) + " spp";
+    if (!r.reference) return "";
+    std::string out = html_escape(reference_label(*r.reference));
+    if (r.second_reference)
+      out += "; second reference (the second_ columns): " +
+             html_escape(reference_label(r.second_reference->reference));
+    return out;
   }
 
   void images() {

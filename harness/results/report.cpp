@@ -53,12 +53,15 @@ std::string make_markdown(const std::vector<JobRecord>& records, const std::stri
   std::string out = "# " + md_text(title) + "\n\n";
   if (!records.empty()) {
     const JobRecord& r0 = records.front();
-    const std::string method = r0.reference ? r0.reference->method : "";
-    const int spp = r0.reference ? r0.reference->spp : 0;
     out += "Backend `" + r0.backend + "`, renderer `" + r0.gl_renderer + "`, timing source `" +
-           r0.timing_source + "`. Error is measured on the " +
-           "visibility buffer against the ray-traced reference (" + method + ", " +
-           std::to_string(spp) + " spp).\n";
+           r0.timing_source + "`. Error is measured on the visibility buffer against the " +
+           "ray-traced reference" +
+           (r0.reference ? ": " + md_text(reference_label(*r0.reference)) : std::string()) + ".\n";
+    if (r0.second_reference)
+      out += "The second_ columns are the same errors against a second reference: " +
+             md_text(reference_label(r0.second_reference->reference)) +
+             "; mc_noise_share is the share of the penumbra MSE against the Monte Carlo " +
+             "reference that its noise explains.\n";
   }
   std::map<std::string, std::vector<const JobRecord*>> groups;
   std::vector<std::string> order;
@@ -67,19 +70,18 @@ std::string make_markdown(const std::vector<JobRecord>& records, const std::stri
     if (!groups.count(key)) order.push_back(key);
     groups[key].push_back(&r);
   }
+  const std::vector<const ReportColumn*> columns = group_table_columns(records);
   for (const auto& key : order) {
     out += "\n## " + md_text(key) + "\n\n|";
     std::string rule = "|";
-    for (const auto& c : report_columns()) {
-      if (c.per_group) continue;
-      out += std::string(" ") + md_text(c.header) + " |";
-      rule += c.numeric() ? "---:|" : "---|";
+    for (const ReportColumn* c : columns) {
+      out += std::string(" ") + md_text(c->header) + " |";
+      rule += c->numeric() ? "---:|" : "---|";
     }
     out += "\n" + rule + "\n";
     for (const JobRecord* r : groups[key]) {
       out += "|";
-      for (const auto& c : report_columns())
-        if (!c.per_group) out += " " + md_text(c.cell(*r)) + " |";
+      for (const ReportColumn* c : columns) out += " " + md_text(c->cell(*r)) + " |";
       out += "\n";
     }
   }

@@ -1,8 +1,11 @@
 #include "results/report_columns.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+
+#include "reference/reference.h"
 
 namespace sb {
 namespace {
@@ -26,6 +29,29 @@ std::optional<double> ratio_to_control(const JobRecord& r) {
   return r.timing->control->frame_ratio.median;
 }
 
+// The visibility's figure against the second reference.
+template <RegionStats ImageMetrics::*Region, double RegionStats::*Value>
+std::optional<double> second(const JobRecord& r) {
+  if (!r.second_reference) return std::nullopt;
+  return r.second_reference->visibility.*Region.*Value;
+}
+
+bool is_exact(const ReferenceRecord& r) { return r.method == reference::kExactMethod; }
+
+// Of the penumbra MSE against the Monte Carlo reference, the share its noise
+// explains: (MSE_mc - MSE_exact) / MSE_mc, when one reference is exact and the
+// other Monte Carlo, over the same pixels.
+std::optional<double> mc_noise_share(const JobRecord& r) {
+  if (!r.metrics || !r.reference || !r.second_reference) return std::nullopt;
+  const bool first_exact = is_exact(*r.reference);
+  if (first_exact == is_exact(r.second_reference->reference)) return std::nullopt;
+  const double first = r.metrics->visibility.penumbra.rmse;
+  const double other = r.second_reference->visibility.penumbra.rmse;
+  const double exact = first_exact ? first : other, mc = first_exact ? other : first;
+  if (!(mc > 0.0)) return std::nullopt;
+  return (mc * mc - exact * exact) / (mc * mc);
+}
+
 std::vector<ReportColumn> make_columns() {
   using I = ImageMetrics;
   using S = RegionStats;
@@ -42,6 +68,10 @@ std::vector<ReportColumn> make_columns() {
     c.name = c.header = name;
     c.number = get;
     c.format = format;
+    return c;
+  };
+  auto optional = [](ReportColumn c) {
+    c.optional = true;
     return c;
   };
   return {
@@ -61,6 +91,9 @@ std::vector<ReportColumn> make_columns() {
       number("ssim", visibility<&I::all, &S::ssim>, "%.4f"),
       number("frac_over_0.05", visibility<&I::all, &S::frac_over_005>, "%.4f"),
       number("penumbra_rmse", visibility<&I::penumbra, &S::rmse>, "%.5f"),
+      optional(number("second_rmse", second<&I::all, &S::rmse>, "%.5f")),
+      optional(number("second_penumbra_rmse", second<&I::penumbra, &S::rmse>, "%.5f")),
+      optional(number("mc_noise_share", mc_noise_share, "%.3f")),
       text("reason", [](const JobRecord& r) { return r.reason.value_or(""); }),
   };
 }
@@ -86,6 +119,26 @@ const ReportColumn& report_column(const std::string& name) {
   for (const auto& c : report_columns())
     if (name == c.name) return c;
   throw std::out_of_range("no report column \"" + name + "\"");
+}
+
+std::vector<const ReportColumn*> group_table_columns(const std::vector<JobRecord>& records) {
+  std::vector<const ReportColumn*> out;
+  for (const auto& c : report_columns()) {
+    if (c.per_group) continue;
+    if (c.optional && std::none_of(records.begin(), records.end(),
+                                   [&](const JobRecord& r) { return !c.cell(r).empty(); }))
+      continue;
+    out.push_back(&c);
+  }
+  return out;
+}
+
+std::string reference_label(const ReferenceRecord& r) {
+  std::string out = is_exact(r)
+                        ? "exact (" + r.method + ")"
+                        : "Monte Carlo, " + std::to_string(r.spp) + " spp (" + r.method + ")";
+  if (!r.exact_fallback.empty()) out += "; not exact: " + r.exact_fallback;
+  return out;
 }
 
 }  // namespace sb

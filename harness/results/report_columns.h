@@ -16,6 +16,9 @@ struct ReportColumn {
   // Scene and resolution: the Markdown and HTML tables are one per (scene,
   // resolution) and leave these out; the CSV, one table, keeps them.
   bool per_group = false;
+  // Figures only some runs have (a second reference's): the Markdown and
+  // HTML tables leave the column out when no record has a value for it.
+  bool optional = false;
   // Exactly one of the two: a text cell, or a number printed with `format`.
   std::string (*text)(const JobRecord&) = nullptr;
   std::optional<double> (*number)(const JobRecord&) = nullptr;
@@ -31,5 +34,12 @@ struct ReportColumn {
 const std::vector<ReportColumn>& report_columns();
 // The column called `name`; throws std::out_of_range for another name.
 const ReportColumn& report_column(const std::string& name);
+// The columns of one (scene, resolution) table of `records`: not the
+// per-group ones, nor optional ones that no record fills.
+std::vector<const ReportColumn*> group_table_columns(const std::vector<JobRecord>& records);
+
+// "exact (exact_clipper)" or "Monte Carlo, 256 spp (embree_stratified_packet16)",
+// and why an exact reference asked for is Monte Carlo.
+std::string reference_label(const ReferenceRecord& r);
 
 }  // namespace sb

@@ -143,6 +143,9 @@ struct Baseline {
   const reference::Result& ref;
   const ImageF& shaded;  // the reference's V, shaded
   const Regions& regions;
+  // reference.second_method's reference, and its record part.
+  const reference::Result* second = nullptr;
+  const ReferenceRecord* second_record = nullptr;
 };
 
 // A technique's V, shaded as the reference's is: untimed.
@@ -178,6 +181,15 @@ MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const Base
       mask_and(metrics::soft_union_mask(visibility, b.ref.visibility), b.regions.measured);
   return {compare_images(visibility, b.ref.visibility, b.regions, soft_union),
           compare_images(shaded, b.shaded, b.regions, soft_union)};
+}
+
+// The visibility's error against the second reference, over the same
+// regions as against the first: only the reference differs.
+SecondReferenceRecord measure_second(const ImageF& visibility, const Baseline& b) {
+  const reference::Result& second = *b.second;
+  const std::vector<uint8_t> soft_union =
+      mask_and(metrics::soft_union_mask(visibility, second.visibility), b.regions.measured);
+  return {*b.second_record, compare_images(visibility, second.visibility, b.regions, soft_union)};
 }
 
 // A reference whose noise is comparable to the error cannot rank techniques.
@@ -330,21 +342,25 @@ class Runner {
   // same folder keeps a finished record only when its hash is the same.
   std::string spec_hash(const SceneVariant& sv, const Resolution& res,
                         const TechniqueVariant& tv) const {
-    const json spec = {
-        {"scene",
-         {{"type", sv.type},
-          {"params", sv.params.json()},
-          {"light", sv.light},
-          {"camera", sv.camera},
-          {"infer_receivers", sv.infer_receivers}}},
-        {"resolution", res.label()},
-        {"technique", {{"name", tv.info->name}, {"params", tv.params.json()}}},
-        {"frames", {e_.warmup_frames, e_.timed_frames}},
-        // Monte Carlo's as it always was, so old runs still resume.
-        {"reference", e_.reference.exact
-                          ? json::array({"exact"})
-                          : json::array({e_.reference.spp, e_.reference.seed, embree_isa_})},
-        {"backend", gl::to_string(o_.backend)}};
+    json spec = {{"scene",
+                  {{"type", sv.type},
+                   {"params", sv.params.json()},
+                   {"light", sv.light},
+                   {"camera", sv.camera},
+                   {"infer_receivers", sv.infer_receivers}}},
+                 {"resolution", res.label()},
+                 {"technique", {{"name", tv.info->name}, {"params", tv.params.json()}}},
+                 {"frames", {e_.warmup_frames, e_.timed_frames}},
+                 // Monte Carlo's as it always was, so old runs still resume.
+                 {"reference", e_.reference.exact ? json::array({"exact"})
+                                                  : json::array({e_.reference.spp,
+                                                                 e_.reference.seed, embree_isa_})},
+                 {"backend", gl::to_string(o_.backend)}};
+    if (e_.reference.second_exact)
+      spec["second_reference"] =
+          *e_.reference.second_exact
+              ? json::array({"exact"})
+              : json::array({e_.reference.spp, e_.reference.seed, embree_isa_});
     Hasher h;
     h.add(json_text(spec));
     return h.hex();
@@ -459,7 +475,9 @@ class Runner {
   }
 
   // The reference's part of every record of one (scene, resolution).
-  ReferenceRecord reference_record(const reference::Result& ref, const Regions& regions) const {
+  // `penumbra`: the reference's own soft pixels.
+  ReferenceRecord reference_record(const reference::Result& ref, const Regions& regions,
+                                   const std::vector<uint8_t>& penumbra) const {
     ReferenceRecord r;
     r.method = ref.method;
     r.exact_fallback = ref.exact_fallback;
@@ -470,7 +488,7 @@ class Runner {
     r.mean_std_error = ref.mean_std_error;
     r.penumbra_mean_std_error = ref.penumbra_mean_std_error;
     r.penumbra_rms_std_error = ref.penumbra_rms_std_error;
-    r.penumbra_pixels = count_ones(regions.penumbra);
+    r.penumbra_pixels = count_ones(penumbra);
     r.attached_shadow_pixels = count_ones(regions.attached);
     r.horizon_cut_pixels =
         static_cast<std::int64_t>(regions.measured.size()) - count_ones(regions.measured);
@@ -525,14 +543,27 @@ class Runner {
     rs.exact = e_.reference.exact;
     const bool cache = e_.reference.cache && !o_.cache_dir.empty();
     progress_.start_job(sv.name, res.label(), "(reference)");
-    reference::Result ref = cache ? reference::get(st.scene, positions, normals, rs, o_.cache_dir)
-                                  : reference::compute(st.scene, positions, normals, rs);
-    log("reference " + sv.name + " @ " + res.label() + ": " +
-        (ref.method == "exact_clipper" ? std::string("exact") : std::to_string(ref.spp) + " spp") +
-        ", " + (ref.from_cache ? std::string("from cache") : std::to_string(ref.seconds) + " s") +
-        ", mean std error " + std::to_string(ref.mean_std_error));
-    if (!ref.exact_fallback.empty())
-      log("reference " + sv.name + ": Monte Carlo, not exact: " + ref.exact_fallback);
+    const auto make_reference = [&](const reference::Settings& settings, const char* which) {
+      reference::Result out =
+          cache ? reference::get(st.scene, positions, normals, settings, o_.cache_dir)
+                : reference::compute(st.scene, positions, normals, settings);
+      log(std::string(which) + " " + sv.name + " @ " + res.label() + ": " +
+          (out.method == reference::kExactMethod ? std::string("exact")
+                                                 : std::to_string(out.spp) + " spp") +
+          ", " + (out.from_cache ? std::string("from cache") : std::to_string(out.seconds) + " s") +
+          ", mean std error " + std::to_string(out.mean_std_error));
+      if (!out.exact_fallback.empty())
+        log(std::string(which) + " " + sv.name + ": Monte Carlo, not exact: " + out.exact_fallback);
+      return out;
+    };
+    reference::Result ref = make_reference(rs, "reference");
+    std::optional<reference::Result> second;
+    if (e_.reference.second_exact) {
+      reference::Settings second_settings = rs;
+      second_settings.exact = *e_.reference.second_exact;
+      progress_.start_job(sv.name, res.label(), "(second reference)");
+      second = make_reference(second_settings, "second reference");
+    }
     const auto horizon = metrics::classify_light_horizon(positions, normals, st.scene.light);
     Regions regions;
     regions.attached = metrics::horizon_mask(horizon, metrics::LightHorizon::Below);
@@ -540,6 +571,12 @@ class Runner {
     for (auto& m : regions.measured) m = m ? 0 : 1;
     apply_attached_shadow(regions.attached, ref.visibility);
     regions.penumbra = mask_and(metrics::penumbra_mask(ref.visibility), regions.measured);
+    std::optional<ReferenceRecord> second_record;
+    if (second) {
+      apply_attached_shadow(regions.attached, second->visibility);
+      second_record = reference_record(
+          *second, regions, mask_and(metrics::penumbra_mask(second->visibility), regions.measured));
+    }
     {
       const ImageF receiver = targets.read_receiver_mask();
       regions.receivers.resize(receiver.data.size());
@@ -556,7 +593,7 @@ class Runner {
     const ImagesRecord ref_images =
         write_reference_images("reference/" + file_safe(sv.name) + "__" + res.label(), ref,
                                ref_shaded, positions, normals);
-    const ReferenceRecord ref_record = reference_record(ref, regions);
+    const ReferenceRecord ref_record = reference_record(ref, regions, regions.penumbra);
 
     FrameInputs in = targets.inputs(st.scene, gpu, view, projection);
     in.derived = &derived;
@@ -565,7 +602,8 @@ class Runner {
       in.receiver_plane = r->plane;
     }
     const FrameSetup frame{targets, gpu, st.scene, view_projection, in};
-    const Baseline baseline{ref, ref_shaded, regions};
+    const Baseline baseline{ref, ref_shaded, regions, second ? &*second : nullptr,
+                            second_record ? &*second_record : nullptr};
     std::optional<Control> control;
     if (e_.control) control = prepare_control(*e_.control, frame);
     for (size_t i : pending) {
@@ -610,6 +648,7 @@ class Runner {
     // Shaded from the same V as the metrics, as the reference is: untimed.
     const ImageF shaded = shade(frame, visibility);
     r.metrics = measure(visibility, shaded, baseline);
+    if (baseline.second) r.second_reference = measure_second(visibility, baseline);
     if (auto warning = noise_warning(*r.metrics, baseline.ref)) r.warnings.push_back(*warning);
     if (o_.write_images) r.images = write_job_images(r.job_id, visibility, shaded, baseline);
     // Metrics and images are kept for inspection, but the job fails.

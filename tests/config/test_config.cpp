@@ -61,7 +61,19 @@ TEST(Config, ValidConfigExpandsSweeps) {
 TEST(Config, ReferenceMethodExactIsRead) {
   std::string text = kValid;
   text.replace(text.find(R"("spp": 16)"), 9, R"("method": "exact", "spp": 16)");
-  EXPECT_TRUE(load_experiment(write_temp("exact.json", text), registry()).reference.exact);
+  const Experiment e = load_experiment(write_temp("exact.json", text), registry());
+  EXPECT_TRUE(e.reference.exact);
+  EXPECT_FALSE(e.reference.second_exact.has_value());  // one reference unless asked
+}
+
+TEST(Config, ASecondReferenceMethodIsRead) {
+  std::string text = kValid;
+  text.replace(text.find(R"("spp": 16)"), 9,
+               R"("method": "exact", "second_method": "monte_carlo", "spp": 16)");
+  const Experiment e = load_experiment(write_temp("second.json", text), registry());
+  EXPECT_TRUE(e.reference.exact);
+  ASSERT_TRUE(e.reference.second_exact.has_value());
+  EXPECT_FALSE(*e.reference.second_exact);
 }
 
 TEST(Config, SweepIsACrossProduct) {
@@ -155,6 +167,13 @@ const BadCase kBadCases[] = {
     {"bad_reference_method",
      R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "reference": {"method": "analytic"}})",
      "/reference/method", "expected \"monte_carlo\" or \"exact\", found \"analytic\""},
+    {"bad_second_reference_method",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "reference": {"second_method": "exact_clipper"}})",
+     "/reference/second_method", "expected \"monte_carlo\" or \"exact\", found \"exact_clipper\""},
+    {"second_reference_method_is_the_first",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "reference": {"method": "exact", "second_method": "exact"}})",
+     "/reference/second_method",
+     "expected the other method than /reference/method (exact), found the same"},
     {"embree_config_other_key",
      R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "reference": {"embree_config": "threads=4"}})",
      "/reference/embree_config", "expected \"isa=NAME\" or \"max_isa=NAME\""},

@@ -146,6 +146,32 @@ TEST(JobRecord, TheReceiversRegionRoundTripsAndOlderRecordsLackIt) {
   EXPECT_FALSE(MetricPath::parse("visibility.ground.rmse").has_value());
 }
 
+TEST(JobRecord, ASecondReferenceRoundTripsAndOtherRecordsLackIt) {
+  JobRecord r = full_record();
+  EXPECT_FALSE(r.to_json().contains("second_reference"));
+  SecondReferenceRecord second;
+  second.reference = *r.reference;
+  second.reference.method = "exact_clipper";
+  second.reference.spp = 0;
+  second.visibility = {region(0.09), region(0.25), region(0.125)};
+  r.second_reference = second;
+  const json j = r.to_json();
+  EXPECT_EQ(j["second_reference"]["reference"]["method"], "exact_clipper");
+  EXPECT_EQ(j["second_reference"]["visibility"]["penumbra"]["rmse"], 0.25);
+  EXPECT_FALSE(j["second_reference"].contains("shaded"));  // the visibility only
+  const JobRecord back = JobRecord::from_json(j);
+  EXPECT_EQ(back.to_json(), j);
+  json bad = j;
+  bad["second_reference"].erase("visibility");
+  try {
+    (void)JobRecord::from_json(bad);
+    FAIL() << "a second reference without metrics was read";
+  } catch (const RecordError& e) {
+    EXPECT_NE(std::string(e.what()).find("/second_reference/visibility"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(JobRecord, CoarseTimingHasNoPassDetail) {
   JobRecord r = full_record();
   r.timing->fine.reset();

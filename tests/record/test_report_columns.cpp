@@ -41,18 +41,57 @@ std::string join(const std::vector<std::string>& parts, const std::string& sep) 
   return out;
 }
 
+// The HTML report of `rs`, written into a fresh folder named `name`.
+std::string html_report_of(const std::vector<JobRecord>& rs, const std::string& name) {
+  test::TempDir dir(name);
+  write_html_report(rs, dir.path().string(), dir.file("report"), {}, "title");
+  return test::read_text(dir.path() / "report" / "index.html");
+}
+
+// The headers of the HTML report's first summary table.
+std::vector<std::string> first_table_headers(const std::string& html) {
+  std::vector<std::string> ths;
+  for (const auto& th :
+       test::between(test::between(html, "<thead>", "</thead>").at(0), "<th", "</th>"))
+    ths.push_back(th.substr(th.find('>') + 1));
+  return ths;
+}
+
+// Every column's header; without the group's columns, and without the
+// optional ones (the sample records have no second reference).
 std::vector<std::string> headers(bool with_group_columns) {
   std::vector<std::string> out;
   for (const auto& c : report_columns())
-    if (with_group_columns || !c.per_group) out.push_back(c.header);
+    if (with_group_columns || (!c.per_group && !c.optional)) out.push_back(c.header);
   return out;
+}
+
+// The records measured against an exact reference and, second, a Monte
+// Carlo one: penumbra RMSE 0.1 against the exact, 0.125 against Monte Carlo.
+std::vector<JobRecord> records_with_second_reference() {
+  std::vector<JobRecord> rs = records();
+  ReferenceRecord exact, mc;
+  exact.method = "exact_clipper";
+  mc.method = "embree_stratified_packet16";
+  mc.spp = 256;
+  rs[0].reference = exact;
+  rs[0].metrics->visibility.penumbra.rmse = 0.1;
+  SecondReferenceRecord second;
+  second.reference = mc;
+  second.visibility.all.rmse = 0.0675;
+  second.visibility.penumbra.rmse = 0.125;
+  rs[0].second_reference = second;
+  rs[1].reference = exact;
+  return rs;
 }
 
 TEST(ReportColumns, SameHeadersInCsvMarkdownAndHtml) {
   const std::vector<std::string> all = headers(true), shown = headers(false);
   EXPECT_EQ(all.front(), "scene");
   EXPECT_EQ(all.back(), "reason");
-  EXPECT_EQ(all.size(), shown.size() + 2);  // scene and resolution head each table instead
+  // Scene and resolution head each table instead; the second reference's
+  // columns are there only when a record has one.
+  EXPECT_EQ(all.size(), shown.size() + 2 + 3);
 
   const std::string csv = make_csv(records());
   EXPECT_EQ(csv.substr(0, csv.find('\n')), join(all, ","));
@@ -62,23 +101,14 @@ TEST(ReportColumns, SameHeadersInCsvMarkdownAndHtml) {
             std::string::npos)
       << md;
 
-  test::TempDir dir("report_columns");
-  write_html_report(records(), dir.path().string(), dir.file("report"), {}, "title");
-  const std::string html = test::read_text(dir.path() / "report" / "index.html");
-  std::vector<std::string> ths;
-  for (const auto& th :
-       test::between(test::between(html, "<thead>", "</thead>").at(0), "<th", "</th>"))
-    ths.push_back(th.substr(th.find('>') + 1));
-  EXPECT_EQ(ths, shown);
+  EXPECT_EQ(first_table_headers(html_report_of(records(), "report_columns")), shown);
 }
 
 TEST(ReportColumns, CellsAgreeAcrossTheTables) {
   const auto rs = records();
   const std::string csv = make_csv(rs);
   const std::string md = make_markdown(rs, "title");
-  test::TempDir dir("report_cells");
-  write_html_report(rs, dir.path().string(), dir.file("report"), {}, "title");
-  const std::string html = test::read_text(dir.path() / "report" / "index.html");
+  const std::string html = html_report_of(rs, "report_cells");
   // The ratio to the control is the median of the per-frame ratios.
   EXPECT_EQ(report_column("x_control").cell(rs[0]), "1.375");
   for (const char* name : {"frame_ms", "x_control", "rmse", "psnr", "penumbra_rmse"}) {
@@ -91,8 +121,46 @@ TEST(ReportColumns, CellsAgreeAcrossTheTables) {
   // A skipped job has no figures: empty cells, and its reason in the last column.
   EXPECT_EQ(report_column("rmse").cell(rs[1]), "");
   EXPECT_EQ(report_column("reason").cell(rs[1]), "casters are not closed");
-  EXPECT_NE(csv.find(",skipped,,,,,,,,,,,casters are not closed\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",skipped,,,,,,,,,,,,,,casters are not closed\n"), std::string::npos) << csv;
   EXPECT_THROW(report_column("nonsense"), std::out_of_range);
+}
+
+TEST(ReportColumns, SecondReferenceColumnsAppearOnlyWhenARecordHasOne) {
+  const auto rs = records_with_second_reference();
+  // (0.125² - 0.1²) / 0.125²: the Monte Carlo reference's noise explains 36%
+  // of the penumbra MSE against it.
+  EXPECT_EQ(report_column("mc_noise_share").cell(rs[0]), "0.360");
+  EXPECT_EQ(report_column("second_rmse").cell(rs[0]), "0.06750");
+  EXPECT_EQ(report_column("second_penumbra_rmse").cell(rs[0]), "0.12500");
+  EXPECT_EQ(report_column("second_rmse").cell(rs[1]), "");
+
+  std::vector<std::string> shown = headers(false);
+  shown.insert(shown.end() - 1, {"second_rmse", "second_penumbra_rmse", "mc_noise_share"});
+  const std::string md = make_markdown(rs, "title");
+  EXPECT_NE(md.find("| " + join(shown, " | ") + " |\n"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 0.06750 | 0.12500 | 0.360 |"), std::string::npos) << md;
+  // Both references are named, the first as exact.
+  EXPECT_NE(md.find("reference: exact (exact_clipper)"), std::string::npos) << md;
+  EXPECT_NE(md.find("second reference: Monte Carlo, 256 spp"), std::string::npos) << md;
+
+  const std::string html = html_report_of(rs, "report_second");
+  EXPECT_EQ(first_table_headers(html), shown);
+  EXPECT_NE(html.find("<td class=\"num\">0.360</td>"), std::string::npos);
+}
+
+TEST(ReportColumns, NoiseShareNeedsOneExactAndOneMonteCarloReference) {
+  auto rs = records_with_second_reference();
+  // Swapped, Monte Carlo first: the same share.
+  std::swap(*rs[0].reference, rs[0].second_reference->reference);
+  rs[0].metrics->visibility.penumbra.rmse = 0.125;
+  rs[0].second_reference->visibility.penumbra.rmse = 0.1;
+  EXPECT_EQ(report_column("mc_noise_share").cell(rs[0]), "0.360");
+  // An exact reference that fell back to Monte Carlo: two Monte Carlo ones.
+  rs[0].second_reference->reference.method = rs[0].reference->method;
+  rs[0].second_reference->reference.exact_fallback = "alpha-masked casters";
+  EXPECT_EQ(report_column("mc_noise_share").cell(rs[0]), "");
+  EXPECT_NE(reference_label(rs[0].second_reference->reference).find("not exact: alpha-masked"),
+            std::string::npos);
 }
 
 }  // namespace
