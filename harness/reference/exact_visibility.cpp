@@ -107,10 +107,18 @@ ExactVisibility::ExactVisibility(const Scene& scene, const std::vector<bool>& cl
     for (const glm::vec3& x : mesh.positions)
       caster_extent_ = std::max(
           {caster_extent_, double(std::fabs(x.x)), double(std::fabs(x.y)), double(std::fabs(x.z))});
-    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
-      triangles_.push_back({glm::dvec3(mesh.positions[mesh.indices[i]]),
-                            glm::dvec3(mesh.positions[mesh.indices[i + 1]]),
-                            glm::dvec3(mesh.positions[mesh.indices[i + 2]]), is_closed});
+    const size_t first = triangles_.size();
+    double volume = 0.0;  // six times the signed volume
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+      const Triangle t{glm::dvec3(mesh.positions[mesh.indices[i]]),
+                       glm::dvec3(mesh.positions[mesh.indices[i + 1]]),
+                       glm::dvec3(mesh.positions[mesh.indices[i + 2]]), 0};
+      volume += glm::dot(t.a, glm::cross(t.b, t.c));
+      triangles_.push_back(t);
+    }
+    if (is_closed && volume != 0.0)
+      for (size_t i = first; i < triangles_.size(); ++i)
+        triangles_[i].outward = volume > 0 ? 1 : -1;
   }
   if (!triangles_.empty()) build(0, uint32_t(triangles_.size()));
 }
@@ -164,7 +172,14 @@ std::vector<std::vector<glm::dvec2>> ExactVisibility::occluding_polygons(
                                                          std::fabs(surface.z), caster_extent_});
   const glm::dvec3 p = surface + eps * n;
   const double zp = glm::dot(p - f.centre, f.normal);
-  const auto planes = pyramid(f, p);
+  // The pyramid, and the tangent plane through the surface point: whatever
+  // lies below that plane projects, from p above it, into the light's part
+  // below it, which the horizon polygon already covers. Culling it keeps a
+  // point on a convex caster from clipping the caster's whole far side.
+  std::array<Plane, 6> planes;
+  const auto sides = pyramid(f, p);
+  std::copy(sides.begin(), sides.end(), planes.begin());
+  planes[5] = {n, surface};
   const auto add = [&](const Polygon3& poly, bool project) {
     if (poly.size() < 3) return;
     std::vector<glm::dvec2> flat;
@@ -210,7 +225,10 @@ std::vector<std::vector<glm::dvec2>> ExactVisibility::occluding_polygons(
       const glm::dvec3 normal = glm::cross(t.b - t.a, t.c - t.a);
       const double facing = glm::dot(normal, p - t.a);
       if (std::fabs(facing) <= on_plane * glm::length(normal)) continue;
-      if (t.closed && facing < 0.0) continue;  // a closed caster's far side
+      if (double(t.outward) * facing > 0.0) continue;  // a closed caster's near side
+      if (glm::dot(n, t.a - surface) < 0.0 && glm::dot(n, t.b - surface) < 0.0 &&
+          glm::dot(n, t.c - surface) < 0.0)
+        continue;  // below the tangent plane: inside the horizon polygon
       Polygon3 poly{t.a, t.b, t.c};
       for (const Plane& plane : planes) poly = clip(poly, plane);
       add(poly, true);

@@ -21,9 +21,14 @@
 //
 // Candidates come from a bounding-volume hierarchy over the casters'
 // triangles, culled by the pyramid's five planes. A closed caster keeps only
-// the triangles that face p: their projections cover its shadow once, as
-// all of its triangles would (so would its far side's, whichever way the
-// mesh winds). Open and double-sided casters keep every triangle. Casters
+// its far side as seen from p, the triangles whose outward normal (by the
+// sign of the mesh's volume) faces away from p: their projections cover its
+// shadow once, as all of its triangles would. A point inside a closed caster
+// (a silhouette pixel that landed on a back face and took the viewer-facing
+// normal, or interpenetrating parts) sees every triangle from behind, so
+// the light is covered, as every Monte Carlo shadow ray from it is blocked;
+// the near side would have left it lit. Open and double-sided casters keep
+// every triangle. Casters
 // with an alpha mask or an analytic shape have no exact polygonal form
 // here: `unsupported()` names the first.
 #include <cstdint>
@@ -74,7 +79,9 @@ class ExactVisibility {
  private:
   struct Triangle {
     glm::dvec3 a, b, c;
-    bool closed = false;
+    // A closed caster's: +1 when its mesh winds outward (positive signed
+    // volume), -1 inward; 0 for any other caster.
+    int outward = 0;
   };
   struct Node {
     glm::dvec3 lo, hi;

@@ -42,8 +42,9 @@ constexpr const char* kMethod = "embree_stratified_packet16";
 // 5: analytic shapes (Mesh::analytic) occlude instead of their meshes and
 // join the key.
 constexpr uint32_t kMethodVersion = 5;
-// Bumped whenever the exact reference's answer may change.
-constexpr uint32_t kExactMethodVersion = 1;
+// Bumped whenever the exact reference's answer may change. 2: closed casters
+// keep their far side (a point inside one is in its umbra).
+constexpr uint32_t kExactMethodVersion = 2;
 constexpr char kMagic[8] = {'S', 'B', 'R', 'E', 'F', '\r', '\n', '\x1a'};
 constexpr uint32_t kFileVersion = 1;
 

@@ -176,19 +176,42 @@ TEST(ReferenceExact, RandomTrianglesAgreeWithADenseRayCount) {
 
 // A closed box seen from points around it: culling the triangles that face
 // away from the point changes nothing.
-TEST(ReferenceExact, ClosedCastersKeepOnlyTheirFacingTrianglesAndGetTheSameAnswer) {
+TEST(ReferenceExact, ClosedCastersKeepOnlyTheirFarSideAndGetTheSameAnswer) {
   sb::Scene scene;
   scene.light = sbtest::square_light();
   scene.light.target = {0, 0, 0};
   scene.meshes.push_back(box("box", {-0.5f, 3.0f, -0.3f}, {0.6f, 4.5f, 0.7f}));
   ASSERT_GT(signed_volume(scene.meshes[0]), 0.0) << "faces must wind outwards";
-  const ExactVisibility all(scene, {false}), culled(scene, {true});
+  sb::Scene inward = scene;  // the same box wound the other way
+  for (size_t i = 0; i + 2 < inward.meshes[0].indices.size(); i += 3)
+    std::swap(inward.meshes[0].indices[i + 1], inward.meshes[0].indices[i + 2]);
+  const ExactVisibility all(scene, {false}), culled(scene, {true}), culled_inward(inward, {true});
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> g(-2.0, 2.0);
   for (int i = 0; i < 400; ++i) {
     const glm::dvec3 p(g(rng), 0.0, g(rng));
-    EXPECT_NEAR(all.visibility(p, {0, 1, 0}), culled.visibility(p, {0, 1, 0}), 1e-7);
+    const double v = all.visibility(p, {0, 1, 0});
+    EXPECT_NEAR(v, culled.visibility(p, {0, 1, 0}), 1e-7);
+    EXPECT_NEAR(v, culled_inward.visibility(p, {0, 1, 0}), 1e-7);
   }
+}
+
+TEST(ReferenceExact, APointInsideAClosedCasterIsInItsUmbraAsEveryShadowRayIs) {
+  // A silhouette pixel can land on a back face and take the viewer-facing
+  // normal, which points into the mesh: every Monte Carlo shadow ray from
+  // there hits the mesh from inside. The far side, kept for a closed caster,
+  // surrounds the point, so the exact reference agrees; the near side alone
+  // would have left the point lit.
+  sb::Scene scene;
+  scene.light = sbtest::square_light();
+  scene.light.target = {0, 0, 0};
+  scene.meshes.push_back(box("box", {-0.5f, 0.0f, -0.5f}, {0.5f, 1.0f, 0.5f}));
+  const ExactVisibility exact(scene, {true});
+  // On the top face, its normal flipped to point down into the box.
+  EXPECT_EQ(exact.visibility({0.1, 1.0, 0.2}, {0, -1, 0}), 0.0);
+  EXPECT_EQ(exact.visibility({0.1, 0.5, 0.2}, {0, 1, 0}), 0.0);  // well inside
+  // On the top face, facing up: the whole light is above it.
+  EXPECT_EQ(exact.visibility({0.1, 1.0, 0.2}, {0, 1, 0}), 1.0);
 }
 
 TEST(ReferenceExact, MasksAnalyticShapesAndLightsOfNoAreaAreNamedAsUnsupported) {
