@@ -96,7 +96,9 @@ LightFrustum fit_light_frustum(const Scene& scene, const glm::vec3& eye) {
   const glm::vec3 centre_offset = rotate * (scene.light.center - eye);
   const glm::vec2 reach(std::fabs(hu.x) + std::fabs(hv.x) + std::fabs(centre_offset.x),
                         std::fabs(hu.y) + std::fabs(hv.y) + std::fabs(centre_offset.y));
-  const float scale = std::max(scene.bounds().radius(), 1e-6f);
+  // The casters' size, not the scene's: a far-reaching ground would make a
+  // caster just under the light look as if it reached the light's plane.
+  const float scale = std::max(scene.caster_bounds().radius(), 1e-6f);
   float near_depth = std::numeric_limits<float>::max();
   glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
   for (const Mesh& m : scene.meshes) {
