@@ -72,6 +72,14 @@ class Reader {
         fail(pointer, "expected a label without control characters, found " + describe(v));
     return s;
   }
+  double number(const json& v, const std::string& pointer, double lo, double hi) const {
+    if (!v.is_number()) fail(pointer, "expected a number, found " + describe(v));
+    const double d = v.get<double>();
+    if (!(d >= lo && d <= hi))
+      fail(pointer, "expected a number in [" + json(lo).dump() + ", " + json(hi).dump() +
+                        "], found " + v.dump());
+    return d;
+  }
   bool boolean(const json& v, const std::string& pointer) const {
     if (!v.is_boolean()) fail(pointer, "expected true or false, found " + describe(v));
     return v.get<bool>();
@@ -341,13 +349,23 @@ std::vector<TechniqueVariant> technique_variants(const Reader& r, const Registry
   return out;
 }
 
+json StabilityConfig::to_json() const {
+  return {{"flicker_frames", flicker_frames},
+          {"flicker_step", flicker_step},
+          {"flicker_factor", flicker_factor},
+          {"sensitivity", sensitivity},
+          {"sensitivity_step", sensitivity_step},
+          {"stiff_threshold", stiff_threshold},
+          {"max_rmse", max_rmse}};
+}
+
 Experiment parse_experiment(const json& doc, const std::string& file, const Registry& registry,
                             const ExperimentLimits& limits) {
   Reader r(file);
   r.object(doc, "", "an experiment");
-  r.only_keys(
-      doc, "",
-      {"name", "description", "scenes", "techniques", "resolutions", "frames", "reference"});
+  r.only_keys(doc, "",
+              {"name", "description", "scenes", "techniques", "resolutions", "frames", "reference",
+               "stability"});
   check_job_count(r, doc, limits);
   Experiment e;
   e.file = file;
@@ -374,7 +392,8 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
   for (size_t i = 0; i < scenes.size(); ++i) {
     const std::string p = "/scenes/" + std::to_string(i);
     const json& entry = r.object(scenes[i], p, "a scene");
-    r.only_keys(entry, p, {"type", "params", "light", "camera", "label", "infer_receivers"});
+    r.only_keys(entry, p,
+                {"type", "params", "light", "camera", "label", "infer_receivers", "max_rmse"});
     if (!entry.contains("type")) r.fail(p + "/type", "expected a scene type, found nothing");
     const std::string type = r.string(entry["type"], p + "/type");
     const SceneType* st = find_scene_type(type);
@@ -394,6 +413,8 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
                "expected true or false, found " + describe(entry["infer_receivers"]));
       infer = entry["infer_receivers"].get<bool>();
     }
+    std::optional<double> max_rmse;
+    if (entry.contains("max_rmse")) max_rmse = r.number(entry["max_rmse"], p + "/max_rmse", 0, 1);
     const json given = entry.value("params", json::object());
     const std::string label =
         entry.contains("label") ? r.label(entry["label"], p + "/label") : type;
@@ -413,6 +434,7 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
       v.light = light;
       v.camera = camera;
       v.infer_receivers = infer;
+      v.max_rmse = max_rmse;
       if (!names.insert(v.name).second)
         r.fail(p,
                "scene variant \"" + v.name + "\" appears twice; give entries distinct \"label\"s");
@@ -516,6 +538,31 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
         r.fail("/reference/embree_config", ex.what());
       }
     }
+  }
+  if (doc.contains("stability")) {
+    const json& st = r.object(doc["stability"], "/stability", "stability settings");
+    r.only_keys(st, "/stability",
+                {"flicker_frames", "flicker_step", "flicker_factor", "sensitivity",
+                 "sensitivity_step", "stiff_threshold", "max_rmse"});
+    StabilityConfig c;
+    if (st.contains("flicker_frames")) {
+      c.flicker_frames = r.integer(st["flicker_frames"], "/stability/flicker_frames", 0, 64);
+      if (c.flicker_frames == 1)
+        r.fail("/stability/flicker_frames", "expected 0 (off) or at least 2 frames, found 1");
+    }
+    if (st.contains("flicker_step"))
+      c.flicker_step = r.number(st["flicker_step"], "/stability/flicker_step", 0, 0.1);
+    if (st.contains("flicker_factor"))
+      c.flicker_factor = r.number(st["flicker_factor"], "/stability/flicker_factor", 1, 1e6);
+    if (st.contains("sensitivity"))
+      c.sensitivity = r.boolean(st["sensitivity"], "/stability/sensitivity");
+    if (st.contains("sensitivity_step"))
+      c.sensitivity_step =
+          r.number(st["sensitivity_step"], "/stability/sensitivity_step", 1e-6, 0.5);
+    if (st.contains("stiff_threshold"))
+      c.stiff_threshold = r.number(st["stiff_threshold"], "/stability/stiff_threshold", 0, 1e6);
+    if (st.contains("max_rmse")) c.max_rmse = r.number(st["max_rmse"], "/stability/max_rmse", 0, 1);
+    e.stability = c;
   }
   return e;
 }

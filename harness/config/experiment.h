@@ -25,6 +25,9 @@ struct SceneVariant {
   // Planar meshes that can shadow nothing become non-casters
   // (scenes/receiver_inference.h); "infer_receivers": false keeps them.
   bool infer_receivers = true;
+  // "max_rmse": the stability table's error threshold for this case,
+  // instead of the experiment's stability.max_rmse.
+  std::optional<double> max_rmse;
 };
 
 struct TechniqueVariant {
@@ -52,6 +55,27 @@ struct ReferenceConfig {
   std::string embree_config;  // "" (environment or best ISA), "isa=avx2", "max_isa=avx2"
 };
 
+// The "stability" block (docs/stability.md): extra, untimed frames per job
+// that measure flicker and parameter sensitivity, and the thresholds of the
+// stability table. Absent: no stability figures.
+struct StabilityConfig {
+  // Frames of a light translated by flicker_step × the casters' bounding-box
+  // diagonal per frame along its own u axis; 0 frames turn flicker off, a
+  // step of 0 keeps the light still (a technique must then not flicker).
+  int flicker_frames = 8;
+  double flicker_step = 1.0 / 4096.0;
+  // Degraded when the mean flicker exceeds flicker_factor × the reference's
+  // own change for the same motion (plus kFlickerFloor).
+  double flicker_factor = 2.0;
+  // Central differences of every continuous technique parameter and of the
+  // light's size, at step sensitivity_step × |p| (× 1 when p is 0).
+  bool sensitivity = true;
+  double sensitivity_step = 0.01;
+  double stiff_threshold = 0.5;  // relative sensitivity above it: stiff
+  double max_rmse = 0.1;         // degraded above it (a scene entry may override)
+  nlohmann::json to_json() const;
+};
+
 // The G-buffer and shading alone: what every frame pays whatever the technique.
 inline constexpr const char* kDefaultControl = "none";
 
@@ -70,6 +94,7 @@ struct Experiment {
   // default kDefaultControl with its default parameters.
   std::optional<TechniqueVariant> control;
   ReferenceConfig reference;
+  std::optional<StabilityConfig> stability;
   std::string content_hash;  // of the file's bytes
   // The registry the techniques came from: the planner finds the providers
   // of plugins' own needs in it (plugin/needs.h).

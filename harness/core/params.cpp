@@ -17,13 +17,14 @@ ParamSpec int_param(std::string name, int def, int min, int max, std::string doc
           std::move(doc),
           {},
           false,
+          {},
           {}};
 }
 ParamSpec float_param(std::string name, double def, double min, double max, std::string doc) {
-  return {std::move(name), ParamType::Float, def, min, max, {}, std::move(doc), {}, false, {}};
+  return {std::move(name), ParamType::Float, def, min, max, {}, std::move(doc), {}, false, {}, {}};
 }
 ParamSpec bool_param(std::string name, bool def, std::string doc) {
-  return {std::move(name), ParamType::Bool, def, 0, 1, {}, std::move(doc), {}, false, {}};
+  return {std::move(name), ParamType::Bool, def, 0, 1, {}, std::move(doc), {}, false, {}, {}};
 }
 ParamSpec choice_param(std::string name, std::string def, std::vector<std::string> choices,
                        std::string doc) {
@@ -36,12 +37,22 @@ ParamSpec choice_param(std::string name, std::string def, std::vector<std::strin
           std::move(doc),
           {},
           false,
+          {},
           {}};
 }
 
 ParamSpec string_param(std::string name, std::string def, std::string doc) {
-  return {
-      std::move(name), ParamType::String, std::move(def), 0, 0, {}, std::move(doc), {}, false, {}};
+  return {std::move(name),
+          ParamType::String,
+          std::move(def),
+          0,
+          0,
+          {},
+          std::move(doc),
+          {},
+          false,
+          {},
+          {}};
 }
 
 ParamSpec path_param(std::string name, std::string doc) {
@@ -55,6 +66,11 @@ ParamSpec odd(ParamSpec spec) {
     return v.get<long long>() % 2 != 0 ? std::string() : std::string("an odd integer");
   };
   spec.rule_doc = "odd";
+  return spec;
+}
+
+ParamSpec with_sentinel(ParamSpec spec, double value) {
+  spec.sentinel = value;
   return spec;
 }
 

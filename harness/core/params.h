@@ -4,6 +4,7 @@
 // any GL context exists, and unknown keys are errors.
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -27,10 +28,16 @@ struct ParamSpec {
   // to the config file's folder.
   bool is_path = false;
   std::string rule_doc;  // what `rule` accepts, for the docs: "odd", "2 or 4"
+  // A Float value that means "chosen automatically" (sigma 0: from k), where
+  // V is not a continuous function of the value: the stability suite takes
+  // no finite difference there.
+  std::optional<double> sentinel;
 };
 
 // Adds the rule "odd integer" to an Int parameter.
 ParamSpec odd(ParamSpec spec);
+// Marks `value` of a Float parameter as a sentinel (ParamSpec::sentinel).
+ParamSpec with_sentinel(ParamSpec spec, double value);
 
 ParamSpec int_param(std::string name, int def, int min, int max, std::string doc);
 ParamSpec float_param(std::string name, double def, double min, double max, std::string doc);

@@ -104,6 +104,7 @@ json JobRecord::to_json() const {
                              {"tolerance", json_number(visibility_check->tolerance)}};
   if (metrics) r["metrics"] = metrics->to_json();
   if (second_reference) r["second_reference"] = second_reference->to_json();
+  if (stability) r["stability"] = stability->to_json();
   if (!warnings.empty()) r["warnings"] = warnings;
   if (!images.empty()) {
     json& im = r["images"];
@@ -159,6 +160,7 @@ JobRecord JobRecord::from_json(const json& j) {
   if (const auto m = f.find_object("metrics")) r.metrics = MetricsRecord::from_json(*m);
   if (const auto s = f.find_object("second_reference"))
     r.second_reference = SecondReferenceRecord::from_json(*s);
+  if (const auto s = f.find_object("stability")) r.stability = StabilityRecord::from_json(*s);
   if (f.has("warnings")) r.warnings = f.get<std::vector<std::string>>("warnings");
   if (const auto im = f.find_object("images")) {
     for (const auto& k : kImageKeys) r.images.*k.path = im->find<std::string>(k.key);

@@ -18,6 +18,7 @@
 #include "record/reference_record.h"
 #include "record/scene_record.h"
 #include "record/second_reference_record.h"
+#include "record/stability_record.h"
 #include "record/timing_record.h"
 
 namespace sb {
@@ -75,6 +76,7 @@ struct JobRecord {
   std::optional<VisibilityCheckRecord> visibility_check;
   std::optional<MetricsRecord> metrics;
   std::optional<SecondReferenceRecord> second_reference;  // reference.second_method
+  std::optional<StabilityRecord> stability;               // the "stability" block
   std::vector<std::string> warnings;                      // written only when there are some
   ImagesRecord images;                                    // written only when some image was
 

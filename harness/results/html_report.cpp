@@ -13,6 +13,7 @@
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
 #include "results/report_columns.h"
+#include "results/stability_table.h"
 #include "results/store.h"
 
 namespace sb {
@@ -56,6 +57,11 @@ dl.facts dd{margin:0;font-variant-numeric:tabular-nums;word-break:break-all}
 .s-ok{background:#e0f3e5;color:#16672d}
 .s-skipped{background:#eaecf0;color:#566074}
 .s-failed,.s-other{background:#fde3e3;color:#a01c1c}
+.v-ok{background:#e0f3e5;color:#16672d}
+.v-degraded{background:#fdf0d5;color:#8a5a00}
+.v-broken,.v-failed{background:#fde3e3;color:#a01c1c}
+.v-skipped{background:#eaecf0;color:#566074}
+td.stab{white-space:normal;min-width:160px;vertical-align:top}
 .charts{display:grid;grid-template-columns:repeat(auto-fill,minmax(520px,1fr));gap:16px}
 .chart,.card{margin:0;background:var(--card);border:1px solid var(--line);border-radius:6px;padding:10px}
 .chart img{width:100%;height:auto;display:block}
@@ -221,6 +227,7 @@ class Page {
     header();
     out_ += "<main>\n";
     summary();
+    stability();
     charts();
     images();
     out_ += "</main>\n<script>" + std::string(kScript) + "</script>\n</body>\n</html>\n";
@@ -260,7 +267,9 @@ class Page {
     for (const char* file : {"results.jsonl", "results.csv", "summary.md"})
       if (fs::exists(run_dir_ / file))
         out_ += std::string(" &middot; <a href=\"") + run_link(file) + "\">" + file + "</a>";
-    out_ += ".</p>\n<nav><a href=\"#summary\">Summary</a><a href=\"#charts\">Charts</a>";
+    out_ += ".</p>\n<nav><a href=\"#summary\">Summary</a>";
+    if (stability_table(records_)) out_ += "<a href=\"#stability\">Stability</a>";
+    out_ += "<a href=\"#charts\">Charts</a>";
     out_ += "<a href=\"#images\">Images</a>";
     for (size_t g = 0; g < groups_.size(); ++g)
       out_ +=
@@ -310,6 +319,38 @@ class Page {
     if (p.is_absolute() || (!fs::exists(out_dir_ / p) && fs::exists(p)))
       p = fs::weakly_canonical(fs::absolute(p)).lexically_relative(out_dir_);
     return html_escape(url_path(p.generic_string()));
+  }
+
+  // Technique × case, each cell its verdict and figures, linked to the job's
+  // images below (results/stability_table.h).
+  void stability() {
+    const auto table = stability_table(records_);
+    if (!table) return;
+    out_ +=
+        "<section id=\"stability\">\n<h2>Stability</h2>\n<p class=\"note\">ok, degraded "
+        "(RMSE over the case's threshold, flicker over the reference's by the set factor, "
+        "or a stiff parameter) or broken (V not finite or outside [0, 1]); docs/"
+        "stability.md. A cell links to the job's images.</p>\n";
+    out_ += "<div class=\"table-wrap\"><table>\n<thead><tr><th>technique</th>";
+    for (const auto& c : table->cases) out_ += "<th>" + html_escape(c) + "</th>";
+    out_ += "</tr></thead>\n<tbody>\n";
+    for (size_t t = 0; t < table->techniques.size(); ++t) {
+      out_ += "<tr><td class=\"name\">" + html_escape(table->techniques[t]) + "</td>";
+      for (const JobRecord* r : table->cells[t]) {
+        if (r == nullptr) {
+          out_ += "<td></td>";
+          continue;
+        }
+        const StabilityCell cell = stability_cell(*r);
+        const auto index = size_t(r - records_.data());
+        out_ += std::string("<td class=\"stab\"><a href=\"#job-") + std::to_string(index) +
+                "\"><span class=\"status v-" + to_string(cell.verdict) + "\">" +
+                to_string(cell.verdict) + "</span></a> <span class=\"nums\">" +
+                html_escape(cell.figure) + "</span></td>";
+      }
+      out_ += "</tr>\n";
+    }
+    out_ += "</tbody></table></div>\n</section>\n";
   }
 
   void charts() {
@@ -425,9 +466,9 @@ class Page {
     std::string heat_caption = "error heat map";
     if (label_scale && r.images.error_heatmap_full_scale)
       heat_caption += ", full scale " + fmt_g(*r.images.error_heatmap_full_scale);
-    out_ += "<figure class=\"card\"><div class=\"card-head\"><span class=\"name\">" +
-            html_escape(name) + "</span>" + status_badge(r.status) + "<span class=\"nums\">" +
-            nums + "</span></div>";
+    out_ += "<figure class=\"card\" id=\"job-" + std::to_string(i) +
+            "\"><div class=\"card-head\"><span class=\"name\">" + html_escape(name) + "</span>" +
+            status_badge(r.status) + "<span class=\"nums\">" + nums + "</span></div>";
     if (r.images.shaded || r.images.error_heatmap)
       out_ += "<div class=\"pair\">" + image(r, r.images.shaded, name + ", shaded", "shaded") +
               image(r, r.images.error_heatmap, name + ", error heat map", heat_caption) + "</div>";

@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "results/report_columns.h"
+#include "results/stability_table.h"
 #include "results/store.h"
 
 namespace sb {
@@ -17,11 +18,10 @@ std::string csv_escape(const std::string& s) {
   return out + "\"";
 }
 
-// Text from records (labels, reasons) inside a Markdown table or heading:
-// the characters that end a cell, open code, links, emphasis or HTML are
-// escaped and line breaks become spaces, so a label cannot break the table or
-// inject markup. ('_' inside words is not emphasis in CommonMark.)
-std::string md_text(const std::string& s) {
+}  // namespace
+
+// ('_' inside words is not emphasis in CommonMark.)
+std::string markdown_text(const std::string& s) {
   std::string out;
   for (char c : s) {
     if (c == '\n' || c == '\r' || c == '\t')
@@ -33,8 +33,6 @@ std::string md_text(const std::string& s) {
   }
   return out;
 }
-
-}  // namespace
 
 std::string make_csv(const std::vector<JobRecord>& records) {
   std::string out;
@@ -50,16 +48,17 @@ std::string make_csv(const std::vector<JobRecord>& records) {
 }
 
 std::string make_markdown(const std::vector<JobRecord>& records, const std::string& title) {
-  std::string out = "# " + md_text(title) + "\n\n";
+  std::string out = "# " + markdown_text(title) + "\n\n";
   if (!records.empty()) {
     const JobRecord& r0 = records.front();
     out += "Backend `" + r0.backend + "`, renderer `" + r0.gl_renderer + "`, timing source `" +
            r0.timing_source + "`. Error is measured on the visibility buffer against the " +
            "ray-traced reference" +
-           (r0.reference ? ": " + md_text(reference_label(*r0.reference)) : std::string()) + ".\n";
+           (r0.reference ? ": " + markdown_text(reference_label(*r0.reference)) : std::string()) +
+           ".\n";
     if (r0.second_reference)
       out += "The second_ columns are the same errors against a second reference: " +
-             md_text(reference_label(r0.second_reference->reference)) +
+             markdown_text(reference_label(r0.second_reference->reference)) +
              "; mc_noise_share is the share of the penumbra MSE against the Monte Carlo " +
              "reference that its noise explains.\n";
   }
@@ -72,20 +71,20 @@ std::string make_markdown(const std::vector<JobRecord>& records, const std::stri
   }
   const std::vector<const ReportColumn*> columns = group_table_columns(records);
   for (const auto& key : order) {
-    out += "\n## " + md_text(key) + "\n\n|";
+    out += "\n## " + markdown_text(key) + "\n\n|";
     std::string rule = "|";
     for (const ReportColumn* c : columns) {
-      out += std::string(" ") + md_text(c->header) + " |";
+      out += std::string(" ") + markdown_text(c->header) + " |";
       rule += c->numeric() ? "---:|" : "---|";
     }
     out += "\n" + rule + "\n";
     for (const JobRecord* r : groups[key]) {
       out += "|";
-      for (const ReportColumn* c : columns) out += " " + md_text(c->cell(*r)) + " |";
+      for (const ReportColumn* c : columns) out += " " + markdown_text(c->cell(*r)) + " |";
       out += "\n";
     }
   }
-  return out;
+  return out + stability_markdown(records);
 }
 
 void write_reports(const std::string& run_dir, const std::vector<JobRecord>& records,

@@ -9,6 +9,12 @@
 
 namespace sb {
 
+// Text from records (labels, reasons) inside a Markdown table or heading:
+// the characters that end a cell, open code, links, emphasis or HTML are
+// escaped and line breaks become spaces, so a label cannot break the table or
+// inject markup.
+std::string markdown_text(const std::string& s);
+
 std::string make_csv(const std::vector<JobRecord>& records);
 std::string make_markdown(const std::vector<JobRecord>& records, const std::string& title);
 // Writes results.csv and summary.md into run_dir (atomically).

@@ -29,6 +29,7 @@
 #include "run/host_info.h"
 #include "run/injected_delay.h"
 #include "run/progress.h"
+#include "run/stability_probe.h"
 #include "scenes/need_providers.h"
 #include "scenes/receiver_inference.h"
 
@@ -146,6 +147,7 @@ struct Baseline {
   // reference.second_method's reference, and its record part.
   const reference::Result* second = nullptr;
   const ReferenceRecord* second_record = nullptr;
+  StabilityProbe* stability = nullptr;  // the "stability" block
 };
 
 // A technique's V, shaded as the reference's is: untimed.
@@ -356,6 +358,7 @@ class Runner {
                                                   : json::array({e_.reference.spp,
                                                                  e_.reference.seed, embree_isa_})},
                  {"backend", gl::to_string(o_.backend)}};
+    if (e_.stability) spec["stability"] = {e_.stability->to_json(), sv.max_rmse.value_or(-1.0)};
     if (e_.reference.second_exact)
       spec["second_reference"] =
           *e_.reference.second_exact
@@ -602,8 +605,35 @@ class Runner {
       in.receiver_plane = r->plane;
     }
     const FrameSetup frame{targets, gpu, st.scene, view_projection, in};
-    const Baseline baseline{ref, ref_shaded, regions, second ? &*second : nullptr,
-                            second_record ? &*second_record : nullptr};
+    std::optional<StabilityProbe> stability;
+    if (e_.stability) {
+      // Untimed frames under moved lights, measured against references of
+      // the same lights at the same points.
+      auto render = [&, vp = view_projection](Technique& t, const FrameInputs& moved) {
+        const FrameSetup f{targets, gpu, *moved.scene, vp, moved};
+        gl::PassTimer timer(timing_source_);
+        run_frame(timer, t, "stability frame", gl::PassDetail::Coarse, f, nullptr);
+        ImageF v = targets.read_visibility();
+        apply_attached_shadow(regions.attached, v);
+        reset_gl_state();
+        return v;
+      };
+      auto reference = [&, settings = rs](const Scene& moved) {
+        reference::Result out =
+            cache ? reference::get(moved, positions, normals, settings, o_.cache_dir)
+                  : reference::compute(moved, positions, normals, settings);
+        apply_attached_shadow(regions.attached, out.visibility);
+        return std::move(out.visibility);
+      };
+      stability.emplace(*e_.stability, sv.max_rmse.value_or(e_.stability->max_rmse), st.scene, in,
+                        regions.measured, render, reference);
+    }
+    const Baseline baseline{ref,
+                            ref_shaded,
+                            regions,
+                            second ? &*second : nullptr,
+                            second_record ? &*second_record : nullptr,
+                            stability ? &*stability : nullptr};
     std::optional<Control> control;
     if (e_.control) control = prepare_control(*e_.control, frame);
     for (size_t i : pending) {
@@ -656,6 +686,11 @@ class Runner {
       throw JobError("visibility outside [0,1]: " + std::to_string(check.nonfinite) + " NaN/Inf, " +
                      std::to_string(check.below_0) + " below 0, " + std::to_string(check.above_1) +
                      " above 1 (tolerance 1e-5)");
+    // A broken job has no stability figures: it is broken.
+    if (baseline.stability) {
+      r.stability = baseline.stability->measure(tv, *technique);
+      gl::throw_if_errors(tv.name + " stability frames");
+    }
   }
 
   // The control, prepared and its shaders compiled before any job's frame.

@@ -39,8 +39,10 @@ ParamSpec kernel_size_param(int default_k, const std::string& doc) {
 }
 
 ParamSpec kernel_sigma_param() {
-  return float_param("sigma", 0.0, 0.0, 64.0,
-                     "Gaussian sigma in texels; 0: 0.3*((k-1)/2-1)+0.8 (OpenCV's default)");
+  return with_sentinel(
+      float_param("sigma", 0.0, 0.0, 64.0,
+                  "Gaussian sigma in texels; 0: 0.3*((k-1)/2-1)+0.8 (OpenCV's default)"),
+      0.0);
 }
 
 }  // namespace sb::shadow

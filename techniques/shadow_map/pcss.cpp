@@ -91,9 +91,10 @@ class Pcss final : public SingleMapTechnique {
 TechniqueInfo pcss_info() {
   std::vector<ParamSpec> params = {
       odd(int_param("search_taps", 3, 1, 31, "blocker-search grid side (odd)")),
-      float_param("search_texels", 0.0, 0.0, 4096.0,
-                  "blocker-search width in texels; 0: from the light's size and the receiver's "
-                  "depth"),
+      with_sentinel(float_param("search_texels", 0.0, 0.0, 4096.0,
+                                "blocker-search width in texels; 0: from the light's size and the "
+                                "receiver's depth"),
+                    0.0),
       odd(int_param("filter_taps", 5, 1, 31, "PCF grid side (odd), spread over the penumbra")),
       float_param("min_filter_texels", 1.0, 0.0, 64.0, "smallest PCF radius, in texels"),
       receiver_plane_param()};

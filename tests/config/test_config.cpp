@@ -76,6 +76,22 @@ TEST(Config, ASecondReferenceMethodIsRead) {
   EXPECT_FALSE(*e.reference.second_exact);
 }
 
+TEST(Config, TheStabilityBlockAndACasesThresholdAreRead) {
+  std::string text = kValid;
+  const std::string reference = R"("reference": {"spp": 16, "seed": 3})";
+  text.replace(
+      text.find(reference), reference.size(),
+      reference + R"(, "stability": {"flicker_frames": 4, "flicker_step": 0, "max_rmse": 0.2})");
+  const Experiment e = load_experiment(write_temp("stability.json", text), registry());
+  ASSERT_TRUE(e.stability.has_value());
+  EXPECT_EQ(e.stability->flicker_frames, 4);
+  EXPECT_EQ(e.stability->flicker_step, 0.0);  // a still light
+  EXPECT_EQ(e.stability->max_rmse, 0.2);
+  EXPECT_TRUE(e.stability->sensitivity);  // defaults for the rest
+  EXPECT_EQ(e.stability->flicker_factor, 2.0);
+  EXPECT_FALSE(load_experiment(write_temp("plain.json", kValid), registry()).stability);
+}
+
 TEST(Config, SweepIsACrossProduct) {
   const auto v = expand_sweeps(
       nlohmann::json::parse(R"({"a": [1, 2, 3], "b": [true, false], "c": 7})"), "f", "/p");
@@ -174,6 +190,18 @@ const BadCase kBadCases[] = {
      R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "reference": {"method": "exact", "second_method": "exact"}})",
      "/reference/second_method",
      "expected the other method than /reference/method (exact), found the same"},
+    {"stability_one_flicker_frame",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "stability": {"flicker_frames": 1}})",
+     "/stability/flicker_frames", "expected 0 (off) or at least 2 frames, found 1"},
+    {"stability_unknown_key",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "stability": {"flicker": 8}})",
+     "/stability/flicker", "unknown key 'flicker'"},
+    {"stability_step_too_large",
+     R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "stability": {"flicker_step": 0.5}})",
+     "/stability/flicker_step", "expected a number in [0.0, 0.1], found 0.5"},
+    {"scene_max_rmse_out_of_range",
+     R"({"scenes": [{"type": "sphere_grid", "max_rmse": 2}], "techniques": ["none"], "resolutions": [[8, 8]]})",
+     "/scenes/0/max_rmse", "expected a number in [0.0, 1.0], found 2"},
     {"embree_config_other_key",
      R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "reference": {"embree_config": "threads=4"}})",
      "/reference/embree_config", "expected \"isa=NAME\" or \"max_isa=NAME\""},
