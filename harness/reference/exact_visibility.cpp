@@ -6,6 +6,7 @@
 #include <array>
 #include <clipper.hpp>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "reference/ray_offset.h"
@@ -71,6 +72,25 @@ std::array<Plane, 5> pyramid(const Frame& f, const glm::dvec3& p) {
   const double side = glm::dot(p - f.centre, f.normal) >= 0.0 ? 1.0 : -1.0;
   planes[4] = {side * f.normal, f.centre};
   return planes;
+}
+
+// Where the segment o + s·d, s in (0, 1], crosses triangle abc (Möller and
+// Trumbore 1997): s, or +inf when it does not.
+double segment_crossing(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& a,
+                        const glm::dvec3& b, const glm::dvec3& c) {
+  const glm::dvec3 e1 = b - a, e2 = c - a;
+  const glm::dvec3 q = glm::cross(d, e2);
+  const double det = glm::dot(e1, q);
+  if (det == 0.0) return std::numeric_limits<double>::infinity();
+  const double inv = 1.0 / det;
+  const glm::dvec3 r = o - a;
+  const double u = glm::dot(r, q) * inv;
+  if (u < 0.0 || u > 1.0) return std::numeric_limits<double>::infinity();
+  const glm::dvec3 w = glm::cross(r, e1);
+  const double v = glm::dot(d, w) * inv;
+  if (v < 0.0 || u + v > 1.0) return std::numeric_limits<double>::infinity();
+  const double s = glm::dot(e2, w) * inv;
+  return s > 0.0 && s <= 1.0 ? s : std::numeric_limits<double>::infinity();
 }
 
 bool box_outside(const glm::dvec3& lo, const glm::dvec3& hi, const Plane& plane) {
@@ -172,14 +192,12 @@ std::vector<std::vector<glm::dvec2>> ExactVisibility::occluding_polygons(
                                                          std::fabs(surface.z), caster_extent_});
   const glm::dvec3 p = surface + eps * n;
   const double zp = glm::dot(p - f.centre, f.normal);
-  // The pyramid, and the tangent plane through the surface point: whatever
-  // lies below that plane projects, from p above it, into the light's part
-  // below it, which the horizon polygon already covers. Culling it keeps a
-  // point on a convex caster from clipping the caster's whole far side.
-  std::array<Plane, 6> planes;
-  const auto sides = pyramid(f, p);
-  std::copy(sides.begin(), sides.end(), planes.begin());
-  planes[5] = {n, surface};
+  // The pyramid culls the hierarchy's boxes. Triangles are clipped to it and
+  // to the tangent plane through the surface point: whatever lies below that
+  // plane projects, from p above it, into the light's part below it, which
+  // the horizon polygon already covers.
+  const auto planes = pyramid(f, p);
+  const Plane tangent{n, surface};
   const auto add = [&](const Polygon3& poly, bool project) {
     if (poly.size() < 3) return;
     std::vector<glm::dvec2> flat;
@@ -208,6 +226,13 @@ std::vector<std::vector<glm::dvec2>> ExactVisibility::occluding_polygons(
   // Triangles whose plane passes this close to p contain it, as seen from
   // p: their projection has no area.
   const double on_plane = 1e-12 * std::max(glm::length(p), 1.0);
+  // Whether p is inside a closed caster: the first closed triangle that the
+  // segment from p to the light's centre crosses is then left through its
+  // outward side. The segment lies in the pyramid, so every triangle it can
+  // cross is visited.
+  const glm::dvec3 to_centre = f.centre - p;
+  double first_hit = std::numeric_limits<double>::infinity();
+  bool leaves_through_it = false;
   std::vector<uint32_t> stack{0};
   while (!stack.empty()) {
     const Node& node = nodes_[stack.back()];
@@ -224,16 +249,25 @@ std::vector<std::vector<glm::dvec2>> ExactVisibility::occluding_polygons(
       const Triangle& t = triangles_[i];
       const glm::dvec3 normal = glm::cross(t.b - t.a, t.c - t.a);
       const double facing = glm::dot(normal, p - t.a);
+      if (t.outward != 0) {
+        const double hit = segment_crossing(p, to_centre, t.a, t.b, t.c);
+        if (hit < first_hit) {
+          first_hit = hit;
+          leaves_through_it = double(t.outward) * glm::dot(normal, to_centre) > 0.0;
+        }
+      }
       if (std::fabs(facing) <= on_plane * glm::length(normal)) continue;
-      if (double(t.outward) * facing > 0.0) continue;  // a closed caster's near side
+      if (double(t.outward) * facing < 0.0) continue;  // a closed caster's far side
       if (glm::dot(n, t.a - surface) < 0.0 && glm::dot(n, t.b - surface) < 0.0 &&
           glm::dot(n, t.c - surface) < 0.0)
         continue;  // below the tangent plane: inside the horizon polygon
       Polygon3 poly{t.a, t.b, t.c};
       for (const Plane& plane : planes) poly = clip(poly, plane);
-      add(poly, true);
+      add(clip(poly, tangent), true);
     }
   }
+  // Inside a closed caster every ray towards the light is blocked.
+  if (leaves_through_it) return {{{-f.hw, -f.hh}, {f.hw, -f.hh}, {f.hw, f.hh}, {-f.hw, f.hh}}};
   return out;
 }
 

@@ -21,16 +21,16 @@
 //
 // Candidates come from a bounding-volume hierarchy over the casters'
 // triangles, culled by the pyramid's five planes. A closed caster keeps only
-// its far side as seen from p, the triangles whose outward normal (by the
-// sign of the mesh's volume) faces away from p: their projections cover its
-// shadow once, as all of its triangles would. A point inside a closed caster
-// (a silhouette pixel that landed on a back face and took the viewer-facing
-// normal, or interpenetrating parts) sees every triangle from behind, so
-// the light is covered, as every Monte Carlo shadow ray from it is blocked;
-// the near side would have left it lit. Open and double-sided casters keep
-// every triangle. Casters
-// with an alpha mask or an analytic shape have no exact polygonal form
-// here: `unsupported()` names the first.
+// its near side seen from p, the triangles whose outward normal (by the sign
+// of the mesh's volume) faces p: their projections cover its shadow once,
+// as all of its triangles would. A point inside a closed caster (a
+// silhouette pixel that landed on a back face and took the viewer-facing
+// normal, or interpenetrating parts) is in its umbra, as every Monte Carlo
+// shadow ray from it is blocked: the first closed triangle that the segment
+// to the light's centre crosses is then crossed from inside, and the whole
+// light is covered. Open and double-sided casters keep every triangle.
+// Casters with an alpha mask or an analytic shape have no exact polygonal
+// form here: `unsupported()` names the first.
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <string>

@@ -42,9 +42,10 @@ constexpr const char* kMethod = "embree_stratified_packet16";
 // 5: analytic shapes (Mesh::analytic) occlude instead of their meshes and
 // join the key.
 constexpr uint32_t kMethodVersion = 5;
-// Bumped whenever the exact reference's answer may change. 2: closed casters
-// keep their far side (a point inside one is in its umbra).
-constexpr uint32_t kExactMethodVersion = 2;
+// Bumped whenever the exact reference's answer may change. 2: a point inside
+// a closed caster is in its umbra; 3: the same by a segment test, closed
+// casters keeping their near side again.
+constexpr uint32_t kExactMethodVersion = 3;
 constexpr char kMagic[8] = {'S', 'B', 'R', 'E', 'F', '\r', '\n', '\x1a'};
 constexpr uint32_t kFileVersion = 1;
 

@@ -176,7 +176,7 @@ TEST(ReferenceExact, RandomTrianglesAgreeWithADenseRayCount) {
 
 // A closed box seen from points around it: culling the triangles that face
 // away from the point changes nothing.
-TEST(ReferenceExact, ClosedCastersKeepOnlyTheirFarSideAndGetTheSameAnswer) {
+TEST(ReferenceExact, ClosedCastersKeepOnlyTheirNearSideWhicheverWayTheyWind) {
   sb::Scene scene;
   scene.light = sbtest::square_light();
   scene.light.target = {0, 0, 0};
@@ -199,9 +199,9 @@ TEST(ReferenceExact, ClosedCastersKeepOnlyTheirFarSideAndGetTheSameAnswer) {
 TEST(ReferenceExact, APointInsideAClosedCasterIsInItsUmbraAsEveryShadowRayIs) {
   // A silhouette pixel can land on a back face and take the viewer-facing
   // normal, which points into the mesh: every Monte Carlo shadow ray from
-  // there hits the mesh from inside. The far side, kept for a closed caster,
-  // surrounds the point, so the exact reference agrees; the near side alone
-  // would have left the point lit.
+  // there hits the mesh from inside. Seen from inside, a closed caster has
+  // no near side to keep; the segment to the light's centre leaves it, so
+  // the exact reference covers the whole light too.
   sb::Scene scene;
   scene.light = sbtest::square_light();
   scene.light.target = {0, 0, 0};
