@@ -4,6 +4,7 @@
 // ESM at c = 200) is a failed record with its NaN count, shown broken in the
 // stability table, while the other jobs run; and the sensitivity the probe
 // records equals a central difference of two separately run variants.
+// tests/stress runs configs/stress.json itself.
 #include <gtest/gtest.h>
 
 #include <cmath>
