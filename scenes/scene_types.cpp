@@ -8,6 +8,7 @@
 #include "scenes/jeep.h"
 #include "scenes/plates.h"
 #include "scenes/sphere_grid.h"
+#include "scenes/standing.h"
 #include "scenes/stress_geometry.h"
 
 namespace sb {
@@ -15,8 +16,8 @@ namespace sb {
 namespace {
 std::vector<SceneType>& registry() {
   static std::vector<SceneType> types = {
-      sphere_grid_scene_type(), foliage_scene_type(),         jeep_scene_type(),
-      plates_scene_type(),      stress_geometry_scene_type(), gltf_scene_type()};
+      sphere_grid_scene_type(),     foliage_scene_type(),  jeep_scene_type(), plates_scene_type(),
+      stress_geometry_scene_type(), standing_scene_type(), gltf_scene_type()};
   return types;
 }
 }  // namespace
