@@ -81,16 +81,17 @@ Buffer make_buffer(GLsizeiptr bytes, const void* data, GLbitfield flags) {
 namespace {
 // One per context; contexts are used one at a time, and a new one forgets it.
 GLuint g_empty_vao = 0;
-GLuint empty_vao() {
+}  // namespace
+
+GLuint empty_vertex_array() {
   if (g_empty_vao == 0) glCreateVertexArrays(1, &g_empty_vao);
   return g_empty_vao;
 }
-}  // namespace
 
 void forget_context_objects() { g_empty_vao = 0; }
 
 void draw_fullscreen_triangle() {
-  glBindVertexArray(empty_vao());
+  glBindVertexArray(empty_vertex_array());
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 

@@ -59,6 +59,9 @@ Framebuffer make_framebuffer(std::initializer_list<GLuint> colors, GLuint depth,
                              GLenum depth_attachment = GL_DEPTH_ATTACHMENT);
 Buffer make_buffer(GLsizeiptr bytes, const void* data, GLbitfield flags = 0);
 
+// A vertex array with no attributes, for draws that build their vertices
+// from gl_VertexID (one per context).
+GLuint empty_vertex_array();
 // Draws one triangle covering the viewport (no vertex buffer: uses gl_VertexID).
 void draw_fullscreen_triangle();
 // Undoes whatever state a technique left behind: no blending (and the

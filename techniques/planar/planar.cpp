@@ -48,41 +48,16 @@
 #include "gl/gpu_scene.h"
 #include "gl/objects.h"
 #include "gl/program.h"
+#include "planar/plateaus.h"
+#include "planar/projected_shadow.h"
 #include "plugin/registry.h"
 
 namespace sb {
 namespace {
 
-const char* const kProjectVertex = R"(#version 450 core
-layout(location = 0) in vec3 position;
-uniform mat4 shadow_projection;  // Blinn's M for the current light point
-uniform mat4 view_projection;
-out gl_PerVertex {
-  vec4 gl_Position;
-  float gl_ClipDistance[1];
-};
-void main() {
-  vec4 q = shadow_projection * vec4(position, 1.0);
-  // q.w: the vertex's height below the light along the plane's normal; the
-  // part of the caster at or above the light's height is clipped away.
-  gl_ClipDistance[0] = q.w;
-  gl_Position = view_projection * q;
-}
-)";
-
-const char* const kProjectFragment = R"(#version 450 core
-layout(binding = 0) uniform sampler2D position_tex;
-uniform vec4 receiver_plane;
-uniform float on_plane_tolerance;
-out float darkening;
-void main() {
-  // Only G-buffer points on the receiver plane take the flattened shadow.
-  vec4 p = texelFetch(position_tex, ivec2(gl_FragCoord.xy), 0);
-  if (p.w == 0.0 || abs(dot(receiver_plane.xyz, p.xyz) + receiver_plane.w) > on_plane_tolerance)
-    discard;
-  darkening = 1.0;  // subtracted from the count of light points that see the pixel
-}
-)";
+using planar::kProjectFragment;
+using planar::kProjectVertex;
+using planar::planar_projection;
 
 // Reads the count of unshadowed light points in the visibility target itself
 // (after glTextureBarrier; each fragment reads only its own texel) and writes
@@ -96,17 +71,6 @@ void main() {
   visibility = seen >= samples ? 1.0 : seen / samples;
 }
 )";
-
-// Blinn's projection onto n·x + d = 0 from the point l: M = (π·L) I − L πᵀ.
-glm::mat4 planar_projection(const glm::vec4& plane, const glm::vec3& l) {
-  const glm::vec4 light(l, 1.0f);
-  const float pl = glm::dot(plane, light);
-  glm::mat4 m(pl);
-  // glm is column-major: m[column][row]; (L πᵀ)[row][column] = L[row] π[column].
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) m[c][r] -= light[r] * plane[c];
-  return m;
-}
 
 class Planar final : public Technique {
  public:
@@ -165,6 +129,7 @@ class Planar final : public Technique {
     project_.set("view_projection", in.view_projection);
     project_.set("receiver_plane", in.receiver_plane);
     project_.set("on_plane_tolerance", tolerance_);
+    project_.set("darkening_value", 1.0f);  // subtracted from the count of light points
     glBindTextureUnit(0, in.gbuffer_position);
     const AreaLight& light = in.scene->light;
     const size_t count = std::max<size_t>(points_.size(), 1);
@@ -238,4 +203,5 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
              "planar_soft", shadow::light_samples(p.get_int("samples"), p.get_bool("jitter"),
                                                   unsigned(p.get_int("seed"))));
        }});
+  registry.add(plateaus_info());
 }

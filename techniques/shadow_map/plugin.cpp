@@ -7,4 +7,5 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
   registry.add(sb::shadow::pcf_gauss_info());
   registry.add(sb::shadow::pcf_jitter_info());
   registry.add(sb::shadow::pcss_info());
+  registry.add(sb::shadow::blurred_visibility_info());
 }

@@ -7,4 +7,5 @@ TechniqueInfo pcf_box_info();
 TechniqueInfo pcf_gauss_info();
 TechniqueInfo pcf_jitter_info();
 TechniqueInfo pcss_info();
+TechniqueInfo blurred_visibility_info();
 }  // namespace sb::shadow

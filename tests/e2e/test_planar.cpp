@@ -253,14 +253,14 @@ TEST(Planar, SkipsScenesWithoutAPlanarReceiver) {
       {"scenes", json::array({{{"type", "gltf"},
                                {"params", {{"file", write_spheres_without_ground(dir.path)}}}},
                               {{"type", "foliage"}, {"params", {{"trees", 1}, {"depth", 2}}}}})},
-      {"techniques", json::array({"none", "planar", "planar_soft"})},
+      {"techniques", json::array({"none", "planar", "planar_soft", "plateaus"})},
       {"resolutions", json::array({json::array({48, 32})})},
       {"frames", {{"warmup", 0}, {"timed", 1}}},
       {"reference", {{"spp", 4}, {"cache", false}}}};
   const auto out = run_config(config, "planar_skip");
-  ASSERT_EQ(out.records.size(), 6u);
+  ASSERT_EQ(out.records.size(), 8u);
   EXPECT_EQ(out.summary.ok, 2);
-  EXPECT_EQ(out.summary.skipped, 4);
+  EXPECT_EQ(out.summary.skipped, 6);
   for (const auto& r : out.records) {
     SCOPED_TRACE(r["job_id"].get<std::string>());
     const std::string technique = r["technique_variant"];

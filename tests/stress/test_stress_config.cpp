@@ -33,7 +33,7 @@ TEST(StressConfig, EveryTechniqueRunsThroughTheStressCasesAndOnlyTheDocumentedOn
       scene["params"]["file"] =
           SHADOWBENCH_SOURCE_DIR "/configs/" + scene["params"]["file"].get<std::string>();
   const test::RunOutput out = test::run_config(config, "stability_stress");
-  ASSERT_EQ(out.records.size(), config["scenes"].size() * 28u);
+  ASSERT_EQ(out.records.size(), config["scenes"].size() * 33u);
   std::map<std::string, int> ok;
   // RMSE of V by technique variant and scale, for the jeep at 1e-3, 1, 1e4.
   std::map<std::string, std::map<std::string, double>> by_scale;
@@ -74,14 +74,16 @@ TEST(StressConfig, EveryTechniqueRunsThroughTheStressCasesAndOnlyTheDocumentedOn
   for (const json& t : config["techniques"])
     techniques.insert(t.is_string() ? t.get<std::string>() : t["name"].get<std::string>());
   for (const std::string& t : techniques) EXPECT_GT(ok[t], 0) << t;
-  // The scene's scale changes no technique's error beyond its own noise
-  // (measured: at most 0.0034 apart at this size).
+  // The scene's scale changes no technique's error beyond its own noise.
+  // At 32×24 one pixel that changes by ½ moves the RMSE by up to 0.018:
+  // measured at most 0.0034 apart, except penumbra_maps, 0.0106 at 1e4 (one
+  // pixel; at 128×96 its three scales agree within 1e-4).
   for (const auto& [variant, rmse] : by_scale) {
     ASSERT_EQ(rmse.size(), 3u) << variant;
-    EXPECT_NEAR(rmse.at("jeep_scale_1e-3"), rmse.at("jeep_scale_1"), 0.01) << variant;
-    EXPECT_NEAR(rmse.at("jeep_scale_1e4"), rmse.at("jeep_scale_1"), 0.01) << variant;
+    EXPECT_NEAR(rmse.at("jeep_scale_1e-3"), rmse.at("jeep_scale_1"), 0.018) << variant;
+    EXPECT_NEAR(rmse.at("jeep_scale_1e4"), rmse.at("jeep_scale_1"), 0.018) << variant;
   }
-  EXPECT_GE(by_scale.size(), 27u);
+  EXPECT_GE(by_scale.size(), 32u);
 }
 
 }  // namespace

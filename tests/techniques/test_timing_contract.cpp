@@ -103,7 +103,10 @@ class TimingContract : public ::testing::Test {
     // CPU silhouettes), as the planner derives it for a run.
     std::vector<const TechniqueInfo*> all;
     for (const TechniqueInfo& t : plugins_.all()) all.push_back(&t);
-    derived_ = resolve_needs(scene_, all, &plugins_, Derive::All).data;
+    ResolvedNeeds needs = resolve_needs(scene_, all, &plugins_, Derive::All);
+    derived_ = std::move(needs.data);
+    // And their GPU stages (the silhouette edges' buffer), as the runner does.
+    for (const NeedProvider* p : needs.uploads) p->upload(scene_, *gpu_, derived_);
     in_.derived = &derived_;
   }
 

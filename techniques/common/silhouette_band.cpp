@@ -1,0 +1,112 @@
+#include "common/silhouette_band.h"
+
+#include "plugin/silhouette_edges.h"
+
+namespace sb::shadow {
+
+const char* const kSilhouetteBandVertexGlsl = R"(
+struct Edge {
+  vec4 p0;       // xyz: first endpoint; w: mesh index
+  vec4 p1;       // xyz: second endpoint; w: 1 with two faces, 0 with one
+  vec4 plane_a;  // the face that winds p0 → p1, outward normal
+  vec4 plane_b;  // the face across the edge
+};
+layout(std430, binding = 0) readonly buffer Edges { Edge edges[]; };
+const int kBandVertices = 6;
+
+// Faces that disagree on the side of l; an edge with one face (a boundary)
+// is on the silhouette unless l lies in its face's plane.
+bool on_silhouette(Edge e, vec3 l) {
+  float a = dot(e.plane_a, vec4(l, 1.0));
+  if (e.p1.w == 0.0) return a != 0.0;
+  float b = dot(e.plane_b, vec4(l, 1.0));
+  return (a > 0.0) != (b > 0.0);
+}
+
+// Into the face that the light sees, across the edge: that face winds
+// p0 → p1 if it is face a (else p1 → p0), so its inside is to the left of
+// that direction about its outward normal. A one-face edge's face, lit from
+// either side, lies to the left of p0 → p1 about its normal.
+vec3 into_lit_face(Edge e, vec3 l) {
+  vec3 along = e.p1.xyz - e.p0.xyz;
+  if (e.p1.w == 0.0 || dot(e.plane_a, vec4(l, 1.0)) > 0.0) return cross(e.plane_a.xyz, along);
+  return cross(e.plane_b.xyz, -along);
+}
+
+// The segment's unit normal on the side away from `inside` (a direction
+// into the occluder), or vec2(0) when either is degenerate.
+vec2 outward_normal(vec2 a, vec2 b, vec2 inside) {
+  vec2 d = b - a;
+  vec2 across = vec2(-d.y, d.x);
+  float side = dot(across, inside);
+  if (dot(across, across) == 0.0 || side == 0.0) return vec2(0.0);
+  return normalize(side > 0.0 ? -across : across);
+}
+
+// outward: a unit vector to keep only that side of the segment (the band is
+// then r wide on that side), or vec2(0) for both sides.
+vec2 band_corner(vec2 a, vec2 b, float r, vec2 outward, int k) {
+  vec2 d = b - a;
+  float len = length(d);
+  vec2 along = len > 0.0 ? d / len : vec2(1.0, 0.0);
+  vec2 across = vec2(-along.y, along.x);
+  bool one_side = outward != vec2(0.0);
+  if (one_side && dot(across, outward) < 0.0) across = -across;
+  // Corners 0..3: a-side low, b-side low, b-side high, a-side high.
+  const int order[6] = int[6](0, 1, 2, 0, 2, 3);
+  int c = order[k];
+  vec2 end = (c == 1 || c == 2) ? b + r * along : a - r * along;
+  float low = one_side ? 0.0 : -r;
+  return end + ((c >= 2) ? r : low) * across;
+}
+)";
+
+const char* const kSilhouetteBandFragmentGlsl = R"(
+float segment_param(vec2 p, vec2 a, vec2 b) {
+  vec2 d = b - a;
+  float len2 = dot(d, d);
+  return len2 > 0.0 ? clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
+}
+float root_in_segment(float c0, float c1) { return c1 != 0.0 ? clamp(-c0 / c1, 0.0, 1.0) : 0.0; }
+// g(t) = max(|v·hu| / |hu|², |v·hv| / |hv|²) for v = p − a − t(b − a) is
+// convex and piecewise linear in t, with its breaks where a term is zero or
+// the two terms are equal. On each linear piece g/s, s linear too, is
+// monotone, so the least g/s over [0, 1] is at a break or an end. (The least
+// g alone is not enough: g is flat over a range of t wherever the edge runs
+// along a light axis, and the first point of that range may have s = 0.)
+float light_ratio(vec2 p, vec2 a, vec2 b, vec2 hu, vec2 hv, float sa, float sb, out float t) {
+  vec2 ku = hu / dot(hu, hu), kv = hv / dot(hv, hv);
+  float u0 = dot(p - a, ku), u1 = dot(a - b, ku);
+  float v0 = dot(p - a, kv), v1 = dot(a - b, kv);
+  float candidates[6] = float[6](0.0, 1.0, root_in_segment(u0, u1), root_in_segment(v0, v1),
+                                 root_in_segment(u0 - v0, u1 - v1),
+                                 root_in_segment(u0 + v0, u1 + v1));
+  float best = 1e38;
+  t = 0.0;
+  for (int i = 0; i < 6; ++i) {
+    float c = candidates[i];
+    float g = max(abs(u0 + c * u1), abs(v0 + c * v1));
+    float s = mix(sa, sb, c);
+    float ratio = s > 0.0 ? g / s : (g == 0.0 ? 0.0 : 1e38);
+    if (ratio < best) {
+      best = ratio;
+      t = c;
+    }
+  }
+  return best;
+}
+float light_distance_at(vec2 p, vec2 a, vec2 b, vec2 hu, vec2 hv, float t) {
+  vec2 v = p - mix(a, b, t);
+  return max(abs(dot(v, hu)) / dot(hu, hu), abs(dot(v, hv)) / dot(hv, hv));
+}
+)";
+
+void draw_silhouette_bands(const FrameInputs& in) {
+  const auto& edges = in.derived->get<SilhouetteEdges>(need::kSilhouetteEdges);
+  if (edges.edge_count == 0) return;
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, edges.buffer());
+  glBindVertexArray(gl::empty_vertex_array());
+  glDrawArrays(GL_TRIANGLES, 0, 6 * edges.edge_count);
+}
+
+}  // namespace sb::shadow

@@ -1,0 +1,48 @@
+#pragma once
+// Bands around silhouette edges, drawn straight from the harness's edge
+// buffer (need::kSilhouetteEdges, plugin/silhouette_edges.h): the geometry of
+// plateaus, penumbra maps and smoothies. One draw of 6 vertices per edge of
+// the casters; the vertex shader finds whether its edge is on the silhouette
+// from the light's centre and emits the two triangles of a quad around it,
+// or a degenerate triangle when it is not. Nothing is built on the CPU and
+// nothing is uploaded per frame.
+#include "gl/objects.h"
+#include "plugin/technique.h"
+
+namespace sb::shadow {
+
+// GLSL for vertex shaders (binding 0: the edge buffer):
+//   struct Edge, edges[]          the buffer's records
+//   bool on_silhouette(Edge e, vec3 l)   seen from the point l
+//   vec3 into_lit_face(Edge e, vec3 l)   world direction from the edge into
+//       its face that l sees: the occluder's side of the silhouette
+//   vec2 outward_normal(vec2 a, vec2 b, vec2 inside)   the segment's unit
+//       normal away from `inside`, or vec2(0) when degenerate
+//   vec2 band_corner(vec2 a, vec2 b, float r, vec2 outward, int k)
+//       corner k (0..5, two triangles) of the rectangle that holds every
+//       point within r of the segment a–b (a capsule's bounding box), or
+//       only its half on the side of `outward` when that is not vec2(0)
+//   const int kBandVertices = 6
+extern const char* const kSilhouetteBandVertexGlsl;
+
+// GLSL for fragment shaders:
+//   float segment_param(vec2 p, vec2 a, vec2 b)   the closest point's t ∈ [0,1]
+//   float light_ratio(vec2 p, vec2 a, vec2 b, vec2 hu, vec2 hv,
+//                     float sa, float sb, out float t)
+//       the least g(t) / s(t) over the segment a–b, where g(t) is the
+//       light-shaped distance of p from the segment's point t: the smallest
+//       g with p in that point grown by g times the light's rectangle (half
+//       axes hu, hv, both non-zero); s(t) = mix(sa, sb, t); and t attains it.
+//       An occluder point at depth z_o casts the light's rectangle scaled by
+//       s = 1/z_o − 1/z_r (image plane) onto a receiver at depth z_r, so p
+//       is in the edge's penumbra iff the ratio is below 1, and 1 − ratio is
+//       the linear darkness: rectangles at the edge's ends ("cones"), the
+//       light's support function wide along it ("sheets"), as they must be.
+//   float light_distance_at(vec2 p, vec2 a, vec2 b, vec2 hu, vec2 hv, float t)
+//       g(t) alone
+extern const char* const kSilhouetteBandFragmentGlsl;
+
+// Binds the edge buffer and draws 6 vertices per edge with the bound program.
+void draw_silhouette_bands(const FrameInputs& in);
+
+}  // namespace sb::shadow

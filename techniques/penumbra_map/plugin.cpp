@@ -1,0 +1,8 @@
+// The outer-penumbra family (a hard map plus silhouette bands): one
+// registration line per variant.
+#include "penumbra_map/outer_penumbra_variants.h"
+
+SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
+  registry.add(sb::shadow::penumbra_maps_info());
+  registry.add(sb::shadow::smoothies_info());
+}
