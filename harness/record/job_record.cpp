@@ -105,6 +105,7 @@ json JobRecord::to_json() const {
   if (metrics) r["metrics"] = metrics->to_json();
   if (second_reference) r["second_reference"] = second_reference->to_json();
   if (stability) r["stability"] = stability->to_json();
+  if (classes) r["classes"] = classes->to_json();
   if (!warnings.empty()) r["warnings"] = warnings;
   if (!images.empty()) {
     json& im = r["images"];
@@ -161,6 +162,7 @@ JobRecord JobRecord::from_json(const json& j) {
   if (const auto s = f.find_object("second_reference"))
     r.second_reference = SecondReferenceRecord::from_json(*s);
   if (const auto s = f.find_object("stability")) r.stability = StabilityRecord::from_json(*s);
+  if (const auto c = f.find_object("classes")) r.classes = ClassesRecord::from_json(*c);
   if (f.has("warnings")) r.warnings = f.get<std::vector<std::string>>("warnings");
   if (const auto im = f.find_object("images")) {
     for (const auto& k : kImageKeys) r.images.*k.path = im->find<std::string>(k.key);

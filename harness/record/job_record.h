@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "record/classes_record.h"
 #include "record/fields.h"
 #include "record/host_record.h"
 #include "record/metrics_record.h"
@@ -77,8 +78,9 @@ struct JobRecord {
   std::optional<MetricsRecord> metrics;
   std::optional<SecondReferenceRecord> second_reference;  // reference.second_method
   std::optional<StabilityRecord> stability;               // the "stability" block
-  std::vector<std::string> warnings;                      // written only when there are some
-  ImagesRecord images;                                    // written only when some image was
+  std::optional<ClassesRecord> classes;  // lit/penumbra/umbra against the reference
+  std::vector<std::string> warnings;     // written only when there are some
+  ImagesRecord images;                   // written only when some image was
 
   nlohmann::json to_json() const;
   // Throws RecordError: at /schema_version for another version, else at the

@@ -52,6 +52,14 @@ std::optional<double> mc_noise_share(const JobRecord& r) {
   return (mc * mc - exact * exact) / (mc * mc);
 }
 
+// The record's lit / penumbra / umbra confusion against the reference.
+std::optional<double> penumbra_missed(const JobRecord& r) {
+  return r.classes ? r.classes->penumbra_missed() : std::nullopt;
+}
+std::optional<double> penumbra_invented(const JobRecord& r) {
+  return r.classes ? r.classes->penumbra_invented() : std::nullopt;
+}
+
 std::vector<ReportColumn> make_columns() {
   using I = ImageMetrics;
   using S = RegionStats;
@@ -91,6 +99,8 @@ std::vector<ReportColumn> make_columns() {
       number("ssim", visibility<&I::all, &S::ssim>, "%.4f"),
       number("frac_over_0.05", visibility<&I::all, &S::frac_over_005>, "%.4f"),
       number("penumbra_rmse", visibility<&I::penumbra, &S::rmse>, "%.5f"),
+      optional(number("penumbra_missed", penumbra_missed, "%.3f")),
+      optional(number("penumbra_invented", penumbra_invented, "%.3f")),
       optional(number("second_rmse", second<&I::all, &S::rmse>, "%.5f")),
       optional(number("second_penumbra_rmse", second<&I::penumbra, &S::rmse>, "%.5f")),
       optional(number("mc_noise_share", mc_noise_share, "%.3f")),

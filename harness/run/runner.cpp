@@ -18,6 +18,7 @@
 #include "metrics/image_io.h"
 #include "metrics/light_horizon.h"
 #include "metrics/metrics.h"
+#include "metrics/shadow_classes.h"
 #include "plan/plan.h"
 #include "record/job_record.h"
 #include "reference/embree_isa.h"
@@ -123,10 +124,11 @@ void reset_gl_state() { gl::reset_state(); }
 
 // Pixel sets shared by every job of one (scene, resolution).
 struct Regions {
-  std::vector<uint8_t> measured;   // all but the pixels whose tangent plane cuts the light
-  std::vector<uint8_t> penumbra;   // the reference's soft pixels, measured ones only
-  std::vector<uint8_t> attached;   // the light wholly below the tangent plane: V = 0
-  std::vector<uint8_t> receivers;  // measured pixels on meshes that cast no shadow
+  std::vector<uint8_t> measured;    // all but the pixels whose tangent plane cuts the light
+  std::vector<uint8_t> penumbra;    // the reference's soft pixels, measured ones only
+  std::vector<uint8_t> attached;    // the light wholly below the tangent plane: V = 0
+  std::vector<uint8_t> receivers;   // measured pixels on meshes that cast no shadow
+  std::vector<uint8_t> classified;  // measured geometry outside attached shadow: record "classes"
   bool any_receiver = false;
 };
 
@@ -574,6 +576,10 @@ class Runner {
     for (auto& m : regions.measured) m = m ? 0 : 1;
     apply_attached_shadow(regions.attached, ref.visibility);
     regions.penumbra = mask_and(metrics::penumbra_mask(ref.visibility), regions.measured);
+    regions.classified.resize(regions.measured.size());
+    for (size_t i = 0; i < regions.classified.size(); ++i)
+      regions.classified[i] =
+          regions.measured[i] && !regions.attached[i] && positions.data[i * 4 + 3] != 0.0f ? 1 : 0;
     std::optional<ReferenceRecord> second_record;
     if (second) {
       apply_attached_shadow(regions.attached, second->visibility);
@@ -679,6 +685,8 @@ class Runner {
     const ImageF shaded = shade(frame, visibility);
     r.metrics = measure(visibility, shaded, baseline);
     if (baseline.second) r.second_reference = measure_second(visibility, baseline);
+    r.classes = ClassesRecord{metrics::confusion_matrix(visibility, baseline.ref.visibility,
+                                                        baseline.regions.classified)};
     if (auto warning = noise_warning(*r.metrics, baseline.ref)) r.warnings.push_back(*warning);
     if (o_.write_images) r.images = write_job_images(r.job_id, visibility, shaded, baseline);
     // Metrics and images are kept for inspection, but the job fails.

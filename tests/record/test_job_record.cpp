@@ -172,6 +172,28 @@ TEST(JobRecord, ASecondReferenceRoundTripsAndOtherRecordsLackIt) {
   }
 }
 
+TEST(JobRecord, ClassesRoundTripWithTheirSharesAndBadCountsAreNamed) {
+  JobRecord r = full_record();
+  EXPECT_FALSE(r.to_json().contains("classes"));
+  ClassesRecord classes;
+  classes.counts = {{{90, 10, 0}, {30, 50, 20}, {0, 0, 100}}};
+  r.classes = classes;
+  const json j = r.to_json();
+  EXPECT_EQ(j["classes"]["counts"]["penumbra"], json::array({30, 50, 20}));
+  EXPECT_DOUBLE_EQ(j["classes"]["penumbra_missed"].get<double>(), 0.5);  // 50 of 100
+  EXPECT_DOUBLE_EQ(j["classes"]["penumbra_invented"].get<double>(), 10.0 / 60.0);
+  const JobRecord back = JobRecord::from_json(j);
+  EXPECT_EQ(back.to_json(), j);
+  json bad = j;
+  bad["classes"]["counts"]["umbra"] = json::array({0, -1, 100});
+  try {
+    (void)JobRecord::from_json(bad);
+    FAIL() << "a negative count was read";
+  } catch (const RecordError& e) {
+    EXPECT_NE(std::string(e.what()).find("/classes/counts/umbra"), std::string::npos) << e.what();
+  }
+}
+
 TEST(JobRecord, CoarseTimingHasNoPassDetail) {
   JobRecord r = full_record();
   r.timing->fine.reset();

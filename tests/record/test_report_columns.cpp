@@ -89,9 +89,9 @@ TEST(ReportColumns, SameHeadersInCsvMarkdownAndHtml) {
   const std::vector<std::string> all = headers(true), shown = headers(false);
   EXPECT_EQ(all.front(), "scene");
   EXPECT_EQ(all.back(), "reason");
-  // Scene and resolution head each table instead; the second reference's
-  // columns are there only when a record has one.
-  EXPECT_EQ(all.size(), shown.size() + 2 + 3);
+  // Scene and resolution head each table instead; the classes' and the
+  // second reference's columns are there only when a record has them.
+  EXPECT_EQ(all.size(), shown.size() + 2 + 2 + 3);
 
   const std::string csv = make_csv(records());
   EXPECT_EQ(csv.substr(0, csv.find('\n')), join(all, ","));
@@ -121,8 +121,19 @@ TEST(ReportColumns, CellsAgreeAcrossTheTables) {
   // A skipped job has no figures: empty cells, and its reason in the last column.
   EXPECT_EQ(report_column("rmse").cell(rs[1]), "");
   EXPECT_EQ(report_column("reason").cell(rs[1]), "casters are not closed");
-  EXPECT_NE(csv.find(",skipped,,,,,,,,,,,,,,casters are not closed\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",skipped,,,,,,,,,,,,,,,,casters are not closed\n"), std::string::npos) << csv;
   EXPECT_THROW(report_column("nonsense"), std::out_of_range);
+}
+
+TEST(ReportColumns, PenumbraMissedAndInventedComeFromTheRecordsClasses) {
+  auto rs = records();
+  EXPECT_EQ(report_column("penumbra_missed").cell(rs[0]), "");  // an older record: no classes
+  rs[0].classes = ClassesRecord{};
+  rs[0].classes->counts = {{{90, 10, 0}, {30, 50, 20}, {0, 0, 100}}};
+  EXPECT_EQ(report_column("penumbra_missed").cell(rs[0]), "0.500");
+  EXPECT_EQ(report_column("penumbra_invented").cell(rs[0]), "0.167");
+  const std::string md = make_markdown(rs, "title");
+  EXPECT_NE(md.find("| penumbra_missed | penumbra_invented |"), std::string::npos) << md;
 }
 
 TEST(ReportColumns, SecondReferenceColumnsAppearOnlyWhenARecordHasOne) {

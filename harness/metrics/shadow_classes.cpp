@@ -1,0 +1,28 @@
+#include "metrics/shadow_classes.h"
+
+#include <stdexcept>
+
+namespace sb::metrics {
+
+ShadowClass shadow_class(float v, float eps) {
+  if (v <= eps) return ShadowClass::Umbra;
+  if (v >= 1.0f - eps) return ShadowClass::Lit;
+  return ShadowClass::Penumbra;  // NaN too: neither lit nor umbra
+}
+
+ClassCounts confusion_matrix(const ImageF& technique, const ImageF& reference,
+                             const std::vector<uint8_t>& mask, float eps) {
+  if (!technique.same_shape(reference) || technique.channels != 1 ||
+      mask.size() != technique.pixel_count())
+    throw std::invalid_argument("confusion_matrix: images and mask differ in shape");
+  ClassCounts counts{};
+  for (size_t i = 0; i < mask.size(); ++i) {
+    if (!mask[i]) continue;
+    const auto r = static_cast<size_t>(shadow_class(reference.data[i], eps));
+    const auto t = static_cast<size_t>(shadow_class(technique.data[i], eps));
+    ++counts[r][t];
+  }
+  return counts;
+}
+
+}  // namespace sb::metrics

@@ -1,0 +1,26 @@
+#pragma once
+// Lit, penumbra and umbra: each pixel's class by its visibility, and how a
+// technique's classes meet the reference's (a confusion matrix). A pixel is
+// umbra when V <= eps, lit when V >= 1 − eps, else penumbra: the same eps as
+// penumbra_mask(), so the reference's penumbra here is the `penumbra`
+// region's pixels.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/image.h"
+
+namespace sb::metrics {
+
+enum class ShadowClass { Lit = 0, Penumbra = 1, Umbra = 2 };
+
+ShadowClass shadow_class(float v, float eps = 1e-6f);
+
+// counts[reference class][technique class], over the pixels where `mask` is
+// nonzero (first channel of single-channel images; std::invalid_argument
+// when the shapes differ).
+using ClassCounts = std::array<std::array<std::int64_t, 3>, 3>;
+ClassCounts confusion_matrix(const ImageF& technique, const ImageF& reference,
+                             const std::vector<uint8_t>& mask, float eps = 1e-6f);
+
+}  // namespace sb::metrics
