@@ -75,7 +75,7 @@ float farthest_depth_in_cone(const Bounds& box, const glm::mat4& view, float tan
 
 }  // namespace
 
-LightFrustum fit_light_frustum(const Scene& scene, const glm::vec3& eye) {
+LightFrustum fit_light_frustum(const Scene& scene, const glm::vec3& eye, bool widen_for_light) {
   LightFrustum f;
   f.eye = eye;
   // The image plane is parallel to the light's rectangle (looking along its
@@ -94,8 +94,10 @@ LightFrustum fit_light_frustum(const Scene& scene, const glm::vec3& eye) {
   const glm::mat3 rotate(f.view);
   const glm::vec3 hu = rotate * scene.light.half_u, hv = rotate * scene.light.half_v;
   const glm::vec3 centre_offset = rotate * (scene.light.center - eye);
-  const glm::vec2 reach(std::fabs(hu.x) + std::fabs(hv.x) + std::fabs(centre_offset.x),
-                        std::fabs(hu.y) + std::fabs(hv.y) + std::fabs(centre_offset.y));
+  const glm::vec2 reach =
+      widen_for_light ? glm::vec2(std::fabs(hu.x) + std::fabs(hv.x) + std::fabs(centre_offset.x),
+                                  std::fabs(hu.y) + std::fabs(hv.y) + std::fabs(centre_offset.y))
+                      : glm::vec2(0.0f);
   // The casters' size, not the scene's: a far-reaching ground would make a
   // caster just under the light look as if it reached the light's plane.
   const float scale = std::max(scene.caster_bounds().radius(), 1e-6f);

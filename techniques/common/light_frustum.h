@@ -26,6 +26,11 @@ struct LightFrustum {
 // Throws sb::JobError, naming the mesh, when a caster reaches the plane of the
 // light through `eye` or behind it, or when the casters span nearly 180°
 // from `eye`: a single perspective map cannot cover them.
-LightFrustum fit_light_frustum(const Scene& scene, const glm::vec3& eye);
+// `widen_for_light`: grow the extent by how far the light's rectangle moves
+// each caster's shadow (for maps whose filters reach into the outer
+// penumbra); false fits the casters alone, for hard maps from points that
+// are not on the light (two_map_bound's apexes).
+LightFrustum fit_light_frustum(const Scene& scene, const glm::vec3& eye,
+                               bool widen_for_light = true);
 
 }  // namespace sb::shadow

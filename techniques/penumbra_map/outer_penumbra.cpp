@@ -6,30 +6,29 @@
 // true penumbra; docs/survey_techniques.md measures that.
 //
 // The geometry: one band per silhouette edge (common/silhouette_band.h,
-// drawn straight from the harness's edge buffer), the rectangle holding
-// every point of the map's image plane within r of the projected edge.
-// Per fragment the closest point of the edge gives the distance d (in the
-// image plane, tan units) and the occluder's view depth z_o (1/z is linear
-// along the projected edge). The nearest points are the edge's "sheet" and
-// the capsule's round ends are its vertices' "cones", so both papers'
-// geometry is one shape here. For a receiver at view depth z_r, a straight
-// edge at z_o, lit by a light whose rectangle reaches e(n) along the
-// direction n away from the edge, has its outer penumbra
-//   w = e(n) · (z_r − z_o) / (z_o · z_r)          (image-plane units)
-// wide, exactly for an edge parallel to the light.
+// drawn straight from the harness's edge buffer) on its outer side in the
+// map's image plane, as wide as the widest penumbra the edge can cast. An
+// occluder point at depth z_o casts the light's rectangle scaled by
+// s = 1/z_o − 1/z_r onto a receiver at depth z_r (image-plane units; 1/z is
+// linear along the projected edge), so a fragment's darkness from the edge
+// is 1 − min over the edge's points of g/s, g its light-shaped distance
+// from the point (silhouette_band.h): the light's support function wide
+// along the edge ("sheets"), its rectangle at the ends ("cones"), exact in
+// extent for a straight edge parallel to the light.
 //
 // penumbra_maps: the map holds the receivers too (DepthMap receivers_too),
 // so every texel knows the nearest surface z_r behind the band, and the
-// penumbra buffer keeps, by MAX blending, the largest darkness 1 − d/w over
-// all bands: V = 0 where the hard test shadows, else 1 − that darkness. The
-// band reaches w at the far plane; the map is biased (constant_bias,
-// slope_bias) so that the receivers do not shadow themselves.
+// penumbra buffer keeps, by MAX blending, the largest darkness over all
+// bands: V = 0 where the hard test shadows, else 1 − that darkness. The map
+// is biased (constant_bias, slope_bias) so that the receivers do not shadow
+// themselves.
 //
 // smoothies: the bands are a fixed `width_texels` wide ("smoothies", whose
 // width bounds the penumbra they can show), and the buffer keeps, by depth
-// test, the band nearest the light with its d / e(n) and z_o. The lookup
-// uses the pixel's own depth: V = min(1, d/e(n) · z_o · z_r / (z_r − z_o)),
-// Chan & Durand's α' = α · b / (r − b) up to the units.
+// test, the band nearest the light with its g and z_o at the edge's point of
+// least g·z_o (the ratio for a receiver at infinity). The lookup uses the
+// pixel's own depth: V = min(1, g · z_o · z_r / (z_r − z_o)), Chan &
+// Durand's α' = α · b / (r − b) up to the units.
 //
 // Parameters, defaults and ranges: docs/parameters.md (generated from their
 // declarations by `shadowbench list --markdown`).

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "e2e_util.h"
+#include "metrics/shadow_classes.h"
 
 namespace sb::test {
 namespace {
@@ -171,7 +172,8 @@ TEST(SurveyTechniques, BlurredVisibilityIsAsSoftAtTheFootAsAtTheFarEndWhereTheTr
 // Cases that could divide by zero: a light much larger than the caster, an
 // occluder standing on its receiver (zero penumbra at the contact), and a
 // light of no size (no penumbra at all, where the band techniques must
-// give the hard shadow). Every job is ok and every V finite in [0, 1].
+// give the hard shadow, and two_map_bound's apexes meet at the light).
+// Every job is ok and every V finite in [0, 1].
 TEST(SurveyTechniques, HugeLightsContactAndNoPenumbraStayFinite) {
   const json scenes = json::array({json{{"type", "standing"}, {"params", {{"light_size", 8.0}}}},
                                    json{{"type", "standing"}, {"params", {{"light_size", 0.0}}}}});
@@ -202,6 +204,58 @@ TEST(SurveyTechniques, HugeLightsContactAndNoPenumbraStayFinite) {
     for (size_t i = 0; i < v.data.size(); ++i) differ += v.data[i] != planar_hard.data[i];
     EXPECT_EQ(differ, 0u);
   }
+}
+
+// two_map_bound on the plates edge: where the reference is lit or umbra
+// with no other class within two pixels, the two maps must classify the
+// pixel the same (Shypula's bound holds for an occluder as wide as the
+// extent). The search shading keeps every penumbra pixel strictly inside
+// (0, 1), so the record's classes are the classification's.
+TEST(SurveyTechniques, TwoMapBoundClassifiesLitAndUmbraAwayFromClassBordersOnThePlates) {
+  const json scene = {{"type", "plates"}, {"params", {{"light_size", 1.5}}}};
+  const json techniques =
+      json::array({json{{"name", "two_map_bound"}, {"params", {{"shade", "midpoint"}}}},
+                   json{{"name", "two_map_bound"}, {"params", {{"shade", "search"}}}}});
+  const auto out = run_config(experiment(json::array({scene}), techniques, 320, 240, 256),
+                              "survey_two_map_plates");
+  ASSERT_EQ(out.summary.failed, 0);
+  const ImageF ref = out.reference_visibility();
+  const ImageF midpoint = out.visibility("two_map_bound/shade=midpoint");
+  const ImageF search = out.visibility("two_map_bound/shade=search");
+  using metrics::shadow_class;
+  using metrics::ShadowClass;
+  const auto ref_class = [&](int x, int y) {
+    return shadow_class(ref.data[size_t(y) * size_t(ref.width) + size_t(x)]);
+  };
+  size_t checked = 0, differ = 0, penumbra = 0;
+  for (int y = 2; y < ref.height - 2; ++y)
+    for (int x = 2; x < ref.width - 2; ++x) {
+      const size_t i = size_t(y) * size_t(ref.width) + size_t(x);
+      // The two shadings classify alike, and the search's penumbra stays inside (0, 1).
+      ASSERT_EQ(shadow_class(midpoint.data[i]), shadow_class(search.data[i])) << x << "," << y;
+      if (shadow_class(midpoint.data[i]) == ShadowClass::Penumbra) {
+        ++penumbra;
+        EXPECT_EQ(midpoint.data[i], 0.5f);
+      }
+      const ShadowClass c = ref_class(x, y);
+      if (c == ShadowClass::Penumbra) continue;
+      bool interior = true;
+      for (int dy = -2; dy <= 2 && interior; ++dy)
+        for (int dx = -2; dx <= 2 && interior; ++dx) interior = ref_class(x + dx, y + dy) == c;
+      if (!interior) continue;
+      ++checked;
+      differ += shadow_class(midpoint.data[i]) != c;
+    }
+  const json& classes = out.record("two_map_bound/shade=search")["classes"];
+  std::printf(
+      "%zu lit or umbra pixels away from borders, %zu classified otherwise; %zu penumbra; "
+      "record: %s\n",
+      checked, differ, penumbra, classes.dump().c_str());
+  EXPECT_GT(checked, size_t(ref.pixel_count() / 2));
+  EXPECT_GT(penumbra, 1000u);
+  EXPECT_EQ(differ, 0u);
+  // The record counts the same classes for both shadings.
+  EXPECT_EQ(classes["counts"], out.record("two_map_bound/shade=midpoint")["classes"]["counts"]);
 }
 
 }  // namespace

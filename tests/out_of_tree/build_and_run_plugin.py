@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Builds tests/out_of_tree/blurred_visibility against a shadowbench build
+"""Builds tests/out_of_tree/receiver_blur against a shadowbench build
 folder's plugin API, as a user would (find_package(shadowbench)), then runs
 its config through the driver beside the shipped plugins and checks the plan
 and the records. Run by ctest (tests/out_of_tree/CMakeLists.txt)."""
@@ -35,13 +35,13 @@ def main():
     os.makedirs(plugins)
     for so in glob.glob(os.path.join(a.shipped, "*.so")):
         shutil.copy(so, plugins)
-    shutil.copy(os.path.join(plugin_build, "blurred_visibility.so"), plugins)
+    shutil.copy(os.path.join(plugin_build, "receiver_blur.so"), plugins)
 
     # The plan knows the plugin's own need, and skips what a scene cannot give.
     plan = run("shadowbench plan", a.exe, "plan", a.config, "--plugins", plugins)
-    for expected in ("an orthonormal frame over the planar receiver (blurred_visibility)"
+    for expected in ("an orthonormal frame over the planar receiver (receiver_blur)"
                      " (built when run)",
-                     "skip 96x72  blurred_visibility"):
+                     "skip 96x72  receiver_blur"):
         if expected not in plan:
             sys.exit(f'the plan lacks "{expected}":\n{plan}')
 
@@ -58,16 +58,16 @@ def main():
                 sys.exit(f"{path}: {status}: {r.get('reason')}")
             v = r["metrics"]["visibility"]
             rmse[tech] = (v["all"]["rmse"], v["penumbra"]["rmse"])
-        elif tech == "blurred_visibility" and status != "skipped":
+        elif tech == "receiver_blur" and status != "skipped":
             sys.exit(f"{path}: foliage's alpha-tested leaves should skip it, got {status}")
     print("RMSE (all, penumbra):", rmse)
-    if "blurred_visibility" not in rmse or "none" not in rmse:
+    if "receiver_blur" not in rmse or "none" not in rmse:
         sys.exit("no record of the plugin, or of none, on the sphere grid")
     # A real shadow: far below no shadows at all, over every pixel and the
     # penumbra alike.
     for i, region in enumerate(("all", "penumbra")):
-        if not rmse["blurred_visibility"][i] < 0.5 * rmse["none"][i]:
-            sys.exit(f"blurred_visibility's {region} RMSE {rmse['blurred_visibility'][i]} is not "
+        if not rmse["receiver_blur"][i] < 0.5 * rmse["none"][i]:
+            sys.exit(f"receiver_blur's {region} RMSE {rmse['receiver_blur'][i]} is not "
                      f"under half of no shadows' ({rmse['none'][i]})")
 
 

@@ -11,7 +11,7 @@ namespace blurred {
 sb::NeedProvider receiver_basis_provider() {
   sb::NeedProvider p;
   p.name = kReceiverBasis;
-  p.summary = "an orthonormal frame over the planar receiver (blurred_visibility)";
+  p.summary = "an orthonormal frame over the planar receiver (receiver_blur)";
   p.requires_needs = {sb::need::kPlanarReceiver};
   // Run: only when a technique that asked will run. A scene without a
   // planar receiver already skipped it through planar_receiver.

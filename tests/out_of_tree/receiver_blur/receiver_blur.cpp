@@ -1,4 +1,4 @@
-// blurred_visibility — hard shadows projected onto the planar receiver from
+// receiver_blur — hard shadows projected onto the planar receiver from
 // the light's centre (Blinn's matrix), then blurred by a fixed world-space
 // width read from a mip chain that a compute pass builds every frame.
 //
@@ -102,10 +102,10 @@ class BlurredVisibility final : public sb::Technique {
 
   void prepare(const sb::FrameInputs& in) override {
     occlusion_program_ =
-        sb::gl::Program("blurred_visibility occlusion", {kOcclusionVertex, "", kOcclusionFragment});
-    mip_program_ = sb::gl::Program::compute("blurred_visibility mip chain", kMipCompute);
+        sb::gl::Program("receiver_blur occlusion", {kOcclusionVertex, "", kOcclusionFragment});
+    mip_program_ = sb::gl::Program::compute("receiver_blur mip chain", kMipCompute);
     lookup_program_ =
-        sb::gl::Program("blurred_visibility lookup", {kFullscreenVertex, "", kLookupFragment});
+        sb::gl::Program("receiver_blur lookup", {kFullscreenVertex, "", kLookupFragment});
     levels_ = 1 + int(std::floor(std::log2(double(size_))));
     GLuint tex = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &tex);
@@ -193,8 +193,8 @@ class BlurredVisibility final : public sb::Technique {
 SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
   registry.add_provider(blurred::receiver_basis_provider());
   registry.add(
-      {"blurred_visibility",
-       "blurred_visibility",
+      {"receiver_blur",
+       "receiver_blur",
        "hard shadow projected onto the planar receiver, blurred through a compute-built "
        "mip chain (plugin demo; the receiver only)",
        sb::Needs{sb::need::kPlanarReceiver, sb::need::kOpaqueCasters, blurred::kReceiverBasis},
