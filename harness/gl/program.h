@@ -50,6 +50,12 @@ class Program {
   // A `float u[N]` uniform array from its first element on.
   void set(const std::string& u, const std::vector<float>& values) const;
   void set(const std::string& u, const std::vector<glm::vec2>& values) const;
+  // set() when the uniform is active, nothing when the compiler removed it:
+  // for programs assembled from shared pieces that not every variant reads.
+  template <class T>
+  void set_if_active(const std::string& u, const T& value) const {
+    if (has_uniform(u)) set(u, value);
+  }
 
  private:
   Program(std::string name, const std::vector<std::pair<GLenum, std::string>>& stages);

@@ -95,11 +95,23 @@ float light_ratio(vec2 p, vec2 a, vec2 b, vec2 hu, vec2 hv, float sa, float sb, 
   }
   return best;
 }
+uniform vec4 image_from_ndc;  // image = (ndc + zw) / xy
+uniform float map_size;
+vec2 fragment_image() {
+  return (2.0 * gl_FragCoord.xy / map_size - 1.0 + image_from_ndc.zw) / image_from_ndc.xy;
+}
 float light_distance_at(vec2 p, vec2 a, vec2 b, vec2 hu, vec2 hv, float t) {
   vec2 v = p - mix(a, b, t);
   return max(abs(dot(v, hu)) / dot(hu, hu), abs(dot(v, hv)) / dot(hv, hv));
 }
 )";
+
+void set_fragment_image_uniforms(const gl::Program& program, const LightFrustum& frustum,
+                                 int size) {
+  const glm::mat4& p = frustum.projection;  // ndc.x = p[0][0]·image.x − p[2][0] (off axis)
+  program.set_if_active("image_from_ndc", glm::vec4(p[0][0], p[1][1], p[2][0], p[2][1]));
+  program.set_if_active("map_size", float(size));
+}
 
 void draw_silhouette_bands(const FrameInputs& in) {
   const auto& edges = in.derived->get<SilhouetteEdges>(need::kSilhouetteEdges);

@@ -6,7 +6,9 @@
 // from the light's centre and emits the two triangles of a quad around it,
 // or a degenerate triangle when it is not. Nothing is built on the CPU and
 // nothing is uploaded per frame.
+#include "common/light_frustum.h"
 #include "gl/objects.h"
+#include "gl/program.h"
 #include "plugin/technique.h"
 
 namespace sb::shadow {
@@ -40,7 +42,15 @@ extern const char* const kSilhouetteBandVertexGlsl;
 //       light's support function wide along it ("sheets"), as they must be.
 //   float light_distance_at(vec2 p, vec2 a, vec2 b, vec2 hu, vec2 hv, float t)
 //       g(t) alone
+//   vec2 fragment_image()   the fragment's point in the map's image plane
+//       (tan units), from gl_FragCoord rather than a varying: across a wide
+//       band an interpolated varying loses the precision a texel needs.
+//       Its uniforms are set by set_fragment_image_uniforms().
 extern const char* const kSilhouetteBandFragmentGlsl;
+
+// The uniforms of fragment_image() for a map of `size` texels drawn with
+// `frustum`'s (possibly off-axis) projection.
+void set_fragment_image_uniforms(const gl::Program& program, const LightFrustum& frustum, int size);
 
 // Binds the edge buffer and draws 6 vertices per edge with the bound program.
 void draw_silhouette_bands(const FrameInputs& in);

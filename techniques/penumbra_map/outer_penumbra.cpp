@@ -90,17 +90,13 @@ uniform mat4 light_projection;
 uniform vec2 light_hu;
 uniform vec2 light_hv;
 uniform float band_width;
-uniform vec4 image_from_ndc;  // image = (ndc + offset) / scale: xy scale, zw offset
-uniform float map_size;
 flat in vec2 a_image, b_image;
 flat in vec2 inverse_depths;
 flat in vec2 outward;
-// The fragment in the map's image plane, from its own coordinates, not a
-// varying (across a wide band an interpolated varying loses the precision a
-// texel's distance needs); fragments on the occluder's side of the edge's
-// line are discarded.
+// The fragment in the map's image plane; fragments on the occluder's side
+// of the edge's line are discarded.
 vec2 band_image() {
-  vec2 image = (2.0 * gl_FragCoord.xy / map_size - 1.0 + image_from_ndc.zw) / image_from_ndc.xy;
+  vec2 image = fragment_image();
   if (dot(image - a_image, outward) < 0.0) discard;
   return image;
 }
@@ -234,22 +230,17 @@ class OuterPenumbra final : public Technique {
     const AreaLight& light = in.scene->light;
     const glm::mat3 rotation(frustum.view);
     // Each variant's shaders leave some of these out.
-    const auto set = [this](const std::string& name, const auto& value) {
-      if (band_.has_uniform(name)) band_.set(name, value);
-    };
     band_.use();
-    set("light_view", frustum.view);
-    set("light_projection", frustum.projection);
-    set("light_center", light.center);
-    set("light_depth_range", glm::vec2(frustum.near_plane, frustum.far_plane));
-    set("light_hu", glm::vec2(rotation * light.half_u));
-    set("light_hv", glm::vec2(rotation * light.half_v));
-    set("fixed_width", kind_ == Kind::Smoothie ? 1 : 0);
-    const glm::mat4& p = frustum.projection;  // ndc.x = p[0][0]·image.x − p[2][0] (off axis)
-    set("image_from_ndc", glm::vec4(p[0][0], p[1][1], p[2][0], p[2][1]));
-    set("map_size", float(settings_.size));
+    band_.set_if_active("light_view", frustum.view);
+    band_.set_if_active("light_projection", frustum.projection);
+    band_.set_if_active("light_center", light.center);
+    band_.set_if_active("light_depth_range", glm::vec2(frustum.near_plane, frustum.far_plane));
+    band_.set_if_active("light_hu", glm::vec2(rotation * light.half_u));
+    band_.set_if_active("light_hv", glm::vec2(rotation * light.half_v));
+    band_.set_if_active("fixed_width", kind_ == Kind::Smoothie ? 1 : 0);
+    set_fragment_image_uniforms(band_, frustum, settings_.size);
     // Smoothies: the width in texels, in the image plane's units.
-    set("band_width", width_texels_ * frustum.texel_per_distance(settings_.size));
+    band_.set_if_active("band_width", width_texels_ * frustum.texel_per_distance(settings_.size));
   }
 
   Kind kind_;

@@ -16,9 +16,14 @@
 //               (d_in, the way into the umbra), in world units at the
 //               receiver; V = d_in / (d_in + d_out), each at least half a
 //               tap, so that a penumbra pixel never reads 0 or 1.
+//   "gradient"  Shypula's option 2, a gradient between the two apexes'
+//               silhouettes (penumbra_buffer.h): V = 1 − d/Δ, d the distance
+//               in the penumbra apex's image to the nearest silhouette edge
+//               (the outer boundary), Δ how far inside it the umbra apex's
+//               shadow of that edge falls at the receiver's depth (the inner
+//               boundary); kept inside [0.001, 0.999].
 //   "midpoint"  V = ½ on every penumbra pixel: the classification alone.
-// The silhouette-gradient "penumbra buffer" (option 2) and back-projection
-// (option 1) are not built yet.
+// Back-projection of edges (option 1) is not built.
 //
 // Without an umbra apex (a light at least as wide as the casters' extent on
 // an axis) there is no umbra map: nothing is umbra, every pixel hidden from
@@ -42,6 +47,7 @@
 #include "gl/debug.h"
 #include "plugin/registry.h"
 #include "two_map/apex_placement.h"
+#include "two_map/penumbra_buffer.h"
 
 namespace sb::shadow {
 namespace {
@@ -53,10 +59,9 @@ layout(binding = 4) uniform sampler2DShadow umbra_map;
 uniform mat4 umbra_view_projection;
 uniform mat4 umbra_view;
 uniform bool has_umbra_map;
-uniform bool search;
+uniform int shade;  // 0: search, 1: gradient, 2: midpoint
 uniform int search_radius;
-uniform vec3 light_centre;
-uniform vec3 light_axis;
+layout(binding = 5) uniform sampler2D penumbra_buffer;
 uniform float caster_depth;  // D, from the light's centre along its axis
 uniform float light_side;    // the mean of the light's sides
 uniform vec2 world_per_uv;   // per unit of depth from each apex: penumbra map, umbra map
@@ -76,8 +81,19 @@ float lit_fraction(vec3 t) {
   bool hidden_u = in_umbra_map && umbra_tap(tu, gu, vec2(0.0)) < 0.5;
   if (!hidden_p && !hidden_u) return 1.0;
   if (hidden_p && hidden_u) return 0.0;
-  if (!search) return 0.5;
+  if (shade == 2) return 0.5;
   float zr = dot(receiver_world - light_centre, light_axis);
+  if (shade == 1) {
+    // The nearest silhouette edge's point q and its distance d in the
+    // penumbra apex's image; E's shadow of q sets the penumbra's width there.
+    // No band reached: the pixel lies farther inside than any inner
+    // boundary on the farthest receiver, next to the umbra.
+    vec4 b = texture(penumbra_buffer, t.xy);
+    if (b.w < 0.0) return 1e-3;
+    float width = length(inner_image(b.xyz, zr) - apex_image(b.xyz));
+    if (!(width > 0.0)) return 0.5;
+    return clamp(1.0 - b.w / width, 1e-3, 1.0 - 1e-3);
+  }
   float reach = light_side * max(zr - caster_depth, 0.0) / caster_depth;
   if (!(reach > 0.0)) return 0.5;
   // World units at the receiver per uv of each map (their image planes are parallel).
@@ -99,21 +115,30 @@ float lit_fraction(vec3 t) {
 }
 )";
 
+enum class Shade { Search = 0, Gradient = 1, Midpoint = 2 };
+
+Shade shade_from_string(const std::string& s) {
+  if (s == "search") return Shade::Search;
+  if (s == "gradient") return Shade::Gradient;
+  return Shade::Midpoint;
+}
+
 class TwoMapBound final : public Technique {
  public:
   explicit TwoMapBound(const Params& p)
       : settings_(depth_map_settings(p)),
-        search_(p.get_string("shade") == "search"),
+        shade_(shade_from_string(p.get_string("shade"))),
         search_radius_(p.get_int("search_taps") / 2) {}
 
   void prepare(const FrameInputs& /*in*/) override {
     penumbra_map_ = DepthMap(settings_.size, settings_.depth_format);
     umbra_map_ = DepthMap(settings_.size, settings_.depth_format);
-    lookup_ = MapLookupPass("two_map_bound_lookup", kTwoMapLookup);
+    lookup_ = MapLookupPass("two_map_bound_lookup", std::string(kInnerImageGlsl) + kTwoMapLookup);
+    if (shade_ == Shade::Gradient) penumbra_buffer_ = PenumbraBuffer(settings_.size);
     compare_sampler_ = gl::make_sampler(/*linear=*/false, /*compare=*/true, /*border=*/1.0f);
     const gl::Program& program = lookup_.program();
-    program.set("search", search_ ? 1 : 0);
-    if (program.has_uniform("search_radius")) program.set("search_radius", search_radius_);
+    program.set("shade", static_cast<int>(shade_));
+    program.set_if_active("search_radius", search_radius_);
     gl::throw_if_errors("two_map_bound prepare");
   }
 
@@ -132,21 +157,30 @@ class TwoMapBound final : public Technique {
         umbra_map_.render(*in.gpu, umbra, settings_.cull, settings_.bias);
       }
     }
+    // Without an umbra apex the inner boundary is the light centre's shadow.
+    const glm::vec3 inner_apex = apexes.has_umbra_apex ? apexes.umbra_apex : scene.light.center;
+    if (shade_ == Shade::Gradient) {
+      auto pass = timer.scope("penumbra_buffer");
+      penumbra_buffer_.render(in, penumbra, inner_apex);
+    }
     auto pass = timer.scope("lookup");
     const gl::Program& program = lookup_.program();
     const auto set = [&program](const std::string& name, const auto& value) {
-      if (program.has_uniform(name)) program.set(name, value);
+      program.set_if_active(name, value);
     };
     set("umbra_view_projection", umbra.view_projection);
     set("umbra_view", umbra.view);
     set("has_umbra_map", apexes.has_umbra_apex ? 1 : 0);
     set("light_centre", scene.light.center);
     set("light_axis", frame.n);
+    set("apex_view", penumbra.view);
+    set("inner_apex", inner_apex);
     set("caster_depth", apexes.caster_depth);
     set("light_side", frame.half_width + frame.half_height);
     set("world_per_uv", glm::vec2(2.0f * penumbra.tan_half_fov, 2.0f * umbra.tan_half_fov));
     glBindTextureUnit(4, umbra_map_.texture());
     glBindSampler(4, compare_sampler_.get());
+    if (shade_ == Shade::Gradient) glBindTextureUnit(5, penumbra_buffer_.texture());
     // The horizon test (and the normal offset) from the light's centre, as
     // every map technique makes it, not from the penumbra apex.
     LightFrustum centred = penumbra;
@@ -157,11 +191,12 @@ class TwoMapBound final : public Technique {
 
  private:
   DepthMapSettings settings_;
-  bool search_;
+  Shade shade_;
   int search_radius_;
   DepthMap penumbra_map_;
   DepthMap umbra_map_;
   MapLookupPass lookup_;
+  PenumbraBuffer penumbra_buffer_;
   gl::Sampler compare_sampler_;
 };
 
@@ -169,8 +204,9 @@ class TwoMapBound final : public Technique {
 
 TechniqueInfo two_map_bound_info() {
   std::vector<ParamSpec> params = {
-      choice_param("shade", "search", {"search", "midpoint"},
+      choice_param("shade", "search", {"search", "gradient", "midpoint"},
                    "penumbra pixels: search: the texel search in both maps (Shypula's option 3); "
+                   "gradient: between the two apexes' silhouettes (option 2, a penumbra buffer); "
                    "midpoint: V = 1/2 (the classification alone)"),
       odd(int_param("search_taps", 7, 3, 31,
                     "search grid side (odd), spread over the widest penumbra at the receiver")),
@@ -178,12 +214,12 @@ TechniqueInfo two_map_bound_info() {
   // On by default: the search's taps reach far from the pixel (as PCSS's).
   params.back().default_value = true;
   for (auto& p : depth_map_params(2048)) params.push_back(std::move(p));
-  return {"two_map_bound",
-          "two_map",
+  return {"two_map_bound", "two_map",
           "Shypula's two-map penumbra bound: hard maps from the penumbra and umbra frusta's "
-          "apexes classify lit, umbra and penumbra; the penumbra is shaded by a texel search",
-          Needs{need::kCasterClosedness},
-          std::move(params),
+          "apexes classify lit, umbra and penumbra; the penumbra is shaded by a texel search or a "
+          "silhouette gradient",
+          // The edges for the gradient's penumbra buffer.
+          Needs{need::kCasterClosedness, need::kSilhouetteEdges}, std::move(params),
           [](const Params& p) { return std::make_unique<TwoMapBound>(p); }};
 }
 

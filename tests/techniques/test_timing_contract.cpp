@@ -36,7 +36,7 @@ namespace {
 constexpr int kWidth = 96;
 constexpr int kHeight = 72;
 
-// Every registered technique with its defaults, then quick.json's variants.
+// Every registered technique with its defaults, some modes, then quick.json's variants.
 std::vector<TechniqueVariant> variants_under_test(const Registry& plugins) {
   nlohmann::json names = nlohmann::json::array();
   for (const TechniqueInfo& t : plugins.all()) names.push_back(t.name);
@@ -45,6 +45,17 @@ std::vector<TechniqueVariant> variants_under_test(const Registry& plugins) {
                                    {"techniques", names},
                                    {"resolutions", {{kWidth, kHeight}}}};
   std::vector<TechniqueVariant> out = parse_experiment(defaults, "<defaults>", plugins).techniques;
+  // Modes that draw passes of their own, which neither the defaults nor
+  // quick.json reach.
+  const nlohmann::json modes = {
+      {"name", "modes"},
+      {"scenes", {{{"type", "sphere_grid"}}}},
+      {"techniques",
+       {{{"name", "blurred_visibility"}, {"params", {{"space", "light"}}}},
+        {{"name", "two_map_bound"}, {"params", {{"shade", {"gradient", "midpoint"}}}}}}},
+      {"resolutions", {{kWidth, kHeight}}}};
+  const auto extra = parse_experiment(modes, "<modes>", plugins).techniques;
+  out.insert(out.end(), extra.begin(), extra.end());
   const Experiment quick =
       load_experiment(std::string(SHADOWBENCH_SOURCE_DIR) + "/configs/quick.json", plugins);
   out.insert(out.end(), quick.techniques.begin(), quick.techniques.end());
