@@ -146,21 +146,21 @@ class Plateaus final : public Technique {
     glBlendEquation(GL_MIN);  // the darkest of the hard shadow and every band
     glBindTextureUnit(0, in.gbuffer_position);
     // A light at or below the plane lights nothing on the casters' side.
-    const bool above = glm::dot(in.receiver_plane, glm::vec4(light.center, 1.0f)) > 0.0f;
-    if (above) {
-      auto pass = timer.scope("hard_shadow");
-      glEnable(GL_CLIP_DISTANCE0);
-      project_.use();
-      project_.set("view_projection", in.view_projection);
-      project_.set("receiver_plane", in.receiver_plane);
-      project_.set("on_plane_tolerance", tolerance_);
-      project_.set("darkening_value", 0.0f);
-      project_.set("shadow_projection", planar::planar_projection(in.receiver_plane, light.center));
-      glDisable(GL_CULL_FACE);
-      in.gpu->draw_casters([](const DrawInfo&) {});
-      glDisable(GL_CLIP_DISTANCE0);
-    }
-    if (above) {
+    if (glm::dot(in.receiver_plane, glm::vec4(light.center, 1.0f)) > 0.0f) {
+      {
+        auto pass = timer.scope("hard_shadow");
+        glEnable(GL_CLIP_DISTANCE0);
+        project_.use();
+        project_.set("view_projection", in.view_projection);
+        project_.set("receiver_plane", in.receiver_plane);
+        project_.set("on_plane_tolerance", tolerance_);
+        project_.set("darkening_value", 0.0f);
+        project_.set("shadow_projection",
+                     planar::planar_projection(in.receiver_plane, light.center));
+        glDisable(GL_CULL_FACE);
+        in.gpu->draw_casters([](const DrawInfo&) {});
+        glDisable(GL_CLIP_DISTANCE0);
+      }
       auto pass = timer.scope("plateaus");
       const glm::vec2 hu = on_plane(light.half_u), hv = on_plane(light.half_v);
       // A light without area, or seen edge-on from the plane, has no penumbra here.
