@@ -6,6 +6,7 @@
 #include "scenes/foliage.h"
 #include "scenes/gltf_scene_type.h"
 #include "scenes/jeep.h"
+#include "scenes/long_ground.h"
 #include "scenes/plates.h"
 #include "scenes/sphere_grid.h"
 #include "scenes/standing.h"
@@ -15,9 +16,14 @@ namespace sb {
 
 namespace {
 std::vector<SceneType>& registry() {
-  static std::vector<SceneType> types = {
-      sphere_grid_scene_type(),     foliage_scene_type(),  jeep_scene_type(), plates_scene_type(),
-      stress_geometry_scene_type(), standing_scene_type(), gltf_scene_type()};
+  static std::vector<SceneType> types = {sphere_grid_scene_type(),
+                                         foliage_scene_type(),
+                                         jeep_scene_type(),
+                                         plates_scene_type(),
+                                         stress_geometry_scene_type(),
+                                         standing_scene_type(),
+                                         long_ground_scene_type(),
+                                         gltf_scene_type()};
   return types;
 }
 }  // namespace

@@ -365,7 +365,7 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
   r.object(doc, "", "an experiment");
   r.only_keys(doc, "",
               {"name", "description", "scenes", "techniques", "resolutions", "frames", "reference",
-               "stability"});
+               "stability", "metrics"});
   check_job_count(r, doc, limits);
   Experiment e;
   e.file = file;
@@ -563,6 +563,12 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
       c.stiff_threshold = r.number(st["stiff_threshold"], "/stability/stiff_threshold", 0, 1e6);
     if (st.contains("max_rmse")) c.max_rmse = r.number(st["max_rmse"], "/stability/max_rmse", 0, 1);
     e.stability = c;
+  }
+  if (doc.contains("metrics")) {
+    const json& m = r.object(doc["metrics"], "/metrics", "metric settings");
+    r.only_keys(m, "/metrics", {"distance_thirds"});
+    if (m.contains("distance_thirds"))
+      e.distance_thirds = r.boolean(m["distance_thirds"], "/metrics/distance_thirds");
   }
   return e;
 }

@@ -95,6 +95,10 @@ struct Experiment {
   std::optional<TechniqueVariant> control;
   ReferenceConfig reference;
   std::optional<StabilityConfig> stability;
+  // "metrics": {"distance_thirds": true}: the visibility's error also over
+  // the near, middle and far third of the camera's distances
+  // (metrics/distance_thirds.h), for perspective aliasing.
+  bool distance_thirds = false;
   std::string content_hash;  // of the file's bytes
   // The registry the techniques came from: the planner finds the providers
   // of plugins' own needs in it (plugin/needs.h).

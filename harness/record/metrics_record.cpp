@@ -72,6 +72,9 @@ json ImageMetrics::to_json() const {
             {"penumbra", penumbra.to_json()},
             {"soft_union", soft_union.to_json()}};
   if (receivers) j["receivers"] = receivers->to_json();
+  if (near_third) j["near_third"] = near_third->to_json();
+  if (middle_third) j["middle_third"] = middle_third->to_json();
+  if (far_third) j["far_third"] = far_third->to_json();
   return j;
 }
 
@@ -80,6 +83,9 @@ ImageMetrics ImageMetrics::from_json(const Fields& f) {
                  RegionStats::from_json(f.object("penumbra")),
                  RegionStats::from_json(f.object("soft_union"))};
   if (f.has("receivers")) m.receivers = RegionStats::from_json(f.object("receivers"));
+  if (f.has("near_third")) m.near_third = RegionStats::from_json(f.object("near_third"));
+  if (f.has("middle_third")) m.middle_third = RegionStats::from_json(f.object("middle_third"));
+  if (f.has("far_third")) m.far_third = RegionStats::from_json(f.object("far_third"));
   return m;
 }
 
@@ -113,6 +119,12 @@ std::optional<MetricPath> MetricPath::parse(const std::string& dotted) {
     p.region_ = [](const ImageMetrics& m) { return &m.soft_union; };
   else if (region == "receivers")
     p.region_ = [](const ImageMetrics& m) { return m.receivers ? &*m.receivers : nullptr; };
+  else if (region == "near_third")
+    p.region_ = [](const ImageMetrics& m) { return m.near_third ? &*m.near_third : nullptr; };
+  else if (region == "middle_third")
+    p.region_ = [](const ImageMetrics& m) { return m.middle_third ? &*m.middle_third : nullptr; };
+  else if (region == "far_third")
+    p.region_ = [](const ImageMetrics& m) { return m.far_third ? &*m.far_third : nullptr; };
   bool known = false;
   for (const auto& k : kNumberKeys) known = known || p.key_ == k.key;
   if (p.image_ == nullptr || p.region_ == nullptr || !known) return std::nullopt;

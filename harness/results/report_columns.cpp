@@ -52,6 +52,14 @@ std::optional<double> mc_noise_share(const JobRecord& r) {
   return (mc * mc - exact * exact) / (mc * mc);
 }
 
+// The visibility's RMSE over one distance third (absent unless the config
+// asked for them).
+template <std::optional<RegionStats> ImageMetrics::*Third>
+std::optional<double> third_rmse(const JobRecord& r) {
+  if (!r.metrics || !(r.metrics->visibility.*Third)) return std::nullopt;
+  return (r.metrics->visibility.*Third)->rmse;
+}
+
 // The record's lit / penumbra / umbra confusion against the reference.
 std::optional<double> penumbra_missed(const JobRecord& r) {
   return r.classes ? r.classes->penumbra_missed() : std::nullopt;
@@ -99,6 +107,9 @@ std::vector<ReportColumn> make_columns() {
       number("ssim", visibility<&I::all, &S::ssim>, "%.4f"),
       number("frac_over_0.05", visibility<&I::all, &S::frac_over_005>, "%.4f"),
       number("penumbra_rmse", visibility<&I::penumbra, &S::rmse>, "%.5f"),
+      optional(number("near_rmse", third_rmse<&I::near_third>, "%.5f")),
+      optional(number("middle_rmse", third_rmse<&I::middle_third>, "%.5f")),
+      optional(number("far_rmse", third_rmse<&I::far_third>, "%.5f")),
       optional(number("penumbra_missed", penumbra_missed, "%.3f")),
       optional(number("penumbra_invented", penumbra_invented, "%.3f")),
       optional(number("second_rmse", second<&I::all, &S::rmse>, "%.5f")),

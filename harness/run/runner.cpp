@@ -15,6 +15,7 @@
 #include "gl/debug.h"
 #include "gl/gl.h"
 #include "gl/gpu_scene.h"
+#include "metrics/distance_thirds.h"
 #include "metrics/image_io.h"
 #include "metrics/light_horizon.h"
 #include "metrics/metrics.h"
@@ -130,6 +131,8 @@ struct Regions {
   std::vector<uint8_t> receivers;   // measured pixels on meshes that cast no shadow
   std::vector<uint8_t> classified;  // measured geometry outside attached shadow: record "classes"
   bool any_receiver = false;
+  // metrics.distance_thirds: the measured pixels by distance from the camera.
+  std::optional<std::array<std::vector<uint8_t>, 3>> distance_thirds;
 };
 
 // What every job of one (scene, resolution) draws with.
@@ -183,8 +186,16 @@ ImageMetrics compare_images(const ImageF& test, const ImageF& ref, const Regions
 MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const Baseline& b) {
   const std::vector<uint8_t> soft_union =
       mask_and(metrics::soft_union_mask(visibility, b.ref.visibility), b.regions.measured);
-  return {compare_images(visibility, b.ref.visibility, b.regions, soft_union),
-          compare_images(shaded, b.shaded, b.regions, soft_union)};
+  MetricsRecord m{compare_images(visibility, b.ref.visibility, b.regions, soft_union),
+                  compare_images(shaded, b.shaded, b.regions, soft_union)};
+  if (b.regions.distance_thirds) {
+    const ImageF t = with_unmeasured_from(visibility, b.ref.visibility, b.regions.measured);
+    const auto& thirds = *b.regions.distance_thirds;
+    m.visibility.near_third = region_stats(metrics::compare(t, b.ref.visibility, &thirds[0]));
+    m.visibility.middle_third = region_stats(metrics::compare(t, b.ref.visibility, &thirds[1]));
+    m.visibility.far_third = region_stats(metrics::compare(t, b.ref.visibility, &thirds[2]));
+  }
+  return m;
 }
 
 // The visibility's error against the second reference, over the same
@@ -361,6 +372,7 @@ class Runner {
                                                                  e_.reference.seed, embree_isa_})},
                  {"backend", gl::to_string(o_.backend)}};
     if (e_.stability) spec["stability"] = {e_.stability->to_json(), sv.max_rmse.value_or(-1.0)};
+    if (e_.distance_thirds) spec["distance_thirds"] = true;
     if (e_.reference.second_exact)
       spec["second_reference"] =
           *e_.reference.second_exact
@@ -580,6 +592,9 @@ class Runner {
     for (size_t i = 0; i < regions.classified.size(); ++i)
       regions.classified[i] =
           regions.measured[i] && !regions.attached[i] && positions.data[i * 4 + 3] != 0.0f ? 1 : 0;
+    if (e_.distance_thirds)
+      regions.distance_thirds =
+          metrics::distance_thirds(positions, st.scene.camera.eye, regions.measured);
     std::optional<ReferenceRecord> second_record;
     if (second) {
       apply_attached_shadow(regions.attached, second->visibility);

@@ -80,7 +80,8 @@ DepthMapSettings depth_map_settings(const Params& p) {
     s.receiver_plane = p.get_bool("receiver_plane_bias");
   s.bias = {p.get_float("constant_bias"), p.get_float("slope_bias")};
   s.cull = cull_mode_from_string(p.get_string("cull"));
-  s.normal_offset = p.get_float("normal_offset");
+  // Warped maps have no single texel size to offset by: they leave it out.
+  if (p.json().contains("normal_offset")) s.normal_offset = p.get_float("normal_offset");
   return s;
 }
 

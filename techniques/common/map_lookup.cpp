@@ -41,10 +41,13 @@ void main() {
   if (pos.w == 0.0) { visibility = weight; return; }
   receiver_normal = texelFetch(normal_tex, p, 0).xyz;
   receiver_world = offset_world(pos.xyz, receiver_normal, light_point, normal_offset);
-  // Behind the light's eye plane (w <= 0) the projection mirrors a point into
-  // the map. Every caster lies in front of that plane, and the segment from
-  // such a point to the light's centre does not: it is unshadowed.
-  bool behind_light = (light_view_projection * vec4(receiver_world, 1.0)).w <= 0.0;
+  // Behind the light's eye plane the projection mirrors a point into the map
+  // (w <= 0; a warped map's w may keep its sign there, hence the plane test
+  // in the light's own view too). Every caster lies in front of that plane,
+  // and the segment from such a point to the light's centre does not: it is
+  // unshadowed.
+  bool behind_light = (light_view_projection * vec4(receiver_world, 1.0)).w <= 0.0 ||
+                      (light_view * vec4(receiver_world, 1.0)).z >= 0.0;
   vec3 t = light_coords(light_view_projection, receiver_world);
   // Outside the map's cone nothing stands between the point and the light's
   // centre: the cone holds every caster.
@@ -82,7 +85,7 @@ void MapLookupPass::draw(const FrameInputs& in, const LightFrustum& frustum,
   if (program_.has_uniform("receiver_plane"))
     program_.set("receiver_plane", settings.receiver_plane ? 1 : 0);
   program_.set("weight", weight);
-  if (program_.has_uniform("light_view")) program_.set("light_view", frustum.view);
+  program_.set("light_view", frustum.view);
   if (program_.has_uniform("light_depth_range"))
     program_.set("light_depth_range", glm::vec2(frustum.near_plane, frustum.far_plane));
   glBindTextureUnit(0, in.gbuffer_position);
@@ -110,11 +113,15 @@ void SingleMapTechnique::prepare(const FrameInputs& /*in*/) {
   gl::throw_if_errors(name_ + " prepare");
 }
 
+LightFrustum SingleMapTechnique::fit(const FrameInputs& in) const {
+  return fit_light_frustum(*in.scene, in.scene->light.center);
+}
+
 void SingleMapTechnique::render(const FrameInputs& in, gl::PassTimer& timer) {
   LightFrustum frustum;
   {
     auto pass = timer.scope("shadow_map");
-    frustum = fit_light_frustum(*in.scene, in.scene->light.center);
+    frustum = fit(in);
     map_.render(*in.gpu, frustum, settings_.cull, settings_.bias);
   }
   auto pass = timer.scope("lookup");

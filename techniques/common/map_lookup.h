@@ -63,6 +63,9 @@ class SingleMapTechnique : public Technique {
   // Those that depend on the light or its frustum: set in every frame.
   virtual void set_light_uniforms(const gl::Program& /*lookup*/, const LightFrustum& /*frustum*/,
                                   const Scene& /*scene*/) const {}
+  // The map's projection, fitted in every frame (timed, in the map's pass):
+  // the casters seen from the light's centre, or a view-dependent warp.
+  virtual LightFrustum fit(const FrameInputs& in) const;
   const DepthMapSettings& settings() const { return settings_; }
 
  private:

@@ -8,4 +8,6 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
   registry.add(sb::shadow::pcf_jitter_info());
   registry.add(sb::shadow::pcss_info());
   registry.add(sb::shadow::blurred_visibility_info());
+  registry.add(sb::shadow::psm_info());
+  registry.add(sb::shadow::lispsm_info());
 }

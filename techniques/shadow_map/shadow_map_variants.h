@@ -8,4 +8,6 @@ TechniqueInfo pcf_gauss_info();
 TechniqueInfo pcf_jitter_info();
 TechniqueInfo pcss_info();
 TechniqueInfo blurred_visibility_info();
+TechniqueInfo psm_info();
+TechniqueInfo lispsm_info();
 }  // namespace sb::shadow

@@ -146,6 +146,22 @@ TEST(JobRecord, TheReceiversRegionRoundTripsAndOlderRecordsLackIt) {
   EXPECT_FALSE(MetricPath::parse("visibility.ground.rmse").has_value());
 }
 
+TEST(JobRecord, TheDistanceThirdsRoundTripAndRecordsWithoutThemReadNaN) {
+  JobRecord r = full_record();
+  r.metrics->visibility.near_third = region(0.25);
+  r.metrics->visibility.middle_third = region(0.125);
+  r.metrics->visibility.far_third = region(0.0625);
+  const json j = r.to_json();
+  EXPECT_EQ(j["metrics"]["visibility"]["near_third"]["rmse"], 0.25);
+  EXPECT_EQ(j["metrics"]["visibility"]["far_third"]["rmse"], 0.0625);
+  const JobRecord back = JobRecord::from_json(j);
+  EXPECT_EQ(back.to_json(), j);
+  EXPECT_EQ(MetricPath::parse("visibility.middle_third.rmse")->of(*back.metrics), 0.125);
+  EXPECT_TRUE(std::isnan(MetricPath::parse("shaded.near_third.rmse")->of(*back.metrics)));
+  EXPECT_TRUE(
+      std::isnan(MetricPath::parse("visibility.far_third.rmse")->of(*full_record().metrics)));
+}
+
 TEST(JobRecord, ASecondReferenceRoundTripsAndOtherRecordsLackIt) {
   JobRecord r = full_record();
   EXPECT_FALSE(r.to_json().contains("second_reference"));

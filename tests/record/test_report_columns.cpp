@@ -89,9 +89,10 @@ TEST(ReportColumns, SameHeadersInCsvMarkdownAndHtml) {
   const std::vector<std::string> all = headers(true), shown = headers(false);
   EXPECT_EQ(all.front(), "scene");
   EXPECT_EQ(all.back(), "reason");
-  // Scene and resolution head each table instead; the classes' and the
-  // second reference's columns are there only when a record has them.
-  EXPECT_EQ(all.size(), shown.size() + 2 + 2 + 3);
+  // Scene and resolution head each table instead; the distance thirds', the
+  // classes' and the second reference's columns are there only when a
+  // record has them.
+  EXPECT_EQ(all.size(), shown.size() + 2 + 3 + 2 + 3);
 
   const std::string csv = make_csv(records());
   EXPECT_EQ(csv.substr(0, csv.find('\n')), join(all, ","));
@@ -121,7 +122,8 @@ TEST(ReportColumns, CellsAgreeAcrossTheTables) {
   // A skipped job has no figures: empty cells, and its reason in the last column.
   EXPECT_EQ(report_column("rmse").cell(rs[1]), "");
   EXPECT_EQ(report_column("reason").cell(rs[1]), "casters are not closed");
-  EXPECT_NE(csv.find(",skipped,,,,,,,,,,,,,,,,casters are not closed\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",skipped,,,,,,,,,,,,,,,,,,,casters are not closed\n"), std::string::npos)
+      << csv;
   EXPECT_THROW(report_column("nonsense"), std::out_of_range);
 }
 
@@ -157,6 +159,27 @@ TEST(ReportColumns, SecondReferenceColumnsAppearOnlyWhenARecordHasOne) {
   const std::string html = html_report_of(rs, "report_second");
   EXPECT_EQ(first_table_headers(html), shown);
   EXPECT_NE(html.find("<td class=\"num\">0.360</td>"), std::string::npos);
+}
+
+TEST(ReportColumns, DistanceThirdColumnsAreTheVisibilitysThirdsAndAppearOnlyWithThem) {
+  auto rs = records();
+  EXPECT_EQ(report_column("near_rmse").cell(rs[0]), "");
+  rs[0].metrics->visibility.near_third = RegionStats{};
+  rs[0].metrics->visibility.near_third->rmse = 0.25;
+  rs[0].metrics->visibility.middle_third = RegionStats{};
+  rs[0].metrics->visibility.middle_third->rmse = 0.125;
+  rs[0].metrics->visibility.far_third = RegionStats{};
+  rs[0].metrics->visibility.far_third->rmse = 0.0625;
+  EXPECT_EQ(report_column("near_rmse").cell(rs[0]), "0.25000");
+  EXPECT_EQ(report_column("middle_rmse").cell(rs[0]), "0.12500");
+  EXPECT_EQ(report_column("far_rmse").cell(rs[0]), "0.06250");
+  EXPECT_EQ(report_column("near_rmse").cell(rs[1]), "");  // skipped: no metrics
+
+  std::vector<std::string> shown = headers(false);
+  shown.insert(shown.end() - 1, {"near_rmse", "middle_rmse", "far_rmse"});
+  const std::string md = make_markdown(rs, "title");
+  EXPECT_NE(md.find("| " + join(shown, " | ") + " |\n"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 0.25000 | 0.12500 | 0.06250 |"), std::string::npos) << md;
 }
 
 TEST(ReportColumns, NoiseShareNeedsOneExactAndOneMonteCarloReference) {

@@ -1,0 +1,37 @@
+#pragma once
+// A convex polytope as its face polygons, clipped by planes: the "body" of
+// space a view-dependent shadow map must cover (the view frustum cut to the
+// scene's boxes, Wimmer et al. 2004's B). Only its vertices are read: the
+// extremes of a linear or projective function with positive w over a convex
+// polytope lie at its vertices.
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "core/scene.h"
+
+namespace sb::shadow {
+
+class ConvexBody {
+ public:
+  static ConvexBody box(const Bounds& b);
+  // Keeps the half-space dot(plane.xyz, p) + plane.w >= 0.
+  void clip(const glm::vec4& plane);
+  bool empty() const { return faces_.empty(); }
+  // Every face corner (shared corners repeat).
+  std::vector<glm::vec3> vertices() const;
+
+ private:
+  std::vector<std::vector<glm::vec3>> faces_;
+};
+
+// The six planes of the clip-space frustum of `view_projection`, each facing
+// inwards (Gribb & Hartmann 2001): the points with -w <= x, y, z <= w.
+std::vector<glm::vec4> frustum_planes(const glm::mat4& view_projection);
+
+// The vertices of the union over `scene`'s meshes of each mesh's bounding
+// box cut to `planes`: what the camera can see of the scene, tighter than one
+// box around everything (a ground and a far post leave the space between
+// them out of the near and far depths). Empty when nothing is inside.
+std::vector<glm::vec3> visible_body(const Scene& scene, const std::vector<glm::vec4>& planes);
+
+}  // namespace sb::shadow
