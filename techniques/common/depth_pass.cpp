@@ -31,7 +31,9 @@ void main() {
 }
 )";
 
-void set_cull(CullMode cull, const DrawInfo& d) {
+}  // namespace
+
+void set_depth_pass_cull(CullMode cull, const DrawInfo& d) {
   // Receivers, double-sided and open meshes keep every face.
   if (cull == CullMode::None || !d.casts_shadow || d.double_sided || !d.cullable) {
     glDisable(GL_CULL_FACE);
@@ -40,8 +42,6 @@ void set_cull(CullMode cull, const DrawInfo& d) {
     glCullFace(cull == CullMode::Back ? GL_BACK : GL_FRONT);
   }
 }
-
-}  // namespace
 
 CullMode cull_mode_from_string(const std::string& s) {
   if (s == "none") return CullMode::None;
@@ -119,7 +119,7 @@ void DepthMap::render(const GpuScene& gpu, const LightFrustum& f, CullMode cull,
       masked_program_.set("alpha_cutoff", d.alpha_cutoff);
       glBindTextureUnit(0, d.texture);
     }
-    set_cull(cull, d);
+    set_depth_pass_cull(cull, d);
   };
   if (receivers_too)
     gpu.draw_casters_and_map_receivers(setup);

@@ -13,6 +13,9 @@ namespace sb::shadow {
 
 enum class CullMode { None, Back, Front };
 CullMode cull_mode_from_string(const std::string& s);  // "none" | "back" | "front"
+// Face culling for one mesh of a pass from the light: only closed casters
+// are culled (receivers, double-sided and open meshes keep every face).
+void set_depth_pass_cull(CullMode cull, const DrawInfo& d);
 
 struct DepthBias {
   float constant = 0.0f;  // glPolygonOffset units

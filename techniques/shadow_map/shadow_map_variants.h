@@ -10,4 +10,5 @@ TechniqueInfo pcss_info();
 TechniqueInfo blurred_visibility_info();
 TechniqueInfo psm_info();
 TechniqueInfo lispsm_info();
+TechniqueInfo extended_light_maps_info();
 }  // namespace sb::shadow

@@ -1,5 +1,6 @@
 #include "shadow_volume/caster_volumes.h"
 
+#include <array>
 #include <stdexcept>
 #include <utility>
 
@@ -8,16 +9,11 @@
 #include "shadow_volume/near_plane_pyramid.h"
 
 namespace sb::volume {
-namespace {
-
-// Homogeneous positions, w = 0 at infinity.
 const char* const kVolumeVertex = R"(#version 450 core
 layout(location = 0) in vec4 position;
 uniform mat4 view_projection;
 void main() { gl_Position = view_projection * position; }
 )";
-
-}  // namespace
 
 const char* const kStencilResolveFragment = R"(#version 450 core
 in vec2 uv;
@@ -91,6 +87,31 @@ void end_stencil_count() {
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
+void resolve_stencil(const FrameInputs& in, const gl::Program& resolve) {
+  const std::array<float, 4> one{1.0f, 1.0f, 1.0f, 1.0f};
+  glClearBufferfv(GL_COLOR, 0, one.data());
+  glDisable(GL_DEPTH_TEST);
+  glStencilFunc(GL_NOTEQUAL, 0, 0xff);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  resolve.use();
+  glBindTextureUnit(0, in.gbuffer_position);
+  gl::draw_fullscreen_triangle();
+  glDisable(GL_STENCIL_TEST);
+  glDepthMask(GL_TRUE);
+}
+
+void make_vec4_stream(gl::Buffer& buffer, gl::VertexArray& vao) {
+  GLuint b = 0, v = 0;
+  glCreateBuffers(1, &b);
+  buffer = gl::Buffer(b);
+  glCreateVertexArrays(1, &v);
+  vao = gl::VertexArray(v);
+  glVertexArrayVertexBuffer(v, 0, b, 0, sizeof(glm::vec4));
+  glEnableVertexArrayAttrib(v, 0);
+  glVertexArrayAttribFormat(v, 0, 4, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(v, 0, 0);
+}
+
 void CasterVolumes::prepare(const FrameInputs& in) {
   casters_.clear();
   const auto* edges = cpu_ ? &in.derived->get<CasterEdges>(need::kCasterEdges) : nullptr;
@@ -105,15 +126,7 @@ void CasterVolumes::prepare(const FrameInputs& in) {
   }
   if (!cpu_) return;
   program_ = gl::Program("caster_volumes", {kVolumeVertex, "", ""});
-  GLuint buffer = 0, vao = 0;
-  glCreateBuffers(1, &buffer);
-  vertices_ = gl::Buffer(buffer);
-  glCreateVertexArrays(1, &vao);
-  vao_ = gl::VertexArray(vao);
-  glVertexArrayVertexBuffer(vao, 0, buffer, 0, sizeof(glm::vec4));
-  glEnableVertexArrayAttrib(vao, 0);
-  glVertexArrayAttribFormat(vao, 0, 4, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribBinding(vao, 0, 0);
+  make_vec4_stream(vertices_, vao_);
   gl::throw_if_errors("caster volumes prepare");
 }
 

@@ -45,6 +45,19 @@ void end_stencil_count();
 // and the G-buffer position texture on unit 0.
 extern const char* const kStencilResolveFragment;
 
+// Vertex shader of a volume stream: homogeneous positions (w = 0 at
+// infinity) at attribute 0, times the uniform `view_projection`.
+extern const char* const kVolumeVertex;
+
+// V from the stencil count in the visibility framebuffer (bound): 1 where
+// the count is zero, kStencilResolveFragment's V elsewhere; ends the
+// stencil test. `resolve` is a program made of kStencilResolveFragment.
+void resolve_stencil(const FrameInputs& in, const gl::Program& resolve);
+
+// A vertex array reading homogeneous positions (vec4, attribute 0) from a
+// buffer of its own, filled every frame: the volumes' vertex stream.
+void make_vec4_stream(gl::Buffer& buffer, gl::VertexArray& vao);
+
 class CasterVolumes {
  public:
   struct Caster {

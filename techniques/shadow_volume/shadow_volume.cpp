@@ -30,6 +30,7 @@
 #include "gl/program.h"
 #include "plugin/registry.h"
 #include "shadow_volume/caster_volumes.h"
+#include "shadow_volume/hybrid_reconstruction.h"
 
 namespace sb {
 namespace {
@@ -132,16 +133,7 @@ class ShadowVolume final : public Technique {
       volume::end_stencil_count();
     }
     auto pass = timer.scope("resolve");
-    const std::array<float, 4> one{1.0f, 1.0f, 1.0f, 1.0f};
-    glClearBufferfv(GL_COLOR, 0, one.data());
-    glDisable(GL_DEPTH_TEST);
-    glStencilFunc(GL_NOTEQUAL, 0, 0xff);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    resolve_.use();
-    glBindTextureUnit(0, in.gbuffer_position);
-    gl::draw_fullscreen_triangle();
-    glDisable(GL_STENCIL_TEST);
-    glDepthMask(GL_TRUE);
+    volume::resolve_stencil(in, resolve_);
   }
 
  private:
@@ -201,4 +193,5 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
     return {};
   };
   registry.add(std::move(info));
+  registry.add(shadow::hybrid_reconstruction_info());
 }

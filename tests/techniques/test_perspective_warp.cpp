@@ -136,5 +136,26 @@ TEST(PerspectiveWarp, SpendsTexelsNearTheCameraThatAUniformMapSpendsFarAway) {
   }
 }
 
+// The camera half way to the light, looking where it looks (the stress
+// suite's view_along_light): sin γ ≈ 0, n_opt grows without bound, and
+// LiSPSM must spend its texels as the uniform map does, nowhere 2× more or
+// less.
+TEST(PerspectiveWarp, LispsmLookingAlongTheLightIsTheUniformMap) {
+  const SceneType* t = find_scene_type("sphere_grid");
+  ASSERT_NE(t, nullptr);
+  Scene s = t->build(resolve_params(t->params, {{"grid", 3}}, "test", "/params"));
+  s.camera.eye = 0.5f * s.light.center;
+  s.camera.target = s.light.target;
+  WarpInfo info;
+  const LightFrustum f = fit_lispsm(s, camera_of(s), 1.0f, &info);
+  const LightFrustum uniform = fit_light_frustum(s, s.light.center);
+  for (const glm::vec3 p :
+       {glm::vec3(0.0f), glm::vec3(2.0f, 0.0f, 2.0f), glm::vec3(-2.0f, 0.0f, -2.0f)}) {
+    const double gain = density(f, p) / density(uniform, p);
+    EXPECT_GT(gain, 0.5) << info.n;
+    EXPECT_LT(gain, 2.0) << info.n;
+  }
+}
+
 }  // namespace
 }  // namespace sb::shadow

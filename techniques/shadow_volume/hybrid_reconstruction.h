@@ -1,0 +1,8 @@
+#pragma once
+#include "plugin/registry.h"
+
+namespace sb::shadow {
+// hybrid_reconstruction: shadow volumes rebuilt from a depth map
+// (hybrid_reconstruction.cpp).
+TechniqueInfo hybrid_reconstruction_info();
+}  // namespace sb::shadow
