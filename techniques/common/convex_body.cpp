@@ -84,11 +84,21 @@ std::vector<glm::vec4> frustum_planes(const glm::mat4& m) {
   return {row3 + row0, row3 - row0, row3 + row1, row3 - row1, row3 + row2, row3 - row2};
 }
 
-std::vector<glm::vec3> visible_body(const Scene& scene, const std::vector<glm::vec4>& planes) {
-  std::vector<glm::vec3> points;
+std::vector<Bounds> mesh_boxes(const Scene& scene) {
+  std::vector<Bounds> boxes;
+  boxes.reserve(scene.meshes.size());
   for (const Mesh& m : scene.meshes) {
     Bounds b;
     for (const auto& p : m.positions) b.extend(p);
+    boxes.push_back(b);
+  }
+  return boxes;
+}
+
+std::vector<glm::vec3> visible_body(const std::vector<Bounds>& boxes,
+                                    const std::vector<glm::vec4>& planes) {
+  std::vector<glm::vec3> points;
+  for (const Bounds& b : boxes) {
     ConvexBody body = ConvexBody::box(b);
     // A flat box (a ground plane's) has side faces of zero area; its two
     // large faces still clip to the visible part of the plane.

@@ -28,10 +28,15 @@ class ConvexBody {
 // inwards (Gribb & Hartmann 2001): the points with -w <= x, y, z <= w.
 std::vector<glm::vec4> frustum_planes(const glm::mat4& view_projection);
 
-// The vertices of the union over `scene`'s meshes of each mesh's bounding
-// box cut to `planes`: what the camera can see of the scene, tighter than one
-// box around everything (a ground and a far post leave the space between
-// them out of the near and far depths). Empty when nothing is inside.
-std::vector<glm::vec3> visible_body(const Scene& scene, const std::vector<glm::vec4>& planes);
+// Each mesh's bounding box (of all its positions), in Scene::meshes order:
+// scene data that no light or camera moves, computed once per scene.
+std::vector<Bounds> mesh_boxes(const Scene& scene);
+
+// The vertices of the union of `boxes` (mesh_boxes()) each cut to `planes`:
+// what the camera can see of the scene, tighter than one box around
+// everything (a ground and a far post leave the space between them out of
+// the near and far depths). Empty when nothing is inside.
+std::vector<glm::vec3> visible_body(const std::vector<Bounds>& boxes,
+                                    const std::vector<glm::vec4>& planes);
 
 }  // namespace sb::shadow

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/convex_body.h"
 #include "common/map_lookup.h"
 #include "shadow_map/perspective_warp.h"
 #include "shadow_map/shadow_map_variants.h"
@@ -29,20 +30,28 @@ std::vector<ParamSpec> warped_map_params() {
 
 class PerspectiveMap : public SingleMapTechnique {
  public:
-  PerspectiveMap(const Params& p, std::string name, float n_scale)
+  PerspectiveMap(const Params& p, const std::string& name, float n_scale)
       : SingleMapTechnique(p, name, kHardCompare, /*linear_compare=*/false),
         lispsm_(name == "lispsm"),
         n_scale_(n_scale) {}
 
  protected:
+  void prepare(const FrameInputs& in) override {
+    SingleMapTechnique::prepare(in);
+    // The meshes' boxes are scene data: no light or camera moves them.
+    boxes_ = mesh_boxes(*in.scene);
+  }
+
   LightFrustum fit(const FrameInputs& in) const override {
     const CameraView camera{in.view, in.projection};
-    return lispsm_ ? fit_lispsm(*in.scene, camera, n_scale_) : fit_psm(*in.scene, camera);
+    return lispsm_ ? fit_lispsm(*in.scene, boxes_, camera, n_scale_)
+                   : fit_psm(*in.scene, boxes_, camera);
   }
 
  private:
   bool lispsm_;
   float n_scale_;
+  std::vector<Bounds> boxes_;
 };
 
 }  // namespace

@@ -40,12 +40,6 @@ glm::mat4 box_to_clip(Range x, Range y, Range z) {
 
 glm::vec3 euclid(const glm::vec4& h) { return glm::vec3(h) / h.w; }
 
-glm::mat4 light_centre_view(const Scene& scene) {
-  const glm::vec3 axis = scene.light.direction();
-  const glm::vec3 up = std::fabs(axis.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-  return glm::lookAt(scene.light.center, scene.light.center + axis, up);
-}
-
 glm::vec3 up_for(const glm::vec3& axis) {
   return std::fabs(axis.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
 }
@@ -56,13 +50,13 @@ bool overlaps(const Bounds& a, const Bounds& b) {
 
 // The vertices of the casters whose box meets `reach`: the only ones that
 // can shadow a point of `reach` from a light inside it.
-std::vector<glm::vec3> casters_within(const Scene& scene, const Bounds& reach) {
+std::vector<glm::vec3> casters_within(const Scene& scene, const std::vector<Bounds>& boxes,
+                                      const Bounds& reach) {
   std::vector<glm::vec3> points;
-  for (const Mesh& m : scene.meshes) {
-    if (!m.casts_shadow) continue;
-    Bounds b;
-    for (const auto& p : m.positions) b.extend(p);
-    if (overlaps(b, reach)) points.insert(points.end(), m.positions.begin(), m.positions.end());
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    const Mesh& m = scene.meshes[i];
+    if (m.casts_shadow && overlaps(boxes[i], reach))
+      points.insert(points.end(), m.positions.begin(), m.positions.end());
   }
   return points;
 }
@@ -86,18 +80,20 @@ glm::vec3 camera_forward(const glm::mat4& view) {
 LightFrustum centre_frame(const Scene& scene) {
   LightFrustum f;
   f.eye = scene.light.center;
-  f.view = light_centre_view(scene);
+  const glm::vec3 axis = scene.light.direction();
+  f.view = glm::lookAt(f.eye, f.eye + axis, up_for(axis));
   return f;
 }
 
 }  // namespace
 
-LightFrustum fit_psm(const Scene& scene, const CameraView& camera, WarpInfo* info) {
+LightFrustum fit_psm(const Scene& scene, const std::vector<Bounds>& boxes, const CameraView& camera,
+                     WarpInfo* info) {
   WarpInfo local;
   WarpInfo& out = info != nullptr ? *info : local;
   const glm::vec3 light = scene.light.center;
   const std::vector<glm::vec3> body =
-      visible_body(scene, frustum_planes(camera.projection * camera.view));
+      visible_body(boxes, frustum_planes(camera.projection * camera.view));
   if (body.empty()) return fit_light_frustum(scene, light, false);
 
   // The body's depth range seen from the camera: the virtual camera's near
@@ -112,7 +108,7 @@ LightFrustum fit_psm(const Scene& scene, const CameraView& camera, WarpInfo* inf
     reach.extend(p);
   }
   const float z_near = std::max(depth.lo, 1e-6f * std::max(depth.hi, 1e-6f));
-  const std::vector<glm::vec3> casters = casters_within(scene, reach);
+  const std::vector<glm::vec3> casters = casters_within(scene, boxes, reach);
   Range caster_depth;
   for (const auto& p : casters) caster_depth.add(camera_depth(camera.view, p));
   // The virtual camera moves back until every caster that can shadow the
@@ -196,8 +192,8 @@ LightFrustum fit_psm(const Scene& scene, const CameraView& camera, WarpInfo* inf
   return f;
 }
 
-LightFrustum fit_lispsm(const Scene& scene, const CameraView& camera, float n_scale,
-                        WarpInfo* info) {
+LightFrustum fit_lispsm(const Scene& scene, const std::vector<Bounds>& boxes,
+                        const CameraView& camera, float n_scale, WarpInfo* info) {
   WarpInfo local;
   WarpInfo& out = info != nullptr ? *info : local;
   const glm::vec3 light = scene.light.center;
@@ -211,7 +207,7 @@ LightFrustum fit_lispsm(const Scene& scene, const CameraView& camera, float n_sc
   // points behind the light's plane lit).
   const glm::vec4 light_row(base.view[0][2], base.view[1][2], base.view[2][2], base.view[3][2]);
   planes.push_back(-light_row - glm::vec4(0.0f, 0.0f, 0.0f, 0.5f * base.near_plane));
-  const std::vector<glm::vec3> body = visible_body(scene, planes);
+  const std::vector<glm::vec3> body = visible_body(boxes, planes);
   if (body.empty()) return base;
 
   std::vector<glm::vec3> region, occluders;
@@ -276,9 +272,10 @@ LightFrustum fit_lispsm(const Scene& scene, const CameraView& camera, float n_sc
   glm::mat4 warp = rotate;  // frame coordinates, then the perspective (if any)
   if (!out.uniform) {
     // The perspective's centre stands n before the body's near side, looking
-    // along +y; it maps (x, y, z) to (x - cx, -1/(y - cy), z) / 1 after the
-    // divide by w = y - cy: x and z shrink with distance, y is its
-    // projective depth. Light rays (lines along z) stay lines along z.
+    // along +y; after the divide by w = y − cy it maps (x, y, z) to
+    // ((x − cx)/w, −1/w, z/w): x and z shrink with distance, and −1/w is a
+    // projective depth along y. Light rays (lines along z, at fixed x and
+    // y) stay lines along z, in order.
     const float n = ratio * y.size();
     out.n = n;
     const float cx = 0.5f * (x.lo + x.hi), cy = y.lo - n;

@@ -19,6 +19,7 @@
 // axis, with depth increasing away from the light: a depth comparison in
 // the warped map is the hard shadow's test.
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "common/light_frustum.h"
 #include "core/scene.h"
@@ -40,12 +41,14 @@ struct WarpInfo {
 
 // `view_projection` of the returned frustum is the warp; `view` and `eye`
 // are the light centre's ordinary view (for the lookup's horizon test and
-// its behind-the-light test). With nothing visible, both fall back to
+// its behind-the-light test). `boxes` are the scene's mesh_boxes(), made
+// once per scene. With nothing visible, both fall back to
 // fit_light_frustum. Throw sb::JobError where no single map can do it (PSM:
 // the light's image inside the visible body, needing a cube map).
-LightFrustum fit_psm(const Scene& scene, const CameraView& camera, WarpInfo* info = nullptr);
+LightFrustum fit_psm(const Scene& scene, const std::vector<Bounds>& boxes, const CameraView& camera,
+                     WarpInfo* info = nullptr);
 // `n_scale` multiplies n_opt: larger is nearer to the uniform map.
-LightFrustum fit_lispsm(const Scene& scene, const CameraView& camera, float n_scale,
-                        WarpInfo* info = nullptr);
+LightFrustum fit_lispsm(const Scene& scene, const std::vector<Bounds>& boxes,
+                        const CameraView& camera, float n_scale, WarpInfo* info = nullptr);
 
 }  // namespace sb::shadow

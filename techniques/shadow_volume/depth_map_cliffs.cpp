@@ -38,14 +38,23 @@ class Cliffs {
     return glm::vec4(point(u, v, window), 1.0f);
   }
   // The window depths strictly between `from` and `to` at which the four
-  // texels around corner (cx, cy) meet its ray, in order from `from`.
-  std::vector<float> between(int cx, int cy, float from, float to) const {
-    std::vector<float> out;
+  // texels around corner (cx, cy) meet its ray, in order from `from` (at
+  // most four: no allocation per cliff).
+  struct Depths {
+    std::array<float, 4> d{};
+    int n = 0;
+    const float* begin() const { return d.data(); }
+    const float* end() const { return d.data() + n; }
+  };
+  Depths between(int cx, int cy, float from, float to) const {
+    Depths out;
+    const float lo = std::min(from, to), hi = std::max(from, to);
     for (const float d : {w(cx - 1, cy - 1), w(cx, cy - 1), w(cx - 1, cy), w(cx, cy)})
-      if (d > std::min(from, to) && d < std::max(from, to) && d < 1.0f) out.push_back(d);
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    if (from > to) std::reverse(out.begin(), out.end());
+      if (d > lo && d < hi && d < 1.0f) out.d[size_t(out.n++)] = d;
+    const auto first = out.d.begin(), last = out.d.begin() + out.n;
+    std::sort(first, last);
+    out.n = int(std::unique(first, last) - first);
+    if (from > to) std::reverse(out.d.begin(), out.d.begin() + out.n);
     return out;
   }
   const glm::vec3& light() const { return light_; }
@@ -81,8 +90,6 @@ size_t append_depth_map_cliffs(const std::vector<float>& depth, int size, const 
   std::vector<uint8_t> capped(depth.size(), 0);
   size_t cliffs = 0;
   std::vector<glm::vec4> polygon;
-  // Texel (x, y) and its neighbour (x + dx, y + dy) share the side from
-  // corner (x + dx, y + dy) to corner (x + 1, y + 1).
   // A cliff where the step from texel a to its neighbour b (at a + d) is
   // not the continuation of the surface on either side: b's depth is far
   // from a's extrapolated from a − d, and a's from b's extrapolated from
@@ -102,21 +109,25 @@ size_t append_depth_map_cliffs(const std::vector<float>& depth, int size, const 
            std::fabs(zb - za) > tolerance;
   };
   const auto index = [&](int x, int y) { return size_t(y) * size_t(size) + size_t(x); };
-  // The texels at a cliff's top get caps; between two capped texels every
-  // step is drawn, however small, or the two caps would leave a slit.
+  // Each texel's step to its +x (slot 0) and +y (slot 1) neighbour, judged
+  // once. The texels at a cliff's top get caps; between two capped texels
+  // every step is drawn, however small, or the two caps would leave a slit.
+  std::vector<uint8_t> cliff(2 * depth.size(), 0);
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x)
       for (const auto [dx, dy] : {std::array<int, 2>{1, 0}, std::array<int, 2>{0, 1}}) {
-        if (x + dx >= size || y + dy >= size) continue;
-        const float wa = c.w(x, y), wb = c.w(x + dx, y + dy);
-        if (is_cliff_at(x, y, dx, dy)) capped[wa <= wb ? index(x, y) : index(x + dx, y + dy)] = 1;
+        if (x + dx >= size || y + dy >= size || !is_cliff_at(x, y, dx, dy)) continue;
+        cliff[2 * index(x, y) + size_t(dy)] = 1;
+        capped[c.w(x, y) <= c.w(x + dx, y + dy) ? index(x, y) : index(x + dx, y + dy)] = 1;
       }
+  // Texel (x, y) and its neighbour (x + dx, y + dy) share the side from
+  // corner (x + dx, y + dy) to corner (x + 1, y + 1).
   const auto consider = [&](int x, int y, int dx, int dy) {
     const float wa = c.w(x, y), wb = c.w(x + dx, y + dy);
     const bool a_near = wa <= wb;
     const float near_w = a_near ? wa : wb, far_w = a_near ? wb : wa;
     const bool step_between_caps = capped[index(x, y)] && capped[index(x + dx, y + dy)] && wa != wb;
-    if (near_w >= 1.0f || (!step_between_caps && !is_cliff_at(x, y, dx, dy))) return;
+    if (near_w >= 1.0f || (!step_between_caps && !cliff[2 * index(x, y) + size_t(dy)])) return;
     int p[2] = {x + dx, y + dy}, q[2] = {x + 1, y + 1};
     // Out of the shadow: from the nearer texel's centre towards the farther's.
     const float texel = 1.0f / float(size);

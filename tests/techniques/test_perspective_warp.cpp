@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/convex_body.h"
 #include "core/scene_types.h"
 #include "shadow_map/perspective_warp.h"
 
@@ -42,8 +43,8 @@ glm::vec4 clip(const LightFrustum& f, const glm::vec3& p) {
 
 LightFrustum fit(const std::string& technique, const Scene& s, WarpInfo* info = nullptr,
                  float n_scale = 1.0f) {
-  return technique == "psm" ? fit_psm(s, camera_of(s), info)
-                            : fit_lispsm(s, camera_of(s), n_scale, info);
+  return technique == "psm" ? fit_psm(s, mesh_boxes(s), camera_of(s), info)
+                            : fit_lispsm(s, mesh_boxes(s), camera_of(s), n_scale, info);
 }
 
 TEST(PerspectiveWarp, KeepsEveryLightRayALineAlongTheDepthAxisInOrder) {
@@ -89,8 +90,9 @@ TEST(PerspectiveWarp, KeepsEveryLightRayALineAlongTheDepthAxisInOrder) {
 
 TEST(PerspectiveWarp, PsmInvertsDepthAndMovesTheCameraBackOnlyForALightBehindIt) {
   WarpInfo side, behind;
-  fit_psm(long_ground("side"), camera_of(long_ground("side")), &side);
-  fit_psm(long_ground("behind"), camera_of(long_ground("behind")), &behind);
+  const Scene side_scene = long_ground("side"), behind_scene = long_ground("behind");
+  fit_psm(side_scene, mesh_boxes(side_scene), camera_of(side_scene), &side);
+  fit_psm(behind_scene, mesh_boxes(behind_scene), camera_of(behind_scene), &behind);
   EXPECT_FALSE(side.light_behind_camera);
   EXPECT_EQ(side.virtual_shift, 0.0f);  // the post behind the camera cannot shadow the view
   EXPECT_TRUE(behind.light_behind_camera);
@@ -147,7 +149,7 @@ TEST(PerspectiveWarp, LispsmLookingAlongTheLightIsTheUniformMap) {
   s.camera.eye = 0.5f * s.light.center;
   s.camera.target = s.light.target;
   WarpInfo info;
-  const LightFrustum f = fit_lispsm(s, camera_of(s), 1.0f, &info);
+  const LightFrustum f = fit_lispsm(s, mesh_boxes(s), camera_of(s), 1.0f, &info);
   const LightFrustum uniform = fit_light_frustum(s, s.light.center);
   for (const glm::vec3 p :
        {glm::vec3(0.0f), glm::vec3(2.0f, 0.0f, 2.0f), glm::vec3(-2.0f, 0.0f, -2.0f)}) {
