@@ -49,12 +49,23 @@ class Cliffs {
   Depths between(int cx, int cy, float from, float to) const {
     Depths out;
     const float lo = std::min(from, to), hi = std::max(from, to);
-    for (const float d : {w(cx - 1, cy - 1), w(cx, cy - 1), w(cx - 1, cy), w(cx, cy)})
-      if (d > lo && d < hi && d < 1.0f) out.d[size_t(out.n++)] = d;
-    const auto first = out.d.begin(), last = out.d.begin() + out.n;
-    std::sort(first, last);
-    out.n = int(std::unique(first, last) - first);
-    if (from > to) std::reverse(out.d.begin(), out.d.begin() + out.n);
+    // At most four values: an insertion that keeps them ordered from
+    // `from` and unique (std::sort here trips GCC 12's -Warray-bounds under
+    // -O2 with sanitizers, a false positive on its 16-element threshold).
+    const bool rising = from <= to;
+    for (const float d : {w(cx - 1, cy - 1), w(cx, cy - 1), w(cx - 1, cy), w(cx, cy)}) {
+      if (!(d > lo && d < hi && d < 1.0f)) continue;
+      int i = out.n;
+      bool repeated = false;
+      for (int k = 0; k < out.n; ++k) repeated = repeated || out.d[size_t(k)] == d;
+      if (repeated) continue;
+      while (i > 0 && (rising ? out.d[size_t(i - 1)] > d : out.d[size_t(i - 1)] < d)) {
+        out.d[size_t(i)] = out.d[size_t(i - 1)];
+        --i;
+      }
+      out.d[size_t(i)] = d;
+      ++out.n;
+    }
     return out;
   }
   const glm::vec3& light() const { return light_; }
