@@ -6,7 +6,9 @@
 // (floating point, union_ one polygon at a time), on the polygon sets of the
 // grid's penumbra pixels; and the exact reference against triangle count on
 // the jeep scene, 1 to 64 jeeps of 3,620 triangles, beside Monte Carlo at
-// 256 spp.
+// 256 spp; and the sphere grid under a linear light (its light 2 × 0): the
+// exact reference, and Monte Carlo stratified along the segment against
+// square cells on the same segment, with their error against the exact one.
 #include <benchmark/benchmark.h>
 
 // Boost 1.74's rescaling of coordinates before an overlay reads an
@@ -183,6 +185,79 @@ void BM_UnionBoostGeometry(benchmark::State& state) {
   state.counters["max_area_difference"] = worst;
 }
 BENCHMARK(BM_UnionBoostGeometry)->Unit(benchmark::kMillisecond);
+
+// The default sphere grid under a linear light: its 2×2 light's half_v
+// dropped (`light.size: [2, 0]`), or (`rectangle`) kept at 1e-6 of half_u,
+// a rectangle that samples the same segment with square cells; with the
+// segment's exact reference to measure the Monte Carlo error against.
+struct SegmentWorkload {
+  sb::bench::SceneWorkload grid;
+  sb::Scene rectangle;
+  sb::ImageF exact;
+};
+
+const SegmentWorkload& segment_grid() {
+  static const SegmentWorkload w = [] {
+    SegmentWorkload out{sb::bench::default_sphere_grid(), {}, {}};
+    out.rectangle = out.grid.scene;
+    out.grid.scene.light.half_v = glm::vec3(0.0f);
+    out.rectangle.light.half_v *= 1e-6f;
+    sb::reference::Settings settings;
+    settings.exact = true;
+    out.exact = sb::reference::compute(out.grid.scene, out.grid.gbuffer.positions,
+                                       out.grid.gbuffer.normals, settings)
+                    .visibility;
+    return out;
+  }();
+  return w;
+}
+
+void BM_ExactReferenceSegment(benchmark::State& state) {
+  const SegmentWorkload& w = segment_grid();
+  sb::reference::Settings settings;
+  settings.exact = true;
+  size_t penumbra = 0;
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
+    const sb::reference::Result r = sb::reference::compute(w.grid.scene, w.grid.gbuffer.positions,
+                                                           w.grid.gbuffer.normals, settings);
+    benchmark::DoNotOptimize(r.visibility.data.data());
+    penumbra = 0;
+    for (const float v : r.visibility.data) penumbra += v > 0.0f && v < 1.0f;
+  }
+  state.counters["covered_px"] = double(w.grid.covered);
+  state.counters["penumbra_px"] = double(penumbra);
+}
+BENCHMARK(BM_ExactReferenceSegment)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Arguments: spp, and 0 for the segment (strata along it) or 1 for the
+// 1e-6-deep rectangle (square cells). Counters: the RMSE against the exact
+// reference over its penumbra, and the RMS of the stated error there.
+void BM_MonteCarloReferenceSegment(benchmark::State& state) {
+  const SegmentWorkload& w = segment_grid();
+  const sb::Scene& scene = state.range(1) == 0 ? w.grid.scene : w.rectangle;
+  const sb::reference::Settings settings{int(state.range(0)), 1};
+  double err2 = 0.0, se2 = 0.0, count = 0.0;
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
+    const sb::reference::Result r =
+        sb::reference::compute(scene, w.grid.gbuffer.positions, w.grid.gbuffer.normals, settings);
+    benchmark::DoNotOptimize(r.visibility.data.data());
+    err2 = se2 = count = 0.0;
+    for (size_t i = 0; i < w.exact.data.size(); ++i) {
+      const double v = w.exact.data[i];
+      if (!(v > 0.0 && v < 1.0)) continue;
+      err2 += std::pow(double(r.visibility.data[i]) - v, 2);
+      se2 += std::pow(double(r.std_error.data[i]), 2);
+      ++count;
+    }
+  }
+  state.counters["penumbra_rmse"] = count > 0.0 ? std::sqrt(err2 / count) : 0.0;
+  state.counters["penumbra_rms_std_error"] = count > 0.0 ? std::sqrt(se2 / count) : 0.0;
+}
+BENCHMARK(BM_MonteCarloReferenceSegment)
+    ->ArgNames({"spp", "rectangle"})
+    ->ArgsProduct({{256, 1024}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 

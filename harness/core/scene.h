@@ -81,6 +81,15 @@ struct AreaLight {
   glm::vec3 direction() const { return glm::normalize(target - center); }
   float width() const { return 2.0f * glm::length(half_u); }
   float height() const { return 2.0f * glm::length(half_v); }
+  // A linear light: a segment, one of the two sizes zero (`light.size:
+  // [w, 0]` or `[0, h]`). A point light has both zero.
+  bool is_segment() const { return (width() > 0.0f) != (height() > 0.0f); }
+  bool is_point() const { return !(width() > 0.0f) && !(height() > 0.0f); }
+  // A segment's end points (s = 0 and s = 1 along its non-zero axis).
+  glm::vec3 segment_end(float s) const {
+    const glm::vec3 half = width() > 0.0f ? half_u : half_v;
+    return center + (2.0f * s - 1.0f) * half;
+  }
 };
 
 struct Camera {

@@ -6,8 +6,10 @@
 #include <array>
 #include <clipper.hpp>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <numeric>
+#include <utility>
 
 #include "reference/ray_offset.h"
 
@@ -101,10 +103,58 @@ bool box_outside(const glm::dvec3& lo, const glm::dvec3& hi, const Plane& plane)
 
 constexpr double kIntegerRange = 1073741824.0;  // 2^30: the light's larger half-size
 
+// Whether the segment o + t·d, t in [0, 1], meets the box (slab test).
+bool segment_meets_box(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& lo,
+                       const glm::dvec3& hi) {
+  double t0 = 0.0, t1 = 1.0;
+  for (int k = 0; k < 3; ++k) {
+    if (d[k] == 0.0) {
+      if (o[k] < lo[k] || o[k] > hi[k]) return false;
+      continue;
+    }
+    double ta = (lo[k] - o[k]) / d[k], tb = (hi[k] - o[k]) / d[k];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+// The part [t0, t1] of the segment x0 → x1 inside every plane; t0 > t1 when
+// none is.
+glm::dvec2 clip_segment(const glm::dvec3& x0, const glm::dvec3& x1,
+                        std::initializer_list<const Plane*> planes) {
+  glm::dvec2 t(0.0, 1.0);
+  for (const Plane* plane : planes) {
+    const double e0 = plane->distance(x0), e1 = plane->distance(x1);
+    if (e0 < 0.0 && e1 < 0.0) return {1.0, 0.0};
+    if (e0 < 0.0) t.x = std::max(t.x, e0 / (e0 - e1));
+    if (e1 < 0.0) t.y = std::min(t.y, e0 / (e0 - e1));
+  }
+  return t;
+}
+
+// The interval of s ∈ [0, 1] where h0 + s·(h1 − h0) < 0: a segment's part
+// below a plane, given its ends' signed distances.
+bool below(double h0, double h1, glm::dvec2& interval) {
+  if (h0 < 0.0 && h1 < 0.0) {
+    interval = {0.0, 1.0};
+  } else if (h0 < 0.0) {
+    interval = {0.0, h0 / (h0 - h1)};
+  } else if (h1 < 0.0) {
+    interval = {h0 / (h0 - h1), 1.0};
+  } else {
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 std::string ExactVisibility::unsupported_reason(const Scene& scene) {
-  if (!(glm::length(scene.light.half_u) > 0.0f && glm::length(scene.light.half_v) > 0.0f))
+  // A segment has an exact form (hidden_intervals); a point's V is 0 or 1.
+  if (scene.light.is_point())
     return "the light has no area (the Monte Carlo reference is exact there)";
   for (const Mesh& mesh : scene.meshes) {
     if (!mesh.casts_shadow) continue;
@@ -176,6 +226,170 @@ uint32_t ExactVisibility::build(uint32_t first, uint32_t count) {
   return index;
 }
 
+template <typename Keep, typename Visit>
+void ExactVisibility::traverse(const Keep& keep, const Visit& visit) const {
+  if (nodes_.empty()) return;
+  std::vector<uint32_t> stack{0};
+  while (!stack.empty()) {
+    const Node& node = nodes_[stack.back()];
+    stack.pop_back();
+    if (!keep(node.lo, node.hi)) continue;
+    if (node.count == 0) {
+      stack.push_back(node.left);
+      stack.push_back(node.right);
+      continue;
+    }
+    for (uint32_t i = node.first; i < node.first + node.count; ++i) visit(triangles_[i]);
+  }
+}
+
+glm::dvec3 ExactVisibility::viewpoint(const glm::dvec3& surface, const glm::dvec3& n) const {
+  const double eps = detail::kOffsetRelative * std::max({std::fabs(surface.x), std::fabs(surface.y),
+                                                         std::fabs(surface.z), caster_extent_});
+  return surface + eps * n;
+}
+
+std::vector<glm::dvec2> ExactVisibility::hidden_intervals(const glm::dvec3& surface,
+                                                          const glm::dvec3& n) const {
+  std::vector<glm::dvec2> out;
+  const glm::dvec3 a_end(light_.segment_end(0.0f)), b_end(light_.segment_end(1.0f));
+  glm::dvec2 interval;
+  // The horizon: the part of the segment below the tangent plane.
+  if (below(glm::dot(n, a_end - surface), glm::dot(n, b_end - surface), interval))
+    out.push_back(interval);
+  if (nodes_.empty()) return out;
+  // Seen from just above the surface, as for a rectangle (occluding_polygons).
+  const glm::dvec3 p = viewpoint(surface, n);
+  const double on_plane = 1e-12 * std::max(glm::length(p), 1.0);
+  const Plane tangent{n, surface};
+  const glm::dvec3 a = a_end - p, b = b_end - p;
+  const glm::dvec3 m = glm::cross(a, b);  // the plane of p, A and B
+  const double ml = glm::length(m);
+
+  // The inside-a-closed-caster test of occluding_polygons, on the segment to
+  // the light's centre (the segment's midpoint).
+  const glm::dvec3 to_centre = glm::dvec3(light_.center) - p;
+  double first_hit = std::numeric_limits<double>::infinity();
+  bool leaves_through_it = false;
+  // Whether a triangle can hide anything; updates the inside test.
+  const auto candidate = [&](const Triangle& t) {
+    const glm::dvec3 normal = glm::cross(t.b - t.a, t.c - t.a);
+    if (t.outward != 0) {
+      const double hit = segment_crossing(p, to_centre, t.a, t.b, t.c);
+      if (hit < first_hit) {
+        first_hit = hit;
+        leaves_through_it = double(t.outward) * glm::dot(normal, to_centre) > 0.0;
+      }
+    }
+    const double facing = glm::dot(normal, p - t.a);
+    if (std::fabs(facing) <= on_plane * glm::length(normal)) return false;  // contains p
+    if (double(t.outward) * facing < 0.0) return false;  // a closed caster's far side
+    // Wholly below the tangent plane: inside the horizon interval.
+    return !(glm::dot(n, t.a - surface) < 0.0 && glm::dot(n, t.b - surface) < 0.0 &&
+             glm::dot(n, t.c - surface) < 0.0);
+  };
+
+  if (!(ml > 1e-7 * glm::length(a) * glm::length(b))) {
+    // p on the segment's line: every ray runs along it, and in each
+    // direction the nearest crossing hides the rest of the segment.
+    const glm::dvec3 axis = b_end - a_end;
+    const double length = glm::length(axis);
+    if (!(length > 0.0)) return out;
+    const double xa = glm::dot(a, axis) / length, xb = glm::dot(b, axis) / length;
+    double t_a = std::numeric_limits<double>::infinity(), t_b = t_a;  // along p→A, p→B
+    traverse(
+        [&](const glm::dvec3& lo, const glm::dvec3& hi) {
+          return (xa < 0.0 && segment_meets_box(p, a, lo, hi)) ||
+                 (xb > 0.0 && segment_meets_box(p, b, lo, hi)) ||
+                 segment_meets_box(p, to_centre, lo, hi);
+        },
+        [&](const Triangle& t) {
+          if (!candidate(t)) return;
+          if (xa < 0.0) t_a = std::min(t_a, segment_crossing(p, a, t.a, t.b, t.c));
+          if (xb > 0.0) t_b = std::min(t_b, segment_crossing(p, b, t.a, t.b, t.c));
+        });
+    if (leaves_through_it) return {{0.0, 1.0}};
+    if (t_a <= 1.0) out.push_back({0.0, (t_a * xa - xa) / (xb - xa)});
+    if (t_b <= 1.0) out.push_back({(t_b * xb - xa) / (xb - xa), 1.0});
+    return out;
+  }
+
+  // The wedge from p to the segment: its sides through p and each end, the
+  // plane through A and B (p's side), and the plane of p, A and B from both
+  // sides, which a box must straddle.
+  const Plane side_a{glm::cross(m, a), p}, side_b{glm::cross(b, m), p};
+  glm::dvec3 far_normal = glm::cross(b - a, m);
+  if (glm::dot(far_normal, p - a_end) < 0.0) far_normal = -far_normal;
+  const Plane far{far_normal, a_end};
+  const glm::dvec3 unit = m / ml;
+  const std::array<Plane, 5> planes{side_a, side_b, far, Plane{unit, p}, Plane{-unit, p}};
+  traverse(
+      [&](const glm::dvec3& lo, const glm::dvec3& hi) {
+        for (const Plane& plane : planes)
+          if (box_outside(lo, hi, plane)) return false;
+        return true;
+      },
+      [&](const Triangle& t) {
+        if (!candidate(t)) return;
+        // The triangle's cut by the plane of p, A and B.
+        const std::array<glm::dvec3, 3> x{t.a, t.b, t.c};
+        const std::array<double, 3> d{glm::dot(unit, t.a - p), glm::dot(unit, t.b - p),
+                                      glm::dot(unit, t.c - p)};
+        if (d[0] == 0.0 && d[1] == 0.0 && d[2] == 0.0) return;  // in the plane: hides nothing
+        std::array<glm::dvec3, 3> cut;
+        size_t count = 0;
+        for (size_t i = 0; i < 3; ++i) {
+          const size_t j = (i + 1) % 3;
+          if (d[i] == 0.0) cut[count++] = x[i];
+          if ((d[i] < 0.0 && d[j] > 0.0) || (d[i] > 0.0 && d[j] < 0.0))
+            cut[count++] = x[i] + (x[j] - x[i]) * (d[i] / (d[i] - d[j]));
+        }
+        if (count < 2) return;
+        // Its part between p and the segment, above the tangent plane.
+        const glm::dvec2 range = clip_segment(cut[0], cut[1], {&side_a, &side_b, &far, &tangent});
+        if (!(range.x <= range.y)) return;
+        // Projected from p onto the line AB: x − p = α·a + β·b gives s = β / (α + β).
+        const auto project = [&](double k) {
+          const glm::dvec3 v = cut[0] + (cut[1] - cut[0]) * k - p;
+          const double beta = glm::dot(glm::cross(a, v), m), alpha = glm::dot(glm::cross(v, b), m);
+          return alpha + beta > 0.0 ? std::clamp(beta / (alpha + beta), 0.0, 1.0)
+                                    : std::numeric_limits<double>::quiet_NaN();
+        };
+        const double s0 = project(range.x), s1 = project(range.y);
+        if (std::isnan(s0) || std::isnan(s1)) return;  // reaches p itself: no extent
+        out.push_back({std::min(s0, s1), std::max(s0, s1)});
+      });
+  if (leaves_through_it) return {{0.0, 1.0}};
+  return out;
+}
+
+double ExactVisibility::union_length(std::vector<glm::dvec2> intervals) {
+  // Abutting triangles' cuts meet at a point computed twice, so their
+  // intervals can miss each other by rounding (1e-15): an umbra would read
+  // V = 1e-15 and count as penumbra. Gaps narrower than this, and the ends'
+  // last bit, are closed, as Clipper's integer grid (2^-31 of the light)
+  // closes them for a rectangle.
+  constexpr double kGap = 1e-9;
+  std::sort(intervals.begin(), intervals.end(),
+            [](const glm::dvec2& x, const glm::dvec2& y) { return x.x < y.x; });
+  double covered = 0.0, lo = 0.0, hi = 0.0;
+  bool open = false;
+  for (const glm::dvec2& i : intervals) {
+    const double x0 = i.x <= kGap ? 0.0 : i.x, x1 = i.y >= 1.0 - kGap ? 1.0 : i.y;
+    if (!(x0 < x1)) continue;
+    if (open && x0 <= hi + kGap) {
+      hi = std::max(hi, x1);
+      continue;
+    }
+    if (open) covered += hi - lo;
+    lo = x0;
+    hi = x1;
+    open = true;
+  }
+  if (open) covered += hi - lo;
+  return std::clamp(covered, 0.0, 1.0);
+}
+
 std::vector<std::vector<glm::dvec2>> ExactVisibility::occluding_polygons(
     const glm::dvec3& surface, const glm::dvec3& n) const {
   std::vector<std::vector<glm::dvec2>> out;
@@ -188,9 +402,7 @@ std::vector<std::vector<glm::dvec2>> ExactVisibility::occluding_polygons(
   // from the point itself, a neighbouring facet of a convex mesh, which
   // meets it at an edge within rounding of p, would project onto half the
   // light.
-  const double eps = detail::kOffsetRelative * std::max({std::fabs(surface.x), std::fabs(surface.y),
-                                                         std::fabs(surface.z), caster_extent_});
-  const glm::dvec3 p = surface + eps * n;
+  const glm::dvec3 p = viewpoint(surface, n);
   const double zp = glm::dot(p - f.centre, f.normal);
   // The pyramid culls the hierarchy's boxes. Triangles are clipped to it and
   // to the tangent plane through the surface point: whatever lies below that
@@ -298,6 +510,7 @@ double ExactVisibility::union_area(const std::vector<std::vector<glm::dvec2>>& p
 }
 
 double ExactVisibility::visibility(const glm::dvec3& p, const glm::dvec3& n) const {
+  if (light_.is_segment()) return std::clamp(1.0 - union_length(hidden_intervals(p, n)), 0.0, 1.0);
   const Frame f(light_);
   const auto polygons = occluding_polygons(p, n);
   if (polygons.empty()) return 1.0;

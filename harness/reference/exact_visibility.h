@@ -1,6 +1,7 @@
 #pragma once
-// Exact visibility of a rectangular area light, without sampling (the exact
-// reference's core; docs/results.md). For a point p and polygonal casters:
+// Exact visibility of a rectangular area light or a linear light, without
+// sampling (the exact reference's core; docs/results.md). For a point p and
+// polygonal casters, and a rectangle:
 //   - each candidate triangle is clipped to the pyramid spanned by p and the
 //     light rectangle (its four side planes and the light's plane), so only
 //     the part between p and the light remains;
@@ -31,6 +32,23 @@
 // light is covered. Open and double-sided casters keep every triangle.
 // Casters with an alpha mask or an analytic shape have no exact polygonal
 // form here: `unsupported()` names the first.
+//
+// A linear light (AreaLight::is_segment(), ends A = segment_end(0) and
+// B = segment_end(1)): every ray from p to the segment lies in the plane
+// through p, A and B, so V is one-dimensional. Each candidate triangle is cut
+// by that plane; the cut (a segment) is clipped to the triangle (p, A, B) and
+// to the tangent plane, and its ends projected from p onto the line AB give
+// the interval of s it hides. The part of the segment below the tangent plane
+// is one more interval, and V = 1 − length(union of the intervals). Candidates
+// come from the same hierarchy, culled by the wedge's planes through p and
+// each end, the plane through A and B that closes it, and the plane through
+// p, A and B from both sides. Near side only for closed casters, and the
+// inside-a-closed-caster test, as for a rectangle. A triangle lying in that
+// plane hides nothing (as with a rectangle, a set of measure zero in p). When p
+// lies on the segment's line (the ends less than 1e-7 rad apart seen from p)
+// there is no plane: the rays run along the line, and in each direction a
+// triangle crossing it hides everything beyond its nearest crossing. A point
+// light has no exact form here (Monte Carlo is exact for it).
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <string>
@@ -58,11 +76,21 @@ class ExactVisibility {
   // V at p, whose surface has the geometric normal n (facing the viewer).
   double visibility(const glm::dvec3& p, const glm::dvec3& n) const;
 
-  // The polygons whose union hides the light from p, in the light's plane
-  // (coordinates along half_u and half_v, the light spanning ±half sizes),
-  // counter-clockwise: for benchmarks and tests of the union itself.
+  // The polygons whose union hides a rectangular light from p, in the light's
+  // plane (coordinates along half_u and half_v, the light spanning ±half
+  // sizes), counter-clockwise: for benchmarks and tests of the union itself.
   std::vector<std::vector<glm::dvec2>> occluding_polygons(const glm::dvec3& p,
                                                           const glm::dvec3& n) const;
+
+  // A segment light's parameter intervals [s0, s1] ⊂ [0, 1] (along
+  // AreaLight::segment_end) hidden from p: one per occluding triangle, and
+  // the part below the tangent plane; unsorted, overlapping. For benchmarks
+  // and tests of the 1-D union. A rectangle's are occluding_polygons().
+  std::vector<glm::dvec2> hidden_intervals(const glm::dvec3& p, const glm::dvec3& n) const;
+
+  // The length of the union of `intervals` (each [lo, hi]) within [0, 1];
+  // gaps under 1e-9, rounding between abutting triangles, count as covered.
+  static double union_length(std::vector<glm::dvec2> intervals);
 
   // The area of the union of `polygons` (counter-clockwise, inside the light
   // rectangle of the given half sizes), by Clipper.
@@ -89,6 +117,12 @@ class ExactVisibility {
     uint32_t left = 0, right = 0;   // inner: children (count == 0)
   };
   uint32_t build(uint32_t first, uint32_t count);
+  // Calls visit(triangle) for the triangles of every leaf whose box, and its
+  // ancestors', keep(lo, hi) accepts.
+  template <typename Keep, typename Visit>
+  void traverse(const Keep& keep, const Visit& visit) const;
+  // The offset viewpoint p + eps·n (see above).
+  glm::dvec3 viewpoint(const glm::dvec3& surface, const glm::dvec3& n) const;
 
   AreaLight light_;
   std::vector<Triangle> triangles_;

@@ -111,12 +111,19 @@ void check_ray_range(const glm::vec3& o, const glm::vec3& base, const glm::vec3&
                    std::to_string(largest) + ", beyond what Embree traces (1.8e18)");
 }
 
+// A segment light is stratified along its one axis (stratify.h); rectangles
+// and points keep the square cells.
+detail::Strata strata_of(const AreaLight& light) {
+  if (!light.is_segment()) return detail::Strata::Square;
+  return light.width() > 0.0f ? detail::Strata::AlongS : detail::Strata::AlongT;
+}
+
 void trace(const Scene& scene, const FlatScene& casters, const ImageF& positions,
            const ImageF& normals, const Settings& s, Result& r) {
   // Without casters only the horizon test remains.
   RTCScene rtc = casters.empty() ? nullptr : casters.get();
   const detail::RayOffset offset(scene, casters);
-  const detail::Layout layout = detail::make_layout(s.spp);
+  const detail::Layout layout = detail::make_layout(s.spp, strata_of(scene.light));
   const AreaLight& light = scene.light;
   const glm::vec3 corner = light.center - light.half_u - light.half_v;
   const glm::vec3 eu = 2.0f * light.half_u, ev = 2.0f * light.half_v;
@@ -404,6 +411,10 @@ std::string cache_key(const Scene& scene, const ImageF& positions, const ImageF&
   hash_vec3(h, scene.light.center);
   hash_vec3(h, scene.light.half_u);
   hash_vec3(h, scene.light.half_v);
+  // Only a segment's key carries its layout, so that keys from before it was
+  // stratified along its axis (and from before the exact reference did
+  // segments) never match, while rectangles' and points' keys stay as they were.
+  if (scene.light.is_segment()) h.add("light_strata:segment_1d");
   uint64_t casters = 0;
   for (const Mesh& m : scene.meshes) {
     if (!m.casts_shadow) continue;

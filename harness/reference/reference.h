@@ -2,7 +2,8 @@
 // Ray-traced reference visibility at the G-buffer's surface points.
 //
 // For each covered pixel (positions.w > 0.5) V is the fraction of the
-// rectangular area light visible from the point, with only meshes whose
+// rectangular area light (or, for a linear light, of the segment's length)
+// visible from the point, with only meshes whose
 // casts_shadow is true as occluders (receivers never occlude). Light points
 // below the surface's tangent plane count as occluded by the surface itself
 // (no cosine weight: that belongs to shading). Background pixels get V = 1
@@ -23,7 +24,8 @@
 // touch), are not occluded by that sphere either.
 //
 // Sampling: `spp` stratified samples on the light (n×n jittered grid when
-// spp = n*n, near-square equal-area cells otherwise; see stratify.h), drawn
+// spp = n*n, near-square equal-area cells otherwise; on a segment light, spp
+// cells of length 1/spp along it; see stratify.h), drawn
 // from a counter-based RNG keyed by (seed, pixel index, spp): results are
 // bit-identical for any thread count and across calls. Across Embree's ISAs
 // they can differ by single rays in a few silhouette pixels: Settings::
@@ -39,7 +41,8 @@
 // Rays end at distance*(1 - 1e-4) before the light sample.
 //
 // Standard error: the collapsed-strata estimate. Horizontally neighbouring
-// strata are paired (a triple closes an odd row) and
+// strata (on a segment, neighbours along it) are paired (a triple closes an
+// odd row) and
 //   Var = (1/N^2) * sum_groups |g|/(|g|-1) * sum_{i in g} (f_i - mean_g)^2.
 // For a 0/1 integrand a pair adds 1 when its two samples disagree. It is
 // unbiased for the within-stratum variance plus a non-negative term from the
@@ -66,7 +69,7 @@ struct Settings {
   std::string embree_config;
   // The exact reference (exact_visibility.h) instead of sampling: V without
   // noise, std_error 0, spp 0. A scene it cannot do (alpha masks, analytic
-  // shapes, a light of no area) gets the Monte Carlo reference, and
+  // shapes, a point light) gets the Monte Carlo reference, and
   // Result::exact_fallback says why.
   bool exact = false;
 };
@@ -103,7 +106,8 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
 
 // As compute(), but looked up in / stored to cache_dir/<key>.sbref. The key
 // hashes everything V depends on: caster geometry (in order), the light
-// rectangle (centre, half_u, half_v; not target or intensity), every caster's
+// rectangle (centre, half_u, half_v; not target or intensity; for a segment
+// light also a tag of its layout along the segment), every caster's
 // analytic shape (kind, centre, radius), both
 // buffers' shapes and bytes, the settings, the method and its
 // version, and the Embree version and ISA. Corrupt or mismatched files are ignored

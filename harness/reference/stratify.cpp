@@ -6,8 +6,32 @@
 
 namespace sb::reference::detail {
 
-Layout make_layout(int spp) {
+namespace {
+
+// One row of spp cells along s or t, traced in order: 16 neighbouring cells
+// per packet are one short stretch of the segment.
+Layout segment_layout(int spp, Strata strata) {
+  Layout l;
+  l.spp = spp;
+  l.rows = 1;
+  l.row_start = {0, spp};
+  for (int c = 0; c + 1 < spp; c += 2) l.group_begin.push_back(uint32_t(c));
+  l.group_begin.push_back(uint32_t(spp));
+  for (int c = 0; c < spp; ++c) {
+    const float lo = float(double(c) / spp), width = float(1.0 / spp);
+    Stratum st{0.0f, 1.0f, 0.0f, 1.0f, uint32_t(c)};
+    (strata == Strata::AlongS ? st.s0 : st.t0) = lo;
+    (strata == Strata::AlongS ? st.ds : st.dt) = width;
+    l.order.push_back(st);
+  }
+  return l;
+}
+
+}  // namespace
+
+Layout make_layout(int spp, Strata strata) {
   if (spp < 1) throw std::invalid_argument("reference: spp must be at least 1");
+  if (strata != Strata::Square) return segment_layout(spp, strata);
   Layout l;
   l.spp = spp;
   const int64_t n = spp;

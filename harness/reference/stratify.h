@@ -9,6 +9,10 @@
 // For N = n*n this is exactly the n×n jittered grid; for other N the cells are
 // near-square (c_r differs by at most one between rows), so every N
 // stratifies in both directions. One uniform sample per cell.
+//
+// A linear light (a segment) has one axis: square cells would collapse into
+// ~sqrt(N) strata along it, so its layout is one row of N cells of width 1/N
+// along that axis, spanning the other (Strata::AlongS or AlongT).
 #include <cstdint>
 #include <vector>
 
@@ -20,19 +24,26 @@ struct Stratum {
   uint32_t cell;  // row-major cell index (rows contiguous)
 };
 
+// Which way the cells divide the unit square: both ways (a rectangle, and a
+// point, whose samples all coincide), or only along s or only along t (a
+// segment light along half_u or half_v).
+enum class Strata : uint8_t { Square, AlongS, AlongT };
+
 struct Layout {
   int spp = 0;
-  int rows = 0;
+  int rows = 0;                // 1 for a segment's layout
   std::vector<int> row_start;  // first cell of each row, plus spp at the end
   // Trace order: 4×4 blocks of neighbouring cells, so one 16-ray packet sees
-  // one compact patch of the light (coherent traversal).
+  // one compact patch of the light (coherent traversal); along a segment, the
+  // cells in order.
   std::vector<Stratum> order;
   // Collapsed strata for the variance estimate: horizontal neighbour pairs in
-  // each row, the last group a triple when the row is odd. [begin, end).
+  // each row (along a segment, neighbours along it), the last group a triple
+  // when the row is odd. [begin, end).
   std::vector<uint32_t> group_begin;  // plus spp at the end
 };
 
-Layout make_layout(int spp);
+Layout make_layout(int spp, Strata strata = Strata::Square);
 
 // splitmix64's finaliser: a bijective 64-bit mixer.
 inline uint64_t mix64(uint64_t z) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <set>
 #include <stdexcept>
+#include <vector>
 
 #include "reference/stratify.h"
 
@@ -49,6 +50,51 @@ TEST_P(LayoutTest, EqualAreaCellsCoverTheSquareOnce) {
 INSTANTIATE_TEST_SUITE_P(reference, LayoutTest,
                          ::testing::Values(2, 3, 4, 5, 7, 16, 17, 32, 64, 100, 128, 256, 1000,
                                            1024));
+
+// A segment light's layout (Strata::AlongS or AlongT): N cells of width 1/N
+// edge to edge along the one axis, each spanning the other, in order (so a
+// packet holds neighbours), paired with the next cell (a triple at the end
+// when N is odd).
+class SegmentLayoutTest : public ::testing::TestWithParam<int> {};
+
+TEST_P(SegmentLayoutTest, NStrataPartitionTheSegment) {
+  using sb::reference::detail::Strata;
+  const int n = GetParam();
+  for (const Strata along : {Strata::AlongS, Strata::AlongT}) {
+    const Layout l = make_layout(n, along);
+    ASSERT_EQ(l.order.size(), size_t(n));
+    EXPECT_EQ(l.rows, 1);
+    double end = 0.0;  // where the previous stratum stopped
+    for (size_t i = 0; i < l.order.size(); ++i) {
+      const auto& st = l.order[i];
+      const bool s_axis = along == Strata::AlongS;
+      const double lo = s_axis ? st.s0 : st.t0, width = s_axis ? st.ds : st.dt;
+      EXPECT_EQ(st.cell, uint32_t(i));
+      EXPECT_NEAR(lo, double(i) / n, 0x1p-24);
+      EXPECT_NEAR(width, 1.0 / n, 0x1p-24 / n);
+      EXPECT_NEAR(lo, end, 1e-7) << "gap or overlap before stratum " << i;
+      end = lo + width;
+      // The other axis is not divided: the segment has no extent there.
+      EXPECT_EQ(s_axis ? st.t0 : st.s0, 0.0f);
+      EXPECT_EQ(s_axis ? st.dt : st.ds, 1.0f);
+    }
+    EXPECT_NEAR(end, 1.0, 1e-6);
+    // Neighbour pairs from the first cell on; an odd N's last group is a
+    // triple; one cell (N = 1) has no group.
+    ASSERT_FALSE(l.group_begin.empty());
+    EXPECT_EQ(l.group_begin.back(), uint32_t(n));
+    const size_t groups = l.group_begin.size() - 1;
+    EXPECT_EQ(groups, size_t(n / 2));
+    for (size_t g = 0; g < groups; ++g) {
+      EXPECT_EQ(l.group_begin[g], uint32_t(2 * g));
+      const uint32_t size = l.group_begin[g + 1] - l.group_begin[g];
+      EXPECT_EQ(size, g + 1 == groups && n % 2 == 1 ? 3u : 2u) << "group " << g;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(reference, SegmentLayoutTest,
+                         ::testing::Values(1, 2, 3, 5, 16, 17, 100, 256, 1000, 1024));
 
 TEST(referenceLayout, SquareCountsAreTheJitteredGrid) {
   const Layout l = make_layout(256);
