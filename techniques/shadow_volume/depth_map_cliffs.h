@@ -8,11 +8,8 @@
 // the farther texel saw no occluder.
 //
 // The cliffs face out of the shadow (towards the farther texel), as a z-pass
-// stencil count requires. A step is a cliff only when it is larger than
-// `threshold` (relative to the nearer depth along the light's axis) and
-// just as far from the surface continued linearly from either side: the
-// staircase of a smooth sloped surface is no cliff, however steep, so it
-// does not shadow itself, while one leaf over another, however close, is.
+// stencil count requires. Which steps are cliffs (`threshold`) is
+// common/depth_cliffs.h's rule.
 // The texels on a cliff's top get caps facing the light (rays can reach
 // the space behind a partly covered texel through its top); elsewhere the
 // occluder's own surface, in front of its texel's depth by the depth pass's

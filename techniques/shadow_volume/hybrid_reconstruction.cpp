@@ -20,6 +20,7 @@
 #include <memory>
 #include <vector>
 
+#include "common/depth_cliffs.h"
 #include "common/depth_pass.h"
 #include "gl/debug.h"
 #include "gl/objects.h"
@@ -61,16 +62,8 @@ class HybridReconstruction final : public Technique {
     {
       auto pass = timer.scope("reconstruct");
       cliffs_.clear();
-      // Twice the farthest corner of the scene's box from the light: past
-      // every receiver the camera can see.
-      float reach = 0.0f;
-      for (int i = 0; i < 8; ++i) {
-        const glm::vec3 corner((i & 1) ? bounds_.hi.x : bounds_.lo.x,
-                               (i & 2) ? bounds_.hi.y : bounds_.lo.y,
-                               (i & 4) ? bounds_.hi.z : bounds_.lo.z);
-        reach = std::max(reach, glm::length(corner - frustum.eye));
-      }
-      append_depth_map_cliffs(depths_, settings_.size, frustum, threshold_, 2.0f * reach, cliffs_);
+      append_depth_map_cliffs(depths_, settings_.size, frustum, threshold_,
+                              past_every_receiver(bounds_, frustum.eye), cliffs_);
     }
     {
       auto pass = timer.scope("upload");

@@ -7,34 +7,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <glm/gtc/matrix_transform.hpp>
 #include <vector>
 
+#include "depth_map_light.h"
 #include "shadow_volume/depth_map_cliffs.h"
 
 namespace sb::shadow {
 namespace {
 
-constexpr int kSize = 16;
-constexpr float kNear = 1.0f, kFar = 10.0f;
-
-// A light at the origin looking down -z, its map covering x, y in [-z, z].
-LightFrustum light() {
-  LightFrustum f;
-  f.eye = glm::vec3(0.0f);
-  f.view = glm::lookAt(f.eye, glm::vec3(0, 0, -1), glm::vec3(0, 1, 0));
-  f.projection = glm::frustum(-kNear, kNear, -kNear, kNear, kNear, kFar);
-  f.view_projection = f.projection * f.view;
-  f.near_plane = kNear;
-  f.far_plane = kFar;
-  return f;
-}
-
-// The window depth of distance z along the light's axis.
-float window(float z) {
-  const glm::vec4 c = light().projection * glm::vec4(0.0f, 0.0f, -z, 1.0f);
-  return 0.5f * (c.z / c.w) + 0.5f;
-}
+using test::kSize;
+using test::light;
+using test::window;
 
 // Signed crossings of the segment from `from` to `to` with the triangles:
 // +1 through a face turned towards `from`, −1 through one turned away.
