@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <sstream>
+#include <string>
 
 #include "gl/objects.h"
 #include "plugin/silhouette_edges.h"
@@ -142,6 +144,49 @@ NeedProvider planar_receiver() {
   return p;
 }
 
+// "a 2×0 segment", "a 1×1 rectangle", "a point": the light as a reason names it.
+std::string light_shape(const AreaLight& l) {
+  if (l.is_point()) return "a point";
+  const auto size = [](float x) {
+    std::ostringstream s;
+    s << x;
+    return s.str();
+  };
+  return "a " + size(l.width()) + "×" + size(l.height()) +
+         (l.is_segment() ? " segment (a linear light)" : " rectangle");
+}
+
+NeedProvider linear_light() {
+  NeedProvider p;
+  p.name = need::kLinearLight;
+  p.summary = "the light is a segment, light.size [w, 0] or [0, h] (else skipped)";
+  p.when = NeedProvider::When::Plan;
+  p.derive = [](const Scene&, DerivedData& data, std::vector<std::string>&) {
+    data.put_check(need::kLinearLight);
+  };
+  p.unmet = [](const Scene& scene, const DerivedData&) -> std::string {
+    if (scene.light.is_segment()) return "";
+    return "needs a linear light (a segment: light.size [w, 0] or [0, h]); the scene's light is " +
+           light_shape(scene.light);
+  };
+  return p;
+}
+
+NeedProvider rectangular_light() {
+  NeedProvider p;
+  p.name = need::kRectangularLight;
+  p.summary = "the light is a rectangle or a point, not a segment (else skipped)";
+  p.when = NeedProvider::When::Plan;
+  p.derive = [](const Scene&, DerivedData& data, std::vector<std::string>&) {
+    data.put_check(need::kRectangularLight);
+  };
+  p.unmet = [](const Scene& scene, const DerivedData&) -> std::string {
+    if (!scene.light.is_segment()) return "";
+    return "needs a rectangular light; the scene's light is " + light_shape(scene.light);
+  };
+  return p;
+}
+
 NeedProvider edge_adjacency() {
   NeedProvider p;
   p.name = need::kEdgeAdjacency;
@@ -231,8 +276,9 @@ SilhouetteEdgeRecords pack_silhouette_edges(const Scene& scene) {
 
 const std::vector<NeedProvider>& builtin_need_providers() {
   static const std::vector<NeedProvider> providers = {
-      caster_closedness(), closed_casters(), opaque_casters(),  planar_receiver(),
-      edge_adjacency(),    caster_edges(),   silhouette_edges()};
+      caster_closedness(), closed_casters(), opaque_casters(),
+      planar_receiver(),   edge_adjacency(), caster_edges(),
+      silhouette_edges(),  linear_light(),   rectangular_light()};
   return providers;
 }
 

@@ -39,6 +39,13 @@ inline constexpr const char* kCasterEdges = "caster_edges";
 // (plugin/silhouette_edges.h), so a shader can find silhouettes without
 // uploading the scene again. Data: SilhouetteEdges.
 inline constexpr const char* kSilhouetteEdges = "silhouette_edges";
+// The light is a segment (a linear light: light.size [w, 0] or [0, h]), else
+// the job is skipped. Data: none (AreaLight::segment_end gives its ends).
+inline constexpr const char* kLinearLight = "linear_light";
+// The light is a rectangle or a point, not a segment, else the job is
+// skipped: for techniques whose filter or integral assumes the light's
+// rectangle has both sides (docs/linear_lights.md says which and why).
+inline constexpr const char* kRectangularLight = "rectangular_light";
 }  // namespace need
 
 // A technique's needs, in the order it wants them checked: the first unmet

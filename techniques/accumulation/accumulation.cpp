@@ -29,7 +29,7 @@ class Accumulation final : public Technique {
     map_ = DepthMap(map_settings_.size, map_settings_.depth_format);
     // Where the points lie on the light, in its own (s, t): not where the
     // light is, so they may be drawn here; their frusta are fitted per frame.
-    points_ = light_samples(samples_, jitter_, seed_);
+    points_ = light_sample_layouts(samples_, jitter_, seed_);
     accumulate_ = MapLookupPass("accumulation",
                                 "float lit_fraction(vec3 t) { return texture(shadow_map, t); }\n");
     gl::throw_if_errors("accumulation prepare");
@@ -42,11 +42,15 @@ class Accumulation final : public Technique {
       glClearNamedFramebufferfv(in.visibility_framebuffer, GL_COLOR, 0, zero);
     }
     const float weight = 1.0f / float(points_.size());
-    for (const glm::vec2& st : points_) {
+    const AreaLight& light = in.scene->light;
+    for (size_t i = 0; i < points_.size(); ++i) {
       LightFrustum f;
       {
         auto pass = timer.scope("shadow_maps");
-        f = fit_light_frustum(*in.scene, in.scene->light.point(st.x, st.y));
+        const glm::vec3 point = light.is_segment()
+                                    ? light.segment_end(points_.line[i])
+                                    : light.point(points_.square[i].x, points_.square[i].y);
+        f = fit_light_frustum(*in.scene, point);
         map_.render(*in.gpu, f, map_settings_.cull, map_settings_.bias);
       }
       auto pass = timer.scope("accumulate");
@@ -63,7 +67,7 @@ class Accumulation final : public Technique {
   unsigned seed_;
   DepthMapSettings map_settings_;
   DepthMap map_;
-  std::vector<glm::vec2> points_;  // (s, t) on the light
+  LightSampleLayouts points_;  // (s, t) on the light
   MapLookupPass accumulate_;
 };
 

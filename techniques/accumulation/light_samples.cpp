@@ -73,4 +73,19 @@ std::vector<glm::vec2> light_samples(int n, bool jitter, unsigned seed) {
   return out;
 }
 
+std::vector<float> segment_samples(int n, bool jitter, unsigned seed) {
+  if (n < 1) throw std::invalid_argument("segment_samples: n must be at least 1");
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+  std::vector<float> out;
+  out.reserve(size_t(n));
+  for (int i = 0; i < n; ++i)
+    out.push_back(wrap_unit((double(i) + (jitter ? double(u01(rng)) : 0.5)) / double(n)));
+  return out;
+}
+
+LightSampleLayouts light_sample_layouts(int n, bool jitter, unsigned seed) {
+  return {light_samples(n, jitter, seed), segment_samples(n, jitter, seed)};
+}
+
 }  // namespace sb::shadow

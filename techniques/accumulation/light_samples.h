@@ -19,4 +19,19 @@ namespace sb::shadow {
 // N >= 1 points; the same (n, jitter, seed) always gives the same points.
 std::vector<glm::vec2> light_samples(int n, bool jitter, unsigned seed);
 
+// On a linear light (a segment) the square's t collapses: an m×n grid would
+// put only n distinct strata along it, each point m times. A segment gets
+// N strata of its own instead, s = (i + ½)/N or jittered inside each
+// (AreaLight::segment_end). Same determinism as above.
+std::vector<float> segment_samples(int n, bool jitter, unsigned seed);
+
+// Both layouts of the same N, so that a technique can place its points on
+// whichever light a frame has (the light is not known in prepare()).
+struct LightSampleLayouts {
+  std::vector<glm::vec2> square;  // AreaLight::point(s, t)
+  std::vector<float> line;        // AreaLight::segment_end(s)
+  size_t size() const { return square.size(); }
+};
+LightSampleLayouts light_sample_layouts(int n, bool jitter, unsigned seed);
+
 }  // namespace sb::shadow

@@ -30,6 +30,11 @@ struct LightFrame {
     if (glm::dot(n, light.target - light.center) < 0.0f) n = -n;
     if (half_width > 0.0f) {
       u = light.half_u / half_width;
+    } else if (half_height > 0.0f) {
+      // A segment along half_v (light.size [0, h]): v must run along it.
+      v = light.half_v / half_height;
+      u = glm::normalize(glm::cross(v, n));
+      return;
     } else {
       const glm::vec3 across = std::fabs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
       u = glm::normalize(glm::cross(across, n));

@@ -217,7 +217,7 @@ TechniqueInfo occlusion_textures_info() {
       "occlusion_texture",
       "prefiltered occlusion textures of light-parallel slices, combined as independent "
       "probabilities (Eisemann & Decoret 2008)",
-      Needs{need::kCasterClosedness},
+      Needs{need::kRectangularLight, need::kCasterClosedness},
       {slab_count(int_param("slices", 16, 4, 16,
                             "slices between the light and the scene, four per RGBA texture")),
        power_of_two(int_param("size", 512, 16, 4096, "occlusion texture side in texels")),

@@ -261,7 +261,7 @@ TechniqueInfo penumbra_maps_info() {
           "penumbra_map",
           "a hard shadow map plus a penumbra map drawn from the light centre's silhouette "
           "edges (cones and sheets): the outer penumbra only (Wyman & Hansen 2003)",
-          Needs{need::kCasterClosedness, need::kSilhouetteEdges},
+          Needs{need::kRectangularLight, need::kCasterClosedness, need::kSilhouetteEdges},
           depth_map_params(1024),
           [](const Params& p) { return std::make_unique<OuterPenumbra>(p, Kind::PenumbraMap); }};
 }
@@ -275,7 +275,7 @@ TechniqueInfo smoothies_info() {
           "penumbra_map",
           "a hard shadow map plus fixed-width smoothies on the light centre's silhouette edges, "
           "rescaled by the receiver's depth: the outer penumbra only (Chan & Durand 2003)",
-          Needs{need::kCasterClosedness, need::kSilhouetteEdges},
+          Needs{need::kRectangularLight, need::kCasterClosedness, need::kSilhouetteEdges},
           std::move(params),
           [](const Params& p) { return std::make_unique<OuterPenumbra>(p, Kind::Smoothie); }};
 }

@@ -280,7 +280,8 @@ TechniqueInfo wedge::penumbra_wedges_info() {
           "shadow volumes, then one wedge per silhouette edge whose fragments add the light area "
           "that the edge, projected from the point, uncovers or covers (analytic clipping to the "
           "rectangle)",
-          Needs{need::kClosedCasters, need::kOpaqueCasters, need::kCasterEdges},
+          Needs{need::kRectangularLight, need::kClosedCasters, need::kOpaqueCasters,
+                need::kCasterEdges},
           umbra_params(),
           [](const Params& p) { return std::make_unique<PenumbraWedges>(p); }};
 }

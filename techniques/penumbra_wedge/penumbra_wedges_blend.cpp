@@ -393,7 +393,8 @@ TechniqueInfo wedge::penumbra_wedges_blend_info() {
           "penumbra-wedge blending (Forest, Barthe & Paulin 2006): each silhouette's wedges "
           "into its own buffers (occluded area and bounding rectangle per quadrant of the "
           "light), blended with an estimate of the overlap instead of summed",
-          Needs{need::kClosedCasters, need::kOpaqueCasters, need::kCasterEdges},
+          Needs{need::kRectangularLight, need::kClosedCasters, need::kOpaqueCasters,
+                need::kCasterEdges},
           umbra_params(),
           [](const Params& p) { return std::make_unique<PenumbraWedgesBlend>(p); }};
 }

@@ -75,7 +75,7 @@ void main() {
 class Planar final : public Technique {
  public:
   // points: (s, t) on the light; empty for the light's centre.
-  Planar(std::string name, std::vector<glm::vec2> points)
+  Planar(std::string name, shadow::LightSampleLayouts points)
       : name_(std::move(name)), points_(std::move(points)) {}
 
   void prepare(const FrameInputs& in) override {
@@ -83,7 +83,7 @@ class Planar final : public Technique {
     // The scene's size, not the light's: the tolerance of the on-plane test.
     tolerance_ = 1e-4f * std::max(in.scene->bounds().radius(), 1e-6f);
     project_ = gl::Program(name_ + "_project", {kProjectVertex, "", kProjectFragment});
-    if (!points_.empty())
+    if (points_.size() != 0)
       resolve_ =
           gl::Program(name_ + "_resolve", {gl::kFullscreenVertexShader, "", kResolveFragment});
     gl::throw_if_errors(name_ + " prepare");
@@ -102,7 +102,7 @@ class Planar final : public Technique {
       auto pass = timer.scope("project");
       project(in);
     }
-    if (points_.empty()) return;
+    if (points_.size() == 0) return;
     // The count of light points that see each pixel, as a fraction.
     auto pass = timer.scope("resolve");
     glTextureBarrier();
@@ -134,7 +134,10 @@ class Planar final : public Technique {
     const AreaLight& light = in.scene->light;
     const size_t count = std::max<size_t>(points_.size(), 1);
     for (size_t i = 0; i < count; ++i) {
-      const glm::vec3 l = points_.empty() ? light.center : light.point(points_[i].x, points_[i].y);
+      const glm::vec3 l = points_.size() == 0 ? light.center
+                          : light.is_segment()
+                              ? light.segment_end(points_.line[i])
+                              : light.point(points_.square[i].x, points_.square[i].y);
       // The stencil holds the number (1..255) of the last point that darkened
       // the pixel: a pixel darkens once per point.
       const int ref = int(i % 255) + 1;
@@ -165,7 +168,7 @@ class Planar final : public Technique {
   }
 
   std::string name_;
-  std::vector<glm::vec2> points_;
+  shadow::LightSampleLayouts points_;
   float tolerance_ = 0.0f;
   gl::Program project_;
   gl::Program resolve_;
@@ -176,14 +179,15 @@ class Planar final : public Technique {
 
 SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
   using namespace sb;
-  registry.add(
-      {"planar",
-       "planar",
-       "Blinn's projected shadow: casters flattened onto the receiver plane from the "
-       "light's centre; hard, on the plane only",
-       Needs{need::kPlanarReceiver, need::kOpaqueCasters, need::kCasterClosedness},
-       {},
-       [](const Params&) { return std::make_unique<Planar>("planar", std::vector<glm::vec2>{}); }});
+  registry.add({"planar",
+                "planar",
+                "Blinn's projected shadow: casters flattened onto the receiver plane from the "
+                "light's centre; hard, on the plane only",
+                Needs{need::kPlanarReceiver, need::kOpaqueCasters, need::kCasterClosedness},
+                {},
+                [](const Params&) {
+                  return std::make_unique<Planar>("planar", shadow::LightSampleLayouts{});
+                }});
   registry.add(
       {"planar_soft",
        "planar",
@@ -200,8 +204,8 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
          // Where the points lie on the light, in its own (s, t): parameters
          // only, so computed here; placed in the world per frame.
          return std::make_unique<Planar>(
-             "planar_soft", shadow::light_samples(p.get_int("samples"), p.get_bool("jitter"),
-                                                  unsigned(p.get_int("seed"))));
+             "planar_soft", shadow::light_sample_layouts(p.get_int("samples"), p.get_bool("jitter"),
+                                                         unsigned(p.get_int("seed"))));
        }});
   registry.add(plateaus_info());
 }

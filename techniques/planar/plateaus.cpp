@@ -202,7 +202,8 @@ TechniqueInfo plateaus_info() {
           "Haines's plateaus: the hard planar shadow plus penumbra bands on the receiver plane "
           "around the light centre's silhouette edges, as wide as the occluder's height sets; "
           "outer penumbra only",
-          Needs{need::kPlanarReceiver, need::kOpaqueCasters, need::kSilhouetteEdges},
+          Needs{need::kRectangularLight, need::kPlanarReceiver, need::kOpaqueCasters,
+                need::kSilhouetteEdges},
           {},
           [](const Params&) { return std::make_unique<Plateaus>(); }};
 }

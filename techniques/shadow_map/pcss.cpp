@@ -107,7 +107,7 @@ TechniqueInfo pcss_info() {
           "shadow_map",
           "percentage-closer soft shadows: blocker search, then PCF as wide as the penumbra "
           "(Fernando 2005)",
-          Needs{need::kCasterClosedness},
+          Needs{need::kRectangularLight, need::kCasterClosedness},
           std::move(params),
           [](const Params& p) { return std::make_unique<Pcss>(p); }};
 }

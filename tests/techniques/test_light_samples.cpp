@@ -130,5 +130,32 @@ TEST(LightSamples, SameSeedSamePointsOtherSeedOtherPoints) {
   }
 }
 
+// On a segment the square's t collapses (an m×n grid would leave n distinct
+// strata along it): a segment gets one point in each of N strata of its own.
+TEST(LightSamples, ASegmentGetsOnePointInEachOfNStrata) {
+  for (const int n : {1, 2, 7, 16, 64, 256, 257}) {
+    for (const bool jitter : {false, true}) {
+      const std::vector<float> s = segment_samples(n, jitter, 3);
+      ASSERT_EQ(s.size(), size_t(n));
+      std::vector<int> per_stratum(size_t(n), 0);
+      for (const float x : s) {
+        ASSERT_GE(x, 0.0f);
+        ASSERT_LT(x, 1.0f);
+        ++per_stratum[size_t(std::min(int(x * float(n)), n - 1))];
+        if (!jitter) {
+          const float centre = (std::floor(x * float(n)) + 0.5f) / float(n);
+          EXPECT_NEAR(x, centre, 1e-6f);
+        }
+      }
+      for (const int c : per_stratum) EXPECT_EQ(c, 1) << n << (jitter ? " jittered" : "");
+    }
+  }
+  EXPECT_EQ(segment_samples(64, true, 3), segment_samples(64, true, 3));
+  EXPECT_NE(segment_samples(64, true, 3), segment_samples(64, true, 4));
+  const LightSampleLayouts both = light_sample_layouts(16, true, 3);
+  EXPECT_EQ(both.square, light_samples(16, true, 3));
+  EXPECT_EQ(both.line, segment_samples(16, true, 3));
+}
+
 }  // namespace
 }  // namespace sb::shadow
