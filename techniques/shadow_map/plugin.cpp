@@ -11,4 +11,5 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
   registry.add(sb::shadow::psm_info());
   registry.add(sb::shadow::lispsm_info());
   registry.add(sb::shadow::extended_light_maps_info());
+  registry.add(sb::shadow::heidrich_linear_info());
 }

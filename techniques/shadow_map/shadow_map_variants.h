@@ -11,4 +11,5 @@ TechniqueInfo blurred_visibility_info();
 TechniqueInfo psm_info();
 TechniqueInfo lispsm_info();
 TechniqueInfo extended_light_maps_info();
+TechniqueInfo heidrich_linear_info();
 }  // namespace sb::shadow
