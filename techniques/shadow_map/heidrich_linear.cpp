@@ -100,8 +100,8 @@ float seen(mat4 view_projection, mat4 view, sampler2DShadow map, vec3 end, float
 // The visibility map's shade at t: bilinear between texel centres over the
 // texels a skin reached (cleared to kNoSkin: a clear value of `lit` would
 // cap every shade at it under min blending), so that a skin's end does not
-// fade into the default; `lit` where none of the four was reached, and
-// outside the map.
+// fade into the default; where none of the four was reached, the nearest
+// one that was within two texels, else `lit`; `lit` outside the map.
 float shade(sampler2D map, vec3 t) {
   if (any(lessThan(t.xy, vec2(0.0))) || any(greaterThan(t.xy, vec2(1.0)))) return lit;
   ivec2 size = textureSize(map, 0);
@@ -120,7 +120,25 @@ float shade(sampler2D map, vec3 t) {
       }
     }
   }
-  return weight > 0.0 ? sum / weight : lit;
+  if (weight > 0.0) return sum / weight;
+  // A hole: the nearest texel a skin reached within two texels. A skin's
+  // ends are quantised to the other map's texels, so a sliver beside the
+  // occluder's edge (or the receiver's) can stay uncovered; the skin next
+  // to it holds the right end's shade (0 at the occluder, 1 at the receiver).
+  float nearest = 1e9, value = lit;
+  for (int j = -1; j <= 2; ++j) {
+    for (int i = -1; i <= 2; ++i) {
+      ivec2 texel = base + ivec2(i, j);
+      if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, size))) continue;
+      float v = texelFetch(map, texel, 0).r;
+      vec2 d = vec2(texel) - x;
+      if (v <= 1.0 && dot(d, d) < nearest) {
+        nearest = dot(d, d);
+        value = v;
+      }
+    }
+  }
+  return value;
 }
 
 void main() {
