@@ -11,6 +11,7 @@ packages=(
   libtinygltf-dev libglm-dev nlohmann-json3-dev
   libembree-dev libtbb-dev libpolyclipping-dev libboost-dev
   libbenchmark-dev libgtest-dev libgmock-dev
+  libcli11-dev help2man
 )
 if [[ "${1:-}" == "--test" ]]; then
   # Test oracles: scikit-image for SSIM; Google Benchmark's compare.py (and
@@ -18,6 +19,9 @@ if [[ "${1:-}" == "--test" ]]; then
   packages+=(python3-skimage python3-numpy libbenchmark-tools python3-scipy)
   # Headless Chromium opens the HTML report (tests/report).
   packages+=(chromium)
+  # The Debian package's test (tests/install): CPack's DEB generator with
+  # dpkg-shlibdeps (dpkg-dev, file), readelf (binutils) and man for the page.
+  packages+=(dpkg-dev file binutils man-db)
 fi
 
 missing=()

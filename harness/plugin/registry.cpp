@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
+#include <string>
 
 namespace sb {
 
@@ -15,8 +16,12 @@ bool Needs::has(const std::string& name) const {
 }
 
 void Registry::add(TechniqueInfo info) {
-  if (find(info.name) != nullptr)
-    throw std::logic_error("technique '" + info.name + "' registered twice");
+  if (find(info.name) != nullptr) {
+    const std::string& first = origins_[info.name];
+    throw std::logic_error("technique '" + info.name + "' registered twice" +
+                           (first.empty() ? std::string() : ", first by " + first));
+  }
+  origins_[info.name] = loading_;
   techniques_.push_back(std::move(info));
 }
 
@@ -27,8 +32,12 @@ const TechniqueInfo* Registry::find(const std::string& name) const {
 }
 
 void Registry::add_provider(NeedProvider provider) {
-  if (find_provider(provider.name) != nullptr)
-    throw std::logic_error("need '" + provider.name + "' provided twice");
+  if (find_provider(provider.name) != nullptr) {
+    const std::string& first = origins_["need " + provider.name];
+    throw std::logic_error("need '" + provider.name + "' provided twice" +
+                           (first.empty() ? std::string() : ", first by " + first));
+  }
+  origins_["need " + provider.name] = loading_;
   providers_.push_back(std::move(provider));
 }
 
@@ -45,7 +54,14 @@ int Registry::load_plugins(const std::string& dir) {
   for (const auto& e : fs::directory_iterator(dir))
     if (e.path().extension() == ".so") files.push_back(e.path());
   std::sort(files.begin(), files.end());  // stable order for `list` and plans
+  int loaded = 0;
   for (const auto& f : files) {
+    // The same module reached twice (a folder named in two places) is loaded once.
+    std::error_code ec;
+    const std::string canonical = fs::canonical(f, ec).string();
+    if (!ec &&
+        std::find(module_paths_.begin(), module_paths_.end(), canonical) != module_paths_.end())
+      continue;
     void* handle = dlopen(f.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (handle == nullptr)
       throw std::runtime_error("cannot load plugin " + f.string() + ": " + dlerror());
@@ -53,26 +69,20 @@ int Registry::load_plugins(const std::string& dir) {
     auto entry = reinterpret_cast<Entry>(dlsym(handle, "shadowbench_register_plugin"));
     if (entry == nullptr)
       throw std::runtime_error("plugin " + f.string() + " has no shadowbench_register_plugin");
-    entry(*this);
+    loading_ = f.string();
+    try {
+      entry(*this);
+    } catch (const std::logic_error& e) {
+      // Two modules with one technique or need: which one the user meant
+      // cannot be guessed, so neither silently wins.
+      throw std::runtime_error("plugin " + f.string() + ": " + e.what());
+    }
+    loading_.clear();
     modules_.push_back(handle);
+    module_paths_.push_back(ec ? f.string() : canonical);
+    ++loaded;
   }
-  return static_cast<int>(files.size());
-}
-
-std::string default_plugin_dir() {
-  if (const char* env = std::getenv("SHADOWBENCH_PLUGIN_DIR"); env != nullptr && *env != '\0')
-    return env;
-  std::error_code ec;
-  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const auto dir = exe.parent_path() / "plugins";
-    if (std::filesystem::is_directory(dir)) return dir.string();
-  }
-#ifdef SHADOWBENCH_DEFAULT_PLUGIN_DIR
-  return SHADOWBENCH_DEFAULT_PLUGIN_DIR;
-#else
-  return "plugins";
-#endif
+  return loaded;
 }
 
 }  // namespace sb

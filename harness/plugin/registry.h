@@ -5,11 +5,13 @@
 // that adds its variants, and the providers of any need of its own
 // (plugin/needs.h). The harness loads every module in its plugin folder.
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/install_layout.h"  // default_plugin_dir(), for callers of load_plugins
 #include "core/params.h"
 #include "plugin/needs.h"
 #include "plugin/technique.h"
@@ -41,18 +43,19 @@ class Registry {
   const std::vector<NeedProvider>& providers() const { return providers_; }
 
   // Loads every *.so in `dir`; throws std::runtime_error naming the module on
-  // a missing entry point or a dlopen failure. Returns the module count.
+  // a missing entry point, a dlopen failure, or a technique or need another
+  // module registered already (naming both). A module already loaded from
+  // another folder name is skipped. Returns the count of modules loaded.
   int load_plugins(const std::string& dir);
 
  private:
   std::vector<TechniqueInfo> techniques_;
   std::vector<NeedProvider> providers_;
   std::vector<void*> modules_;  // kept open for the process lifetime
+  std::vector<std::string> module_paths_;
+  std::map<std::string, std::string> origins_;  // technique (or "need x") -> module
+  std::string loading_;                         // the module being registered
 };
-
-// The plugin folder: $SHADOWBENCH_PLUGIN_DIR, else <exe dir>/plugins, else the
-// build tree's folder.
-std::string default_plugin_dir();
 
 }  // namespace sb
 

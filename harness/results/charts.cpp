@@ -18,6 +18,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/install_layout.h"
 #include "core/names.h"
 #include "record/job_record.h"
 #include "results/pareto.h"
@@ -409,19 +410,16 @@ void require_python() {
 }  // namespace
 
 std::string find_plot_script() {
-  std::vector<fs::path> dirs;
-  std::error_code ec;
-  const auto exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) dirs.push_back(exe.parent_path() / "share" / "shadowbench");
-  if (const char* env = std::getenv("SHADOWBENCH_SHARE_DIR"); env != nullptr && *env != '\0')
-    dirs.push_back(env);
+  std::vector<std::string> dirs = data_dirs();
 #ifdef SHADOWBENCH_CHARTS_SOURCE_DIR
-  dirs.push_back(SHADOWBENCH_CHARTS_SOURCE_DIR);
+  dirs.emplace_back(SHADOWBENCH_CHARTS_SOURCE_DIR);
 #endif
   std::string tried;
+  std::error_code ec;
   for (const auto& d : dirs) {
-    if (fs::is_regular_file(d / kScript, ec)) return (d / kScript).string();
-    tried += (tried.empty() ? "" : ", ") + d.string();
+    const fs::path script = fs::path(d) / kScript;
+    if (fs::is_regular_file(script, ec)) return script.string();
+    tried += (tried.empty() ? "" : ", ") + d;
   }
   throw std::runtime_error(std::string("cannot find ") + kScript + " (looked in " + tried +
                            "; set SHADOWBENCH_SHARE_DIR to its folder)");

@@ -52,8 +52,9 @@ std::vector<ChartFile> write_charts(const std::vector<JobRecord>& records,
 // install). Runs python3 once.
 std::string charts_unavailable_reason();
 
-// The plotting script found as write_charts() looks for it:
-// <executable's folder>/share/shadowbench/, $SHADOWBENCH_SHARE_DIR, the source tree.
+// The plotting script found as write_charts() looks for it: in data_dirs()
+// (core/install_layout.h: $SHADOWBENCH_SHARE_DIR, the build tree's or the
+// installed share folder), then in the source tree.
 std::string find_plot_script();
 
 }  // namespace sb

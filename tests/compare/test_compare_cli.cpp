@@ -84,13 +84,14 @@ TEST(CompareCli, BadInputExitsWithTwo) {
       {"compare " + base + " " + base + " --metric visibility.all.nope", "no record has metrics"},
       {"compare " + base + " " + base + " --timing shading", "--timing"},
       {"compare " + base + " " + base + " --normalize ratio", "--normalize"},
-      {"report " + base + " --normalize control", "go with compare"},
+      {"report " + base + " --normalize control",
+       "goes with compare or compare-builds, not with report"},
       {"compare " + base + " " + newer,
        newer + "/results.jsonl: at line 2 (/schema_version): the record has schema_version 2; "
                "this shadowbench reads schema_version 1"},
       {"report " + newer, newer + "/results.jsonl: at line 2 (/schema_version)"},
-      {"report " + base + " --alpha 0.1", "go with compare"},
-      {"validate x.json --benchmark-out b.json", "go with run or report"},
+      {"report " + base + " --alpha 0.1", "goes with compare or compare-builds, not with report"},
+      {"validate x.json --benchmark-out b.json", "goes with run or report, not with validate"},
   };
   for (const auto& c : cases) {
     const auto r = run_cli(c.args);

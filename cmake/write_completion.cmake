@@ -1,0 +1,20 @@
+# cmake -DOUT=FILE -P write_completion.cmake -- COMMAND...
+# Runs COMMAND (the built shadowbench) without the user's extra plugin
+# folders and writes its stdout to FILE.
+set(command)
+set(seen FALSE)
+math(EXPR last "${CMAKE_ARGC} - 1")
+foreach(i RANGE ${last})
+  if(seen)
+    list(APPEND command "${CMAKE_ARGV${i}}")
+  elseif("${CMAKE_ARGV${i}}" STREQUAL "--")
+    set(seen TRUE)
+  endif()
+endforeach()
+unset(ENV{SHADOWBENCH_PLUGIN_PATH})
+unset(ENV{SHADOWBENCH_PLUGIN_DIR})
+execute_process(COMMAND ${command} OUTPUT_FILE "${OUT}.tmp" RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "${command} failed (${rc})")
+endif()
+file(RENAME "${OUT}.tmp" "${OUT}")

@@ -1,0 +1,112 @@
+// `shadowbench compare` (two run folders) and `shadowbench compare-builds`
+// (two builds run on one config taking turns, then compared).
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "cli/commands.h"
+#include "core/error.h"
+#include "results/compare.h"
+#include "results/store.h"
+#include "run/take_turns.h"
+
+namespace sb::cli {
+namespace {
+
+int compare_dirs(const std::string& base, const std::string& fresh, const CompareOptions& options) {
+  const std::string dirs[2] = {base, fresh};
+  std::vector<JobRecord> runs[2];
+  for (int i = 0; i < 2; ++i) {
+    const std::string& dir = dirs[i];
+    if (!std::filesystem::is_directory(dir)) throw InputError(dir, "", "no such run directory");
+    runs[i] = read_job_records(dir);
+    if (runs[i].empty()) throw InputError(dir + "/results.jsonl", "", "no records");
+  }
+  const CompareResult r = compare_runs(runs[0], runs[1], options);
+  if (r.jobs.empty()) throw InputError(fresh, "", "no job in common with " + base);
+  auto describe = [](const std::vector<JobRecord>& records, const std::string& dir) {
+    const std::string& id = records[0].run_id;
+    return dir + (id.empty() ? "" : " (" + id + ")");
+  };
+  std::printf("BASE %s\nNEW  %s\n", describe(runs[0], base).c_str(),
+              describe(runs[1], fresh).c_str());
+  std::printf("%s", format_comparison(r, options).c_str());
+  if (r.regressions > 0) std::fprintf(stderr, "shadowbench: %d job(s) regressed\n", r.regressions);
+  if (r.time_refused > 0)
+    std::fprintf(
+        stderr,
+        "shadowbench: the time of %d job(s) was not compared (other or unknown hosts, or no "
+        "control timing): use --normalize control, or --timing none for errors only\n",
+        r.time_refused);
+  return compare_exit_code(r);
+}
+
+}  // namespace
+
+int cmd_compare(const Args& a) {
+  if (a.base_dir.empty() || a.new_dir.empty())
+    throw InputError("", "command line",
+                     "expected BASE_DIR NEW_DIR (see shadowbench compare --help)");
+  return compare_dirs(a.base_dir, a.new_dir, a.compare);
+}
+
+// Both builds run CONFIG taking turns (run/take_turns.h), each into its own
+// folder under --out, then the two are compared as `compare` does.
+int cmd_compare_builds(const Args& a) {
+  if (a.base_binary.empty() || a.new_binary.empty())
+    throw InputError("", "command line",
+                     "compare-builds needs --base BIN_A and --new BIN_B (see shadowbench "
+                     "compare-builds --help)");
+  const std::string config = one_config(a);
+  for (const std::string* bin : {&a.base_binary, &a.new_binary})
+    if (::access(bin->c_str(), X_OK) != 0)
+      throw InputError(*bin, "", "not an executable shadowbench binary");
+  if (!std::filesystem::is_regular_file(config)) throw InputError(config, "", "no such config");
+  // Both runs timed the control next to every frame: their ratios are the
+  // steadier measure (docs/ci.md, "What the gate catches"), hence
+  // compare-builds' own default, --normalize control.
+  CompareOptions options = a.compare;
+  options.normalize = a.builds_normalize;
+  check_options(options);
+  const std::string out = a.out.empty() ? "results/" + default_run_id("compare-builds") : a.out;
+  const std::string dirs[2] = {out + "/base", out + "/new"};
+  TurnCommand commands[2];
+  for (int i = 0; i < 2; ++i) {
+    TurnCommand& c = commands[i];
+    c.label = i == 0 ? "base" : "new";
+    c.argv = {i == 0 ? a.base_binary : a.new_binary,
+              "run",
+              config,
+              "--out",
+              dirs[i],
+              "--quiet",
+              "--no-images",
+              "--turn-block",
+              std::to_string(a.turn_block),
+              "--backend",
+              a.backend};
+    if (a.no_cache)
+      c.argv.push_back("--no-cache");
+    else
+      c.argv.insert(c.argv.end(), {"--cache-dir", a.cache_dir});
+    if (!a.embree_config.empty()) c.argv.insert(c.argv.end(), {"--embree-config", a.embree_config});
+  }
+  std::printf("compare-builds: base %s, new %s, taking turns every %d timed frames\n",
+              a.base_binary.c_str(), a.new_binary.c_str(), a.turn_block);
+  std::fflush(stdout);
+  const TurnsResult t = take_turns(commands[0], commands[1]);
+  for (int i = 0; i < 2; ++i) {
+    std::printf("%s: %s, %d turns, exit code %d\n", commands[i].label.c_str(), dirs[i].c_str(),
+                t.turns[i], t.exit_code[i]);
+    // 0: every job ok or skipped; 1: some failed, which compare judges.
+    if (t.exit_code[i] != kExitOk && t.exit_code[i] != kExitJobsFailed) {
+      std::fprintf(stderr, "shadowbench: the %s build's run failed (exit code %d)\n",
+                   commands[i].label.c_str(), t.exit_code[i]);
+      return t.exit_code[i] == kExitBadInput ? kExitBadInput : kExitInternal;
+    }
+  }
+  return compare_dirs(dirs[0], dirs[1], options);
+}
+
+}  // namespace sb::cli

@@ -1,0 +1,43 @@
+// `shadowbench report`: tables, charts and index.html of a run folder.
+// report and compare read run folders that anyone may have written: a record
+// that does not follow the schema is bad input (read_job_records names the
+// file, the line and the JSON pointer), not an internal error.
+#include <cstdio>
+#include <filesystem>
+
+#include "cli/commands.h"
+#include "core/error.h"
+#include "results/charts.h"
+#include "results/html_report.h"
+#include "results/report.h"
+#include "results/store.h"
+
+namespace sb::cli {
+
+int cmd_report(const Args& a) {
+  if (a.run_dir.empty())
+    throw InputError("", "command line", "expected one RUN_DIR (see shadowbench report --help)");
+  const std::string& run_dir = a.run_dir;
+  const auto records = read_job_records(run_dir);
+  const std::string title =
+      records.empty() ? "shadowbench" : records[0].experiment + " (" + records[0].run_id + ")";
+  write_reports(run_dir, records, title);
+  std::printf("%s", make_markdown(records, title).c_str());
+  // Charts and index.html go to --out, by default RUN_DIR/report.
+  const std::string out =
+      a.out.empty() ? (std::filesystem::path(run_dir) / "report").string() : a.out;
+  std::filesystem::create_directories(out);
+  ChartOptions chart_options;
+  chart_options.error_metric = a.compare.metric;
+  std::vector<ReportChart> charts;
+  for (const ChartFile& c : write_charts(records, out, chart_options)) {
+    charts.push_back({c.title, c.svg, c.png});
+    std::printf("chart: %s (.png)\n", c.svg.c_str());
+  }
+  write_html_report(records, run_dir, out, charts, title);
+  std::printf("report: %s\n", (std::filesystem::path(out) / "index.html").string().c_str());
+  write_ci_outputs(a, records);
+  return kExitOk;
+}
+
+}  // namespace sb::cli

@@ -1,0 +1,39 @@
+// `shadowbench validate` and `shadowbench plan`: every job planned on the
+// CPU, no GL, so a bad scene file is found now, and the counts say which
+// jobs will be skipped and why.
+#include <cstdio>
+
+#include "cli/commands.h"
+#include "config/experiment.h"
+#include "core/error.h"
+#include "plan/plan.h"
+
+namespace sb::cli {
+
+int cmd_validate(const Args& a, bool show_plan) {
+  const Registry r = load_registry(a);
+  const Experiment e = load_checked_experiment(a, r);
+  const Plan plan = make_plan(e);
+  if (show_plan) std::printf("%s", describe_plan(e, plan).c_str());
+  for (size_t s = 0; s < plan.scenes.size(); ++s) {
+    const ScenePlan& sp = plan.scenes[s];
+    if (sp.error.empty()) continue;
+    const std::string what =
+        sp.bad_input
+            ? sp.input_error
+            : InputError(e.file, e.scenes[s].pointer, "scene " + e.scenes[s].name + ": " + sp.error)
+                  .what();
+    std::fprintf(stderr, "shadowbench: error: %s\n", what.c_str());
+    return kExitBadInput;
+  }
+  if (!show_plan)
+    std::printf(
+        "%s: ok: %zu scene variant(s) × %zu resolution(s) × %zu technique variant(s) = %zu jobs "
+        "(%zu to run, %zu skipped; `shadowbench plan` says why)\n",
+        e.file.c_str(), e.scenes.size(), e.resolutions.size(), e.techniques.size(),
+        plan.jobs.size(), plan.count(PlannedJob::Status::Run),
+        plan.count(PlannedJob::Status::Skip));
+  return kExitOk;
+}
+
+}  // namespace sb::cli

@@ -1,0 +1,55 @@
+#pragma once
+// The command line, on CLI11: every subcommand with its own options, their
+// defaults and one example in its --help; --version; and errors in the
+// harness's words with exit code 2, naming the option (docs/cli.md is
+// generated from this parser, and a test keeps the two equal).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "config/experiment.h"
+#include "results/compare.h"
+
+namespace CLI {
+class App;
+}
+
+namespace sb::cli {
+
+struct Args {
+  std::string command;                // "run", ..., "scene export", "scene info"
+  std::string config;                 // run, validate, plan, compare-builds
+  std::string run_dir;                // report
+  std::string base_dir, new_dir;      // compare
+  std::vector<std::string> names;     // list: techniques or scene types; help: a command
+  std::string scene_spec, scene_out;  // scene export / info
+  std::string shell;                  // completion
+  std::string out, backend = "osmesa", cache_dir = "results/cache", plugins;
+  bool no_cache = false, no_images = false, gbuffer = false, quiet = false;
+  bool markdown = false;                                  // list, help
+  bool names_only = false;                                // list
+  std::string benchmark_out, bencher_out;                 // run, report: CI outputs
+  std::string embree_config;                              // run: the reference's Embree ISA
+  std::string pass_timing = "coarse";                     // run
+  double max_jobs = double(ExperimentLimits{}.max_jobs);  // run, validate, plan
+  CompareOptions compare;                                 // compare, compare-builds
+  std::string builds_normalize = "control";               // compare-builds' own default
+  std::string base_binary, new_binary;                    // compare-builds
+  std::string take_turns;  // run: IN_FD,OUT_FD (compare-builds, hidden)
+  int turn_block = 5;      // run, compare-builds: frames per turn
+};
+
+// The parser, writing into `args`. Kept alive for as long as `args` is read.
+std::unique_ptr<CLI::App> make_command_line(Args& args);
+
+// Parses argv into args. Returns -1 to go on with args.command, or the exit
+// code to end with: 0 after --help or --version (printed to stdout), 2 after
+// a usage error (printed to stderr as "shadowbench: error: ...").
+int parse_command_line(CLI::App& app, int argc, const char* const* argv, Args& args);
+
+// Every subcommand, depth first, as "run", "scene export", ...; for the
+// reference, completion and tests.
+std::vector<CLI::App*> all_commands(CLI::App& app);
+std::string command_path(const CLI::App& command);
+
+}  // namespace sb::cli

@@ -1,0 +1,77 @@
+// What several commands share: the plugins, run folder names, CI outputs.
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <stdexcept>
+
+#include "cli/commands.h"
+#include "config/unread_params.h"
+#include "core/error.h"
+#include "core/install_layout.h"
+#include "results/bencher_json.h"
+#include "results/benchmark_json.h"
+
+namespace sb::cli {
+
+Registry load_registry(const Args& a) {
+  Registry r;
+  std::vector<std::string> dirs = {a.plugins.empty() ? default_plugin_dir() : a.plugins};
+  for (const std::string& dir : extra_plugin_dirs()) dirs.push_back(dir);
+  try {
+    for (size_t i = 0; i < dirs.size(); ++i) {
+      try {
+        r.load_plugins(dirs[i]);
+      } catch (const std::runtime_error& e) {
+        if (i == 0) throw;
+        throw std::runtime_error(std::string(e.what()) + " (from $SHADOWBENCH_PLUGIN_PATH)");
+      }
+    }
+    if (r.all().empty()) {
+      std::string where;
+      for (const std::string& d : dirs) where += (where.empty() ? "" : ", ") + d;
+      throw std::runtime_error("no technique plugins in " + where);
+    }
+  } catch (const std::runtime_error& e) {
+    std::fprintf(stderr, "shadowbench: %s\n", e.what());
+    std::exit(kExitInternal);
+  }
+  return r;
+}
+
+std::string one_config(const Args& a) {
+  if (a.config.empty())
+    throw InputError("", "command line",
+                     "expected exactly one CONFIG file (see shadowbench " + a.command + " --help)");
+  return a.config;
+}
+
+Experiment load_checked_experiment(const Args& a, const Registry& r) {
+  ExperimentLimits limits;
+  limits.max_jobs = uint64_t(a.max_jobs);
+  Experiment e = load_experiment(one_config(a), r, limits);
+  for (const std::string& w : unread_parameter_warnings(e))
+    std::fprintf(stderr, "shadowbench: warning: %s\n", w.c_str());
+  return e;
+}
+
+std::string default_run_id(const std::string& name) {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", &tm);
+  return name + "-" + buf;
+}
+
+void write_ci_outputs(const Args& a, const std::vector<JobRecord>& records) {
+  if (!a.benchmark_out.empty()) {
+    write_benchmark_json(a.benchmark_out, records);
+    std::printf("Google Benchmark JSON: %s\n", a.benchmark_out.c_str());
+  }
+  if (!a.bencher_out.empty()) {
+    write_bencher_json(a.bencher_out, records);
+    std::printf("Bencher Metric Format JSON: %s\n", a.bencher_out.c_str());
+  }
+}
+
+}  // namespace sb::cli

@@ -1,0 +1,92 @@
+// The bash completion that `shadowbench completion bash` prints (and the
+// build installs), driven in bash as readline would: COMP_WORDS and
+// COMP_CWORD set, the completion function called, COMPREPLY read.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "../config/cli_runner.h"
+
+namespace sb::test {
+namespace {
+
+class BashCompletion : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    const auto r = run_cli("completion bash");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    script_ =
+        (std::filesystem::temp_directory_path() / "shadowbench_test_completion.bash").string();
+    std::ofstream(script_) << r.output;
+  }
+
+  // The words COMPREPLY holds after completing the last of `words`.
+  static std::vector<std::string> complete(const std::vector<std::string>& words) {
+    std::string array;
+    for (const auto& w : words) array += " '" + w + "'";
+    const std::string dir = std::filesystem::temp_directory_path() / "shadowbench_completion_cwd";
+    std::filesystem::create_directories(dir + "/runs/a");
+    std::ofstream(dir + "/quick.json") << "{}";
+    std::ofstream(dir + "/notes.txt") << "";
+    const std::string command = "cd '" + dir + "' && bash -c 'source " + script_ +
+                                " && COMP_WORDS=(" + array +
+                                ") && COMP_CWORD=" + std::to_string(words.size() - 1) +
+                                " && { _shadowbench; printf \"%s\\n\" \"${COMPREPLY[@]}\"; }'";
+    FILE* pipe = popen(command.c_str(), "r");
+    std::string out;
+    char buf[512];
+    while (fgets(buf, sizeof buf, pipe) != nullptr) out += buf;
+    pclose(pipe);
+    std::vector<std::string> reply;
+    std::istringstream lines(out);
+    for (std::string line; std::getline(lines, line);)
+      if (!line.empty()) reply.push_back(line);
+    std::sort(reply.begin(), reply.end());
+    return reply;
+  }
+
+  static std::string script_;
+};
+std::string BashCompletion::script_;
+
+using Words = std::vector<std::string>;
+
+TEST_F(BashCompletion, CommandsAndSubcommands) {
+  EXPECT_EQ(complete({"shadowbench", "ru"}), Words({"run"}));
+  EXPECT_EQ(complete({"shadowbench", "compare"}), Words({"compare", "compare-builds"}));
+  EXPECT_EQ(complete({"shadowbench", "scene", ""}), Words({"export", "info"}));
+  EXPECT_EQ(complete({"shadowbench", "--ver"}), Words({"--version"}));
+  EXPECT_EQ(complete({"shadowbench", "help", "rep"}), Words({"report"}));
+}
+
+TEST_F(BashCompletion, EachCommandsOwnOptions) {
+  EXPECT_EQ(complete({"shadowbench", "run", "--back"}), Words({"--backend"}));
+  EXPECT_EQ(complete({"shadowbench", "compare", "a", "--ti"}),
+            Words({"--time-threshold", "--timing"}));
+  EXPECT_EQ(complete({"shadowbench", "report", "--ti"}), Words{});  // compare's, not report's
+  EXPECT_EQ(complete({"shadowbench", "scene", "export", "--"}), Words({"--help", "--help-all"}));
+}
+
+TEST_F(BashCompletion, ChoicesFoldersAndConfigs) {
+  EXPECT_EQ(complete({"shadowbench", "run", "--backend", ""}), Words({"egl", "osmesa"}));
+  EXPECT_EQ(complete({"shadowbench", "compare-builds", "--normalize", "c"}), Words({"control"}));
+  EXPECT_EQ(complete({"shadowbench", "run", "--out", "ru"}), Words({"runs"}));
+  EXPECT_EQ(complete({"shadowbench", "run", ""}), Words({"quick.json", "runs"}));
+  EXPECT_EQ(complete({"shadowbench", "report", ""}), Words({"runs"}));
+}
+
+TEST_F(BashCompletion, TechniqueNamesAndSceneTypes) {
+  const Words pcf = complete({"shadowbench", "list", "pcf"});
+  EXPECT_FALSE(pcf.empty());
+  for (const auto& w : pcf) EXPECT_EQ(w.rfind("pcf", 0), 0u) << w;
+  EXPECT_EQ(complete({"shadowbench", "list", "sphere_g"}), Words({"sphere_grid"}));
+  EXPECT_EQ(complete({"shadowbench", "list", "heidrich"}), Words({"heidrich_linear"}));
+  const Words scenes = complete({"shadowbench", "scene", "info", "jee"});
+  EXPECT_EQ(scenes, Words({"jeep"}));
+}
+
+}  // namespace
+}  // namespace sb::test

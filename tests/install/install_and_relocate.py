@@ -1,0 +1,139 @@
+#!/usr/bin/env python3
+"""Installs a shadowbench build with `cmake --install` into a prefix, moves
+the prefix, and uses it from there as a user would: --version names the moved
+folders, the binaries carry no absolute RUNPATH, configs/quick.json runs and
+`report` draws its charts; a technique family built against the moved
+prefix's plugin API (find_package(shadowbench)) is found through
+$SHADOWBENCH_PLUGIN_PATH beside the installed ones. Run by ctest
+(tests/install/CMakeLists.txt); prints how long each step took."""
+import argparse
+import glob
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+
+def run(what, *cmd, env=None, cwd=None, expect=0):
+    started = time.monotonic()
+    r = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=cwd)
+    print(f"{what}: {time.monotonic() - started:.1f} s (exit {r.returncode})")
+    if r.returncode != expect:
+        sys.exit(f"{what} exited {r.returncode}, expected {expect}:\n{r.stdout}\n{r.stderr}")
+    return r.stdout + r.stderr
+
+
+def clean_env():
+    """The user's environment, without anything that would point shadowbench
+    or the loader back at the build tree."""
+    env = {k: v for k, v in os.environ.items()
+           if not k.startswith("SHADOWBENCH_") and k != "LD_LIBRARY_PATH"}
+    return env
+
+
+def check_runpaths(prefix, build):
+    """Every installed ELF file's RUNPATH is relative ($ORIGIN...)."""
+    elves = [os.path.join(prefix, "bin", "shadowbench")]
+    elves += glob.glob(os.path.join(prefix, "lib", "shadowbench", "*.so"))
+    elves += glob.glob(os.path.join(prefix, "lib", "shadowbench", "plugins", "*.so"))
+    if len(elves) < 10:
+        sys.exit(f"expected the binary, two libraries and the plugins, found {elves}")
+    for elf in elves:
+        dynamic = subprocess.run(["readelf", "-d", elf], capture_output=True, text=True).stdout
+        for line in dynamic.splitlines():
+            if "RUNPATH" in line or "RPATH" in line:
+                path = line.split("[", 1)[1].rstrip("]")
+                for entry in path.split(":"):
+                    if not entry.startswith("$ORIGIN"):
+                        sys.exit(f"{elf}: RUNPATH entry {entry!r} is not relative to $ORIGIN")
+                if build in path:
+                    sys.exit(f"{elf}: RUNPATH names the build folder: {path}")
+
+
+def main():
+    a = argparse.ArgumentParser()
+    for name in ("build", "plugin-source", "cmake", "cxx"):
+        a.add_argument("--" + name, required=True)
+    a = a.parse_args()
+    # Outside the build folder, so that no path of it can pass for the prefix.
+    a.work = tempfile.mkdtemp(prefix="shadowbench-install-test-")
+    started = time.monotonic()
+    first = os.path.join(a.work, "first-prefix")
+    run("cmake --install", a.cmake, "--install", a.build, "--prefix", first)
+    prefix = os.path.join(a.work, "moved", "prefix")
+    os.makedirs(os.path.dirname(prefix))
+    shutil.move(first, prefix)
+    exe = os.path.join(prefix, "bin", "shadowbench")
+    env = clean_env()
+
+    # Where it looks: the moved prefix, nothing of the build folder.
+    version = run("shadowbench --version", exe, "--version", env=env)
+    for expected in (f"plugins: {prefix}/lib/shadowbench/plugins\n",
+                     f"data: {prefix}/share/shadowbench"):
+        if expected not in version:
+            sys.exit(f"--version lacks {expected!r}:\n{version}")
+    if a.build in version:
+        sys.exit(f"--version names the build folder:\n{version}")
+    check_runpaths(prefix, a.build)
+    for path in ("share/shadowbench/plot_charts.py", "share/shadowbench/configs/quick.json",
+                 "share/shadowbench/configs/models/jeep.glb", "share/man/man1/shadowbench.1.gz",
+                 "share/bash-completion/completions/shadowbench",
+                 "share/doc/shadowbench/README.md", "share/doc/shadowbench/cli.md",
+                 "include/shadowbench/plugin/registry.h", "include/shadowbench/glad/gl.h",
+                 "lib/shadowbench/cmake/shadowbenchConfig.cmake"):
+        if not os.path.isfile(os.path.join(prefix, path)):
+            sys.exit(f"the install lacks {path}")
+
+    # The quick experiment from the installed configs, then its report.
+    run_dir = os.path.join(a.work, "quick")
+    config = os.path.join(prefix, "share", "shadowbench", "configs", "quick.json")
+    run("shadowbench run configs/quick.json", exe, "run", config, "--out", run_dir,
+        "--no-cache", "--quiet", env=env, cwd=a.work)
+    records = [json.loads(line) for line in open(os.path.join(run_dir, "results.jsonl"))]
+    bad = [(r["job_id"], r["status"], r.get("reason")) for r in records
+           if r["status"] not in ("ok", "skipped")]
+    if not records or bad:
+        sys.exit(f"quick.json from the moved prefix: {len(records)} records, not ok: {bad}")
+    report = run("shadowbench report", exe, "report", run_dir, env=env, cwd=a.work)
+    charts = glob.glob(os.path.join(run_dir, "report", "*.png"))
+    if not charts or not os.path.isfile(os.path.join(run_dir, "report", "index.html")):
+        sys.exit(f"report wrote no charts or no index.html:\n{report}")
+
+    # A family built against the moved prefix, found through the plugin path.
+    plugin_build = os.path.join(a.work, "receiver_blur")
+    run("configuring a plugin against the prefix", a.cmake, "-S", a.plugin_source, "-B",
+        plugin_build, "-DCMAKE_BUILD_TYPE=Release", "-DCMAKE_CXX_COMPILER=" + a.cxx,
+        "-DCMAKE_PREFIX_PATH=" + prefix, env=env)
+    run("building it", a.cmake, "--build", plugin_build, env=env)
+    env_with_plugin = dict(env, SHADOWBENCH_PLUGIN_PATH=f"/nonexistent-is-an-error:{plugin_build}")
+    out = run("a missing plugin path entry", exe, "list", "--names", env=env_with_plugin,
+              expect=3)
+    if "/nonexistent-is-an-error" not in out or "SHADOWBENCH_PLUGIN_PATH" not in out:
+        sys.exit(f"a missing folder in the plugin path is not named:\n{out}")
+    env_with_plugin["SHADOWBENCH_PLUGIN_PATH"] = plugin_build
+    names = run("list with the plugin path", exe, "list", "--names",
+                env=env_with_plugin).split()
+    for expected in ("receiver_blur", "shadow_map", "pcss", "sphere_grid"):
+        if expected not in names:
+            sys.exit(f"list --names lacks {expected}: {names}")
+    # The same module twice (the plugin path names an installed folder) loads once.
+    env_twice = dict(env, SHADOWBENCH_PLUGIN_PATH=os.path.join(prefix, "lib/shadowbench/plugins"))
+    run("the installed folder in the plugin path", exe, "list", "--names", env=env_twice)
+    # A second module registering a technique the first did: an error naming both.
+    clash = os.path.join(a.work, "clash")
+    os.makedirs(clash)
+    shutil.copy(os.path.join(prefix, "lib/shadowbench/plugins/shadow_map.so"),
+                os.path.join(clash, "copy_of_shadow_map.so"))
+    out = run("a technique registered twice", exe, "list", env=dict(
+        env, SHADOWBENCH_PLUGIN_PATH=clash), expect=3)
+    if "copy_of_shadow_map.so" not in out or "first by" not in out:
+        sys.exit(f"the clash does not name both modules:\n{out}")
+    print(f"install test: {time.monotonic() - started:.1f} s in all")
+    shutil.rmtree(a.work)
+
+
+if __name__ == "__main__":
+    main()
