@@ -1,6 +1,7 @@
 #include "cli/command_line.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -156,9 +157,41 @@ void add_argument(CLI::App* sub, const std::string& name, T& value, const std::s
   sub->add_option(name, value, doc)->type_name("");
 }
 
+// --help-all (and so the man page help2man makes from it): each command
+// under a heading of its own, "shadowbench run:", at the first column, then
+// its description and its arguments and options indented, with no group
+// headings of their own, so help2man sets one subsection per command.
+class ExpandedFormatter : public CLI::Formatter {
+ public:
+  std::string make_expanded(const CLI::App* sub) const override {
+    std::string body = make_positionals(sub) + make_groups(sub, CLI::AppFormatMode::Sub);
+    std::string options;
+    size_t start = 0;
+    while (start < body.size()) {
+      const size_t end = std::min(body.find('\n', start), body.size());
+      const std::string line = body.substr(start, end - start);
+      const bool heading = !line.empty() && line[0] != ' ' && line.back() == ':';
+      if (!line.empty() && !heading) options += "  " + line + "\n";
+      start = end + 1;
+    }
+    std::string out =
+        "\nshadowbench " + command_path(*sub) + ":\n  " + sub->get_description() + "\n\n" + options;
+    for (const CLI::App* c : sub->get_subcommands({})) out += make_expanded(c);
+    return out;
+  }
+
+  std::string make_subcommands(const CLI::App* app, CLI::AppFormatMode mode) const override {
+    if (mode != CLI::AppFormatMode::All) return CLI::Formatter::make_subcommands(app, mode);
+    std::string out;
+    for (const CLI::App* c : app->get_subcommands({})) out += make_expanded(c);
+    return out;
+  }
+};
+
 CLI::App* add_command(CLI::App& app, const std::string& name, const std::string& description,
                       const std::string& example) {
   CLI::App* sub = app.add_subcommand(name, description);
+  sub->group("Commands");
   sub->footer("Example:\n  " + example);
   // Unknown options are collected and reported by parse_command_line, which
   // can say which other command takes them.
@@ -212,6 +245,7 @@ std::unique_ptr<CLI::App> make_command_line(Args& a) {
   app->name("shadowbench");
   app->option_defaults()->always_capture_default();
   app->set_help_flag("-h,--help", "print this help and exit");
+  app->formatter(std::make_shared<ExpandedFormatter>());
   app->get_formatter()->column_width(34);
   app->require_subcommand(1);
   app->allow_extras();
@@ -266,6 +300,7 @@ std::unique_ptr<CLI::App> make_command_line(Args& a) {
       "types; or only the NAMEs given.",
       "shadowbench list pcss sphere_grid");
   add_argument(list, "NAME", a.names, "techniques or scene types to show");
+  list->get_option("NAME")->default_str("");  // not "[]"
   add_plugins(list, a);
   list->add_flag("--markdown", a.markdown,
                  "print docs/parameters.md: every parameter as Markdown tables");
@@ -327,6 +362,7 @@ std::unique_ptr<CLI::App> make_command_line(Args& a) {
   CLI::App* help = add_command(*app, "help", "Print the help of a command, or of all of them.",
                                "shadowbench help compare");
   add_argument(help, "COMMAND", a.names, "a command, e.g. run or scene export");
+  help->get_option("COMMAND")->default_str("");
   help->add_flag("--markdown", a.markdown, "print docs/cli.md: every command's options");
 
   CLI::App* completion = add_command(
