@@ -7,6 +7,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "core/format_number.h"
 #include "record/timing_stats.h"
 #include "results/mann_whitney.h"
 
@@ -103,17 +104,11 @@ std::string metric_label(const std::string& path) {
   return path.substr(path.find_last_of('.') + 1);
 }
 
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
 std::string error_text(const std::optional<double>& v) {
   if (!v) return "-";
   if (std::isnan(*v)) return "nan";
   if (std::isinf(*v)) return *v > 0 ? "inf" : "-inf";
-  return fmt("%.5f", *v);
+  return format_number("%.5f", *v);
 }
 
 }  // namespace
@@ -144,14 +139,16 @@ std::optional<double> metric_value(const JobRecord& record, const std::string& d
 
 void check_options(const CompareOptions& o) {
   if (!(o.alpha > 0 && o.alpha < 1))
-    throw InputError("", "--alpha", "expected a value in (0, 1), found " + fmt("%g", o.alpha));
+    throw InputError("", "--alpha",
+                     "expected a value in (0, 1), found " + format_number("%g", o.alpha));
   if (!(o.time_threshold >= 0) || !std::isfinite(o.time_threshold))
-    throw InputError(
-        "", "--time-threshold",
-        "expected a relative change >= 0 (0.10 is 10 %), found " + fmt("%g", o.time_threshold));
+    throw InputError("", "--time-threshold",
+                     "expected a relative change >= 0 (0.10 is 10 %), found " +
+                         format_number("%g", o.time_threshold));
   if (!(o.error_threshold >= 0) || !std::isfinite(o.error_threshold))
-    throw InputError("", "--error-threshold",
-                     "expected an absolute change >= 0, found " + fmt("%g", o.error_threshold));
+    throw InputError(
+        "", "--error-threshold",
+        "expected an absolute change >= 0, found " + format_number("%g", o.error_threshold));
   if (o.timing != "frame" && o.timing != "technique" && o.timing != "none")
     throw InputError("", "--timing", "expected frame, technique or none, found '" + o.timing + "'");
   if (o.normalize != "none" && o.normalize != "control")
@@ -357,8 +354,9 @@ std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
   else
     s += "time: Mann-Whitney U on " + time_label(o) + "s" +
          (ratios ? " (--normalize control)" : ", absolute (--normalize none)") +
-         fmt(", alpha %g", o.alpha) + fmt(", threshold %.1f %%; ", o.time_threshold * 100);
-  s += "error: " + o.metric + fmt(", threshold %g (absolute)\n", o.error_threshold);
+         format_number(", alpha %g", o.alpha) +
+         format_number(", threshold %.1f %%; ", o.time_threshold * 100);
+  s += "error: " + o.metric + format_number(", threshold %g (absolute)\n", o.error_threshold);
   s += format_hosts(r, o);
   s += "\n";
   const char* unit = ratios ? "ratio" : "ms";
@@ -372,10 +370,11 @@ std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
     const char* median = ratios ? "%.4f" : "%.3f";
     std::snprintf(
         line, sizeof line, "%-*s %10s %10s %8s %8s  %-12s %10s %10s  %s\n", int(w),
-        c.job_id.c_str(), timed ? fmt(median, c.base_median_ms).c_str() : "-",
-        timed ? fmt(median, c.new_median_ms).c_str() : "-",
-        timed ? fmt("%+.1f%%", std::fabs(c.change) < 5e-4 ? 0.0 : c.change * 100).c_str() : "-",
-        c.p ? fmt(*c.p < 1e-3 ? "%.1e" : "%.4f", *c.p).c_str() : "-",
+        c.job_id.c_str(), timed ? format_number(median, c.base_median_ms).c_str() : "-",
+        timed ? format_number(median, c.new_median_ms).c_str() : "-",
+        timed ? format_number("%+.1f%%", std::fabs(c.change) < 5e-4 ? 0.0 : c.change * 100).c_str()
+              : "-",
+        c.p ? format_number(*c.p < 1e-3 ? "%.1e" : "%.4f", *c.p).c_str() : "-",
         c.time_refused ? "not compared" : to_string(c.time), error_text(c.base_error).c_str(),
         error_text(c.new_error).c_str(), to_string(c.error));
     s += line;
@@ -389,8 +388,8 @@ std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
     if (c.regressed()) {
       std::string what;
       if (c.time == Verdict::kRegression)
-        what +=
-            time_label(o) + fmt(" %+.1f %%", c.change * 100) + fmt(" (p = %.2g)", c.p.value_or(1));
+        what += time_label(o) + format_number(" %+.1f %%", c.change * 100) +
+                format_number(" (p = %.2g)", c.p.value_or(1));
       if (c.error == Verdict::kRegression)
         what += std::string(what.empty() ? "" : ", ") + label + " " + error_text(c.base_error) +
                 " -> " + error_text(c.new_error);

@@ -9,6 +9,7 @@
 #include <set>
 #include <tuple>
 
+#include "core/format_number.h"
 #include "core/image.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
@@ -173,11 +174,7 @@ std::string url_path(const std::string& path) {
   return out;
 }
 
-std::string fmt_g(double v, const char* format = "%g") {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
+std::string fmt_g(double v, const char* format = "%g") { return format_number(format, v); }
 
 std::string status_class(JobStatus status) { return std::string("s-") + to_string(status); }
 

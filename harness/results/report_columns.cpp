@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/format_number.h"
 #include "reference/reference.h"
 
 namespace sb {
@@ -126,9 +127,7 @@ std::string ReportColumn::cell(const JobRecord& r) const {
   const std::optional<double> v = number(r);
   if (!v || std::isnan(*v)) return "";
   if (std::isinf(*v)) return *v > 0 ? "inf" : "-inf";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, *v);
-  return buf;
+  return format_number(format, *v);
 }
 
 const std::vector<ReportColumn>& report_columns() {

@@ -4,19 +4,10 @@
 #include <cstdio>
 #include <map>
 
+#include "core/format_number.h"
 #include "results/report.h"
 
 namespace sb {
-namespace {
-
-std::string fmt(const char* format, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
-}  // namespace
-
 const char* to_string(StabilityVerdict v) {
   switch (v) {
     case StabilityVerdict::Ok:
@@ -59,16 +50,17 @@ StabilityCell stability_cell(const JobRecord& r) {
   const StabilityRecord* s = r.stability ? &*r.stability : nullptr;
   if (r.metrics) {
     if (s && rmse > s->max_rmse)
-      problems.push_back("rmse " + fmt("%.4f", rmse) + " > " + fmt("%g", s->max_rmse));
+      problems.push_back("rmse " + format_number("%.4f", rmse) + " > " +
+                         format_number("%g", s->max_rmse));
     else
-      figures.push_back("rmse " + fmt("%.4f", rmse));
+      figures.push_back("rmse " + format_number("%.4f", rmse));
   }
   if (s && s->flicker) {
     const FlickerRecord& f = *s->flicker;
-    const std::string text = "flicker " + fmt("%.2e", f.mean) + ", popping " +
-                             fmt("%.2e", f.frac_over_005) + " (reference " +
-                             fmt("%.2e", f.reference_mean) + ", " +
-                             fmt("%.2e", f.reference_frac_over_005) + ")";
+    const std::string text = "flicker " + format_number("%.2e", f.mean) + ", popping " +
+                             format_number("%.2e", f.frac_over_005) + " (reference " +
+                             format_number("%.2e", f.reference_mean) + ", " +
+                             format_number("%.2e", f.reference_frac_over_005) + ")";
     if (f.mean > s->flicker_factor * f.reference_mean + kFlickerFloor ||
         f.frac_over_005 > s->flicker_factor * f.reference_frac_over_005 + kFlickerFloor)
       problems.push_back(text);
@@ -78,7 +70,8 @@ StabilityCell stability_cell(const JobRecord& r) {
   if (s) {
     std::string stiff;
     for (const auto& [name, p] : s->sensitivity)
-      if (p.stiff) stiff += (stiff.empty() ? "" : ", ") + name + " " + fmt("%.3g", p.relative);
+      if (p.stiff)
+        stiff += (stiff.empty() ? "" : ", ") + name + " " + format_number("%.3g", p.relative);
     if (!stiff.empty()) problems.push_back("stiff: " + stiff);
   }
   c.verdict = problems.empty() ? StabilityVerdict::Ok : StabilityVerdict::Degraded;

@@ -2,19 +2,18 @@
 
 #include "core/scene_types.h"
 #include "plan/need_resolution.h"
+#include "scene_type_test_util.h"
 #include "scenes/leaf.h"
 #include "scenes/topology.h"
 
 namespace sb {
 namespace {
 
-Scene build(const nlohmann::json& given) {
-  const SceneType* t = find_scene_type("foliage");
-  return t->build(resolve_params(t->params, given, "test", "/params"));
-}
+using test::build_scene_type;
 
 TEST(Foliage, WoodIsClosedLeavesAreOpenAndMasked) {
-  const Scene s = build(
+  const Scene s = build_scene_type(
+      "foliage",
       {{"trees", 2}, {"depth", 2}, {"branches", 3}, {"leaves_per_branch", 4}, {"segments", 6}});
   ASSERT_EQ(s.meshes.size(), 4u);  // two trees' wood, the leaves, the ground
   const size_t branches_per_tree = 1 + 3 + 9;
@@ -43,7 +42,9 @@ TEST(Foliage, WoodIsClosedLeavesAreOpenAndMasked) {
 }
 
 TEST(Foliage, SameSeedSameTreesOtherSeedOtherTrees) {
-  const Scene a = build({{"seed", 7}}), b = build({{"seed", 7}}), c = build({{"seed", 8}});
+  const Scene a = build_scene_type("foliage", {{"seed", 7}}),
+              b = build_scene_type("foliage", {{"seed", 7}}),
+              c = build_scene_type("foliage", {{"seed", 8}});
   ASSERT_EQ(a.meshes.size(), b.meshes.size());
   for (size_t i = 0; i < a.meshes.size(); ++i)
     EXPECT_EQ(a.meshes[i].positions, b.meshes[i].positions);
@@ -51,7 +52,7 @@ TEST(Foliage, SameSeedSameTreesOtherSeedOtherTrees) {
 }
 
 TEST(Foliage, TreesStandOnTheGroundUnderTheLight) {
-  const Scene s = build(nlohmann::json::object());
+  const Scene s = build_scene_type("foliage", nlohmann::json::object());
   const Bounds b = s.caster_bounds();
   EXPECT_GE(b.lo.y, -0.2f);  // roots may dip a little below
   EXPECT_GT(s.light.center.y, b.hi.y);

@@ -4,17 +4,14 @@
 #include <set>
 
 #include "core/scene_types.h"
+#include "scene_type_test_util.h"
 #include "scenes/jeep.h"
 #include "scenes/topology.h"
 
 namespace sb {
 namespace {
 
-Scene build(const nlohmann::json& given) {
-  const SceneType* t = find_scene_type("jeep");
-  EXPECT_NE(t, nullptr);
-  return t->build(resolve_params(t->params, given, "test", "/params"));
-}
+using test::build_scene_type;
 
 // The jeep a caster mesh belongs to: its name up to the '/'.
 std::string jeep_of(const Mesh& m) { return m.name.substr(0, m.name.find('/')); }
@@ -30,7 +27,7 @@ std::map<std::string, Bounds> jeep_bounds(const Scene& s) {
 constexpr size_t kJeepTriangles = 3620;  // at the default tessellation (20)
 
 TEST(Jeep, OneJeepHasAFewThousandTriangles) {
-  const Scene s = build(nlohmann::json::object());
+  const Scene s = build_scene_type("jeep", nlohmann::json::object());
   EXPECT_EQ(s.caster_triangle_count(), kJeepTriangles);
   EXPECT_GE(s.caster_triangle_count(), 2000u);
   EXPECT_LE(s.caster_triangle_count(), 5000u);
@@ -41,7 +38,7 @@ TEST(Jeep, OneJeepHasAFewThousandTriangles) {
 }
 
 TEST(Jeep, PartsAreNamedCastersWithTheirOwnColours) {
-  const Scene s = build({{"count", 2}});
+  const Scene s = build_scene_type("jeep", {{"count", 2}});
   std::set<std::string> names;
   for (const auto& m : s.meshes) {
     if (!m.casts_shadow) {
@@ -67,24 +64,24 @@ TEST(Jeep, PartsAreNamedCastersWithTheirOwnColours) {
 
 TEST(Jeep, CountMultipliesCasterTriangles) {
   for (const int n : {2, 5, 32}) {
-    const Scene s = build({{"count", n}});
+    const Scene s = build_scene_type("jeep", {{"count", n}});
     EXPECT_EQ(s.caster_triangle_count(), size_t(n) * kJeepTriangles) << n;
     EXPECT_EQ(jeep_bounds(s).size(), size_t(n));
   }
-  const Scene rows = build({{"count", 13}, {"layout", "rows"}});
+  const Scene rows = build_scene_type("jeep", {{"count", 13}, {"layout", "rows"}});
   EXPECT_EQ(rows.caster_triangle_count(), 13u * kJeepTriangles);
 }
 
 TEST(Jeep, TessellationSweepsTriangleCount) {
-  const Scene coarse = build({{"tessellation", 8}});
-  const Scene fine = build({{"tessellation", 40}});
+  const Scene coarse = build_scene_type("jeep", {{"tessellation", 8}});
+  const Scene fine = build_scene_type("jeep", {{"tessellation", 40}});
   EXPECT_LT(coarse.caster_triangle_count(), kJeepTriangles);
   EXPECT_GT(fine.caster_triangle_count(), 2 * kJeepTriangles);
 }
 
 TEST(Jeep, EveryCasterIsClosed) {
   for (const int tessellation : {6, 20, 33}) {
-    const Scene s = build({{"count", 3}, {"tessellation", tessellation}});
+    const Scene s = build_scene_type("jeep", {{"count", 3}, {"tessellation", tessellation}});
     for (const auto& m : s.meshes) {
       if (!m.casts_shadow) continue;
       const MeshTopology topo = analyse_topology(m);
@@ -98,7 +95,7 @@ TEST(Jeep, EveryCasterIsClosed) {
 }
 
 TEST(Jeep, NothingBelowTheGroundAndTheGroundUnderEverything) {
-  const Scene s = build({{"count", 32}});
+  const Scene s = build_scene_type("jeep", {{"count", 32}});
   const Bounds casters = s.caster_bounds();
   EXPECT_GE(casters.lo.y, 0.0f);
   EXPECT_LT(casters.lo.y, 0.05f);  // the tyres stand on it
@@ -125,10 +122,10 @@ void expect_no_overlap(const Scene& s) {
 }
 
 TEST(Jeep, JeepsDoNotOverlap) {
-  expect_no_overlap(build({{"count", 32}}));
-  expect_no_overlap(build({{"count", 32}, {"layout", "rows"}}));
-  expect_no_overlap(build({{"count", 32}, {"seed", 0}}));
-  expect_no_overlap(build({{"count", 32}, {"seed", 77}, {"spacing", 0.1}}));
+  expect_no_overlap(build_scene_type("jeep", {{"count", 32}}));
+  expect_no_overlap(build_scene_type("jeep", {{"count", 32}, {"layout", "rows"}}));
+  expect_no_overlap(build_scene_type("jeep", {{"count", 32}, {"seed", 0}}));
+  expect_no_overlap(build_scene_type("jeep", {{"count", 32}, {"seed", 77}, {"spacing", 0.1}}));
 }
 
 TEST(Jeep, LayoutsArrangeRowsAndGrids) {
@@ -137,22 +134,23 @@ TEST(Jeep, LayoutsArrangeRowsAndGrids) {
     return glm::vec2(b.hi.x - b.lo.x, b.hi.z - b.lo.z);
   };
   // 8 side by side make a wide single row; the grid of 8 is 3 wide, 3 deep.
-  const glm::vec2 rows = extent(build({{"count", 8}, {"layout", "rows"}, {"seed", 0}}));
-  const glm::vec2 grid = extent(build({{"count", 8}, {"seed", 0}}));
+  const glm::vec2 rows =
+      extent(build_scene_type("jeep", {{"count", 8}, {"layout", "rows"}, {"seed", 0}}));
+  const glm::vec2 grid = extent(build_scene_type("jeep", {{"count", 8}, {"seed", 0}}));
   EXPECT_GT(rows.x, 2.0f * grid.x);
   EXPECT_LT(rows.y, 0.5f * grid.y);
 }
 
 TEST(Jeep, SeedIsDeterministicAndZeroAligns) {
-  const Scene a = build({{"count", 4}, {"seed", 5}});
-  const Scene b = build({{"count", 4}, {"seed", 5}});
-  const Scene c = build({{"count", 4}, {"seed", 6}});
+  const Scene a = build_scene_type("jeep", {{"count", 4}, {"seed", 5}});
+  const Scene b = build_scene_type("jeep", {{"count", 4}, {"seed", 5}});
+  const Scene c = build_scene_type("jeep", {{"count", 4}, {"seed", 6}});
   ASSERT_EQ(a.meshes.size(), b.meshes.size());
   for (size_t i = 0; i < a.meshes.size(); ++i)
     EXPECT_EQ(a.meshes[i].positions, b.meshes[i].positions);
   EXPECT_NE(a.meshes[0].positions, c.meshes[0].positions);
   // Aligned: every jeep is a translated copy of the first.
-  const Scene aligned = build({{"count", 4}, {"seed", 0}});
+  const Scene aligned = build_scene_type("jeep", {{"count", 4}, {"seed", 0}});
   const size_t parts = make_jeep("p", 20).size();
   for (size_t j = 1; j < 4; ++j) {
     const glm::vec3 shift = aligned.meshes[j * parts].positions[0] - aligned.meshes[0].positions[0];
@@ -215,10 +213,12 @@ void expect_framed(const Scene& s, const std::string& what) {
 
 TEST(Jeep, LightAndCameraFrameEveryJeep) {
   for (const int n : {1, 2, 4, 7, 8, 16, 32, 100}) {
-    expect_framed(build({{"count", n}}), "grid " + std::to_string(n));
-    expect_framed(build({{"count", n}, {"layout", "rows"}}), "rows " + std::to_string(n));
+    expect_framed(build_scene_type("jeep", {{"count", n}}), "grid " + std::to_string(n));
+    expect_framed(build_scene_type("jeep", {{"count", n}, {"layout", "rows"}}),
+                  "rows " + std::to_string(n));
   }
-  expect_framed(build({{"count", 9}, {"spacing", 6.0}, {"light_size", 8.0}}), "sparse");
+  expect_framed(build_scene_type("jeep", {{"count", 9}, {"spacing", 6.0}, {"light_size", 8.0}}),
+                "sparse");
 }
 
 }  // namespace

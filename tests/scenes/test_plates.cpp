@@ -6,16 +6,14 @@
 
 #include "core/error.h"
 #include "core/scene_types.h"
+#include "scene_type_test_util.h"
 #include "scenes/topology.h"
 
 namespace sb {
 namespace {
 
-Scene build(const nlohmann::json& given) {
-  const SceneType* t = find_scene_type("plates");
-  EXPECT_NE(t, nullptr);
-  return t->build(resolve_params(t->params, given, "test", "/params"));
-}
+using test::build_scene_type;
+using test::ndc_of;
 
 const Mesh& mesh_named(const Scene& s, const std::string& name) {
   for (const auto& m : s.meshes)
@@ -46,12 +44,6 @@ bool segment_hits(glm::vec3 p, glm::vec3 q, const Bounds& b) {
     if (t0 > t1) return false;
   }
   return true;
-}
-
-glm::vec3 ndc_of(const Scene& s, glm::vec3 p) {
-  const glm::vec4 clip = s.camera.projection(4.0f / 3.0f) * s.camera.view() * glm::vec4(p, 1.0f);
-  EXPECT_GT(clip.w, 0.0f);
-  return glm::vec3(clip) / clip.w;
 }
 
 void expect_in_view(const Scene& s, glm::vec3 p, float limit = 1.0f) {
@@ -142,7 +134,7 @@ void expect_light_and_view(const Scene& s) {
 }
 
 TEST(Plates, EdgeIsOneClosedPlateOverAReceiver) {
-  const Scene s = build(nlohmann::json::object());
+  const Scene s = build_scene_type("plates", nlohmann::json::object());
   EXPECT_EQ(s.meshes.size(), 2u);
   expect_closed_casters_over_a_receiver(s, 1);
   const Bounds plate = box_of(mesh_named(s, "plate"));
@@ -153,7 +145,7 @@ TEST(Plates, EdgeIsOneClosedPlateOverAReceiver) {
 }
 
 TEST(Plates, StackedIsTwoClosedPlatesOverAReceiver) {
-  const Scene s = build({{"layout", "stacked"}});
+  const Scene s = build_scene_type("plates", {{"layout", "stacked"}});
   EXPECT_EQ(s.meshes.size(), 3u);
   expect_closed_casters_over_a_receiver(s, 2);
   const Bounds lower = box_of(mesh_named(s, "lower_plate"));
@@ -186,7 +178,7 @@ TEST(Plates, RejectsPlatesThatTouchOrStandAboveTheLight) {
                   ->check(resolve_params(find_scene_type("plates")->params, {{"upper_height", 0.5}},
                                          "test", "/params"))
                   .second.empty());
-  EXPECT_NO_THROW(build({{"upper_height", 0.5}}));
+  EXPECT_NO_THROW(build_scene_type("plates", {{"upper_height", 0.5}}));
   EXPECT_NE(rejection({{"height", 0.02}}, "height").find("thickness / 2 (0.025)"),
             std::string::npos);
   EXPECT_NE(rejection({{"layout", "stacked"}, {"light_height", 4.0}}, "light_height")
@@ -219,20 +211,20 @@ glm::vec2 penumbra_of_edge(const Scene& s) {
 TEST(Plates, EdgePenumbraMatchesSimilarTriangles) {
   // e = 1.025, k = e / (8 − e), light centred at x = −3: [2.5k, 3.5k] and [1.5k, 4.5k].
   const float k = 1.025f / (8.0f - 1.025f);
-  const glm::vec2 one = penumbra_of_edge(build({{"light_size", 1.0}}));
+  const glm::vec2 one = penumbra_of_edge(build_scene_type("plates", {{"light_size", 1.0}}));
   EXPECT_NEAR(one.x, 2.5f * k, 1e-5f);
   EXPECT_NEAR(one.y, 3.5f * k, 1e-5f);
   EXPECT_NEAR(one.x, 0.3674f, 1e-4f);
   EXPECT_NEAR(one.y, 0.5143f, 1e-4f);
-  const glm::vec2 three = penumbra_of_edge(build({{"light_size", 3.0}}));
+  const glm::vec2 three = penumbra_of_edge(build_scene_type("plates", {{"light_size", 3.0}}));
   EXPECT_NEAR(three.x, 1.5f * k, 1e-5f);
   EXPECT_NEAR(three.y, 4.5f * k, 1e-5f);
 }
 
 TEST(Plates, LightAndCameraStayPutForLightSizesUpToThree) {
-  const Scene base = build(nlohmann::json::object());
+  const Scene base = build_scene_type("plates", nlohmann::json::object());
   for (const double size : {0.0, 0.5, 2.0, 3.0}) {
-    const Scene s = build({{"light_size", size}});
+    const Scene s = build_scene_type("plates", {{"light_size", size}});
     EXPECT_EQ(s.light.center, base.light.center) << size;
     EXPECT_EQ(s.camera.eye, base.camera.eye) << size;
     EXPECT_EQ(s.camera.target, base.camera.target) << size;
@@ -271,21 +263,21 @@ void expect_penumbra_seen(const Scene& s, float min_ndc_width) {
 TEST(Plates, EdgePenumbraIsInViewAndUnblocked) {
   {
     SCOPED_TRACE("light_size 1");
-    expect_penumbra_seen(build({{"light_size", 1.0}}), 0.08f);
+    expect_penumbra_seen(build_scene_type("plates", {{"light_size", 1.0}}), 0.08f);
   }
   {
     SCOPED_TRACE("light_size 3");
-    expect_penumbra_seen(build({{"light_size", 3.0}}), 0.25f);
+    expect_penumbra_seen(build_scene_type("plates", {{"light_size", 3.0}}), 0.25f);
   }
   for (const double height : {0.3, 2.5}) {
     SCOPED_TRACE("height " + std::to_string(height));
-    const Scene s = build({{"light_size", 3.0}, {"height", height}});
+    const Scene s = build_scene_type("plates", {{"light_size", 3.0}, {"height", height}});
     expect_penumbra_seen(s, 0.25f);
     expect_light_and_view(s);
   }
   {
     SCOPED_TRACE("light_size 6, light_height 5");
-    const Scene s = build({{"light_size", 6.0}, {"light_height", 5.0}});
+    const Scene s = build_scene_type("plates", {{"light_size", 6.0}, {"light_height", 5.0}});
     expect_penumbra_seen(s, 0.25f);
     expect_light_and_view(s);
   }
@@ -324,11 +316,13 @@ void expect_bleeding_line_seen(const Scene& s) {
 TEST(Plates, StackedBleedingLineIsInUmbraAndInView) {
   for (const double size : {0.0, 1.0, 3.0}) {
     SCOPED_TRACE("light_size " + std::to_string(size));
-    expect_bleeding_line_seen(build({{"layout", "stacked"}, {"light_size", size}}));
+    expect_bleeding_line_seen(
+        build_scene_type("plates", {{"layout", "stacked"}, {"light_size", size}}));
   }
   for (const auto& [height, upper] : {std::pair{0.3, 2.0}, {1.0, 6.0}, {2.0, 5.0}}) {
     SCOPED_TRACE("height " + std::to_string(height) + ", upper " + std::to_string(upper));
-    const Scene s = build({{"layout", "stacked"}, {"height", height}, {"upper_height", upper}});
+    const Scene s = build_scene_type(
+        "plates", {{"layout", "stacked"}, {"height", height}, {"upper_height", upper}});
     expect_bleeding_line_seen(s);
     expect_light_and_view(s);
   }

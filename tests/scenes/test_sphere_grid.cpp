@@ -1,18 +1,16 @@
 #include <gtest/gtest.h>
 
 #include "core/scene_types.h"
+#include "scene_type_test_util.h"
 #include "scenes/sphere_grid.h"
 
 namespace sb {
 namespace {
 
-Scene build(const nlohmann::json& given) {
-  const SceneType* t = find_scene_type("sphere_grid");
-  return t->build(resolve_params(t->params, given, "test", "/params"));
-}
+using test::build_scene_type;
 
 TEST(SphereGrid, DefaultTriangleCounts) {
-  const Scene s = build(nlohmann::json::object());
+  const Scene s = build_scene_type("sphere_grid", nlohmann::json::object());
   ASSERT_EQ(s.meshes.size(), 82u);                // 81 spheres + ground
   EXPECT_EQ(s.meshes[0].triangle_count(), 760u);  // 20 slices × 20 stacks
   EXPECT_EQ(s.triangle_count(), 81u * 760u + 2u);
@@ -21,13 +19,14 @@ TEST(SphereGrid, DefaultTriangleCounts) {
 }
 
 TEST(SphereGrid, ScaleParametersSweepTriangleCount) {
-  const Scene s = build({{"grid", 3}, {"layers", 2}, {"slices", 8}, {"stacks", 5}});
+  const Scene s =
+      build_scene_type("sphere_grid", {{"grid", 3}, {"layers", 2}, {"slices", 8}, {"stacks", 5}});
   EXPECT_EQ(s.caster_triangle_count(), 3u * 3u * 2u * (2u * 8u * 4u));
   EXPECT_EQ(s.meshes.size(), 19u);
 }
 
 TEST(SphereGrid, SpheresFloatAboveTheGroundUnderTheLight) {
-  const Scene s = build(nlohmann::json::object());
+  const Scene s = build_scene_type("sphere_grid", nlohmann::json::object());
   const Bounds casters = s.caster_bounds();
   EXPECT_GT(casters.lo.y, 0.0f);  // nothing touches or pierces the ground
   EXPECT_GT(s.light.center.y, casters.hi.y);
@@ -37,9 +36,10 @@ TEST(SphereGrid, SpheresFloatAboveTheGroundUnderTheLight) {
 }
 
 TEST(SphereGrid, AnalyticGivesEverySphereItsExactShape) {
-  for (const Mesh& m : build(nlohmann::json::object()).meshes)
+  for (const Mesh& m : build_scene_type("sphere_grid", nlohmann::json::object()).meshes)
     EXPECT_FALSE(m.analytic.has()) << m.name;  // off by default
-  const Scene s = build({{"grid", 2}, {"layers", 2}, {"analytic", true}, {"radius", 0.4}});
+  const Scene s = build_scene_type(
+      "sphere_grid", {{"grid", 2}, {"layers", 2}, {"analytic", true}, {"radius", 0.4}});
   EXPECT_EQ(s.analytic_caster_count(), 8u);
   for (const Mesh& m : s.meshes) {
     if (!m.casts_shadow) {

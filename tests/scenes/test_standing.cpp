@@ -8,22 +8,14 @@
 
 #include "core/error.h"
 #include "core/scene_types.h"
+#include "scene_type_test_util.h"
 #include "scenes/topology.h"
 
 namespace sb {
 namespace {
 
-Scene build(const nlohmann::json& given) {
-  const SceneType* t = find_scene_type("standing");
-  EXPECT_NE(t, nullptr);
-  return t->build(resolve_params(t->params, given, "test", "/params"));
-}
-
-glm::vec3 ndc_of(const Scene& s, glm::vec3 p) {
-  const glm::vec4 clip = s.camera.projection(4.0f / 3.0f) * s.camera.view() * glm::vec4(p, 1.0f);
-  EXPECT_GT(clip.w, 0.0f);
-  return glm::vec3(clip) / clip.w;
-}
+using test::build_scene_type;
+using test::ndc_of;
 
 // Where the ray from the light's centre through p meets the ground y = 0.
 glm::vec3 ground_hit(const Scene& s, glm::vec3 p) {
@@ -32,7 +24,8 @@ glm::vec3 ground_hit(const Scene& s, glm::vec3 p) {
 }
 
 TEST(StandingScene, AClosedBoxOnTheGroundWhoseShadowTipIsWhereTheDocsSay) {
-  const Scene s = build({{"height", 1.8}, {"width", 0.5}, {"light_offset", 2.5}});
+  const Scene s =
+      build_scene_type("standing", {{"height", 1.8}, {"width", 0.5}, {"light_offset", 2.5}});
   ASSERT_EQ(s.meshes.size(), 2u);
   const Mesh& box = s.meshes[0];
   EXPECT_EQ(box.name, "occluder");

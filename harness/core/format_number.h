@@ -1,0 +1,10 @@
+#pragma once
+// One number through a printf format ("%.4f", "%g"): the tables, the HTML
+// report and `compare` all print numbers this way.
+#include <string>
+
+namespace sb {
+
+std::string format_number(const char* printf_format, double v);
+
+}  // namespace sb
