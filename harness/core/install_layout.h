@@ -25,7 +25,7 @@ std::vector<std::string> extra_plugin_dirs();
 
 // The folders searched for shared data, in order: $SHADOWBENCH_SHARE_DIR,
 // <exe>/share/shadowbench (a build tree), <exe>/../share/shadowbench (an
-// installed prefix). Only folders that exist.
+// installed prefix). The last two only when they exist.
 std::vector<std::string> data_dirs();
 
 }  // namespace sb
