@@ -64,9 +64,7 @@ int cmd_list(const Args& a) {
     return a.names.empty() || std::find(a.names.begin(), a.names.end(), name) != a.names.end();
   };
   for (const std::string& name : a.names) {
-    const bool scene = std::any_of(scene_types().begin(), scene_types().end(),
-                                   [&name](const SceneType& s) { return s.name == name; });
-    if (r.find(name) == nullptr && !scene)
+    if (r.find(name) == nullptr && find_scene_type(name) == nullptr)
       throw InputError("", "list " + name,
                        "no technique or scene type of that name (`shadowbench list --names` "
                        "lists them)");
