@@ -35,6 +35,12 @@ int cmd_run(const Args& a) {
   o.embree_config = a.embree_config;
   o.pass_detail = gl::pass_detail_from_string(a.pass_timing);
   o.turn_block_frames = a.turn_block;
+  o.isolation = isolation_from_string(a.isolation);
+  o.job_seconds = a.job_timeout;
+  if (o.isolation == Isolation::None && a.job_timeout)
+    std::fprintf(stderr,
+                 "shadowbench: warning: --job-timeout is enforced only with --isolation group or "
+                 "job; with none a hung job stalls the run\n");
   std::optional<TurnTaker> turns;
   if (!a.take_turns.empty()) {
     turns = TurnTaker::parse(a.take_turns);
@@ -57,6 +63,10 @@ int cmd_run(const Args& a) {
     std::printf("\n%s\n", md.c_str());
   }
   std::printf("%d ok, %d skipped, %d failed, %d resumed", s.ok, s.skipped, s.failed, s.resumed);
+  if (s.crashed + s.timed_out > 0)
+    std::printf(" (of the failed, %d crashed and %d timed out)", s.crashed, s.timed_out);
+  if (s.bad_records > 0)
+    std::printf(" (%d earlier record files could not be trusted and were rerun)", s.bad_records);
   if (s.respecified > 0)
     std::printf(" (%d earlier records had other settings and were rerun)", s.respecified);
   std::printf("; results in %s\n", o.run_dir.c_str());

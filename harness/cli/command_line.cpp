@@ -31,8 +31,9 @@ CLI::Validator number_check() {
           ""};
 }
 
-CLI::Validator whole_check(double lo, double hi, const std::string& what) {
-  return {[lo, hi, what](std::string& text) -> std::string {
+// A number in [lo, hi] (a whole one when `whole`); else `what`, found '...'.
+CLI::Validator bounded_check(double lo, double hi, bool whole, const std::string& what) {
+  return {[lo, hi, whole, what](std::string& text) -> std::string {
             size_t used = 0;
             double v = NAN;
             try {
@@ -40,11 +41,16 @@ CLI::Validator whole_check(double lo, double hi, const std::string& what) {
             } catch (const std::exception&) {
               used = 0;
             }
-            if (used == 0 || used != text.size() || !(v >= lo && v <= hi) || v != std::floor(v))
+            if (used == 0 || used != text.size() || !(v >= lo && v <= hi) ||
+                (whole && v != std::floor(v)))
               return what + ", found '" + text + "'";
             return "";
           },
           ""};
+}
+
+CLI::Validator whole_check(double lo, double hi, const std::string& what) {
+  return bounded_check(lo, hi, true, what);
 }
 
 CLI::Validator choice_check(const std::vector<std::string>& choices) {
@@ -277,6 +283,14 @@ std::unique_ptr<CLI::App> make_command_line(Args& a) {
   add_choice(run, "--pass-timing", a.pass_timing, {"coarse", "fine"},
              "fine: extra frames with every pass in its own timing bracket");
   add_turn_block(run, a);
+  add_choice(run, "--isolation", a.isolation, {"group", "job", "none"},
+             "where jobs render: a child process per (scene, resolution), one per job, or this "
+             "process (then a crash or a hang ends the run)");
+  run->add_option("--job-timeout", a.job_timeout,
+                  "kill a job that runs longer and record it as failed (default: the config's "
+                  "limits.job_seconds, 1800); needs isolation")
+      ->type_name("SECONDS")
+      ->check(bounded_check(1, 604800, false, "expected a number of seconds in [1, 604800]"));
   run->add_option("--take-turns", a.take_turns, "IN_FD,OUT_FD of compare-builds' turn pipes")
       ->group("");  // internal: compare-builds runs both builds with it
 

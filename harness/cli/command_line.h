@@ -4,6 +4,7 @@
 // harness's words with exit code 2, naming the option (docs/cli.md is
 // generated from this parser, and a test keeps the two equal).
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,8 +36,10 @@ struct Args {
   CompareOptions compare;                                 // compare, compare-builds
   std::string builds_normalize = "control";               // compare-builds' own default
   std::string base_binary, new_binary;                    // compare-builds
-  std::string take_turns;  // run: IN_FD,OUT_FD (compare-builds, hidden)
-  int turn_block = 5;      // run, compare-builds: frames per turn
+  std::string take_turns;             // run: IN_FD,OUT_FD (compare-builds, hidden)
+  int turn_block = 5;                 // run, compare-builds: frames per turn
+  std::string isolation = "group";    // run: job, group or none
+  std::optional<double> job_timeout;  // run: seconds, over limits.job_seconds
 };
 
 // The parser, writing into `args`. Kept alive for as long as `args` is read.

@@ -365,7 +365,7 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
   r.object(doc, "", "an experiment");
   r.only_keys(doc, "",
               {"name", "description", "scenes", "techniques", "resolutions", "frames", "reference",
-               "stability", "metrics"});
+               "stability", "metrics", "limits"});
   check_job_count(r, doc, limits);
   Experiment e;
   e.file = file;
@@ -569,6 +569,15 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
     r.only_keys(m, "/metrics", {"distance_thirds"});
     if (m.contains("distance_thirds"))
       e.distance_thirds = r.boolean(m["distance_thirds"], "/metrics/distance_thirds");
+  }
+  if (doc.contains("limits")) {
+    const json& l = r.object(doc["limits"], "/limits", "time limits");
+    r.only_keys(l, "/limits", {"job_seconds", "setup_seconds"});
+    // Below a second a busy machine kills healthy jobs; a week is no limit.
+    if (l.contains("job_seconds"))
+      e.limits.job_seconds = r.number(l["job_seconds"], "/limits/job_seconds", 1, 604800);
+    if (l.contains("setup_seconds"))
+      e.limits.setup_seconds = r.number(l["setup_seconds"], "/limits/setup_seconds", 1, 604800);
   }
   return e;
 }

@@ -79,6 +79,13 @@ struct StabilityConfig {
 // The G-buffer and shading alone: what every frame pays whatever the technique.
 inline constexpr const char* kDefaultControl = "none";
 
+// "limits": wall-clock budgets of isolated jobs (run --isolation group or
+// job; docs/robustness.md). Generous: they catch a hang, not a slow job.
+struct RunLimits {
+  double job_seconds = 1800;    // one job: prepare, frames, metrics, images
+  double setup_seconds = 3600;  // a (scene, resolution)'s scene, G-buffer and reference
+};
+
 struct Experiment {
   std::string file;  // as given on the command line
   std::string name;
@@ -99,6 +106,7 @@ struct Experiment {
   // the near, middle and far third of the camera's distances
   // (metrics/distance_thirds.h), for perspective aliasing.
   bool distance_thirds = false;
+  RunLimits limits;
   std::string content_hash;  // of the file's bytes
   // The registry the techniques came from: the planner finds the providers
   // of plugins' own needs in it (plugin/needs.h).

@@ -107,6 +107,7 @@ json JobRecord::to_json() const {
   if (stability) r["stability"] = stability->to_json();
   if (classes) r["classes"] = classes->to_json();
   if (!warnings.empty()) r["warnings"] = warnings;
+  if (!child_stderr.empty()) r["child_stderr"] = child_stderr;
   if (!images.empty()) {
     json& im = r["images"];
     for (const auto& k : kImageKeys)
@@ -164,6 +165,7 @@ JobRecord JobRecord::from_json(const json& j) {
   if (const auto s = f.find_object("stability")) r.stability = StabilityRecord::from_json(*s);
   if (const auto c = f.find_object("classes")) r.classes = ClassesRecord::from_json(*c);
   if (f.has("warnings")) r.warnings = f.get<std::vector<std::string>>("warnings");
+  if (f.has("child_stderr")) r.child_stderr = f.get<std::vector<std::string>>("child_stderr");
   if (const auto im = f.find_object("images")) {
     for (const auto& k : kImageKeys) r.images.*k.path = im->find<std::string>(k.key);
     r.images.error_heatmap_full_scale = im->find<double>("error_heatmap_full_scale");

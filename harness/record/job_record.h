@@ -80,7 +80,10 @@ struct JobRecord {
   std::optional<StabilityRecord> stability;               // the "stability" block
   std::optional<ClassesRecord> classes;  // lit/penumbra/umbra against the reference
   std::vector<std::string> warnings;     // written only when there are some
-  ImagesRecord images;                   // written only when some image was
+  // A job whose process died (crash, timeout, out of memory): the last lines
+  // that process wrote to stderr. Written only when there are some.
+  std::vector<std::string> child_stderr;
+  ImagesRecord images;  // written only when some image was
 
   nlohmann::json to_json() const;
   // Throws RecordError: at /schema_version for another version, else at the

@@ -53,16 +53,28 @@ std::string json_text(const nlohmann::json& value, int indent) {
 
 ResultsStore::ResultsStore(std::string run_dir) : dir_(std::move(run_dir)) {
   fs::create_directories(fs::path(dir_) / "records");
+  // What a writer killed between its write and its rename leaves behind.
+  for (const fs::path& folder : {fs::path(dir_), fs::path(dir_) / "records"})
+    for (const auto& e : fs::directory_iterator(folder))
+      if (e.is_regular_file() && e.path().filename().string().find(".tmp-") != std::string::npos)
+        fs::remove(e.path());
   for (const auto& e : fs::directory_iterator(fs::path(dir_) / "records")) {
     if (e.path().extension() != ".json") continue;
+    const std::string file = e.path().string();
     try {
-      JobRecord r = JobRecord::from_json(read_json_file(e.path().string()));
+      JobRecord r = JobRecord::from_json(read_json_file(file));
+      // A record under another job's name was copied or edited: not this job's.
+      if (r.job_id + ".json" != e.path().filename().string()) {
+        untrusted_.push_back(file + ": holds the record of job \"" + r.job_id + "\"");
+        continue;
+      }
       const std::string key = r.job_id;
       records_[key] = std::move(r);
-    } catch (const InputError&) {
-      // A torn or foreign file: the job simply runs again.
-    } catch (const RecordError&) {
-      // Not a record of this schema: likewise.
+    } catch (const InputError& ex) {
+      untrusted_.push_back(ex.what());  // names the file and the place
+    } catch (const RecordError& ex) {
+      untrusted_.push_back(file + (ex.pointer().empty() ? "" : ": at " + ex.pointer()) + ": " +
+                           ex.problem());
     }
   }
 }
@@ -92,6 +104,8 @@ std::vector<JobRecord> ResultsStore::records() const {
     if (seen.insert(id).second) out.push_back(r);
   return out;
 }
+
+void ResultsStore::rewrite_index() const { rewrite_jsonl(); }
 
 void ResultsStore::rewrite_jsonl() const {
   std::string text;

@@ -16,7 +16,9 @@ namespace sb {
 class ResultsStore {
  public:
   // Reads the records/ of an earlier run of run_dir; a record that cannot be
-  // read (torn, foreign, of another schema_version) is left out: its job runs again.
+  // read (torn, foreign, of another schema_version, another job's) is left
+  // out and listed in untrusted(): its job runs again. Removes the temporary
+  // files of writers that were killed before their rename.
   explicit ResultsStore(std::string run_dir);
 
   const std::string& dir() const { return dir_; }
@@ -25,6 +27,11 @@ class ResultsStore {
   // Stores the record and rewrites results.jsonl (records ordered by `order`).
   void put(const JobRecord& record);
   void set_order(std::vector<std::string> job_ids) { order_ = std::move(job_ids); }
+  // The record files left out, each "file: at /pointer: problem".
+  const std::vector<std::string>& untrusted() const { return untrusted_; }
+  // Rewrites results.jsonl from the records: a run killed between a record
+  // and the index left them apart.
+  void rewrite_index() const;
   std::vector<JobRecord> records() const;  // in plan order, then the rest
 
  private:
@@ -32,6 +39,7 @@ class ResultsStore {
   std::string dir_;
   std::map<std::string, JobRecord> records_;
   std::vector<std::string> order_;
+  std::vector<std::string> untrusted_;
 };
 
 // Writes `text` to `path` through a temporary file and a rename.

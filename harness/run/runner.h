@@ -1,8 +1,11 @@
 #pragma once
 // Runs an experiment: scene variants × resolutions × technique variants.
 // Each job's record is stored as soon as it finishes; a failing job is
-// recorded as "failed" and the run goes on.
+// recorded as "failed" and the run goes on. With isolation, jobs render in
+// child processes, so that a crash, a hang or an out-of-memory kill fails
+// one job instead of the run (docs/robustness.md).
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "config/experiment.h"
@@ -12,6 +15,12 @@
 #include "plugin/registry.h"
 
 namespace sb {
+
+// Where jobs render: in this process, in one child process per (scene,
+// resolution), or in one child process per job.
+enum class Isolation { None, Group, Job };
+Isolation isolation_from_string(const std::string& s);  // throws std::invalid_argument
+std::string to_string(Isolation isolation);
 
 struct RunOptions {
   std::string run_dir;  // created if missing; an existing one is resumed
@@ -31,6 +40,12 @@ struct RunOptions {
   // frames; it returns when this run may go on. Empty: never waits.
   std::function<void(const std::string& technique_variant)> take_turn;
   int turn_block_frames = 5;
+  // None here, for callers that run several experiments in one process (a
+  // forked child needs a parent with one thread); the CLI's default is Group.
+  Isolation isolation = Isolation::None;
+  // Override the config's limits.job_seconds and limits.setup_seconds
+  // (enforced only with isolation).
+  std::optional<double> job_seconds, setup_seconds;
 };
 
 struct RunSummary {
@@ -40,6 +55,9 @@ struct RunSummary {
   int resumed = 0;      // finished in an earlier run of the same directory
   int respecified = 0;  // finished earlier, but with other settings: run again
   int bad_input = 0;    // scene variants whose input (a glTF file, say) was bad
+  int crashed = 0;      // failed jobs whose process died under them (isolation)
+  int timed_out = 0;    // failed jobs killed at their time limit (isolation)
+  int bad_records = 0;  // record files of an earlier run that could not be trusted
 };
 
 RunSummary run_experiment(const Experiment& experiment, const RunOptions& options);

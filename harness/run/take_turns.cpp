@@ -14,20 +14,10 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "run/child_process.h"
 
 namespace sb {
 namespace {
-
-bool write_all(int fd, const std::string& text) {
-  size_t done = 0;
-  while (done < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    done += size_t(n);
-  }
-  return true;
-}
 
 // One line without its '\n'; nullopt at end of file before a full line.
 std::optional<std::string> read_line(int fd) {
@@ -127,7 +117,7 @@ void TurnTaker::take(const std::string& what) const {
   std::string line = "ready " + what;
   for (char& c : line)
     if (c == '\n') c = ' ';
-  if (!write_all(out_, line + "\n"))
+  if (!write_fully(out_, line + "\n"))
     throw std::runtime_error("the driver of --take-turns went away (write failed)");
   const auto reply = read_line(in_);
   if (!reply) throw std::runtime_error("the driver of --take-turns went away");
@@ -154,7 +144,7 @@ TurnsResult take_turns(const TurnCommand& a, const TurnCommand& b) {
       int i = (k % 4 == 0 || k % 4 == 3) ? 0 : 1;
       if (!children[size_t(i)].running) i = 1 - i;
       Child& c = children[size_t(i)];
-      if (!write_all(c.to, "go\n")) {
+      if (!write_fully(c.to, "go\n")) {
         finish(c);
         continue;
       }

@@ -64,7 +64,8 @@ TEST(CliHelp, SpecificOptionsAndDefaults) {
   const auto run = run_cli("run --help");
   for (const char* expected :
        {"--backend {osmesa,egl}=osmesa", "--cache-dir DIR=results/cache", "--max-jobs N=10000",
-        "--pass-timing {coarse,fine}=coarse", "--no-images", "--out DIR"})
+        "--pass-timing {coarse,fine}=coarse", "--no-images", "--out DIR",
+        "--isolation {group,job,none}=group", "--job-timeout SECONDS"})
     EXPECT_NE(run.output.find(expected), std::string::npos) << expected << "\n" << run.output;
   const auto compare = run_cli("compare --help");
   for (const char* expected :

@@ -1,0 +1,232 @@
+#include "run/isolated_work.h"
+
+#include <signal.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <chrono>
+#include <deque>
+#include <optional>
+#include <set>
+#include <stdexcept>
+
+#include "core/format_number.h"
+#include "core/names.h"
+#include "results/store.h"
+#include "run/child_process.h"
+
+namespace sb {
+
+using json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+constexpr size_t kStderrTail = 20;  // lines kept for a failed record
+constexpr int kExitContextFailed = 71;
+
+// The child's side: every event is one JSON line up the pipe.
+class PipeEvents final : public RunEvents {
+ public:
+  explicit PipeEvents(int fd) : fd_(fd) {}
+  void log(const std::string& line) override { send({{"event", "log"}, {"line", line}}); }
+  void backend(const GlIdentity& gl) override {
+    send({{"event", "backend"},
+          {"platform", gl.platform},
+          {"renderer", gl.renderer},
+          {"version", gl.version},
+          {"timing_source", gl.timing_source}});
+  }
+  void scene_planned(const std::string& scene, const std::vector<std::string>& log,
+                     const std::string& bad_input) override {
+    send({{"event", "scene"}, {"scene", scene}, {"log", log}, {"bad_input", bad_input}});
+  }
+  void phase(const std::string& scene, const std::string& resolution,
+             const std::string& what) override {
+    send({{"event", "phase"}, {"scene", scene}, {"resolution", resolution}, {"what", what}});
+  }
+  void job_started(const JobRecord& base) override {
+    send({{"event", "started"}, {"record", base.to_json()}});
+  }
+  void job_finished(JobRecord record) override {
+    send({{"event", "finished"}, {"record", record.to_json()}});
+  }
+  void fatal(const std::string& message) { send({{"event", "fatal"}, {"message", message}}); }
+
+ private:
+  void send(const json& j) const {
+    if (!write_fully(fd_, json_text(j) + "\n"))
+      throw std::runtime_error("the parent process stopped listening");
+  }
+  int fd_;
+};
+
+// The parent's view of one child.
+struct ChildState {
+  std::optional<JobRecord> current;  // started, not finished
+  Clock::time_point current_started;
+  Clock::time_point last_finished;
+  std::set<std::string> finished;
+  std::deque<std::string> stderr_tail;
+  std::string fatal;
+};
+
+std::string seconds_text(double s) { return format_number("%g", s); }
+
+}  // namespace
+
+IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
+                             size_t scene, const ResolutionWork& work, const TimeLimits& limits,
+                             ParentEvents& events) {
+  const SceneVariant& sv = e.scenes.at(scene);
+  const Resolution& res = e.resolutions.at(work.resolution);
+  std::vector<size_t> remaining = work.techniques;
+  std::optional<GlIdentity> gl;
+  IsolatedOutcome outcome;
+
+  // A failed record for a job the child never finished.
+  const auto fail = [&](JobRecord r, const std::string& reason, const ChildState& c,
+                        bool timed_out) {
+    r.status = JobStatus::Failed;
+    r.reason = reason;
+    r.child_stderr.assign(c.stderr_tail.begin(), c.stderr_tail.end());
+    events.job_finished(std::move(r));
+    ++(timed_out ? outcome.timed_out : outcome.crashed);
+  };
+
+  while (!remaining.empty()) {
+    const ResolutionWork chunk{work.resolution, remaining};
+    ChildProcess child = ChildProcess::start([&](int fd) {
+      PipeEvents pipe(fd);
+      std::optional<JobExecutor> executor;
+      try {
+        executor.emplace(e, o, embree, pipe);
+      } catch (const std::exception& ex) {
+        pipe.fatal(ex.what());
+        return kExitContextFailed;
+      }
+      executor->run_scene(scene, {chunk});
+      return 0;
+    });
+    const Clock::time_point child_started = Clock::now();
+    ChildState c;
+    const auto on_stderr = [&](const std::string& line) {
+      c.stderr_tail.push_back(line);
+      if (c.stderr_tail.size() > kStderrTail) c.stderr_tail.pop_front();
+      events.child_stderr(line);
+    };
+    const auto on_message = [&](const std::string& line) {
+      const json j = json::parse(line, nullptr, false);
+      const std::string event = j.is_object() && j.contains("event") && j["event"].is_string()
+                                    ? j["event"].get<std::string>()
+                                    : "";
+      try {
+        if (event == "log") {
+          events.log(j.at("line").get<std::string>());
+        } else if (event == "backend") {
+          gl = GlIdentity{j.at("platform").get<std::string>(), j.at("renderer").get<std::string>(),
+                          j.at("version").get<std::string>(),
+                          j.at("timing_source").get<std::string>()};
+          events.backend(*gl);
+        } else if (event == "scene") {
+          events.scene_planned(j.at("scene").get<std::string>(),
+                               j.at("log").get<std::vector<std::string>>(),
+                               j.at("bad_input").get<std::string>());
+        } else if (event == "phase") {
+          events.phase(j.at("scene").get<std::string>(), j.at("resolution").get<std::string>(),
+                       j.at("what").get<std::string>());
+        } else if (event == "started") {
+          c.current = JobRecord::from_json(j.at("record"));
+          c.current_started = Clock::now();
+          events.job_started(*c.current);
+        } else if (event == "finished") {
+          JobRecord r = JobRecord::from_json(j.at("record"));
+          if (c.current && c.current->job_id == r.job_id) c.current.reset();
+          c.finished.insert(r.job_id);
+          c.last_finished = Clock::now();
+          events.job_finished(std::move(r));
+        } else if (event == "fatal") {
+          c.fatal = j.at("message").get<std::string>();
+        } else {
+          on_stderr("(a message the parent could not read: " + line.substr(0, 200) + ")");
+        }
+      } catch (const std::exception& ex) {
+        on_stderr("(a message the parent could not read: " + std::string(ex.what()) + ")");
+      }
+    };
+
+    bool timed_out = false;
+    const auto after = [](Clock::time_point t, double seconds) {
+      return t +
+             std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+    };
+    for (;;) {
+      const Clock::time_point deadline = c.current ? after(c.current_started, limits.job_seconds)
+                                         : !c.finished.empty()
+                                             ? after(c.last_finished, limits.job_seconds)
+                                             : after(child_started, limits.setup_seconds);
+      const auto pumped = child.pump(deadline, on_message, on_stderr);
+      if (pumped == ChildProcess::Pumped::Closed) break;
+      if (pumped == ChildProcess::Pumped::TimedOut) {
+        timed_out = true;
+        child.kill();
+        // Its last words: the pipes close once it is gone.
+        const auto drain_until = Clock::now() + std::chrono::seconds(5);
+        while (child.pump(drain_until, on_message, on_stderr) == ChildProcess::Pumped::Output) {
+        }
+        break;
+      }
+    }
+    const int status = child.wait();
+    std::erase_if(remaining, [&](size_t i) {
+      return c.finished.count(job_id(sv.name, res.label(), e.techniques[i].name)) > 0;
+    });
+    if (WIFEXITED(status) && WEXITSTATUS(status) == kExitContextFailed && !c.fatal.empty())
+      throw std::runtime_error(c.fatal);
+
+    std::string how = timed_out ? "" : "its process " + describe_wait_status(status);
+    if (!timed_out && WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL)
+      how +=
+          ", not sent by shadowbench: the kernel's out-of-memory killer sends it, as does kill -9";
+    if (!c.fatal.empty()) how += ": " + c.fatal;
+
+    if (c.current) {
+      JobRecord r = *c.current;
+      r.duration_s = std::chrono::duration<double>(Clock::now() - c.current_started).count();
+      const std::string reason =
+          timed_out ? "timed out after " + seconds_text(limits.job_seconds) +
+                          " s (limits.job_seconds, run --job-timeout); its process was killed"
+                    : "crashed: " + how;
+      const std::string id = r.job_id;
+      fail(std::move(r), reason, c, timed_out);
+      std::erase_if(remaining, [&](size_t i) {
+        return job_id(sv.name, res.label(), e.techniques[i].name) == id;
+      });
+      continue;  // the jobs it did not reach, in a fresh child
+    }
+    if (remaining.empty()) break;
+    // Died outside a job. After a finished job a fresh child goes on; before
+    // any, it would only redo the same set-up.
+    if (!c.finished.empty()) continue;
+    const std::string reason =
+        "the set-up of " + sv.name + " @ " + res.label() + " (scene, G-buffer, reference) " +
+        (timed_out ? "timed out after " + seconds_text(limits.setup_seconds) +
+                         " s (limits.setup_seconds); its process was killed"
+                   : (WIFEXITED(status) && WEXITSTATUS(status) == 0 ? "ended without a record: "
+                                                                    : "failed: ") +
+                         how);
+    for (size_t i : remaining) {
+      JobRecord r = identity_record(e, o, embree, sv, res, e.techniques[i], gl ? gl->renderer : "",
+                                    gl ? gl->version : "");
+      if (gl) {
+        r.gl_platform = gl->platform;
+        r.timing_source = gl->timing_source;
+      }
+      fail(std::move(r), reason, c, timed_out);
+    }
+    break;
+  }
+  return outcome;
+}
+
+}  // namespace sb

@@ -1,0 +1,43 @@
+#pragma once
+// Runs jobs in this process, on a GL context of its own. For one scene
+// variant: plans and builds it, uploads it once, and per resolution renders
+// the G-buffer and the reference once, then prepares, times and measures
+// each technique variant asked for, telling `events` as it goes. Which jobs
+// to run (resumed ones are not) and in which process is the caller's choice
+// (run/runner.cpp, run/isolated_work.h).
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "config/experiment.h"
+#include "run/job_identity.h"
+#include "run/run_events.h"
+#include "run/runner.h"
+
+namespace sb {
+
+// One (scene, resolution)'s jobs: indices into the experiment.
+struct ResolutionWork {
+  size_t resolution = 0;
+  std::vector<size_t> techniques;
+};
+
+class JobExecutor {
+ public:
+  // Makes the GL context (which throws when the backend cannot start).
+  JobExecutor(const Experiment& e, const RunOptions& o, EmbreeChoice embree, RunEvents& events);
+  ~JobExecutor();
+  JobExecutor(const JobExecutor&) = delete;
+  JobExecutor& operator=(const JobExecutor&) = delete;
+
+  // Every job of `work` ends in one job_finished event: ok, skipped (the
+  // plan's reason) or failed (the error), so one failing job never stops the
+  // others. Throws only for what breaks the process itself.
+  void run_scene(size_t scene, const std::vector<ResolutionWork>& work);
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sb

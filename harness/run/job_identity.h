@@ -1,0 +1,38 @@
+#pragma once
+// What identifies a job, decided without GL, so that the parent process of
+// isolated jobs knows it too: the spec hash a rerun compares, and the part
+// of the record that needs no rendering (config, scene and technique as
+// configured, resolution, backend, host, build).
+#include <string>
+
+#include "config/experiment.h"
+#include "record/job_record.h"
+#include "run/runner.h"
+
+namespace sb {
+
+// The reference's Embree device, resolved once per run: a CPU without the
+// ISA is the environment's problem, found before any job runs.
+struct EmbreeChoice {
+  std::string config;  // as chosen: option, experiment, environment or ""
+  std::string isa;     // what it resolves to on this CPU
+};
+EmbreeChoice choose_embree(const Experiment& e, const RunOptions& o);
+
+// Everything in the config that decides a job's numbers. A rerun into the
+// same folder keeps a finished record only when its hash is the same.
+std::string job_spec_hash(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
+                          const SceneVariant& sv, const Resolution& res,
+                          const TechniqueVariant& tv);
+
+// The record's identity: everything but the built scene, the GL context's
+// strings and what the job measures. The host is described with the GL
+// renderer and version given ("" before any context exists).
+JobRecord identity_record(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
+                          const SceneVariant& sv, const Resolution& res, const TechniqueVariant& tv,
+                          const std::string& gl_renderer = "", const std::string& gl_version = "");
+
+// Now, UTC, as records write it: "2026-12-03T11:04:55Z".
+std::string now_iso8601();
+
+}  // namespace sb

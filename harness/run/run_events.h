@@ -1,0 +1,39 @@
+#pragma once
+// What the job executor tells whoever runs it: log lines, progress, and
+// each job's start and record. In one process these go straight to the
+// results store (run/runner.cpp); from a child process they cross a pipe as
+// JSON lines (run/isolated_work.h), so that a child that dies mid-job
+// leaves the parent knowing which job it was in and what it had measured.
+#include <string>
+#include <vector>
+
+#include "record/job_record.h"
+
+namespace sb {
+
+struct GlIdentity {
+  std::string platform, renderer, version, timing_source;
+};
+
+class RunEvents {
+ public:
+  virtual ~RunEvents() = default;
+  virtual void log(const std::string& line) = 0;
+  // A GL context was made: what every record of this process names.
+  virtual void backend(const GlIdentity& gl) = 0;
+  // A scene variant was planned: its plan's log lines, and the InputError's
+  // message when its input was bad ("" otherwise). Said once per process
+  // that planned it.
+  virtual void scene_planned(const std::string& scene, const std::vector<std::string>& log,
+                             const std::string& bad_input) = 0;
+  // Shared work of a (scene, resolution): "(reference)", "(second reference)".
+  virtual void phase(const std::string& scene, const std::string& resolution,
+                     const std::string& what) = 0;
+  // A job starts rendering; `base` is its record so far (identity, host,
+  // reference): what a failed record of it would say.
+  virtual void job_started(const JobRecord& base) = 0;
+  // A job's final record: ok, skipped or failed.
+  virtual void job_finished(JobRecord record) = 0;
+};
+
+}  // namespace sb
