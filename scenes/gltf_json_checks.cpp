@@ -37,6 +37,12 @@ class JsonChecks : public ImportStep {
       const size_t colon = at == std::string::npos ? at : what.find(": ", at);
       if (colon == std::string::npos) fail("JSON", what);
       fail("JSON " + what.substr(at + 3, colon - at - 3), what.substr(colon + 2));
+    } catch (const json::out_of_range& e) {
+      // A number too large for a double: "[json.exception.out_of_range.406]
+      // number overflow parsing '1E400'" (found by tests/fuzz/fuzz_gltf).
+      const std::string what = e.what();
+      const size_t bracket = what.find("] ");
+      fail("JSON", bracket == std::string::npos ? what : what.substr(bracket + 2));
     }
     if (!doc.is_object()) fail("JSON", "expected a glTF object, found " + describe(doc));
     check_depth(doc);

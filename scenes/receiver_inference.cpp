@@ -27,7 +27,10 @@ std::optional<glm::dvec4> mesh_plane(const Mesh& m, double eps) {
 }
 
 bool can_shadow_nothing(const Scene& scene, size_t mesh) {
-  const Bounds all = scene.bounds();
+  return can_shadow_nothing(scene, mesh, scene.bounds());
+}
+
+bool can_shadow_nothing(const Scene& scene, size_t mesh, const Bounds& all) {
   const Mesh& m = scene.meshes.at(mesh);
   if (all.empty() || m.triangle_count() == 0) return false;
   // Flatness within a millionth of the scene's size. Geometry sunk into the
@@ -61,8 +64,10 @@ std::vector<std::string> infer_receivers(Scene& scene) {
   // Decided on the scene as loaded, then applied: each decision is exact on
   // its own, since a receiver still stands where it stood.
   std::vector<size_t> receivers;
+  const Bounds bounds = scene.bounds();
   for (size_t i = 0; i < scene.meshes.size(); ++i)
-    if (scene.meshes[i].casts_shadow && can_shadow_nothing(scene, i)) receivers.push_back(i);
+    if (scene.meshes[i].casts_shadow && can_shadow_nothing(scene, i, bounds))
+      receivers.push_back(i);
   std::vector<std::string> names;
   for (size_t i : receivers) {
     scene.meshes[i].casts_shadow = false;

@@ -42,6 +42,17 @@ json parse_short_form(const std::string& spec) {
 }  // namespace
 
 Scene build_scene_from_spec(const std::string& spec) {
+  // Text from a command line may be any bytes; the messages below quote it
+  // (found by tests/fuzz/fuzz_scene_spec).
+  try {
+    (void)json(spec).dump();
+  } catch (const json::type_error& e) {
+    const std::string what = e.what();
+    const size_t bracket = what.find("] ");
+    throw InputError(
+        kFile, "",
+        "not UTF-8 text: " + (bracket == std::string::npos ? what : what.substr(bracket + 2)));
+  }
   json doc;
   if (!spec.empty() && spec[0] == '{') {
     doc = json::parse(spec, nullptr, false);
@@ -88,11 +99,12 @@ std::string describe_scene(const Scene& s) {
   };
   size_t closed = 0, inferred = 0;
   std::string meshes;
+  const Bounds bounds = s.bounds();
   for (size_t i = 0; i < s.meshes.size(); ++i) {
     const Mesh& m = s.meshes[i];
     const MeshTopology t = analyse_topology(m);
     closed += t.closed() ? 1 : 0;
-    const bool infer = m.casts_shadow && can_shadow_nothing(s, i);
+    const bool infer = m.casts_shadow && can_shadow_nothing(s, i, bounds);
     inferred += infer ? 1 : 0;
     std::snprintf(
         line, sizeof line, "  %-24s %9zu tris  %-8s %-6s %s%s%s\n", m.name.c_str(),

@@ -110,9 +110,14 @@ std::string Params::get_string(const std::string& name) const {
 }
 
 namespace {
+// A value as JSON text for a message. Values may hold bytes that are not
+// UTF-8 (a scene spec from a command line): shown as U+FFFD, never thrown.
+std::string quoted_json(const nlohmann::json& v) {
+  return v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
 std::string describe(const nlohmann::json& v) {
   std::string kind = v.type_name();
-  return kind + " " + v.dump();
+  return kind + " " + quoted_json(v);
 }
 std::string number(double v) {
   nlohmann::json j = v;
@@ -134,7 +139,7 @@ nlohmann::json check_type_and_range(const ParamSpec& spec, const nlohmann::json&
       if (v < spec.min || v > spec.max)
         throw InputError(file, pointer,
                          where + "expected an integer in [" + number(spec.min) + ", " +
-                             number(spec.max) + "], found " + value.dump());
+                             number(spec.max) + "], found " + quoted_json(value));
       return static_cast<long long>(v);
     }
     case ParamType::Float: {
@@ -144,7 +149,7 @@ nlohmann::json check_type_and_range(const ParamSpec& spec, const nlohmann::json&
       if (!std::isfinite(v) || v < spec.min || v > spec.max)
         throw InputError(file, pointer,
                          where + "expected a number in [" + number(spec.min) + ", " +
-                             number(spec.max) + "], found " + value.dump());
+                             number(spec.max) + "], found " + quoted_json(value));
       return v;
     }
     case ParamType::Bool:
@@ -166,7 +171,7 @@ nlohmann::json check_type_and_range(const ParamSpec& spec, const nlohmann::json&
       for (const auto& c : spec.choices)
         if (c == value.get<std::string>()) return value;
       throw InputError(file, pointer,
-                       where + "expected one of " + list + ", found " + value.dump());
+                       where + "expected one of " + list + ", found " + quoted_json(value));
     }
   }
   return value;
@@ -182,7 +187,7 @@ nlohmann::json check_param_value(const ParamSpec& spec, const nlohmann::json& va
     if (!expected.empty())
       throw InputError(
           file, pointer,
-          "parameter '" + spec.name + "': expected " + expected + ", found " + value.dump());
+          "parameter '" + spec.name + "': expected " + expected + ", found " + quoted_json(value));
   }
   return v;
 }
