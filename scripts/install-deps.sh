@@ -22,6 +22,8 @@ if [[ "${1:-}" == "--test" ]]; then
   # The Debian package's test (tests/install): CPack's DEB generator with
   # dpkg-shlibdeps (dpkg-dev, file), readelf (binutils) and man for the page.
   packages+=(dpkg-dev file binutils man-db)
+  # The Slurm job-array test (tests/slurm) starts a single-node Slurm.
+  packages+=(slurm-wlm munge)
 fi
 
 missing=()

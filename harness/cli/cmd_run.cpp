@@ -7,6 +7,7 @@
 #include "config/experiment.h"
 #include "core/error.h"
 #include "gl/pass_timer.h"
+#include "plan/shards.h"
 #include "results/report.h"
 #include "results/store.h"
 #include "run/runner.h"
@@ -36,6 +37,7 @@ int cmd_run(const Args& a) {
   o.pass_detail = gl::pass_detail_from_string(a.pass_timing);
   o.turn_block_frames = a.turn_block;
   o.isolation = isolation_from_string(a.isolation);
+  if (!a.shard.empty()) o.shard = parse_shard(a.shard);
   o.job_seconds = a.job_timeout;
   if (o.isolation == Isolation::None && a.job_timeout)
     std::fprintf(stderr,

@@ -7,6 +7,7 @@
 #include "config/experiment.h"
 #include "core/error.h"
 #include "plan/plan.h"
+#include "plan/shards.h"
 
 namespace sb::cli {
 
@@ -15,6 +16,8 @@ int cmd_validate(const Args& a, bool show_plan) {
   const Experiment e = load_checked_experiment(a, r);
   const Plan plan = make_plan(e);
   if (show_plan) std::printf("%s", describe_plan(e, plan).c_str());
+  if (show_plan && a.shards > 1)
+    std::printf("\n%s", describe_shards(assign_shards(e, a.shards), a.shards).c_str());
   for (size_t s = 0; s < plan.scenes.size(); ++s) {
     const ScenePlan& sp = plan.scenes[s];
     if (sp.error.empty()) continue;

@@ -9,6 +9,7 @@
 #include "cli/version.h"
 #include "core/error.h"
 #include "gl/pass_timer.h"
+#include "plan/shards.h"
 #include "reference/embree_isa.h"
 
 namespace sb::cli {
@@ -291,6 +292,20 @@ std::unique_ptr<CLI::App> make_command_line(Args& a) {
                   "limits.job_seconds, 1800); needs isolation")
       ->type_name("SECONDS")
       ->check(bounded_check(1, 604800, false, "expected a number of seconds in [1, 604800]"));
+  run->add_option("--shard", a.shard,
+                  "run only shard K of N (1 <= K <= N), in the layout `plan` prints; merge the N "
+                  "run folders with `merge`")
+      ->type_name("K/N")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            try {
+              (void)parse_shard(text);
+            } catch (const std::invalid_argument& e) {
+              return e.what();
+            }
+            return "";
+          },
+          ""));
   run->add_option("--take-turns", a.take_turns, "IN_FD,OUT_FD of compare-builds' turn pipes")
       ->group("");  // internal: compare-builds runs both builds with it
 
@@ -306,7 +321,25 @@ std::unique_ptr<CLI::App> make_command_line(Args& a) {
     add_argument(sub, "CONFIG", a.config, "the experiment (JSON)");
     add_plugins(sub, a);
     add_max_jobs(sub, a);
+    if (plan)
+      sub->add_option("--shards", a.shards,
+                      "also lay the jobs out in N shards balanced by estimated cost, as `run` "
+                      "runs them one by one")
+          ->type_name("N")
+          ->check(whole_check(1, 10000, "expected a whole number of shards in [1, 10000]"));
   }
+
+  CLI::App* merge = add_command(
+      *app, "merge",
+      "Merge the run folders of one config's shards into OUT: records, images and reports. "
+      "Refuses timings from different hosts or GL renderers unless told.",
+      "shadowbench merge results/sweep results/sweep-1 results/sweep-2");
+  add_argument(merge, "OUT", a.out, "the merged run folder (new, or empty)");
+  merge->get_option("OUT")->required();
+  add_argument(merge, "DIR", a.merge_dirs, "the run folders to merge");
+  merge->get_option("DIR")->required()->default_str("");
+  merge->add_flag("--allow-mixed-hosts", a.allow_mixed_hosts,
+                  "merge timings from different hosts or GL renderers; the report marks them");
 
   CLI::App* list = add_command(
       *app, "list",

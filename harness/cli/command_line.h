@@ -36,10 +36,14 @@ struct Args {
   CompareOptions compare;                                 // compare, compare-builds
   std::string builds_normalize = "control";               // compare-builds' own default
   std::string base_binary, new_binary;                    // compare-builds
-  std::string take_turns;             // run: IN_FD,OUT_FD (compare-builds, hidden)
-  int turn_block = 5;                 // run, compare-builds: frames per turn
-  std::string isolation = "group";    // run: job, group or none
-  std::optional<double> job_timeout;  // run: seconds, over limits.job_seconds
+  std::string take_turns;               // run: IN_FD,OUT_FD (compare-builds, hidden)
+  int turn_block = 5;                   // run, compare-builds: frames per turn
+  std::string isolation = "group";      // run: job, group or none
+  std::string shard;                    // run: K/N
+  int shards = 1;                       // plan: N
+  std::vector<std::string> merge_dirs;  // merge: the run folders
+  bool allow_mixed_hosts = false;       // merge
+  std::optional<double> job_timeout;    // run: seconds, over limits.job_seconds
 };
 
 // The parser, writing into `args`. Kept alive for as long as `args` is read.

@@ -17,6 +17,7 @@ int cmd_validate(const Args& a, bool show_plan);  // validate, plan
 int cmd_list(const Args& a);
 int cmd_report(const Args& a);
 int cmd_compare(const Args& a);
+int cmd_merge(const Args& a);
 int cmd_compare_builds(const Args& a);
 int cmd_scene_export(const Args& a);
 int cmd_scene_info(const Args& a);

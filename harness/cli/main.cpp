@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
     if (a.command == "list") return cmd_list(a);
     if (a.command == "report") return cmd_report(a);
     if (a.command == "compare") return cmd_compare(a);
+    if (a.command == "merge") return cmd_merge(a);
     if (a.command == "compare-builds") return cmd_compare_builds(a);
     if (a.command == "scene export") return cmd_scene_export(a);
     if (a.command == "scene info") return cmd_scene_info(a);

@@ -28,6 +28,10 @@ struct TechniqueInfo {
   // Optional rule across parameters, checked when a config is loaded: returns
   // "" when fine, else {parameter to blame, what is wrong}.
   std::function<std::pair<std::string, std::string>(const Params&)> check = nullptr;
+  // Optional: a job's cost relative to a hard shadow map's at the same
+  // resolution (1 when absent), for balancing shards (plan/shards.h), e.g.
+  // accumulation's, which grows with its light samples.
+  std::function<double(const Params&)> cost_weight = nullptr;
 };
 
 class Registry {

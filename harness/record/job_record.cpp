@@ -88,6 +88,8 @@ json JobRecord::to_json() const {
   r["gl_renderer"] = gl_renderer;
   r["gl_version"] = gl_version;
   r["timing_source"] = timing_source;
+  if (job_index) r["job_index"] = *job_index;
+  if (shard) r["shard"] = *shard;
   r["host"] = host.to_json();
   r["build"] = build.to_json();
   r["status"] = to_string(status);
@@ -141,6 +143,8 @@ JobRecord JobRecord::from_json(const json& j) {
   r.gl_renderer = f.get<std::string>("gl_renderer");
   r.gl_version = f.get<std::string>("gl_version");
   r.timing_source = f.get<std::string>("timing_source");
+  r.job_index = f.find<std::int64_t>("job_index");
+  r.shard = f.find<std::string>("shard");
   r.host = HostRecord::from_json(f.object("host"));
   r.build = BuildRecord::from_json(f.object("build"));
 

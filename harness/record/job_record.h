@@ -62,8 +62,12 @@ struct JobRecord {
   SceneRecord scene;
   TechniqueRecord technique;
   std::string backend, gl_platform, gl_renderer, gl_version, timing_source;
-  HostRecord host;    // the machine, and its fingerprint (record/host_record.h)
-  BuildRecord build;  // the build, and its fingerprint
+  // The job's place in its config's plan (scene, resolution, technique
+  // order); absent from older records.
+  std::optional<std::int64_t> job_index;
+  std::optional<std::string> shard;  // "K/N" when run with --shard (plan/shards.h)
+  HostRecord host;                   // the machine, and its fingerprint (record/host_record.h)
+  BuildRecord build;                 // the build, and its fingerprint
 
   JobStatus status = JobStatus::Ok;
   std::optional<std::string> reason;  // why skipped or failed

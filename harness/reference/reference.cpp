@@ -1,5 +1,7 @@
 #include "reference/reference.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <tbb/blocked_range.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
@@ -7,12 +9,14 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -303,6 +307,30 @@ bool read_file(const std::filesystem::path& path, std::string& bytes) {
   return true;
 }
 
+// An exclusive flock on a cache key's lock file, held while its reference is
+// computed; the kernel drops it when the process dies. The file stays (a
+// removed lock file could be locked by two processes at once).
+class KeyLock {
+ public:
+  explicit KeyLock(const std::filesystem::path& file)
+      : fd_(::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644)) {
+    if (fd_ < 0)
+      throw JobError("reference cache: cannot open " + file.string() + ": " + std::strerror(errno));
+    while (::flock(fd_, LOCK_EX) != 0)
+      if (errno != EINTR) {
+        const int err = errno;
+        ::close(fd_);
+        throw JobError("reference cache: cannot lock " + file.string() + ": " + std::strerror(err));
+      }
+  }
+  ~KeyLock() { ::close(fd_); }
+  KeyLock(const KeyLock&) = delete;
+  KeyLock& operator=(const KeyLock&) = delete;
+
+ private:
+  int fd_;
+};
+
 void write_atomically(const std::filesystem::path& path, const std::string& bytes) {
   static std::atomic<uint64_t> counter{0};
   std::filesystem::path tmp = path;
@@ -458,10 +486,11 @@ Result get(const Scene& scene, const ImageF& positions, const ImageF& geometric_
   }
   const std::string key = cache_key(scene, positions, geometric_normals, s);
   const std::filesystem::path path = std::filesystem::path(cache_dir) / (key + ".sbref");
-
-  std::string bytes;
-  Result cached;
-  if (read_file(path, bytes) && deserialise(bytes, key, positions, s, cached)) {
+  const auto from_cache = [&]() -> std::optional<Result> {
+    std::string bytes;
+    Result cached;
+    if (!read_file(path, bytes) || !deserialise(bytes, key, positions, s, cached))
+      return std::nullopt;
     cached.spp = s.exact ? 0 : s.spp;
     cached.seed = s.seed;
     cached.method = method_of(s);
@@ -470,13 +499,19 @@ Result get(const Scene& scene, const ImageF& positions, const ImageF& geometric_
     cached.cache_key = key;
     summarise(cached, positions);
     return cached;
-  }
+  };
+  if (auto cached = from_cache()) return std::move(*cached);
 
-  Result r = compute(scene, positions, geometric_normals, s);
-  r.cache_key = key;
   std::error_code ec;
   std::filesystem::create_directories(cache_dir, ec);
   if (ec) throw JobError("reference cache: cannot create " + cache_dir + ": " + ec.message());
+  // One computation per key across processes (the shards of a run sharing
+  // --cache-dir): the first to take the key's lock computes, the others
+  // wait and then read its file.
+  const KeyLock lock(std::filesystem::path(cache_dir) / (key + ".lock"));
+  if (auto cached = from_cache()) return std::move(*cached);
+  Result r = compute(scene, positions, geometric_normals, s);
+  r.cache_key = key;
   write_atomically(path, serialise(r));
   return r;
 }

@@ -111,7 +111,9 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
 // analytic shape (kind, centre, radius), both
 // buffers' shapes and bytes, the settings, the method and its
 // version, and the Embree version and ISA. Corrupt or mismatched files are ignored
-// and recomputed; writes go to a temp file renamed into place. An unwritable
+// and recomputed; writes go to a temp file renamed into place. Processes
+// sharing cache_dir compute each key once: a miss takes the key's lock file
+// (<key>.lock, flock) and looks again before computing. An unwritable
 // cache_dir throws sb::JobError.
 Result get(const Scene& scene, const ImageF& positions, const ImageF& geometric_normals,
            const Settings& s, const std::string& cache_dir);

@@ -13,6 +13,7 @@
 #include "core/image.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
+#include "results/mixed_hosts.h"
 #include "results/report_columns.h"
 #include "results/stability_table.h"
 #include "results/store.h"
@@ -250,6 +251,14 @@ class Page {
               "</span>, renderer <span class=\"mono\">" + html_escape(r0.gl_renderer) +
               "</span>, timing source <span class=\"mono\">" + html_escape(r0.timing_source) +
               "</span>. Reference: " + reference_method(r0) + ".</p>\n";
+    }
+    if (const auto hosts = distinct_hosts(records_); hosts.size() > 1) {
+      out_ += "<p class=\"warning\"><strong>Mixed hosts:</strong> these jobs were timed on " +
+              std::to_string(hosts.size()) +
+              " hosts or GL renderers (merged with <span class=\"mono\">--allow-mixed-hosts</span>)"
+              "; compare frame times only between jobs of one host:</p>\n<ul>\n";
+      for (const auto& h : hosts) out_ += "<li>" + html_escape(h) + "</li>\n";
+      out_ += "</ul>\n";
     }
     // ok, skipped, failed, then any other status, each with its count.
     std::string tally;

@@ -4,6 +4,7 @@
 #include <map>
 #include <string_view>
 
+#include "results/mixed_hosts.h"
 #include "results/report_columns.h"
 #include "results/stability_table.h"
 #include "results/store.h"
@@ -56,6 +57,13 @@ std::string make_markdown(const std::vector<JobRecord>& records, const std::stri
            "ray-traced reference" +
            (r0.reference ? ": " + markdown_text(reference_label(*r0.reference)) : std::string()) +
            ".\n";
+    if (const auto hosts = distinct_hosts(records); hosts.size() > 1) {
+      out += "\n**Mixed hosts:** these jobs were timed on " + std::to_string(hosts.size()) +
+             " hosts or GL renderers (merged with `--allow-mixed-hosts`); compare frame times "
+             "only between jobs of one host:\n\n";
+      for (const auto& h : hosts) out += "- " + markdown_text(h) + "\n";
+      out += "\n";
+    }
     if (r0.second_reference)
       out += "The second_ columns are the same errors against a second reference: " +
              markdown_text(reference_label(r0.second_reference->reference)) +

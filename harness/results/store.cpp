@@ -86,10 +86,14 @@ const JobRecord* ResultsStore::finished(const std::string& job_id) const {
   return s == JobStatus::Ok || s == JobStatus::Skipped ? &it->second : nullptr;
 }
 
-void ResultsStore::put(const JobRecord& record) {
-  write_file_atomically((fs::path(dir_) / "records" / (record.job_id + ".json")).string(),
-                        json_text(record.to_json(), 2) + "\n");
-  records_[record.job_id] = record;
+void ResultsStore::put(const JobRecord& record) { put_all({record}); }
+
+void ResultsStore::put_all(const std::vector<JobRecord>& records) {
+  for (const JobRecord& r : records) {
+    write_file_atomically((fs::path(dir_) / "records" / (r.job_id + ".json")).string(),
+                          json_text(r.to_json(), 2) + "\n");
+    records_[r.job_id] = r;
+  }
   rewrite_jsonl();
 }
 

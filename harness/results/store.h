@@ -26,6 +26,8 @@ class ResultsStore {
   const JobRecord* finished(const std::string& job_id) const;
   // Stores the record and rewrites results.jsonl (records ordered by `order`).
   void put(const JobRecord& record);
+  // Stores each record, then rewrites results.jsonl once.
+  void put_all(const std::vector<JobRecord>& records);
   void set_order(std::vector<std::string> job_ids) { order_ = std::move(job_ids); }
   // The record files left out, each "file: at /pointer: problem".
   const std::vector<std::string>& untrusted() const { return untrusted_; }

@@ -83,6 +83,16 @@ JobRecord identity_record(const Experiment& e, const RunOptions& o, const Embree
   // The machine and the build, with their fingerprints (run/host_info.h).
   r.host = describe_host(gl_renderer, gl_version, embree.isa);
   r.build = describe_build();
+  // Its place in the plan, so that merged shards list jobs as one run would.
+  const auto index_of = [](const auto& item, const auto& all) {
+    return std::int64_t(&item - all.data());
+  };
+  r.job_index =
+      (index_of(sv, e.scenes) * std::int64_t(e.resolutions.size()) + index_of(res, e.resolutions)) *
+          std::int64_t(e.techniques.size()) +
+      index_of(tv, e.techniques);
+  if (o.shard.count > 1)
+    r.shard = std::to_string(o.shard.index) + "/" + std::to_string(o.shard.count);
   return r;
 }
 

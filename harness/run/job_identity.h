@@ -26,7 +26,8 @@ std::string job_spec_hash(const Experiment& e, const RunOptions& o, const Embree
                           const TechniqueVariant& tv);
 
 // The record's identity: everything but the built scene, the GL context's
-// strings and what the job measures. The host is described with the GL
+// strings and what the job measures. `sv`, `res` and `tv` must be elements
+// of `e`'s own lists (job_index is their place in them). The host is described with the GL
 // renderer and version given ("" before any context exists).
 JobRecord identity_record(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
                           const SceneVariant& sv, const Resolution& res, const TechniqueVariant& tv,

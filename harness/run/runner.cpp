@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "core/names.h"
+#include "plan/shards.h"
 #include "results/report.h"
 #include "results/run_lock.h"
 #include "results/store.h"
@@ -144,10 +145,11 @@ class Runner {
         progress_(stderr, !o.quiet && isatty(fileno(stderr)), 0) {}
 
   RunSummary run() {
+    // This shard's jobs (all of them unless --shard), in plan order.
+    const std::vector<ShardedJob> jobs = assign_shards(e_, o_.shard.count);
     std::vector<std::string> order;
-    for (const auto& s : e_.scenes)
-      for (const auto& r : e_.resolutions)
-        for (const auto& t : e_.techniques) order.push_back(job_id(s.name, r.label(), t.name));
+    for (const ShardedJob& j : jobs)
+      if (j.shard == o_.shard.index) order.push_back(j.id);
     store_.set_order(order);
     progress_ = Progress(stderr, !o_.quiet && isatty(fileno(stderr)), order.size());
     StoreEvents events(store_, progress_, summary_, o_.quiet, order.size());
@@ -159,11 +161,13 @@ class Runner {
     limits_.job_seconds = o_.job_seconds.value_or(e_.limits.job_seconds);
     limits_.setup_seconds = o_.setup_seconds.value_or(e_.limits.setup_seconds);
 
+    size_t next = 0;  // into jobs, in the same order as the loops
     for (size_t s = 0; s < e_.scenes.size(); ++s) {
       std::vector<ResolutionWork> work;
       for (size_t r = 0; r < e_.resolutions.size(); ++r) {
         ResolutionWork w{r, {}};
         for (size_t t = 0; t < e_.techniques.size(); ++t) {
+          if (jobs[next++].shard != o_.shard.index) continue;
           if (resumable(s, r, t, events))
             events.resumed();
           else

@@ -12,6 +12,7 @@
 #include "core/names.h"
 #include "gl/context.h"
 #include "gl/pass_timer.h"
+#include "plan/shards.h"
 #include "plugin/registry.h"
 
 namespace sb {
@@ -46,6 +47,8 @@ struct RunOptions {
   // Override the config's limits.job_seconds and limits.setup_seconds
   // (enforced only with isolation).
   std::optional<double> job_seconds, setup_seconds;
+  // Only this shard's jobs (plan/shards.h); 1/1 runs them all.
+  ShardSpec shard;
 };
 
 struct RunSummary {

@@ -14,18 +14,10 @@
 #include "plugin/registry.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/sphere_grid.h"
+#include "test_registry.h"
 
 namespace sb::test {
 namespace {
-
-const Registry& registry() {
-  static const Registry r = [] {
-    Registry reg;
-    reg.load_plugins(SHADOWBENCH_PLUGIN_DIR);
-    return reg;
-  }();
-  return r;
-}
 
 const std::string kScenes = std::string(SHADOWBENCH_SOURCE_DIR) + "/configs/scenes.json";
 

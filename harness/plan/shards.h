@@ -1,0 +1,43 @@
+#pragma once
+// Splitting a run over N machines (`plan --shards N`, `run --shard K/N`,
+// docs/scale_out.md). Decided from the config alone, with no scene built,
+// so that every shard computes the same split on its own: each job costs
+//   weight × (1 + 4.5 × megapixels)
+// where weight is the technique's (TechniqueInfo::cost_weight, 1 unless its
+// plugin says) and 1 stands for what a job pays whatever its resolution
+// (set-up, shadow map, compile frame, metrics). Fitted to configs/quick.json
+// on the 2-core development VM: a hard shadow map job took 0.47 s at
+// 320×240 and 0.83 s at 640×480, so about 0.35 s × (1 + 4.5 × MP).
+// Jobs go, costliest first, to the shard with the least cost so far (ties:
+// fewer jobs, then the lower shard); equal costs keep the config's order,
+// so the split is the same on every machine.
+#include <string>
+#include <vector>
+
+#include "config/experiment.h"
+
+namespace sb {
+
+struct ShardSpec {
+  int index = 1;  // 1-based: "2/4" is the second of four
+  int count = 1;
+};
+// "K/N" with 1 <= K <= N <= 10000; throws std::invalid_argument saying what
+// was expected.
+ShardSpec parse_shard(const std::string& text);
+
+struct ShardedJob {
+  std::string id;
+  size_t scene = 0, resolution = 0, technique = 0;
+  double cost = 0;
+  int shard = 1;  // 1-based
+};
+
+// Every job of `e` in plan order (scene, resolution, technique), each with
+// its cost and shard.
+std::vector<ShardedJob> assign_shards(const Experiment& e, int shard_count);
+
+// The layout: per shard its job count, cost and share, then its jobs.
+std::string describe_shards(const std::vector<ShardedJob>& jobs, int shard_count);
+
+}  // namespace sb

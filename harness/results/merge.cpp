@@ -1,0 +1,143 @@
+#include "results/merge.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <string_view>
+
+#include "core/error.h"
+#include "record/job_record.h"
+#include "results/mixed_hosts.h"
+#include "results/report.h"
+#include "results/run_lock.h"
+#include "results/store.h"
+
+namespace sb {
+namespace fs = std::filesystem;
+
+namespace {
+
+// An image path a record names, inside its run folder: relative, without
+// "..". Records are input; a crafted one must not make merge copy from or
+// write to anywhere else.
+bool inside_run_folder(const std::string& rel) {
+  const fs::path p(rel);
+  if (rel.empty() || p.is_absolute()) return false;
+  for (const auto& part : p)
+    if (part == "..") return false;
+  return true;
+}
+
+// What file_safe() and job_id() write: letters, digits, . _ - = + ~, and no
+// leading '.'.
+bool file_name_safe(const std::string& id) {
+  if (id.empty() || id[0] == '.') return false;
+  return std::all_of(id.begin(), id.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) ||
+           std::string_view("._-=+~").find(c) != std::string_view::npos;
+  });
+}
+
+std::vector<std::string> image_paths(const ImagesRecord& im) {
+  std::vector<std::string> out;
+  for (const auto* path :
+       {&im.visibility, &im.shaded, &im.error_heatmap, &im.reference_visibility,
+        &im.reference_std_error, &im.reference_shaded, &im.gbuffer_positions, &im.gbuffer_normals})
+    if (*path) out.push_back(**path);
+  return out;
+}
+
+}  // namespace
+
+MergeSummary merge_runs(const std::string& out, const std::vector<std::string>& dirs,
+                        const MergeOptions& options) {
+  struct Source {
+    JobRecord record;
+    std::string dir;
+  };
+  std::vector<Source> all;
+  std::map<std::string, std::string> where;  // job id -> its folder
+  for (const std::string& dir : dirs) {
+    const std::string jsonl = (fs::path(dir) / "results.jsonl").string();
+    if (fs::weakly_canonical(fs::absolute(dir)) == fs::weakly_canonical(fs::absolute(out)))
+      throw InputError(dir, "", "is the folder merged into: merge into a new folder");
+    std::vector<JobRecord> records = read_job_records(dir);
+    if (records.empty()) throw InputError(jsonl, "", "holds no records");
+    for (JobRecord& r : records) {
+      if (!all.empty() && r.config_hash != all.front().record.config_hash)
+        throw InputError(jsonl, "job " + r.job_id,
+                         "ran config " + r.config + " (hash " + r.config_hash + "), not " +
+                             all.front().record.config + " (hash " +
+                             all.front().record.config_hash + ") as " + all.front().dir +
+                             " did: merge joins the shards of one config");
+      // The id names its record file: a crafted one must not point elsewhere.
+      if (!file_name_safe(r.job_id))
+        throw InputError(jsonl, "job " + r.job_id, "is not a job id shadowbench writes");
+      if (const auto [it, fresh] = where.emplace(r.job_id, dir); !fresh)
+        throw InputError(jsonl, "job " + r.job_id,
+                         "is also in " + it->second +
+                             ": two folders ran the same job (overlapping shards, or one "
+                             "folder given twice)");
+      for (const std::string& rel : image_paths(r.images))
+        if (!inside_run_folder(rel))
+          throw InputError(jsonl, "job " + r.job_id,
+                           "names the image '" + rel + "', outside its run folder");
+      all.push_back({std::move(r), dir});
+    }
+  }
+
+  // One run's order: the plan's, where the records know it.
+  std::stable_sort(all.begin(), all.end(), [](const Source& a, const Source& b) {
+    const auto ia = a.record.job_index.value_or(INT64_MAX);
+    const auto ib = b.record.job_index.value_or(INT64_MAX);
+    return ia != ib ? ia < ib : a.record.job_id < b.record.job_id;
+  });
+  std::vector<JobRecord> records;
+  std::vector<std::string> order;
+  records.reserve(all.size());
+  order.reserve(all.size());
+  for (const Source& s : all) {
+    records.push_back(s.record);
+    order.push_back(s.record.job_id);
+  }
+  MergeSummary summary;
+  summary.hosts = distinct_hosts(records);
+  if (summary.hosts.size() > 1 && !options.allow_mixed_hosts) {
+    std::string list;
+    for (const std::string& h : summary.hosts) list += "\n  " + h;
+    throw InputError(dirs.front(), "",
+                     "the folders' timings come from " + std::to_string(summary.hosts.size()) +
+                         " hosts or GL renderers, which one comparison must not mix:" + list +
+                         "\n(merge --allow-mixed-hosts merges them anyway; the report then "
+                         "marks them)");
+  }
+
+  const RunFolderLock lock(out);
+  if (fs::exists(fs::path(out) / "records") && !fs::is_empty(fs::path(out) / "records"))
+    throw InputError(out, "", "already holds records: merge into a new or empty folder");
+  ResultsStore store(out);
+  store.set_order(order);
+  std::set<std::string> copied;
+  for (const Source& s : all) {
+    for (const std::string& rel : image_paths(s.record.images)) {
+      // The reference's images are shared by a group's jobs, and equal in
+      // every shard that rendered the group: copied once.
+      if (!copied.insert(rel).second) continue;
+      const fs::path from = fs::path(s.dir) / rel, to = fs::path(out) / rel;
+      if (!fs::exists(from)) continue;  // written with --no-images, or removed
+      fs::create_directories(to.parent_path());
+      fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+      ++summary.images;
+    }
+  }
+  store.put_all(records);
+  summary.records = records.size();
+  write_reports(out, store.records(),
+                records.front().experiment + " (merged from " + std::to_string(dirs.size()) +
+                    " run folders)");
+  return summary;
+}
+
+}  // namespace sb

@@ -1,0 +1,19 @@
+#pragma once
+// Which machines timed a run folder's jobs. One folder normally has one;
+// `merge --allow-mixed-hosts` can make one with several, and then every
+// report says so: frame times are only comparable within one host.
+#include <string>
+#include <vector>
+
+#include "record/job_record.h"
+
+namespace sb {
+
+// "name (cpu), renderer".
+std::string host_label(const JobRecord& r);
+
+// The hosts that timed the ok jobs, told apart by host fingerprint and GL
+// renderer, as host labels in order of first appearance.
+std::vector<std::string> distinct_hosts(const std::vector<JobRecord>& records);
+
+}  // namespace sb

@@ -1,0 +1,16 @@
+#pragma once
+// The built plugins, loaded once per test executable.
+#include "plugin/registry.h"
+
+namespace sb::test {
+
+inline const Registry& registry() {
+  static const Registry r = [] {
+    Registry reg;
+    reg.load_plugins(SHADOWBENCH_PLUGIN_DIR);
+    return reg;
+  }();
+  return r;
+}
+
+}  // namespace sb::test
