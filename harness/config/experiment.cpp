@@ -14,6 +14,7 @@
 #include "core/hash.h"
 #include "core/names.h"
 #include "core/scene_setup_check.h"
+#include "reference/adaptive.h"
 #include "reference/embree_isa.h"
 
 namespace sb {
@@ -508,7 +509,8 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
   if (doc.contains("reference")) {
     const json& ref = r.object(doc["reference"], "/reference", "reference settings");
     r.only_keys(ref, "/reference",
-                {"method", "second_method", "spp", "seed", "cache", "embree_config"});
+                {"method", "second_method", "spp", "seed", "cache", "embree_config", "adaptive",
+                 "pilot_spp", "target_std_error"});
     // true for "exact", false for "monte_carlo".
     const auto is_exact = [&](const char* key) {
       const std::string pointer = std::string("/reference/") + key;
@@ -530,6 +532,24 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
       e.reference.seed =
           static_cast<uint64_t>(r.integer(ref["seed"], "/reference/seed", 0, 2147483647));
     if (ref.contains("cache")) e.reference.cache = r.boolean(ref["cache"], "/reference/cache");
+    if (ref.contains("adaptive"))
+      e.reference.adaptive = r.boolean(ref["adaptive"], "/reference/adaptive");
+    if (ref.contains("pilot_spp"))
+      e.reference.pilot_spp = r.integer(ref["pilot_spp"], "/reference/pilot_spp", 1, 1 << 20);
+    if (ref.contains("target_std_error"))
+      e.reference.target_std_error =
+          r.number(ref["target_std_error"], "/reference/target_std_error", 1e-6, 0.5);
+    if (e.reference.adaptive) {
+      // Whether the counts nest is the config's question, not the run's.
+      const int pilot = e.reference.pilot_spp;
+      if (pilot != 4 && pilot != 16 && pilot != 64)
+        r.fail(ref.contains("pilot_spp") ? "/reference/pilot_spp" : "/reference/adaptive",
+               reference::detail::adaptive_layout_problem(e.reference.spp, pilot));
+      else if (const std::string why =
+                   reference::detail::adaptive_layout_problem(e.reference.spp, pilot);
+               !why.empty())
+        r.fail("/reference/spp", "with /reference/adaptive: " + why);
+    }
     if (ref.contains("embree_config")) {
       e.reference.embree_config = r.string(ref["embree_config"], "/reference/embree_config");
       try {  // syntax only: whether this CPU has the ISA is the run's question

@@ -53,6 +53,11 @@ struct ReferenceConfig {
   uint64_t seed = 1;
   bool cache = true;
   std::string embree_config;  // "" (environment or best ISA), "isa=avx2", "max_isa=avx2"
+  // "adaptive": the Monte Carlo reference takes a pilot_spp-sample pilot per
+  // pixel and more only where needed, up to spp (reference/adaptive.h).
+  bool adaptive = false;
+  int pilot_spp = 16;
+  double target_std_error = 0.01;
 };
 
 // The "stability" block (docs/stability.md): extra, untimed frames per job
@@ -76,7 +81,8 @@ struct StabilityConfig {
   nlohmann::json to_json() const;
 };
 
-// The G-buffer and shading alone: what every frame pays whatever the technique.
+// The G-buffer's restore and shading alone: what every frame pays whatever the
+// technique.
 inline constexpr const char* kDefaultControl = "none";
 
 // "limits": wall-clock budgets of isolated jobs (run --isolation group or

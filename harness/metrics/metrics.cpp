@@ -1,5 +1,8 @@
 #include "metrics/metrics.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -58,66 +61,144 @@ inline bool value_error(float t, float r, double& f) {
 
 }  // namespace
 
-ErrorStats compare(const ImageF& test, const ImageF& ref, const std::vector<uint8_t>* mask) {
+namespace {
+
+bool ssim_fits(const ImageF& test) {
+  return test.width >= 2 * kSsimRadius + 1 && test.height >= 2 * kSsimRadius + 1;
+}
+
+// One row's sums for one mask, in the order the values come (row-major,
+// then channel): the order a plain loop over the image would add them in.
+struct RowSums {
+  size_t pixels = 0, nonfinite = 0, over001 = 0, over005 = 0, over01 = 0;
+  double abs = 0, sq = 0, sgn = 0;
+  double max_error = 0;
+  int max_x = -1, max_channel = -1;
+};
+
+// compare() but SSIM, left at 1 (NaN when no pixel is included), for every
+// mask in one pass over the pixels: each value's error is worked out once.
+// Rows run in parallel into per-row sums, added in row order afterwards, so
+// every figure is what one sequential loop per mask gives, bit for bit.
+std::vector<ErrorStats> compare_errors(const ImageF& test, const ImageF& ref,
+                                       const std::vector<const std::vector<uint8_t>*>& masks) {
   detail::check_same_shape(test, ref, "metrics::compare");
-  detail::check_mask(test, mask, "metrics::compare");
-  ErrorStats s;
+  for (const auto* mask : masks) detail::check_mask(test, mask, "metrics::compare");
   const int nc = test.channels;
-  size_t over001 = 0, over005 = 0, over01 = 0;
-  double sum_abs = 0, sum_sq = 0, sum_signed = 0;
-  for (int y = 0; y < test.height; ++y) {
-    // Per-row partial sums limit the cancellation error, as OIIO's batches.
-    double row_abs = 0, row_sq = 0, row_signed = 0;
-    for (int x = 0; x < test.width; ++x) {
-      const size_t p = static_cast<size_t>(y) * test.width + x;
-      if (mask && (*mask)[p] == 0) continue;
-      ++s.pixel_count;
-      double pixel_max = 0;
-      for (int c = 0; c < nc; ++c) {
-        const size_t i = p * nc + c;
-        double f;
-        if (value_error(test.data[i], ref.data[i], f)) {
-          row_abs += f;
-          row_sq += f * f;
-          if (std::isfinite(test.data[i])) row_signed += double(test.data[i]) - double(ref.data[i]);
-        } else {
-          ++s.nonfinite_count;
+  const size_t n = masks.size(), height = static_cast<size_t>(test.height);
+  std::vector<RowSums> rows(n * height);
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, test.height, 8), [&](const tbb::blocked_range<int>& r) {
+        // One row's errors, worked out once for every mask.
+        const size_t row_values = static_cast<size_t>(test.width) * nc;
+        std::vector<double> f(row_values), sgn(row_values),
+            pixel_max(static_cast<size_t>(test.width));
+        std::vector<uint8_t> finite(row_values);
+        for (int y = r.begin(); y != r.end(); ++y) {
+          const size_t first = static_cast<size_t>(y) * row_values;
+          for (size_t i = 0; i < row_values; ++i) {
+            const float t = test.data[first + i], rv = ref.data[first + i];
+            finite[i] = value_error(t, rv, f[i]) ? 1 : 0;
+            sgn[i] = finite[i] && std::isfinite(t) ? double(t) - double(rv) : 0.0;
+          }
+          for (int x = 0; x < test.width; ++x) {
+            double most = 0;
+            for (int c = 0; c < nc; ++c) most = std::max(most, f[static_cast<size_t>(x) * nc + c]);
+            pixel_max[static_cast<size_t>(x)] = most;
+          }
+          const size_t row_pixel = static_cast<size_t>(y) * test.width;
+          for (size_t m = 0; m < n; ++m) {
+            const uint8_t* mask = masks[m] != nullptr ? masks[m]->data() + row_pixel : nullptr;
+            RowSums& s = rows[m * height + static_cast<size_t>(y)];
+            for (int x = 0; x < test.width; ++x) {
+              if (mask != nullptr && mask[x] == 0) continue;
+              ++s.pixels;
+              for (int c = 0; c < nc; ++c) {
+                const size_t i = static_cast<size_t>(x) * nc + c;
+                if (finite[i]) {
+                  s.abs += f[i];
+                  s.sq += f[i] * f[i];
+                  s.sgn += sgn[i];
+                } else {
+                  ++s.nonfinite;
+                }
+                // !(f <= max) like OIIO: first occurrence wins ties.
+                if (!(f[i] <= s.max_error)) {
+                  s.max_error = f[i];
+                  s.max_x = x;
+                  s.max_channel = c;
+                }
+              }
+              const double most = pixel_max[static_cast<size_t>(x)];
+              s.over001 += most > 0.01 ? 1 : 0;
+              s.over005 += most > 0.05 ? 1 : 0;
+              s.over01 += most > 0.1 ? 1 : 0;
+            }
+          }
         }
-        // !(f <= max) like OIIO: first occurrence wins ties.
-        if (!(f <= s.max_error)) {
-          s.max_error = f;
-          s.max_x = x;
-          s.max_y = y;
-          s.max_channel = c;
-        }
-        pixel_max = std::max(pixel_max, f);
+      });
+  std::vector<ErrorStats> out(n);
+  for (size_t m = 0; m < n; ++m) {
+    ErrorStats& s = out[m];
+    size_t over001 = 0, over005 = 0, over01 = 0;
+    double sum_abs = 0, sum_sq = 0, sum_signed = 0;
+    for (size_t y = 0; y < height; ++y) {
+      const RowSums& row = rows[m * height + y];
+      // Per-row partial sums limit the cancellation error, as OIIO's batches.
+      s.pixel_count += row.pixels;
+      s.nonfinite_count += row.nonfinite;
+      over001 += row.over001;
+      over005 += row.over005;
+      over01 += row.over01;
+      sum_abs += row.abs;
+      sum_sq += row.sq;
+      sum_signed += row.sgn;
+      if (!(row.max_error <= s.max_error)) {  // the first row to reach it
+        s.max_error = row.max_error;
+        s.max_x = row.max_x;
+        s.max_y = static_cast<int>(y);
+        s.max_channel = row.max_channel;
       }
-      over001 += pixel_max > 0.01 ? 1 : 0;
-      over005 += pixel_max > 0.05 ? 1 : 0;
-      over01 += pixel_max > 0.1 ? 1 : 0;
     }
-    sum_abs += row_abs;
-    sum_sq += row_sq;
-    sum_signed += row_signed;
+    if (s.pixel_count == 0) {
+      // Nothing to measure: every figure is undefined.
+      s.rmse = s.mae = s.max_error = s.psnr = s.ssim = s.mean_signed = kNaN;
+      s.frac_over_001 = s.frac_over_005 = s.frac_over_01 = kNaN;
+      continue;
+    }
+    const double nvals = static_cast<double>(s.pixel_count) * nc;
+    const double npix = static_cast<double>(s.pixel_count);
+    s.mae = sum_abs / nvals;
+    s.mean_signed = sum_signed / nvals;
+    s.rmse = std::sqrt(sum_sq / nvals);
+    s.psnr = s.rmse == 0 ? kInf : 20.0 * std::log10(1.0 / s.rmse);
+    s.frac_over_001 = static_cast<double>(over001) / npix;
+    s.frac_over_005 = static_cast<double>(over005) / npix;
+    s.frac_over_01 = static_cast<double>(over01) / npix;
   }
-  if (s.pixel_count == 0) {
-    // Nothing to measure: every figure is undefined.
-    s.rmse = s.mae = s.max_error = s.psnr = s.ssim = s.mean_signed = kNaN;
-    s.frac_over_001 = s.frac_over_005 = s.frac_over_01 = kNaN;
-    return s;
-  }
-  const double nvals = static_cast<double>(s.pixel_count) * nc;
-  const double npix = static_cast<double>(s.pixel_count);
-  s.mae = sum_abs / nvals;
-  s.mean_signed = sum_signed / nvals;
-  s.rmse = std::sqrt(sum_sq / nvals);
-  s.psnr = s.rmse == 0 ? kInf : 20.0 * std::log10(1.0 / s.rmse);
-  s.frac_over_001 = static_cast<double>(over001) / npix;
-  s.frac_over_005 = static_cast<double>(over005) / npix;
-  s.frac_over_01 = static_cast<double>(over01) / npix;
-  const bool ssim_fits = test.width >= 2 * kSsimRadius + 1 && test.height >= 2 * kSsimRadius + 1;
-  s.ssim = ssim_fits ? ssim(test, ref, 1.0, mask) : kNaN;
+  return out;
+}
+
+}  // namespace
+
+ErrorStats compare(const ImageF& test, const ImageF& ref, const std::vector<uint8_t>* mask) {
+  ErrorStats s = compare_errors(test, ref, {mask}).front();
+  if (s.pixel_count > 0) s.ssim = ssim_fits(test) ? ssim(test, ref, 1.0, mask) : kNaN;
   return s;
+}
+
+std::vector<ErrorStats> compare(const ImageF& test, const ImageF& ref,
+                                const std::vector<const std::vector<uint8_t>*>& masks) {
+  std::vector<ErrorStats> out = compare_errors(test, ref, masks);
+  if (!ssim_fits(test)) {
+    for (ErrorStats& s : out)
+      if (s.pixel_count > 0) s.ssim = kNaN;
+    return out;
+  }
+  const std::vector<double> ssim_values = ssim(test, ref, 1.0, masks);
+  for (size_t i = 0; i < out.size(); ++i)
+    if (out[i].pixel_count > 0) out[i].ssim = ssim_values[i];
+  return out;
 }
 
 std::vector<uint8_t> penumbra_mask(const ImageF& v, float eps) {

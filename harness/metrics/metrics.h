@@ -49,6 +49,13 @@ struct ErrorStats {
 ErrorStats compare(const ImageF& test, const ImageF& ref,
                    const std::vector<uint8_t>* mask = nullptr);
 
+// compare() over several masks of the same pair of images, in one pass of
+// the SSIM window (the map is the same whatever the mask; only which of its
+// pixels are averaged differs): out[i] == compare(test, ref, masks[i]),
+// bit for bit. A null mask is every pixel.
+std::vector<ErrorStats> compare(const ImageF& test, const ImageF& ref,
+                                const std::vector<const std::vector<uint8_t>*>& masks);
+
 // SSIM constants and window (Wang et al. 2004, as scikit-image's
 // structural_similarity(gaussian_weights=True, sigma=1.5,
 // use_sample_covariance=False)).
@@ -67,6 +74,11 @@ inline constexpr double kSsimK2 = 0.03;
 // skimage does) or data_range <= 0.
 double ssim(const ImageF& a, const ImageF& b, double data_range = 1.0,
             const std::vector<uint8_t>* mask = nullptr);
+
+// ssim() over several masks in one pass: out[i] == ssim(a, b, data_range,
+// masks[i]), bit for bit.
+std::vector<double> ssim(const ImageF& a, const ImageF& b, double data_range,
+                         const std::vector<const std::vector<uint8_t>*>& masks);
 
 // The full SSIM map (same shape as the inputs, one value per channel), border
 // pixels included (computed with reflected borders, as skimage's full=True).

@@ -185,36 +185,49 @@ SsimConstants check_and_constants(const ImageF& a, const ImageF& b, double data_
 }  // namespace
 
 double ssim(const ImageF& a, const ImageF& b, double data_range, const std::vector<uint8_t>* mask) {
+  return ssim(a, b, data_range, std::vector<const std::vector<uint8_t>*>{mask}).front();
+}
+
+std::vector<double> ssim(const ImageF& a, const ImageF& b, double data_range,
+                         const std::vector<const std::vector<uint8_t>*>& masks) {
   const SsimConstants k = check_and_constants(a, b, data_range, "metrics::ssim");
-  detail::check_mask(a, mask, "metrics::ssim");
+  for (const auto* mask : masks) detail::check_mask(a, mask, "metrics::ssim");
   const int nc = a.channels;
   const int x0 = kR, x1 = a.width - kR;
+  const size_t rows = static_cast<size_t>(a.height), n = masks.size();
   // Per-row partial results, summed in row order afterwards so the result
-  // does not depend on how TBB split the work.
-  std::vector<double> row_sum(static_cast<size_t>(a.height), 0.0);
-  std::vector<size_t> row_count(static_cast<size_t>(a.height), 0);
+  // does not depend on how TBB split the work: [mask * rows + y].
+  std::vector<double> row_sum(n * rows, 0.0);
+  std::vector<size_t> row_count(n * rows, 0);
   ssim_rows(a, b, k, kR, a.height - kR, x0, x1, [&](int y, const double* row) {
+    for (size_t m = 0; m < n; ++m) {
+      const std::vector<uint8_t>* mask = masks[m];
+      double sum = 0;
+      size_t count = 0;
+      for (int x = x0; x < x1; ++x) {
+        if (mask && (*mask)[static_cast<size_t>(y) * a.width + x] == 0) continue;
+        const double* px = row + static_cast<size_t>(x - x0) * nc;
+        for (int c = 0; c < nc; ++c) sum += px[c];
+        ++count;
+      }
+      row_sum[m * rows + static_cast<size_t>(y)] = sum;
+      row_count[m * rows + static_cast<size_t>(y)] = count;
+    }
+  });
+  std::vector<double> out(n);
+  for (size_t m = 0; m < n; ++m) {
     double sum = 0;
     size_t count = 0;
-    for (int x = x0; x < x1; ++x) {
-      if (mask && (*mask)[static_cast<size_t>(y) * a.width + x] == 0) continue;
-      const double* px = row + static_cast<size_t>(x - x0) * nc;
-      for (int c = 0; c < nc; ++c) sum += px[c];
-      ++count;
+    for (size_t y = 0; y < rows; ++y) {
+      sum += row_sum[m * rows + y];
+      count += row_count[m * rows + y];
     }
-    row_sum[static_cast<size_t>(y)] = sum;
-    row_count[static_cast<size_t>(y)] = count;
-  });
-  double sum = 0;
-  size_t count = 0;
-  for (size_t y = 0; y < row_sum.size(); ++y) {
-    sum += row_sum[y];
-    count += row_count[y];
+    // Every channel has the same pixel count, so the plain mean over all
+    // values equals the mean of the per-channel means.
+    out[m] = count == 0 ? std::numeric_limits<double>::quiet_NaN()
+                        : sum / (static_cast<double>(count) * nc);
   }
-  // Every channel has the same pixel count, so the plain mean over all values
-  // equals the mean of the per-channel means.
-  if (count == 0) return std::numeric_limits<double>::quiet_NaN();
-  return sum / (static_cast<double>(count) * nc);
+  return out;
 }
 
 ImageF ssim_map(const ImageF& a, const ImageF& b, double data_range) {

@@ -97,6 +97,8 @@ json JobRecord::to_json() const {
   if (started_at) r["started_at"] = *started_at;
   if (finished_at) r["finished_at"] = *finished_at;
   if (duration_s) r["duration_s"] = json_number(*duration_s);
+  if (phases_s) r["phases_s"] = phases_s->to_json();
+  if (overhead_s) r["overhead_s"] = json_number(*overhead_s);
   if (reference) r["reference"] = reference->to_json();
   if (timing) r["timing"] = timing->to_json();
   if (visibility_check)
@@ -153,6 +155,8 @@ JobRecord JobRecord::from_json(const json& j) {
   r.started_at = f.find<std::string>("started_at");
   r.finished_at = f.find<std::string>("finished_at");
   r.duration_s = f.find<double>("duration_s");
+  if (const auto p = f.find_object("phases_s")) r.phases_s = PhasesRecord::from_json(*p);
+  r.overhead_s = f.find<double>("overhead_s");
   if (const auto ref = f.find_object("reference")) r.reference = ReferenceRecord::from_json(*ref);
   if (const auto t = f.find_object("timing")) r.timing = TimingRecord::from_json(*t);
   if (const auto c = f.find_object("visibility_check")) {

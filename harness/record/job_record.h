@@ -16,6 +16,7 @@
 #include "record/fields.h"
 #include "record/host_record.h"
 #include "record/metrics_record.h"
+#include "record/phases_record.h"
 #include "record/reference_record.h"
 #include "record/scene_record.h"
 #include "record/second_reference_record.h"
@@ -74,6 +75,10 @@ struct JobRecord {
   std::optional<std::string> started_at;
   std::optional<std::string> finished_at;
   std::optional<double> duration_s;  // jobs that rendered
+  // Where duration_s went, and the part of it that is neither the frames
+  // nor the stability block's (record/phases_record.h); jobs that rendered.
+  std::optional<PhasesRecord> phases_s;
+  std::optional<double> overhead_s;
 
   // What the job got to before it finished or failed.
   std::optional<ReferenceRecord> reference;

@@ -18,6 +18,11 @@ nlohmann::json ReferenceRecord::to_json() const {
                       {"from_cache", from_cache},
                       {"seconds", json_number(seconds)}};
   if (!exact_fallback.empty()) j["exact_fallback"] = exact_fallback;
+  if (adaptive)
+    j["adaptive"] = {{"pilot_spp", adaptive->pilot_spp},
+                     {"target_std_error", json_number(adaptive->target_std_error)},
+                     {"mean_spp", json_number(adaptive->mean_spp)},
+                     {"max_spp", adaptive->max_spp}};
   return j;
 }
 
@@ -38,6 +43,14 @@ ReferenceRecord ReferenceRecord::from_json(const Fields& f) {
   r.cache_key = f.get<std::string>("cache_key");
   r.from_cache = f.get<bool>("from_cache");
   r.seconds = f.get<double>("seconds");
+  if (const auto a = f.find_object("adaptive")) {
+    AdaptiveReferenceRecord ar;
+    ar.pilot_spp = a->get<int>("pilot_spp");
+    ar.target_std_error = a->get<double>("target_std_error");
+    ar.mean_spp = a->get<double>("mean_spp");
+    ar.max_spp = a->get<int>("max_spp");
+    r.adaptive = ar;
+  }
   return r;
 }
 

@@ -3,14 +3,26 @@
 // against (docs/results.md, "reference").
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "record/fields.h"
 
 namespace sb {
 
+// record["reference"]["adaptive"], only for the adaptive reference
+// (reference.adaptive): its settings, and the light samples it took per
+// covered pixel (spp is the most any pixel may take).
+struct AdaptiveReferenceRecord {
+  int pilot_spp = 0;
+  double target_std_error = 0;
+  double mean_spp = 0;
+  int max_spp = 0;
+};
+
 struct ReferenceRecord {
-  std::string method;  // "embree_stratified_packet16", or "exact_clipper"
+  // "embree_stratified_packet16", "embree_stratified_adaptive" or "exact_clipper"
+  std::string method;
   // Why a reference asked to be exact is Monte Carlo ("" otherwise; absent
   // from the JSON then).
   std::string exact_fallback;
@@ -27,6 +39,7 @@ struct ReferenceRecord {
   std::string cache_key;
   bool from_cache = false;
   double seconds = 0;
+  std::optional<AdaptiveReferenceRecord> adaptive;
 
   nlohmann::json to_json() const;
   static ReferenceRecord from_json(const Fields& f);

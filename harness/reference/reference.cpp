@@ -22,11 +22,11 @@
 
 #include "core/error.h"
 #include "core/hash.h"
+#include "reference/adaptive.h"
 #include "reference/embree_isa.h"
 #include "reference/embree_scene.h"
 #include "reference/exact_visibility.h"
-#include "reference/ray_offset.h"
-#include "reference/shadow_packet.h"
+#include "reference/pixel_rays.h"
 #include "reference/stratify.h"
 #include "scenes/topology.h"
 
@@ -53,20 +53,26 @@ constexpr uint32_t kExactMethodVersion = 3;
 constexpr char kMagic[8] = {'S', 'B', 'R', 'E', 'F', '\r', '\n', '\x1a'};
 constexpr uint32_t kFileVersion = 1;
 
-constexpr float kTfar = 1.0f - 1e-4f;  // direction = light sample - origin
-
 // The settings' device config, or the environment's when they leave it empty.
 std::string embree_config_of(const Settings& s) {
   return s.embree_config.empty() ? default_embree_config() : s.embree_config;
 }
 
-const char* method_of(const Settings& s) { return s.exact ? kExactMethod : kMethod; }
+const char* method_of(const Settings& s) {
+  return s.exact ? kExactMethod : s.adaptive ? kAdaptiveMethod : kMethod;
+}
 
 void check_inputs(const ImageF& positions, const ImageF& normals, const Settings& s) {
   if (s.spp < 1 || s.spp > (1 << 20))
     throw std::invalid_argument("reference: spp must be in [1, 2^20], got " +
                                 std::to_string(s.spp));
   check_embree_config(embree_config_of(s));
+  if (s.adaptive && !s.exact) {
+    if (const std::string why = detail::adaptive_layout_problem(s.spp, s.pilot_spp); !why.empty())
+      throw std::invalid_argument("reference: adaptive sampling: " + why);
+    if (!(s.target_std_error > 0.0 && s.target_std_error <= 0.5))
+      throw std::invalid_argument("reference: target_std_error must be in (0, 0.5]");
+  }
   if (positions.channels != 4)
     throw std::invalid_argument("reference: positions must have 4 channels (xyz, coverage)");
   if (normals.channels < 3)
@@ -79,7 +85,7 @@ void check_inputs(const ImageF& positions, const ImageF& normals, const Settings
     throw std::invalid_argument("reference: image data does not match its shape");
 }
 
-bool covered(const ImageF& positions, size_t i) { return positions.data[i * 4 + 3] > 0.5f; }
+using detail::covered;
 
 void summarise(Result& r, const ImageF& positions) {
   double sum = 0, psum = 0, psum2 = 0;
@@ -98,21 +104,23 @@ void summarise(Result& r, const ImageF& positions) {
   r.mean_std_error = count ? sum / double(count) : 0.0;
   r.penumbra_mean_std_error = pcount ? psum / double(pcount) : 0.0;
   r.penumbra_rms_std_error = pcount ? std::sqrt(psum2 / double(pcount)) : 0.0;
+  double samples = 0;
+  float most = 0;
+  for (size_t i = 0; i < positions.pixel_count() && !r.samples.data.empty(); ++i) {
+    if (!covered(positions, i)) continue;
+    samples += r.samples.data[i];
+    most = std::max(most, r.samples.data[i]);
+  }
+  r.mean_spp = count ? samples / double(count) : 0.0;
+  r.max_spp = int(most);
 }
 
-// Embree's ray.valid() bound holds for every ray of a pixel when the origin's
-// and the farthest light corner's coordinates stay under it; a G-buffer point
-// out there (a glTF in light-years, say) fails its job instead of tripping
-// Embree's asserts.
-void check_ray_range(const glm::vec3& o, const glm::vec3& base, const glm::vec3& eu,
-                     const glm::vec3& ev, size_t pix, int width) {
-  const glm::vec3 reach = glm::abs(base) + glm::abs(eu) + glm::abs(ev);
-  const float largest =
-      std::max({std::fabs(o.x), std::fabs(o.y), std::fabs(o.z), reach.x, reach.y, reach.z});
-  if (!(largest <= detail::ShadowPacket::kLargest))
-    throw JobError("reference: the shadow rays of pixel (" + std::to_string(pix % size_t(width)) +
-                   ", " + std::to_string(pix / size_t(width)) + ") reach coordinate " +
-                   std::to_string(largest) + ", beyond what Embree traces (1.8e18)");
+// spp on every covered pixel, 0 elsewhere: a uniform reference's samples.
+ImageF uniform_samples(const ImageF& positions, int spp) {
+  ImageF out(positions.width, positions.height, 1, 0.0f);
+  for (size_t i = 0; i < positions.pixel_count(); ++i)
+    if (covered(positions, i)) out.data[i] = float(spp);
+  return out;
 }
 
 // A segment light is stratified along its one axis (stratify.h); rectangles
@@ -122,83 +130,32 @@ detail::Strata strata_of(const AreaLight& light) {
   return light.width() > 0.0f ? detail::Strata::AlongS : detail::Strata::AlongT;
 }
 
-void trace(const Scene& scene, const FlatScene& casters, const ImageF& positions,
-           const ImageF& normals, const Settings& s, Result& r) {
-  // Without casters only the horizon test remains.
-  RTCScene rtc = casters.empty() ? nullptr : casters.get();
-  const detail::RayOffset offset(scene, casters);
-  const detail::Layout layout = detail::make_layout(s.spp, strata_of(scene.light));
-  const AreaLight& light = scene.light;
-  const glm::vec3 corner = light.center - light.half_u - light.half_v;
-  const glm::vec3 eu = 2.0f * light.half_u, ev = 2.0f * light.half_v;
+// Every covered pixel's spp samples, in trace order (4×4 blocks of strata,
+// one packet each; stratify.h).
+void trace(const detail::RaySetup& setup, Result& r) {
+  const detail::Layout& layout = setup.layout;
+  const ImageF& positions = setup.positions;
   const int width = positions.width;
-  const size_t nch = size_t(normals.channels);
-  const size_t spp = size_t(s.spp);
-  constexpr size_t kLanes = detail::ShadowPacket::kLanes;
+  const size_t spp = size_t(layout.spp);
+  std::vector<uint32_t> all(spp);
+  for (size_t i = 0; i < spp; ++i) all[i] = uint32_t(i);
 
   tbb::parallel_for(tbb::blocked_range2d<int>(0, positions.height, 8, 0, width, 8),
                     [&](const tbb::blocked_range2d<int>& tile) {
                       FtzDazScope ftz;
-                      RTCIntersectContext context;
-                      rtcInitIntersectContext(&context);
-                      detail::ShadowPacket packet;
-                      std::vector<uint8_t> visible(spp);
+                      detail::PixelRays rays(setup);
+                      std::vector<uint8_t> reached(spp), visible(spp);
                       for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
                         for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
                           const size_t pix = size_t(y) * size_t(width) + size_t(x);
                           if (!covered(positions, pix)) continue;  // V = 1, error 0 preset
-                          const float* pp = &positions.data[pix * 4];
-                          const float* np = &normals.data[pix * nch];
-                          const glm::vec3 p(pp[0], pp[1], pp[2]);
-                          glm::vec3 n(np[0], np[1], np[2]);
-                          const glm::vec3 to_light = light.center - p;
-                          const float len = glm::length(n);
-                          if (len > 0.0f) {
-                            n /= len;
-                          } else {  // no usable normal: step towards the light instead
-                            const float d = glm::length(to_light);
-                            n = d > 0.0f ? to_light / d : glm::vec3(0, 1, 0);
-                          }
-                          // n is the G-buffer's geometric normal, facing the viewer: the side of
-                          // the surface that is seen. It is not flipped towards the light: on a
-                          // closed mesh that would put the origin inside the solid.
-                          const glm::vec3 o = p + offset.at(p) * n;
-                          const glm::vec3 base = corner - o;
-                          check_ray_range(o, base, eu, ev, pix, width);
-                          packet.reset(o);
-
-                          const uint64_t key = detail::pixel_key(s.seed, pix, spp);
-                          for (size_t first = 0; first < spp; first += kLanes) {
-                            const size_t lanes = std::min(kLanes, spp - first);
-                            bool any = false;
-                            for (size_t j = 0; j < kLanes; ++j) {
-                              if (j >= lanes) {  // past the last sample
-                                packet.deactivate(int(j));
-                                continue;
-                              }
-                              const detail::Stratum& st = layout.order[first + j];
-                              float u, v;
-                              detail::sample_uv(key, uint32_t(first + j), u, v);
-                              const float ls = st.s0 + u * st.ds, lt = st.t0 + v * st.dt;
-                              const glm::vec3 d = base + ls * eu + lt * ev;
-                              // Light points below the tangent plane are occluded by the surface
-                              // itself, open or closed: no ray is traced for them.
-                              if (glm::dot(n, d) > 0.0f) {
-                                packet.activate(int(j), d, kTfar);
-                                any = true;
-                              } else {
-                                packet.deactivate(int(j));
-                              }
-                            }
-                            if (rtc != nullptr && any)
-                              rtcOccluded16(packet.valid, rtc, &context, &packet.ray);
-                            for (size_t j = 0; j < lanes; ++j)
-                              visible[layout.order[first + j].cell] =
-                                  packet.reached_light(int(j)) ? 1 : 0;
-                          }
-
+                          rays.start(pix);
+                          rays.trace(all.data(), spp, reached.data());
                           size_t count = 0;
-                          for (uint8_t b : visible) count += b;
+                          for (size_t i = 0; i < spp; ++i) {
+                            visible[layout.order[i].cell] = reached[i];
+                            count += reached[i];
+                          }
                           r.visibility.data[pix] = float(double(count) / double(spp));
                           r.std_error.data[pix] =
                               float(std::sqrt(detail::stratified_variance(visible.data(), layout)));
@@ -259,6 +216,9 @@ std::string serialise(const Result& r) {
              r.visibility.data.size() * sizeof(float));
   out.append(reinterpret_cast<const char*>(r.std_error.data.data()),
              r.std_error.data.size() * sizeof(float));
+  if (r.method == kAdaptiveMethod)  // uniform files stay as they were
+    out.append(reinterpret_cast<const char*>(r.samples.data.data()),
+               r.samples.data.size() * sizeof(float));
   put(out, fnv1a64(out));
   return out;
 }
@@ -288,12 +248,21 @@ bool deserialise(const std::string& bytes, const std::string& key, const ImageF&
   const size_t n = positions.pixel_count();
   ImageF vis(w, h, 1), se(w, h, 1);
   if (!in.get(vis.data, n) || !in.get(se.data, n)) return false;
+  ImageF samples(w, h, 1);
+  if (s.adaptive && !s.exact) {
+    if (!in.get(samples.data, n)) return false;
+    for (float v : samples.data)
+      if (!(v >= 0.0f && v <= float(s.spp))) return false;
+  } else {
+    samples = uniform_samples(positions, s.exact ? 0 : s.spp);
+  }
   if (in.pos() + sizeof(uint64_t) != bytes.size()) return false;
   for (size_t i = 0; i < n; ++i)
     if (!(vis.data[i] >= 0.0f && vis.data[i] <= 1.0f && se.data[i] >= 0.0f && se.data[i] <= 1.0f))
       return false;
   r.visibility = std::move(vis);
   r.std_error = std::move(se);
+  r.samples = std::move(samples);
   return true;
 }
 
@@ -401,6 +370,7 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
     r.visibility = exact.image(positions, geometric_normals);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     r.std_error = ImageF(positions.width, positions.height, 1, 0.0f);
+    r.samples = ImageF(positions.width, positions.height, 1, 0.0f);
     summarise(r, positions);
     return r;
   }
@@ -418,7 +388,20 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
     Device device(r.isa);
     FlatScene casters(
         device, scene, [](const Mesh& m) { return m.casts_shadow; }, /*analytic_shapes=*/true);
-    trace(scene, casters, positions, geometric_normals, s, r);
+    const detail::Strata strata = strata_of(scene.light);
+    const detail::Layout layout = detail::make_layout(s.spp, strata);
+    const detail::RaySetup setup(scene, casters, layout, positions, geometric_normals, s.seed);
+    if (s.adaptive) {
+      detail::AdaptiveImages a =
+          detail::trace_adaptive(setup, strata, s.pilot_spp, s.target_std_error);
+      r.visibility = std::move(a.visibility);
+      r.std_error = std::move(a.std_error);
+      r.samples = std::move(a.samples);
+      r.method = kAdaptiveMethod;
+    } else {
+      trace(setup, r);
+      r.samples = uniform_samples(positions, s.spp);
+    }
     device.check("rtcOccluded16");
   }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -435,6 +418,7 @@ std::string cache_key(const Scene& scene, const ImageF& positions, const ImageF&
   } else {
     h.add(RTC_VERSION_STRING).add(resolve_isa(embree_config_of(s)));
     h.add(int32_t(s.spp)).add(s.seed);
+    if (s.adaptive) h.add(int32_t(s.pilot_spp)).add(s.target_std_error);
   }
   hash_vec3(h, scene.light.center);
   hash_vec3(h, scene.light.half_u);

@@ -72,7 +72,16 @@ struct Settings {
   // shapes, a point light) gets the Monte Carlo reference, and
   // Result::exact_fallback says why.
   bool exact = false;
+  // Adaptive sampling (adaptive.h): a pilot of pilot_spp samples per pixel,
+  // more only where the standard error is above target_std_error or the
+  // neighbourhood disagrees, up to spp (which must be pilot_spp * 4^K).
+  bool adaptive = false;
+  int pilot_spp = 16;
+  double target_std_error = 0.01;
 };
+
+// Result::method of the adaptive Monte Carlo reference.
+inline constexpr const char* kAdaptiveMethod = "embree_stratified_adaptive";
 
 // Result::method of the exact reference (exact_visibility.h).
 inline constexpr const char* kExactMethod = "exact_clipper";
@@ -87,7 +96,13 @@ struct Result {
   double penumbra_rms_std_error = 0;
   int spp = 0;
   uint64_t seed = 0;
-  std::string method;          // "embree_stratified_packet16", or kExactMethod
+  // Light samples per pixel (0 off the surfaces): spp everywhere on them
+  // but for the adaptive reference, which also fills mean_spp and max_spp
+  // over the covered pixels.
+  ImageF samples;
+  double mean_spp = 0;
+  int max_spp = 0;
+  std::string method;          // "embree_stratified_packet16", kAdaptiveMethod or kExactMethod
   std::string exact_fallback;  // why an exact reference asked for is Monte Carlo instead
   std::string isa;     // the Embree ISA that traced it ("avx2"), from Settings::embree_config
   double seconds = 0;  // wall time of BVH build + ray tracing (0 if loaded from cache)
@@ -105,10 +120,9 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
                const Settings& s);
 
 // As compute(), but looked up in / stored to cache_dir/<key>.sbref. The key
-// hashes everything V depends on: caster geometry (in order), the light
-// rectangle (centre, half_u, half_v; not target or intensity; for a segment
-// light also a tag of its layout along the segment), every caster's
-// analytic shape (kind, centre, radius), both
+// hashes everything V depends on (adaptive settings included): caster geometry (in order), the
+// light rectangle (centre, half_u, half_v; not target or intensity; for a segment light also a tag
+// of its layout along the segment), every caster's analytic shape (kind, centre, radius), both
 // buffers' shapes and bytes, the settings, the method and its
 // version, and the Embree version and ISA. Corrupt or mismatched files are ignored
 // and recomputed; writes go to a temp file renamed into place. Processes

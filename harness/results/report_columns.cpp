@@ -154,9 +154,12 @@ std::vector<const ReportColumn*> group_table_columns(const std::vector<JobRecord
 }
 
 std::string reference_label(const ReferenceRecord& r) {
-  std::string out = is_exact(r)
-                        ? "exact (" + r.method + ")"
-                        : "Monte Carlo, " + std::to_string(r.spp) + " spp (" + r.method + ")";
+  std::string out =
+      is_exact(r)  ? "exact (" + r.method + ")"
+      : r.adaptive ? "adaptive Monte Carlo, up to " + std::to_string(r.spp) + " spp, mean " +
+                         format_number("%.1f", r.adaptive->mean_spp) + ", target std error " +
+                         format_number("%g", r.adaptive->target_std_error) + " (" + r.method + ")"
+                   : "Monte Carlo, " + std::to_string(r.spp) + " spp (" + r.method + ")";
   if (!r.exact_fallback.empty()) out += "; not exact: " + r.exact_fallback;
   return out;
 }

@@ -1,5 +1,7 @@
 #include "run/job_executor.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -158,14 +160,26 @@ ImageF shade(const FrameSetup& f, const ImageF& visibility) {
 //
 // SSIM's windows reach past the mask, so the unmeasured pixels take the
 // reference's values first: they add no error to a neighbour either.
+//
+// `extra` masks are measured too, in the same pass of the SSIM window (the
+// window's cost does not depend on how many masks average it); their stats
+// come back in order.
 ImageMetrics compare_images(const ImageF& test, const ImageF& ref, const Regions& regions,
-                            const std::vector<uint8_t>& soft_union) {
+                            const std::vector<uint8_t>& soft_union,
+                            const std::vector<const std::vector<uint8_t>*>& extra = {},
+                            std::vector<RegionStats>* extra_stats = nullptr) {
   const ImageF t = with_unmeasured_from(test, ref, regions.measured);
-  ImageMetrics m{region_stats(metrics::compare(t, ref, &regions.measured)),
-                 region_stats(metrics::compare(t, ref, &regions.penumbra)),
-                 region_stats(metrics::compare(t, ref, &soft_union))};
-  if (regions.any_receiver)
-    m.receivers = region_stats(metrics::compare(t, ref, &regions.receivers));
+  std::vector<const std::vector<uint8_t>*> masks = {&regions.measured, &regions.penumbra,
+                                                    &soft_union};
+  if (regions.any_receiver) masks.push_back(&regions.receivers);
+  const size_t first_extra = masks.size();
+  masks.insert(masks.end(), extra.begin(), extra.end());
+  const std::vector<metrics::ErrorStats> stats = metrics::compare(t, ref, masks);
+  ImageMetrics m{region_stats(stats[0]), region_stats(stats[1]), region_stats(stats[2])};
+  if (regions.any_receiver) m.receivers = region_stats(stats[3]);
+  if (extra_stats != nullptr)
+    for (size_t i = first_extra; i < stats.size(); ++i)
+      extra_stats->push_back(region_stats(stats[i]));
   return m;
 }
 
@@ -173,14 +187,17 @@ ImageMetrics compare_images(const ImageF& test, const ImageF& ref, const Regions
 MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const Baseline& b) {
   const std::vector<uint8_t> soft_union =
       mask_and(metrics::soft_union_mask(visibility, b.ref.visibility), b.regions.measured);
-  MetricsRecord m{compare_images(visibility, b.ref.visibility, b.regions, soft_union),
-                  compare_images(shaded, b.shaded, b.regions, soft_union)};
+  std::vector<const std::vector<uint8_t>*> thirds;
+  if (b.regions.distance_thirds)
+    for (const auto& third : *b.regions.distance_thirds) thirds.push_back(&third);
+  std::vector<RegionStats> third_stats;
+  MetricsRecord m{
+      compare_images(visibility, b.ref.visibility, b.regions, soft_union, thirds, &third_stats),
+      compare_images(shaded, b.shaded, b.regions, soft_union)};
   if (b.regions.distance_thirds) {
-    const ImageF t = with_unmeasured_from(visibility, b.ref.visibility, b.regions.measured);
-    const auto& thirds = *b.regions.distance_thirds;
-    m.visibility.near_third = region_stats(metrics::compare(t, b.ref.visibility, &thirds[0]));
-    m.visibility.middle_third = region_stats(metrics::compare(t, b.ref.visibility, &thirds[1]));
-    m.visibility.far_third = region_stats(metrics::compare(t, b.ref.visibility, &thirds[2]));
+    m.visibility.near_third = third_stats[0];
+    m.visibility.middle_third = third_stats[1];
+    m.visibility.far_third = third_stats[2];
   }
   return m;
 }
@@ -205,6 +222,20 @@ std::optional<std::string> noise_warning(const MetricsRecord& m, const reference
            ") is over half the penumbra RMSE; raise reference.spp";
   return std::nullopt;
 }
+
+// Seconds since it was made or since the last call (record/phases_record.h).
+class Lap {
+ public:
+  double seconds() {
+    const auto now = std::chrono::steady_clock::now();
+    const double out = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return out;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
 
 // Per-frame times of a run of frames, by bracket.
 struct FrameSamples {
@@ -380,6 +411,9 @@ class JobExecutor::Impl {
     r.cache_key = ref.cache_key;
     r.from_cache = ref.from_cache;
     r.seconds = ref.seconds;
+    if (ref.method == reference::kAdaptiveMethod)
+      r.adaptive = AdaptiveReferenceRecord{e_.reference.pilot_spp, e_.reference.target_std_error,
+                                           ref.mean_spp, ref.max_spp};
     return r;
   }
 
@@ -426,16 +460,22 @@ class JobExecutor::Impl {
     rs.seed = e_.reference.seed;
     rs.embree_config = embree_.config;
     rs.exact = e_.reference.exact;
+    rs.adaptive = e_.reference.adaptive;
+    rs.pilot_spp = e_.reference.pilot_spp;
+    rs.target_std_error = e_.reference.target_std_error;
     const bool cache = e_.reference.cache && !o_.cache_dir.empty();
     events_.phase(sv.name, res.label(), "(reference)");
     const auto make_reference = [&](const reference::Settings& settings, const char* which) {
       reference::Result out =
           cache ? reference::get(st.scene, positions, normals, settings, o_.cache_dir)
                 : reference::compute(st.scene, positions, normals, settings);
-      log(std::string(which) + " " + sv.name + " @ " + res.label() + ": " +
-          (out.method == reference::kExactMethod ? std::string("exact")
-                                                 : std::to_string(out.spp) + " spp") +
-          ", " + (out.from_cache ? std::string("from cache") : std::to_string(out.seconds) + " s") +
+      const std::string samples = out.method == reference::kExactMethod ? std::string("exact")
+                                  : out.method == reference::kAdaptiveMethod
+                                      ? "adaptive, mean " + std::to_string(out.mean_spp) + " of " +
+                                            std::to_string(out.spp) + " spp"
+                                      : std::to_string(out.spp) + " spp";
+      log(std::string(which) + " " + sv.name + " @ " + res.label() + ": " + samples + ", " +
+          (out.from_cache ? std::string("from cache") : std::to_string(out.seconds) + " s") +
           ", mean std error " + std::to_string(out.mean_std_error));
       if (!out.exact_fallback.empty())
         log(std::string(which) + " " + sv.name + ": Monte Carlo, not exact: " + out.exact_fallback);
@@ -532,8 +572,9 @@ class JobExecutor::Impl {
       r.reference = ref_record;
       events_.job_started(r);
       const auto t0 = std::chrono::steady_clock::now();
+      PhasesRecord phases;
       try {
-        run_job(tv, frame, baseline, control ? &*control : nullptr, r);
+        run_job(tv, frame, baseline, control ? &*control : nullptr, r, phases);
         r.images.add(ref_images);
         r.status = JobStatus::Ok;
       } catch (const std::exception& ex) {
@@ -541,8 +582,10 @@ class JobExecutor::Impl {
         r.reason = ex.what();
         gl::take_debug_errors();
       }
-      r.duration_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       reset_gl_state();
+      r.duration_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      r.overhead_s = phases.overhead(*r.duration_s);
+      r.phases_s = phases;
       finish(std::move(r));
     }
   }
@@ -550,13 +593,17 @@ class JobExecutor::Impl {
   // One job: prepare the technique, time it, check and measure its V, write
   // its images. Whatever it got to stays in `r` when it throws.
   void run_job(const TechniqueVariant& tv, const FrameSetup& frame, const Baseline& baseline,
-               Control* control, JobRecord& r) {
+               Control* control, JobRecord& r, PhasesRecord& phases) {
+    Lap lap;
     gl::take_debug_errors();
     std::unique_ptr<Technique> technique = tv.info->create(tv.params);
     technique->prepare(frame.in);
     gl::throw_if_errors(tv.name + " prepare");
+    glFinish();  // prepare's GL work in prepare's time, not the first frame's
+    phases.prepare = lap.seconds();
 
     r.timing = time_frames(*technique, tv.name, frame, control);
+    phases.frames = lap.seconds();
     if (injected_delay_ && injected_delay_->applies_to(tv.name))
       r.warnings.push_back(injected_delay_->describe());
 
@@ -571,7 +618,9 @@ class JobExecutor::Impl {
     r.classes = ClassesRecord{metrics::confusion_matrix(visibility, baseline.ref.visibility,
                                                         baseline.regions.classified)};
     if (auto warning = noise_warning(*r.metrics, baseline.ref)) r.warnings.push_back(*warning);
+    phases.measure = lap.seconds();
     if (o_.write_images) r.images = write_job_images(r.job_id, visibility, shaded, baseline);
+    phases.images = lap.seconds();
     // Metrics and images are kept for inspection, but the job fails.
     if (check.nonfinite + check.below_0 + check.above_1 > 0)
       throw JobError("visibility outside [0,1]: " + std::to_string(check.nonfinite) + " NaN/Inf, " +
@@ -581,6 +630,7 @@ class JobExecutor::Impl {
     if (baseline.stability) {
       r.stability = baseline.stability->measure(tv, *technique);
       gl::throw_if_errors(tv.name + " stability frames");
+      phases.stability = lap.seconds();
     }
   }
 
@@ -599,7 +649,7 @@ class JobExecutor::Impl {
     return c;
   }
 
-  // One frame: the G-buffer, the technique and shading, each in one harness
+  // One frame: the G-buffer's restore, the technique and shading, each in one harness
   // bracket. In fine detail the technique's own passes are the brackets
   // instead, and the sum of their times is what it pays for them.
   gl::PassTimer::Frame run_frame(gl::PassTimer& timer, Technique& technique,
@@ -610,8 +660,10 @@ class JobExecutor::Impl {
     const auto started = std::chrono::steady_clock::now();
     timer.begin_frame();
     {
+      // The G-buffer was rendered once for the (scene, resolution); the frame
+      // starts from its depth-stencil (run/gbuffer.h).
       auto p = timer.bracket("shared:gbuffer");
-      f.targets.render_gbuffer(f.gpu, f.view_projection);
+      f.targets.restore_gbuffer();
     }
     reset_gl_state();
     if (detail == gl::PassDetail::Coarse) {
@@ -729,12 +781,17 @@ class JobExecutor::Impl {
     const std::string rel = "jobs/" + id;
     const fs::path dir = fs::path(o_.run_dir) / rel;
     fs::create_directories(dir);
-    io::write_exr((dir / "visibility.exr").string(), visibility);
-    io::write_png((dir / "shaded.png").string(), shaded);
-    io::write_png((dir / "error.png").string(),
-                  metrics::error_heatmap(
-                      with_unmeasured_from(visibility, b.ref.visibility, b.regions.measured),
-                      b.ref.visibility, kHeatmapFullScale));
+    // Three files at once: no frame runs now, and one file's encoding keeps
+    // one core busy (zlib), so the job's images take about half the time.
+    tbb::parallel_invoke(
+        [&] { io::write_exr((dir / "visibility.exr").string(), visibility); },
+        [&] { io::write_png((dir / "shaded.png").string(), shaded); },
+        [&] {
+          io::write_png((dir / "error.png").string(),
+                        metrics::error_heatmap(
+                            with_unmeasured_from(visibility, b.ref.visibility, b.regions.measured),
+                            b.ref.visibility, kHeatmapFullScale));
+        });
     ImagesRecord images;
     images.visibility = rel + "/visibility.exr";
     images.shaded = rel + "/shaded.png";

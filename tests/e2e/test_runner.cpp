@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <numeric>
 
 #include "e2e_util.h"
 #include "scenes/need_providers.h"
@@ -46,6 +47,25 @@ TEST(Runner, WritesEveryOutputWithTimingAndMetrics) {
   EXPECT_GE(r["timing"]["frame"]["median_ms"].get<double>(),
             r["timing"]["technique"]["median_ms"].get<double>());
   EXPECT_EQ(r["reference"]["spp"], 16);
+  // Where the job's wall time went: the phases cover it, and the overhead is
+  // what is neither frames nor stability.
+  const double duration = r["duration_s"].get<double>();
+  double phases = 0.0;
+  for (const char* k : {"prepare", "frames", "measure", "images", "stability"}) {
+    ASSERT_TRUE(r["phases_s"].contains(k)) << k;
+    EXPECT_GE(r["phases_s"][k].get<double>(), 0.0) << k;
+    phases += r["phases_s"][k].get<double>();
+  }
+  EXPECT_LE(phases, duration);
+  EXPECT_GT(phases, 0.9 * duration) << "the phases leave much of the job unaccounted for";
+  // 1 compile + warm-up + 3 timed frames, each next to a control frame: at
+  // least the timed frames' own time.
+  const double timed_s = std::accumulate(frames.begin(), frames.end(), 0.0) / 1000.0;
+  EXPECT_GE(r["phases_s"]["frames"].get<double>(), timed_s);
+  EXPECT_NEAR(
+      r["overhead_s"].get<double>(),
+      duration - r["phases_s"]["frames"].get<double>() - r["phases_s"]["stability"].get<double>(),
+      1e-9);
   for (const char* k : {"rmse", "mae", "max_error", "psnr", "ssim", "frac_over_0.01",
                         "frac_over_0.05", "frac_over_0.1"}) {
     EXPECT_TRUE(r["metrics"]["visibility"]["all"].contains(k)) << k;

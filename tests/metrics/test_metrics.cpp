@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "metrics/metrics.h"
 #include "test_util.h"
@@ -292,3 +294,49 @@ TEST(metrics_heatmap, Endpoints) {
 
 }  // namespace
 }  // namespace sb::metrics
+
+// The several-masks compare() is one pass over the pixels and one of the
+// SSIM window: each mask's figures must be the one-mask call's, bit for bit
+// (including where the largest error lies, ties to the first pixel, a mask
+// that holds nothing, a NaN, and no mask at all).
+TEST(metrics_compare, SeveralMasksEqualOneCallPerMask) {
+  for (int channels : {1, 3}) {
+    SCOPED_TRACE(channels);
+    sb::ImageF ref(37, 29, channels), test(37, 29, channels);
+    for (size_t i = 0; i < ref.data.size(); ++i) {
+      ref.data[i] = float((i * 7919) % 101) / 100.0f;
+      test.data[i] = ref.data[i] + (i % 5 == 0 ? float((i * 31) % 17) / 200.0f : 0.0f);
+    }
+    test.data[40] = std::numeric_limits<float>::quiet_NaN();
+    std::vector<uint8_t> left(ref.pixel_count()), sparse(ref.pixel_count()),
+        none(ref.pixel_count());
+    for (size_t p = 0; p < left.size(); ++p) {
+      left[p] = (p % 37) < 18 ? 1 : 0;
+      sparse[p] = p % 3 == 0 ? 1 : 0;
+    }
+    const std::vector<const std::vector<uint8_t>*> masks = {&left, nullptr, &sparse, &none};
+    const std::vector<sb::metrics::ErrorStats> together = sb::metrics::compare(test, ref, masks);
+    ASSERT_EQ(together.size(), masks.size());
+    for (size_t m = 0; m < masks.size(); ++m) {
+      SCOPED_TRACE(m);
+      const sb::metrics::ErrorStats alone = sb::metrics::compare(test, ref, masks[m]);
+      const sb::metrics::ErrorStats& t = together[m];
+      EXPECT_EQ(t.pixel_count, alone.pixel_count);
+      EXPECT_EQ(t.nonfinite_count, alone.nonfinite_count);
+      for (const auto& [a, b] : {std::pair{t.rmse, alone.rmse},
+                                 {t.mae, alone.mae},
+                                 {t.max_error, alone.max_error},
+                                 {t.mean_signed, alone.mean_signed},
+                                 {t.psnr, alone.psnr},
+                                 {t.ssim, alone.ssim},
+                                 {t.frac_over_001, alone.frac_over_001},
+                                 {t.frac_over_01, alone.frac_over_01}})
+        EXPECT_TRUE(a == b || (std::isnan(a) && std::isnan(b))) << a << " vs " << b;
+      EXPECT_EQ(t.max_x, alone.max_x);
+      EXPECT_EQ(t.max_y, alone.max_y);
+      EXPECT_EQ(t.max_channel, alone.max_channel);
+    }
+    EXPECT_EQ(together[3].pixel_count, 0u);
+    EXPECT_TRUE(std::isnan(together[3].ssim));
+  }
+}

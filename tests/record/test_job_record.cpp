@@ -57,6 +57,13 @@ JobRecord full_record() {
   r.host.name = "vm";
   r.started_at = "2026-12-01T00:00:00Z";
   r.duration_s = 0.5;
+  PhasesRecord phases;
+  phases.prepare = 0.01;
+  phases.frames = 0.4;
+  phases.measure = 0.05;
+  phases.images = 0.03;
+  r.phases_s = phases;
+  r.overhead_s = phases.overhead(0.5);
   ReferenceRecord ref;
   ref.method = "embree_stratified_packet16";
   ref.spp = 256;
@@ -118,6 +125,19 @@ TEST(JobRecord, FullRecordRoundTrips) {
   EXPECT_TRUE(std::isnan(back.metrics->shaded.penumbra.ssim));
   EXPECT_EQ(back.timing->fine->pass_order, (std::vector<std::string>{"depth", "lookup"}));
   EXPECT_DOUBLE_EQ(back.timing->frame.median_ms, 11.0);
+  EXPECT_DOUBLE_EQ(j["overhead_s"].get<double>(), 0.5 - 0.4);
+  EXPECT_EQ(j["phases_s"].size(), 5u);
+}
+
+TEST(JobRecord, AnAdaptiveReferenceRoundTripsAndUniformOnesLackIt) {
+  JobRecord r = full_record();
+  EXPECT_FALSE(r.to_json()["reference"].contains("adaptive"));
+  r.reference->method = "embree_stratified_adaptive";
+  r.reference->adaptive = AdaptiveReferenceRecord{16, 0.01, 123.5, 1024};
+  const json j = r.to_json();
+  EXPECT_EQ(j["reference"]["adaptive"]["mean_spp"], 123.5);
+  EXPECT_EQ(j["reference"]["adaptive"]["max_spp"], 1024);
+  EXPECT_EQ(JobRecord::from_json(j).to_json(), j);
 }
 
 TEST(JobRecord, AnalyticCastersAreRecordedAndOlderRecordsReadAsNone) {

@@ -104,6 +104,8 @@ class TimingContract : public ::testing::Test {
     const glm::mat4 view = scene_.camera.view();
     const glm::mat4 projection = scene_.camera.projection(float(kWidth) / float(kHeight));
     view_projection_ = projection * view;
+    // Once, as the runner does per (scene, resolution): frames restore it.
+    targets_->render_gbuffer(*gpu_, view_projection_);
     // FrameInputs points at scene_: moving scene_.light moves the light the
     // technique sees, as a light animated between frames would.
     in_ = targets_->inputs(scene_, *gpu_, view, projection);
@@ -121,10 +123,10 @@ class TimingContract : public ::testing::Test {
     in_.derived = &derived_;
   }
 
-  // One frame as the runner draws it: the G-buffer, then the technique.
+  // One frame as the runner draws it: the G-buffer's restore, then the technique.
   ImageF render(Technique& technique) {
     gl::reset_state();
-    targets_->render_gbuffer(*gpu_, view_projection_);
+    targets_->restore_gbuffer();
     gl::reset_state();
     gl::PassTimer timer(gl::TimingSource::CpuFinish, gl::PassDetail::Coarse);
     timer.begin_frame();
@@ -182,6 +184,57 @@ TEST_F(TimingContract, AfterTheLightMovesAFrameEqualsOnePreparedUnderTheMovedLig
           << "moving the light hardly changed " << tv.name << "'s visibility";
     }
   }
+}
+
+// The runner renders the G-buffer once per (scene, resolution) and restores
+// only its depth-stencil between frames (run/gbuffer.h): that is fair only
+// if no technique writes the colour attachments every technique reads.
+TEST_F(TimingContract, NoTechniqueWritesTheGBufferColourAttachments) {
+  const auto gbuffer = [&] {
+    return std::vector<ImageF>{read_texture(in_.gbuffer_position, kWidth, kHeight, 4),
+                               read_texture(in_.gbuffer_normal, kWidth, kHeight, 4),
+                               read_texture(in_.gbuffer_shading_normal, kWidth, kHeight, 4),
+                               read_texture(in_.gbuffer_albedo, kWidth, kHeight, 4)};
+  };
+  const std::vector<ImageF> before = gbuffer();
+  size_t covered = 0;
+  for (size_t i = 0; i < before[0].pixel_count(); ++i) covered += before[0].data[i * 4 + 3] > 0.5f;
+  ASSERT_GT(covered, size_t(kWidth * kHeight / 4)) << "the G-buffer shows too little of the scene";
+  const char* const names[] = {"position", "geometric normal", "shading normal", "albedo"};
+  for (const TechniqueVariant& tv : variants_under_test(plugins_)) {
+    SCOPED_TRACE(tv.name);
+    const std::unique_ptr<Technique> t = tv.info->create(tv.params);
+    t->prepare(in_);
+    render(*t);
+    render(*t);
+    const std::vector<ImageF> after = gbuffer();
+    for (size_t k = 0; k < before.size(); ++k)
+      EXPECT_EQ(differing_pixels(before[k], after[k]), 0u)
+          << tv.name << " changed the G-buffer's " << names[k] << " attachment";
+  }
+}
+
+std::vector<uint32_t> read_depth_stencil(GLuint texture) {
+  std::vector<uint32_t> out(size_t(kWidth) * kHeight);
+  glGetTextureImage(texture, 0, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8,
+                    GLsizei(out.size() * sizeof(uint32_t)), out.data());
+  gl::throw_if_errors("reading the depth-stencil");
+  return out;
+}
+
+// What stencil techniques leave in the shared depth-stencil (counts, a
+// cleared depth) is gone when the next frame starts.
+TEST_F(TimingContract, RestoringTheGBufferUndoesAFramesDepthStencilWrites) {
+  const std::vector<uint32_t> pristine = read_depth_stencil(in_.depth_stencil);
+  size_t nearer = 0;  // geometry in front of the far plane
+  for (uint32_t v : pristine) nearer += (v >> 8) < 0xffffffu ? 1 : 0;
+  ASSERT_GT(nearer, size_t(kWidth * kHeight / 4));
+  glBindFramebuffer(GL_FRAMEBUFFER, in_.visibility_framebuffer);
+  glClearNamedFramebufferfi(in_.visibility_framebuffer, GL_DEPTH_STENCIL, 0, 0.25f, 7);
+  const std::vector<uint32_t> written = read_depth_stencil(in_.depth_stencil);
+  ASSERT_NE(written, pristine) << "the clear did not reach the depth-stencil";
+  targets_->restore_gbuffer();
+  EXPECT_EQ(read_depth_stencil(in_.depth_stencil), pristine);
 }
 
 }  // namespace

@@ -1,0 +1,34 @@
+#pragma once
+// record["phases_s"]: where a rendered job's wall time (duration_s) went, in
+// seconds of steady_clock, and record["overhead_s"], the part of it that
+// measures nothing (docs/results.md, docs/performance.md):
+//
+//   "prepare"    create() and prepare(): shaders, maps, buffers
+//   "frames"     every frame the job renders: the compile frame, the warm-up
+//                and timed frames, the control frames next to them, and
+//                --pass-timing fine's frames
+//   "measure"    reading V back, checking it, shading it, its metrics
+//                against the reference(s) and its classes
+//   "images"     writing visibility.exr, shaded.png and error.png
+//   "stability"  the "stability" block's extra frames and references
+//
+//   overhead_s = duration_s - frames - stability: what the harness spends
+//   on a job besides the frames it was asked to render and measure.
+#include <nlohmann/json.hpp>
+
+#include "record/fields.h"
+
+namespace sb {
+
+struct PhasesRecord {
+  double prepare = 0, frames = 0, measure = 0, images = 0, stability = 0;
+
+  // prepare + measure + images, plus whatever of `duration` no phase
+  // covers (GL state resets, record keeping).
+  double overhead(double duration) const { return duration - frames - stability; }
+
+  nlohmann::json to_json() const;
+  static PhasesRecord from_json(const Fields& f);
+};
+
+}  // namespace sb

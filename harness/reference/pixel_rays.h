@@ -1,0 +1,60 @@
+#pragma once
+// The shadow rays of one G-buffer pixel towards its light samples (internal
+// to the reference; the uniform and the adaptive sampler share it, so that a
+// pixel the adaptive one refines to the full count traces exactly the
+// uniform reference's rays and gets its very value).
+//
+// Sample i of a pixel is stratum layout.order[i] drawn with sample_uv(key, i),
+// key = pixel_key(seed, pixel, spp) (stratify.h): the uniform reference
+// traces i = 0..spp-1; the adaptive one a nested subset (adaptive.h).
+#include <embree3/rtcore.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <glm/glm.hpp>
+
+#include "core/image.h"
+#include "core/scene.h"
+#include "reference/ray_offset.h"
+#include "reference/shadow_packet.h"
+#include "reference/stratify.h"
+
+namespace sb::reference::detail {
+
+// What every pixel's rays share: the light, the casters, the sample layout.
+struct RaySetup {
+  RaySetup(const Scene& scene, const FlatScene& casters, const Layout& layout,
+           const ImageF& positions, const ImageF& normals, uint64_t seed);
+  const Layout& layout;
+  const ImageF& positions;  // RGBA32F, w > 0.5 on a surface
+  const ImageF& normals;    // 3 or 4 channels
+  RTCScene rtc;             // null without casters: only the horizon test remains
+  RayOffset offset;
+  glm::vec3 center;          // the light's
+  glm::vec3 corner, eu, ev;  // the light: corner + s*eu + t*ev
+  uint64_t seed;
+};
+
+bool covered(const ImageF& positions, size_t pixel);
+
+// One thread's tracer: start() a pixel, then trace() any of its samples.
+class PixelRays {
+ public:
+  explicit PixelRays(const RaySetup& setup);
+
+  // The pixel's ray origin and sample stream. Throws JobError when its rays
+  // reach beyond what Embree can trace.
+  void start(size_t pixel);
+  // reached[k] = 1 when sample order_index[k] reaches the light (samples
+  // below the surface's tangent plane never do, and trace no ray).
+  void trace(const uint32_t* order_index, size_t count, uint8_t* reached);
+
+ private:
+  const RaySetup& s_;
+  RTCIntersectContext context_;
+  ShadowPacket packet_;
+  glm::vec3 origin_{0.0f}, normal_{0.0f}, base_{0.0f};
+  uint64_t key_ = 0;
+};
+
+}  // namespace sb::reference::detail
