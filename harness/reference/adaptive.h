@@ -18,18 +18,19 @@
 // bit-identical to the uniform reference's.
 //
 // Which pixels refine. Every covered pixel takes the pilot (level 0). A pilot
-// whose samples disagree is refined level by level until its
-// collapsed-strata standard error (reference.h) is at most the target, or to
-// level K. A pilot whose samples all agree (all lit or all occluded) has an
-// estimated error of 0 that says nothing about a small occluder the pilot
-// missed; it stops only if every covered pixel within kNeighbourhood pixels
-// (a 5×5 window) has a pilot that agrees with it, all lit or all occluded
-// alike. Otherwise it is refined like a mixed one, where "mixed" is judged
-// at each level: while its samples still agree it goes on (an all-agreeing
-// sample never stops before level K). A pixel so refined that turns out
-// mixed sends its own agreeing neighbours to refinement in turn, until no
-// more do: a penumbra that the pilots saw in one pixel is followed, at full
-// samples, to wherever it fades out.
+// whose samples disagree is refined until its collapsed-strata standard
+// error (reference.h) is at most the target (an error of 0 with disagreeing
+// samples is not trusted), level by level, or straight to level K when the
+// error's fall per level puts the target there. A pilot whose samples all
+// agree (all lit or all occluded) has an estimated error of 0 that says
+// nothing about a small occluder the pilot missed; it stops only if every
+// covered pixel within kNeighbourhood pixels (a 5×5 window) has a pilot
+// that agrees with it, all lit or all occluded alike. Otherwise it goes
+// straight to level K. A pixel so refined that turns out mixed sends its
+// own agreeing neighbours to level K in turn, until no more do: a penumbra
+// that the pilots saw in one pixel is followed, at full samples, to
+// wherever it fades out. Level K is traced in the uniform reference's
+// order (coherent packets), skipping the samples already taken.
 #include <cstdint>
 #include <string>
 
