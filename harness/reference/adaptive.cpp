@@ -16,17 +16,18 @@ namespace sb::reference::detail {
 
 namespace {
 
-// The level grids of one layout: level k has rows[k] × cols[k] cells,
-// row-major; level K is the uniform layout's own grid (cell r * cols + c).
+// The levels of one layout: level k is make_layout(pilot * 4^k) (stratify.h),
+// a grid of rows(k) × cols(k) cells, row-major, whose trace order already
+// takes its cells in 4×4 blocks and whose groups are the neighbour pairs of
+// the standard error; level K is the uniform reference's own layout.
 struct Levels {
-  std::vector<int> rows, cols;
-  // Per level, its cells in 4×4 blocks (one packet sees one compact patch
-  // of the light, as the uniform reference's trace order does).
-  std::vector<std::vector<uint32_t>> block_order;
-  int top() const { return int(rows.size()) - 1; }
-  int fine_rows() const { return rows.back(); }
-  int fine_cols() const { return cols.back(); }
-  int cells(int k) const { return rows[size_t(k)] * cols[size_t(k)]; }
+  std::vector<Layout> layouts;
+  int top() const { return int(layouts.size()) - 1; }
+  int rows(int k) const { return layouts[size_t(k)].rows; }
+  int cols(int k) const { return layouts[size_t(k)].spp / rows(k); }
+  int cells(int k) const { return layouts[size_t(k)].spp; }
+  int fine_rows() const { return rows(top()); }
+  int fine_cols() const { return cols(top()); }
 };
 
 bool power_of_four_times(int spp, int pilot) {
@@ -38,25 +39,7 @@ bool power_of_four_times(int spp, int pilot) {
 
 Levels levels_of(int spp, int pilot, Strata strata) {
   Levels l;
-  const bool square = strata == Strata::Square;
-  int rows = square ? int(std::lround(std::sqrt(double(pilot)))) : 1;
-  int cols = square ? rows : pilot;
-  for (int cells = pilot; cells <= spp; cells *= 4) {
-    l.rows.push_back(rows);
-    l.cols.push_back(cols);
-    std::vector<uint32_t> order;
-    for (int r0 = 0; r0 < rows; r0 += 4)
-      for (int c0 = 0; c0 < cols; c0 += 4)
-        for (int r = r0; r < std::min(r0 + 4, rows); ++r)
-          for (int c = c0; c < std::min(c0 + 4, cols); ++c) order.push_back(uint32_t(r * cols + c));
-    l.block_order.push_back(std::move(order));
-    if (square) {
-      rows *= 2;
-      cols *= 2;
-    } else {
-      cols *= 4;
-    }
-  }
+  for (int cells = pilot; cells <= spp; cells *= 4) l.layouts.push_back(make_layout(cells, strata));
   return l;
 }
 
@@ -70,9 +53,8 @@ uint64_t choice_key(uint64_t seed, size_t pixel, int spp) {
 // sampled (r * fine_cols + c) and whether it reached the light.
 class PixelSamples {
  public:
-  PixelSamples(const Levels& levels, const Layout& layout,
-               const std::vector<uint32_t>& order_of_cell, PixelRays& rays)
-      : l_(levels), layout_(layout), order_of_cell_(order_of_cell), rays_(rays) {}
+  PixelSamples(const Levels& levels, const std::vector<uint32_t>& order_of_cell, PixelRays& rays)
+      : l_(levels), layout_(levels.layouts.back()), order_of_cell_(order_of_cell), rays_(rays) {}
 
   // The pilot: one random fine cell per level-0 cell, traced.
   void pilot(size_t pixel, uint64_t choice) {
@@ -84,7 +66,7 @@ class PixelSamples {
     value_.resize(size_t(cells));
     trace_.clear();
     for (int i = 0; i < cells; ++i) {
-      fine_[size_t(i)] = pick(0, i / l_.cols[0], i % l_.cols[0]);
+      fine_[size_t(i)] = pick(0, i / l_.cols(0), i % l_.cols(0));
       trace_.push_back(order_of_cell_[fine_[size_t(i)]]);
     }
     rays_.trace(trace_.data(), trace_.size(), value_.data());
@@ -94,7 +76,7 @@ class PixelSamples {
   // children get new samples, traced.
   void refine() {
     const int k = level_ + 1;
-    const int rows = l_.rows[size_t(k)], cols = l_.cols[size_t(k)];
+    const int rows = l_.rows(k), cols = l_.cols(k);
     const int br = l_.fine_rows() / rows, bc = l_.fine_cols() / cols;
     const size_t cells = size_t(rows) * size_t(cols);
     next_fine_.assign(cells, kNone);
@@ -107,8 +89,8 @@ class PixelSamples {
     }
     trace_.clear();
     slots_.clear();
-    for (const uint32_t cell : l_.block_order[size_t(k)]) {
-      const int i = int(cell);
+    for (const Stratum& st : l_.layouts[size_t(k)].order) {  // 4×4 blocks of cells
+      const int i = int(st.cell);
       if (next_fine_[size_t(i)] != kNone) continue;
       next_fine_[size_t(i)] = pick(k, i / cols, i % cols);
       trace_.push_back(order_of_cell_[next_fine_[size_t(i)]]);
@@ -157,32 +139,24 @@ class PixelSamples {
     const size_t n = reached();
     return n != 0 && n != value_.size();
   }
-  // The collapsed-strata variance (reference.h) over this level's grid:
-  // horizontal neighbour pairs, each disagreeing pair adding 1/N².
-  double variance() const {
-    size_t disagree = 0;
-    // Rows have an even number of cells: pairs never straddle two rows.
-    for (size_t i = 0; i + 1 < value_.size(); i += 2)
-      disagree += value_[i] != value_[i + 1] ? 1 : 0;
-    const double n = double(value_.size());
-    return double(disagree) / (n * n);
-  }
+  // The collapsed-strata variance (reference.h) over this level's grid,
+  // whose cells value_ holds in the level layout's own order.
+  double variance() const { return stratified_variance(value_.data(), l_.layouts[size_t(level_)]); }
 
  private:
   static constexpr uint32_t kNone = 0xffffffffu;
 
   // A fine cell of level-k cell (row, col), at random.
   uint32_t pick(int k, int row, int col) const {
-    const int br = l_.fine_rows() / l_.rows[size_t(k)], bc = l_.fine_cols() / l_.cols[size_t(k)];
-    const uint64_t h =
-        mix64(choice_ + (uint64_t(k) << 48) + uint64_t(row * l_.cols[size_t(k)] + col) + 1);
+    const int br = l_.fine_rows() / l_.rows(k), bc = l_.fine_cols() / l_.cols(k);
+    const uint64_t h = mix64(choice_ + (uint64_t(k) << 48) + uint64_t(row * l_.cols(k) + col) + 1);
     const int r = row * br + int((h & 0xffffffffu) % uint64_t(br));
     const int c = col * bc + int((h >> 32) % uint64_t(bc));
     return uint32_t(r * l_.fine_cols() + c);
   }
 
   const Levels& l_;
-  const Layout& layout_;
+  const Layout& layout_;  // level K: the uniform reference's
   const std::vector<uint32_t>& order_of_cell_;
   PixelRays& rays_;
   uint64_t choice_ = 0;
@@ -263,7 +237,7 @@ AdaptiveImages trace_adaptive(const RaySetup& setup, Strata strata, int pilot_sp
                     [&](const tbb::blocked_range2d<int>& tile) {
                       FtzDazScope ftz;
                       PixelRays rays(setup);
-                      PixelSamples s(levels, layout, order_of_cell, rays);
+                      PixelSamples s(levels, order_of_cell, rays);
                       for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
                         for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
                           const size_t pix = size_t(y) * size_t(width) + size_t(x);
@@ -306,7 +280,7 @@ AdaptiveImages trace_adaptive(const RaySetup& setup, Strata strata, int pilot_sp
                       [&](const tbb::blocked_range<size_t>& range) {
                         FtzDazScope ftz;
                         PixelRays rays(setup);
-                        PixelSamples s(levels, layout, order_of_cell, rays);
+                        PixelSamples s(levels, order_of_cell, rays);
                         for (size_t w = range.begin(); w < range.end(); ++w) {
                           const size_t pix = work[w];
                           s.pilot(pix, choice_key(setup.seed, pix, spp));
