@@ -231,8 +231,8 @@ ImageF FrameTargets::read_visibility() const {
   return read_texture(visibility_.get(), width_, height_, 1);
 }
 ImageF FrameTargets::read_shaded() const {
-  // RGBA as stored, then RGB here: Mesa's RGBA-to-RGB conversion on read-back
-  // is a per-pixel path several times slower than the copy.
+  // RGBA as stored, then RGB here, not the driver's format conversion (what
+  // that saves was within the noise of two runs: docs/performance.md).
   const ImageF rgba = read_texture(shaded_.get(), width_, height_, 4);
   ImageF rgb(width_, height_, 3);
   for (size_t i = 0; i < rgb.pixel_count(); ++i)
