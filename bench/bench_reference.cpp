@@ -3,7 +3,7 @@
 // casting (not timed). Arg = samples per pixel; Mrays/s counts shadow rays.
 //
 // BM_AdaptiveAtUniformNoise is the adaptive reference (reference.adaptive,
-// 16-sample pilot, up to 1024) with its target set to the largest standard
+// 4-, 16- and 64-sample pilots, up to 1024) with its target set to the largest standard
 // error of the uniform 1024-spp reference (computed once, untimed): the same
 // worst-pixel noise. Its `vs_uniform_1024` counter is its time over
 // BM_Reference/spp:1024's in the same process (run them together:

@@ -56,7 +56,7 @@ struct ReferenceConfig {
   // "adaptive": the Monte Carlo reference takes a pilot_spp-sample pilot per
   // pixel and more only where needed, up to spp (reference/adaptive.h).
   bool adaptive = false;
-  int pilot_spp = 16;
+  int pilot_spp = 4;
   double target_std_error = 0.01;
 };
 

@@ -25,8 +25,11 @@
 // agree (all lit or all occluded) has an estimated error of 0 that says
 // nothing about a small occluder the pilot missed; it stops only if every
 // covered pixel within kNeighbourhood pixels (a 5×5 window) has a pilot
-// that agrees with it, all lit or all occluded alike. Otherwise it goes
-// straight to level K. A pixel so refined that turns out mixed sends its
+// that agrees with it, all lit or all occluded alike, or, when lit, when the
+// casters' triangles provably leave the whole light in view
+// (ExactVisibility::sees_whole_light: no triangle meets the pyramid from its
+// ray origin to the light, so every sample at every count reaches it).
+// Otherwise it goes straight to level K. A pixel so refined that turns out mixed sends its
 // own agreeing neighbours to level K in turn, until no more do: a penumbra
 // that the pilots saw in one pixel is followed, at full samples, to
 // wherever it fades out. Level K is traced in the uniform reference's
@@ -36,6 +39,10 @@
 
 #include "core/image.h"
 #include "reference/stratify.h"
+
+namespace sb::reference {
+class ExactVisibility;
+}
 
 namespace sb::reference::detail {
 
@@ -54,8 +61,10 @@ struct AdaptiveImages {
 };
 
 // The setup's layout must be make_layout(spp, strata) with spp and
-// pilot_spp as adaptive_layout_problem() accepts.
+// pilot_spp as adaptive_layout_problem() accepts. `whole_light`, when given,
+// proves lit pilots (built over the same casters; null: the window alone).
 AdaptiveImages trace_adaptive(const RaySetup& setup, Strata strata, int pilot_spp,
-                              double target_std_error);
+                              double target_std_error,
+                              const ExactVisibility* whole_light = nullptr);
 
 }  // namespace sb::reference::detail

@@ -9,6 +9,7 @@
 #include <initializer_list>
 #include <limits>
 #include <numeric>
+#include <type_traits>
 #include <utility>
 
 #include "reference/ray_offset.h"
@@ -99,6 +100,13 @@ bool box_outside(const glm::dvec3& lo, const glm::dvec3& hi, const Plane& plane)
   const glm::dvec3 far(plane.normal.x >= 0.0 ? hi.x : lo.x, plane.normal.y >= 0.0 ? hi.y : lo.y,
                        plane.normal.z >= 0.0 ? hi.z : lo.z);
   return plane.distance(far) < 0.0;
+}
+
+// Whether the box may meet the pyramid: it is outside none of its planes.
+bool box_meets(const glm::dvec3& lo, const glm::dvec3& hi, const std::array<Plane, 5>& planes) {
+  for (const Plane& plane : planes)
+    if (box_outside(lo, hi, plane)) return false;
+  return true;
 }
 
 constexpr double kIntegerRange = 1073741824.0;  // 2^30: the light's larger half-size
@@ -227,8 +235,8 @@ uint32_t ExactVisibility::build(uint32_t first, uint32_t count) {
 }
 
 template <typename Keep, typename Visit>
-void ExactVisibility::traverse(const Keep& keep, const Visit& visit) const {
-  if (nodes_.empty()) return;
+bool ExactVisibility::traverse(const Keep& keep, const Visit& visit) const {
+  if (nodes_.empty()) return true;
   std::vector<uint32_t> stack{0};
   while (!stack.empty()) {
     const Node& node = nodes_[stack.back()];
@@ -239,8 +247,14 @@ void ExactVisibility::traverse(const Keep& keep, const Visit& visit) const {
       stack.push_back(node.right);
       continue;
     }
-    for (uint32_t i = node.first; i < node.first + node.count; ++i) visit(triangles_[i]);
+    for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+      if constexpr (std::is_void_v<std::invoke_result_t<const Visit&, const Triangle&>>)
+        visit(triangles_[i]);
+      else if (!visit(triangles_[i]))
+        return false;
+    }
   }
+  return true;
 }
 
 glm::dvec3 ExactVisibility::viewpoint(const glm::dvec3& surface, const glm::dvec3& n) const {
@@ -445,39 +459,26 @@ std::vector<std::vector<glm::dvec2>> ExactVisibility::occluding_polygons(
   const glm::dvec3 to_centre = f.centre - p;
   double first_hit = std::numeric_limits<double>::infinity();
   bool leaves_through_it = false;
-  std::vector<uint32_t> stack{0};
-  while (!stack.empty()) {
-    const Node& node = nodes_[stack.back()];
-    stack.pop_back();
-    bool outside = false;
-    for (const Plane& plane : planes) outside = outside || box_outside(node.lo, node.hi, plane);
-    if (outside) continue;
-    if (node.count == 0) {
-      stack.push_back(node.left);
-      stack.push_back(node.right);
-      continue;
-    }
-    for (uint32_t i = node.first; i < node.first + node.count; ++i) {
-      const Triangle& t = triangles_[i];
-      const glm::dvec3 normal = glm::cross(t.b - t.a, t.c - t.a);
-      const double facing = glm::dot(normal, p - t.a);
-      if (t.outward != 0) {
-        const double hit = segment_crossing(p, to_centre, t.a, t.b, t.c);
-        if (hit < first_hit) {
-          first_hit = hit;
-          leaves_through_it = double(t.outward) * glm::dot(normal, to_centre) > 0.0;
-        }
-      }
-      if (std::fabs(facing) <= on_plane * glm::length(normal)) continue;
-      if (double(t.outward) * facing < 0.0) continue;  // a closed caster's far side
-      if (glm::dot(n, t.a - surface) < 0.0 && glm::dot(n, t.b - surface) < 0.0 &&
-          glm::dot(n, t.c - surface) < 0.0)
-        continue;  // below the tangent plane: inside the horizon polygon
-      Polygon3 poly{t.a, t.b, t.c};
-      for (const Plane& plane : planes) poly = clip(poly, plane);
-      add(clip(poly, tangent), true);
-    }
-  }
+  traverse([&](const glm::dvec3& lo, const glm::dvec3& hi) { return box_meets(lo, hi, planes); },
+           [&](const Triangle& t) {
+             const glm::dvec3 normal = glm::cross(t.b - t.a, t.c - t.a);
+             const double facing = glm::dot(normal, p - t.a);
+             if (t.outward != 0) {
+               const double hit = segment_crossing(p, to_centre, t.a, t.b, t.c);
+               if (hit < first_hit) {
+                 first_hit = hit;
+                 leaves_through_it = double(t.outward) * glm::dot(normal, to_centre) > 0.0;
+               }
+             }
+             if (std::fabs(facing) <= on_plane * glm::length(normal)) return;
+             if (double(t.outward) * facing < 0.0) return;  // a closed caster's far side
+             if (glm::dot(n, t.a - surface) < 0.0 && glm::dot(n, t.b - surface) < 0.0 &&
+                 glm::dot(n, t.c - surface) < 0.0)
+               return;  // below the tangent plane: inside the horizon polygon
+             Polygon3 poly{t.a, t.b, t.c};
+             for (const Plane& plane : planes) poly = clip(poly, plane);
+             add(clip(poly, tangent), true);
+           });
   // Inside a closed caster every ray towards the light is blocked.
   if (leaves_through_it) return {{{-f.hw, -f.hh}, {f.hw, -f.hh}, {f.hw, f.hh}, {-f.hw, f.hh}}};
   return out;
@@ -507,6 +508,43 @@ double ExactVisibility::union_area(const std::vector<std::vector<glm::dvec2>>& p
   double covered = 0.0;
   for (const auto& path : united) covered += ClipperLib::Area(path);
   return std::clamp(covered, 0.0, light_area) / (scale * scale);
+}
+
+bool ExactVisibility::sees_whole_light(const glm::dvec3& surface, const glm::dvec3& origin,
+                                       const glm::dvec3& n) const {
+  if (light_.is_segment()) return false;
+  const double n_length = glm::length(n);
+  if (!(n_length > 0.0)) return false;
+  const double offset = glm::dot(n, origin - surface) / n_length;
+  if (!(offset > 0.0)) return false;
+  Frame f(light_);
+  if (!(f.hw > 0.0) || !(f.hh > 0.0)) return false;
+  constexpr double kWider = 1e-5;
+  // Every light point above the ray origin's plane: the horizon test of the
+  // Monte Carlo rays (pixel_rays.cpp) keeps every sample.
+  for (const glm::dvec3& corner : f.corners()) {
+    const glm::dvec3 d = corner - origin;
+    if (!(glm::dot(n, d) > kWider * n_length * glm::length(d))) return false;
+  }
+  const glm::dvec3 axis = f.centre - origin;
+  const double axis_length = glm::length(axis);
+  if (!(axis_length > 0.0)) return false;
+  const double size = std::max(f.hw, f.hh);
+  f.hw += kWider * size;
+  f.hh += kWider * size;
+  const double side = glm::dot(origin - f.centre, f.normal) >= 0.0 ? 1.0 : -1.0;
+  f.centre -= side * kWider * size * f.normal;
+  // The apex stays above the surface's tangent plane (by at least 3/4 of
+  // the offset), so the surface the point lies on never meets the pyramid.
+  const std::array<Plane, 5> planes = pyramid(f, origin - 0.25 * offset * axis / axis_length);
+  // No triangle keeps any part inside the pyramid.
+  return traverse(
+      [&](const glm::dvec3& lo, const glm::dvec3& hi) { return box_meets(lo, hi, planes); },
+      [&](const Triangle& t) {
+        Polygon3 poly{t.a, t.b, t.c};
+        for (const Plane& plane : planes) poly = clip(poly, plane);
+        return poly.empty();
+      });
 }
 
 double ExactVisibility::visibility(const glm::dvec3& p, const glm::dvec3& n) const {

@@ -76,6 +76,20 @@ class ExactVisibility {
   // V at p, whose surface has the geometric normal n (facing the viewer).
   double visibility(const glm::dvec3& p, const glm::dvec3& n) const;
 
+  // Whether every shadow ray from `origin` (a Monte Carlo ray origin: the
+  // surface point `surface` offset along n) to a rectangular light provably
+  // reaches it: every light point lies above the plane through `origin`
+  // normal to n, and no caster triangle meets the pyramid from `origin` to
+  // the light. Then the pixel's V is 1 at every sample count, exactly. The
+  // pyramid is taken a little wider than the rays (its apex a quarter of the
+  // offset back along its axis, the light 1e-5 of its size larger and that
+  // much farther), far beyond float rounding, so a triangle that a ray could
+  // graze counts as meeting it. False for a segment or a point light, and
+  // when origin is not above the surface. The adaptive reference's proof
+  // that a lit pilot missed nothing (adaptive.h).
+  bool sees_whole_light(const glm::dvec3& surface, const glm::dvec3& origin,
+                        const glm::dvec3& n) const;
+
   // The polygons whose union hides a rectangular light from p, in the light's
   // plane (coordinates along half_u and half_v, the light spanning ±half
   // sizes), counter-clockwise: for benchmarks and tests of the union itself.
@@ -118,9 +132,10 @@ class ExactVisibility {
   };
   uint32_t build(uint32_t first, uint32_t count);
   // Calls visit(triangle) for the triangles of every leaf whose box, and its
-  // ancestors', keep(lo, hi) accepts.
+  // ancestors', keep(lo, hi) accepts. A visit that returns bool stops the
+  // walk by returning false, and traverse() then returns false.
   template <typename Keep, typename Visit>
-  void traverse(const Keep& keep, const Visit& visit) const;
+  bool traverse(const Keep& keep, const Visit& visit) const;
   // The offset viewpoint p + eps·n (see above).
   glm::dvec3 viewpoint(const glm::dvec3& surface, const glm::dvec3& n) const;
 

@@ -48,6 +48,9 @@ class PixelRays {
   // reached[k] = 1 when sample order_index[k] reaches the light (samples
   // below the surface's tangent plane never do, and trace no ray).
   void trace(const uint32_t* order_index, size_t count, uint8_t* reached);
+  // The started pixel's ray origin and unit normal.
+  const glm::vec3& origin() const { return origin_; }
+  const glm::vec3& normal() const { return normal_; }
 
  private:
   const RaySetup& s_;

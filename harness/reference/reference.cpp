@@ -50,6 +50,10 @@ constexpr uint32_t kMethodVersion = 5;
 // a closed caster is in its umbra; 3: the same by a segment test, closed
 // casters keeping their near side again.
 constexpr uint32_t kExactMethodVersion = 3;
+// Bumped whenever the adaptive reference's figures may change for the same
+// settings. 2: lit pilots proven to see the whole light stop there (their
+// sample counts fall; their values were already 1).
+constexpr uint32_t kAdaptiveVersion = 2;
 constexpr char kMagic[8] = {'S', 'B', 'R', 'E', 'F', '\r', '\n', '\x1a'};
 constexpr uint32_t kFileVersion = 1;
 
@@ -392,8 +396,13 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
     const detail::Layout layout = detail::make_layout(s.spp, strata);
     const detail::RaySetup setup(scene, casters, layout, positions, geometric_normals, s.seed);
     if (s.adaptive) {
-      detail::AdaptiveImages a =
-          detail::trace_adaptive(setup, strata, s.pilot_spp, s.target_std_error);
+      // The proof that a lit pilot missed nothing needs every caster in
+      // polygonal form (no alpha masks, no analytic shapes).
+      std::optional<ExactVisibility> whole_light;
+      if (!scene.light.is_segment() && ExactVisibility::unsupported_reason(scene).empty())
+        whole_light.emplace(scene);
+      detail::AdaptiveImages a = detail::trace_adaptive(
+          setup, strata, s.pilot_spp, s.target_std_error, whole_light ? &*whole_light : nullptr);
       r.visibility = std::move(a.visibility);
       r.std_error = std::move(a.std_error);
       r.samples = std::move(a.samples);
@@ -418,7 +427,7 @@ std::string cache_key(const Scene& scene, const ImageF& positions, const ImageF&
   } else {
     h.add(RTC_VERSION_STRING).add(resolve_isa(embree_config_of(s)));
     h.add(int32_t(s.spp)).add(s.seed);
-    if (s.adaptive) h.add(int32_t(s.pilot_spp)).add(s.target_std_error);
+    if (s.adaptive) h.add(int32_t(s.pilot_spp)).add(s.target_std_error).add(kAdaptiveVersion);
   }
   hash_vec3(h, scene.light.center);
   hash_vec3(h, scene.light.half_u);

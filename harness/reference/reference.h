@@ -76,7 +76,7 @@ struct Settings {
   // more only where the standard error is above target_std_error or the
   // neighbourhood disagrees, up to spp (which must be pilot_spp * 4^K).
   bool adaptive = false;
-  int pilot_spp = 16;
+  int pilot_spp = 4;
   double target_std_error = 0.01;
 };
 

@@ -194,7 +194,7 @@ const BadCase
             {"adaptive_spp_does_not_nest",
              R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "reference": {"spp": 100, "adaptive": true}})",
              "/reference/spp",
-             "with /reference/adaptive: spp must be the pilot's 16 samples times a power of 4"},
+             "with /reference/adaptive: spp must be the pilot's 4 samples times a power of 4"},
             {"adaptive_bad_pilot",
              R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "reference": {"spp": 256, "adaptive": true, "pilot_spp": 8}})",
              "/reference/pilot_spp", "the pilot must be 4, 16 or 64 samples, got 8"},

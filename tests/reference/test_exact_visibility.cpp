@@ -231,4 +231,85 @@ TEST(ReferenceExact, MasksAnalyticShapesAndLightsOfNoAreaAreNamedAsUnsupported) 
   EXPECT_NE(ExactVisibility(point).unsupported().find("no area"), std::string::npos);
 }
 
+// sees_whole_light, the adaptive reference's proof that a lit pilot missed
+// nothing, on ground points under the plate, the ground itself casting: it
+// may only hold where the closed form says the plate hides nothing, and it
+// must hold where the plate's projection misses the light by more than its
+// 1e-5 safety margin (the ground the point lies on never defeats it).
+TEST(ReferenceExact, SeesTheWholeLightExactlyWhereThePlateHidesNothingOfIt) {
+  sb::Scene scene = plate_scene(true);
+  scene.meshes[1].casts_shadow = true;
+  const ExactVisibility exact(scene);
+  int proven = 0, hidden = 0;
+  for (int i = 0; i <= 200; ++i)
+    for (int j = 0; j <= 200; ++j) {
+      const double x = -6.0 + 0.06 * i, z = -6.0 + 0.061 * j;
+      const double eps = 0x1p-16 * std::max({std::abs(x), std::abs(z), 20.0});
+      const glm::dvec3 surface(x, 0.0, z), origin(x, eps, z);
+      const bool proof = exact.sees_whole_light(surface, origin, {0, 1, 0});
+      // The plate's projection from the origin onto the light's plane.
+      const double k = (10.0 - eps) / (4.0 - eps);
+      const double ax = x + (-0.7 - x) * k, bx = x + (1.1 - x) * k;
+      const double az = z + (-1.3 - z) * k, bz = z + (0.4 - z) * k;
+      const double gap = std::max({ax - 1.0, -1.0 - bx, az - 1.0, -1.0 - bz});
+      if (plate_visibility(x, eps, z) < 1.0) {
+        ++hidden;
+        EXPECT_FALSE(proof) << "x " << x << " z " << z;
+      } else if (gap > 1e-3) {
+        ++proven;
+        EXPECT_TRUE(proof) << "x " << x << " z " << z << " gap " << gap;
+      }
+    }
+  EXPECT_GT(hidden, 1000);
+  EXPECT_GT(proven, 10000);
+}
+
+// Below the tangent plane the surface hides the light itself; no caster.
+TEST(ReferenceExact, SeesTheWholeLightOnlyWhenAllOfItIsAboveTheSurface) {
+  sb::Scene scene;
+  scene.light = sbtest::square_light();
+  const ExactVisibility exact(scene);
+  const glm::dvec3 surface(0.3, 2.0, -0.4), up(0, 1, 0);
+  EXPECT_TRUE(exact.sees_whole_light(surface, surface + 1e-4 * up, up));
+  // Tilted until the plane through p meets y = 10 at x = 0: half the light below.
+  const glm::dvec3 half = glm::normalize(glm::dvec3(8.0, 0.3, 0.0));
+  EXPECT_FALSE(exact.sees_whole_light(surface, surface + 1e-4 * half, half));
+  // An origin not above the surface is not a ray origin of this surface.
+  EXPECT_FALSE(exact.sees_whole_light(surface, surface, up));
+  EXPECT_FALSE(exact.sees_whole_light(surface, surface - 1e-4 * up, up));
+}
+
+// A small blocker beside the pyramid from (0, 1e-4, 0) to the light: where
+// it is far enough out the proof holds; inside by a hair, or outside by
+// less than the margin, it does not (a float ray could graze it). At y = 5
+// the margin is about 6e-6: 5e-6 from the wider light, 1.2e-6 from the
+// apex set back.
+TEST(ReferenceExact, SeesTheWholeLightPastABlockerOnlyBeyondTheMargin) {
+  const glm::dvec3 surface(0, 0, 0), origin(0, 1e-4, 0), up(0, 1, 0);
+  // The pyramid's side x = +1 at y = 10 crosses y = 5 at about x = 0.5.
+  const double side = (5.0 - origin.y) / (10.0 - origin.y);
+  for (const auto& [offset, expected] :
+       {std::pair{1e-2, true}, {1e-4, true}, {3e-6, false}, {-1e-9, false}, {-1e-2, false}}) {
+    const float x0 = float(side + offset);
+    sb::Scene scene;
+    scene.light = sbtest::square_light();
+    scene.meshes.push_back(sbtest::quad("blocker", {x0, 5, -0.2f}, {x0 + 0.3f, 5, -0.2f},
+                                        {x0 + 0.3f, 5, 0.2f}, {x0, 5, 0.2f}, true));
+    const ExactVisibility exact(scene);
+    EXPECT_EQ(exact.sees_whole_light(surface, origin, up), expected) << "offset " << offset;
+  }
+}
+
+TEST(ReferenceExact, SeesTheWholeLightNeverForASegmentOrAPointLight) {
+  sb::Scene segment;
+  segment.light = sbtest::square_light();
+  segment.light.half_v = {0, 0, 0};
+  EXPECT_FALSE(ExactVisibility(segment).sees_whole_light({0, 0, 0}, {0, 1e-4, 0}, {0, 1, 0}));
+  sb::Scene point;
+  point.light = sbtest::square_light();
+  point.light.half_u = {0, 0, 0};
+  point.light.half_v = {0, 0, 0};
+  EXPECT_FALSE(ExactVisibility(point).sees_whole_light({0, 0, 0}, {0, 1e-4, 0}, {0, 1, 0}));
+}
+
 }  // namespace

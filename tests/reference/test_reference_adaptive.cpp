@@ -74,17 +74,19 @@ Agreement compare_with_full(const sb::reference::GBuffer& g, const Result& a, co
   return out;
 }
 
-void expect_agreement_with_full(const sb::Scene& scene, const std::string& label) {
+void expect_agreement_with_full(const sb::Scene& scene, const std::string& label, int pilot = 16) {
   const sb::reference::GBuffer g = sb::reference::trace_gbuffer(scene, kWidth, kHeight);
   const Result full = sb::reference::compute(scene, g.positions, g.normals, {256, 1});
-  const Result a = sb::reference::compute(scene, g.positions, g.normals, adaptive(256, 0.02));
+  const Result a =
+      sb::reference::compute(scene, g.positions, g.normals, adaptive(256, 0.02, pilot));
   ASSERT_EQ(a.method, sb::reference::kAdaptiveMethod);
   const Agreement m = compare_with_full(g, a, full);
   std::printf(
-      "%s: %zu covered px, %zu in the full reference's penumbra; adaptive mean %.1f, max %d spp "
+      "%s, pilot %d: %zu covered px, %zu in the full reference's penumbra; adaptive mean %.1f, max "
+      "%d spp "
       "(full %.3f s, adaptive %.3f s); %zu beyond 4 sigma, worst %.2f sigma; %zu penumbra px "
       "made 0 or 1\n",
-      label.c_str(), m.covered, m.penumbra, a.mean_spp, a.max_spp, full.seconds, a.seconds,
+      label.c_str(), pilot, m.covered, m.penumbra, a.mean_spp, a.max_spp, full.seconds, a.seconds,
       m.beyond_4_sigma, m.worst_z, m.penumbra_made_hard);
   EXPECT_GT(m.penumbra, 200u) << label << ": too little penumbra to test anything";
   EXPECT_EQ(m.beyond_4_sigma, 0u) << label;
@@ -106,17 +108,26 @@ TEST(ReferenceAdaptive, AgreesWithTheFullCountOnFoliage) {
   expect_agreement_with_full(build("foliage"), "foliage");
 }
 
+// A 4-sample pilot misses more: the window and the whole-light proof must
+// still catch every penumbra pixel it missed.
+TEST(ReferenceAdaptive, AgreesWithTheFullCountFromAFourSamplePilot) {
+  expect_agreement_with_full(build("sphere_grid", {{"grid", 4}}), "sphere grid", 4);
+  expect_agreement_with_full(build("jeep"), "jeep", 4);
+  expect_agreement_with_full(build("foliage"), "foliage", 4);
+}
+
 // Against the exact reference, on the scenes it can do (foliage's leaves
 // are alpha-masked: it has none). The criterion is the uniform reference's
 // in test_exact_agreement.cpp: 4 of the stated errors, floored at one
 // sample's weight at the pixel, on all but 0.1% of the covered pixels.
-void expect_agreement_with_exact(const sb::Scene& scene, const std::string& label) {
+void expect_agreement_with_exact(const sb::Scene& scene, const std::string& label, int pilot = 16) {
   const sb::reference::GBuffer g = sb::reference::trace_gbuffer(scene, kWidth, kHeight);
   Settings exact_settings;
   exact_settings.exact = true;
   const Result exact = sb::reference::compute(scene, g.positions, g.normals, exact_settings);
   ASSERT_EQ(exact.method, sb::reference::kExactMethod) << exact.exact_fallback;
-  const Result a = sb::reference::compute(scene, g.positions, g.normals, adaptive(256, 0.02));
+  const Result a =
+      sb::reference::compute(scene, g.positions, g.normals, adaptive(256, 0.02, pilot));
   size_t covered_px = 0, outside = 0, penumbra = 0, made_hard = 0;
   for (size_t i = 0; i < g.positions.pixel_count(); ++i) {
     if (!covered(g, i)) continue;
@@ -130,8 +141,9 @@ void expect_agreement_with_exact(const sb::Scene& scene, const std::string& labe
       made_hard += av == 0.0 || av == 1.0;
     }
   }
-  std::printf("%s vs exact: %zu covered px, %zu beyond 4 sigma, %zu of %zu soft px made hard\n",
-              label.c_str(), covered_px, outside, made_hard, penumbra);
+  std::printf(
+      "%s vs exact, pilot %d: %zu covered px, %zu beyond 4 sigma, %zu of %zu soft px made hard\n",
+      label.c_str(), pilot, covered_px, outside, made_hard, penumbra);
   EXPECT_GT(penumbra, 200u) << label;
   EXPECT_LE(double(outside), 0.001 * double(covered_px)) << label;
   EXPECT_EQ(made_hard, 0u) << label;
@@ -143,6 +155,11 @@ TEST(ReferenceAdaptive, AgreesWithTheExactReferenceOnTheSphereGrid) {
 
 TEST(ReferenceAdaptive, AgreesWithTheExactReferenceOnAJeep) {
   expect_agreement_with_exact(build("jeep"), "jeep");
+}
+
+TEST(ReferenceAdaptive, AgreesWithTheExactReferenceFromAFourSamplePilot) {
+  expect_agreement_with_exact(build("sphere_grid", {{"grid", 4}}), "sphere grid", 4);
+  expect_agreement_with_exact(build("jeep"), "jeep", 4);
 }
 
 // A pixel refined to the full count traces the uniform reference's very
