@@ -3,6 +3,7 @@
 // OpenImageIO reads. Writers are atomic (temporary file in the target
 // directory, then rename), so readers never see a half-written image. All
 // failures throw sb::JobError naming the path and OpenImageIO's message.
+#include <cstdint>
 #include <string>
 
 #include "core/image.h"
@@ -17,6 +18,9 @@ void write_exr(const std::string& path, const ImageF& img);
 // nearest. No colour transform; 1 channel is grey, 2 grey+alpha, 3 RGB,
 // 4 RGBA (alpha written as given, not un-premultiplied).
 void write_png(const std::string& path, const ImageF& img);
+// The byte write_png stores for a value: [0, 1] scaled to 0..255 and
+// rounded half away from zero (std::lround), outside clamped, NaN 0.
+uint8_t png_byte(float v);
 
 // First subimage of any file OpenImageIO reads, converted to float (8-bit
 // values become v/255), every channel, alpha not premultiplied by OIIO.

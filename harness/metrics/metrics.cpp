@@ -109,7 +109,10 @@ std::vector<ErrorStats> compare_errors(const ImageF& test, const ImageF& ref,
           const size_t row_pixel = static_cast<size_t>(y) * test.width;
           for (size_t m = 0; m < n; ++m) {
             const uint8_t* mask = masks[m] != nullptr ? masks[m]->data() + row_pixel : nullptr;
-            RowSums& s = rows[m * height + static_cast<size_t>(y)];
+            // Summed in a local, stored once: through the reference into
+            // `rows` every add went through memory (the compiler cannot
+            // tell it from f's), which bound the whole pass.
+            RowSums s;
             for (int x = 0; x < test.width; ++x) {
               if (mask != nullptr && mask[x] == 0) continue;
               ++s.pixels;
@@ -134,6 +137,7 @@ std::vector<ErrorStats> compare_errors(const ImageF& test, const ImageF& ref,
               s.over005 += most > 0.05 ? 1 : 0;
               s.over01 += most > 0.1 ? 1 : 0;
             }
+            rows[m * height + static_cast<size_t>(y)] = s;
           }
         }
       });

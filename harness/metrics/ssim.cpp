@@ -21,13 +21,17 @@
 
 #include "metrics/metrics.h"
 #include "metrics/metrics_detail.h"
+#include "metrics/ssim_kernels.h"
 
 namespace sb::metrics {
 
 namespace {
 
+using detail::SimdPath;
+
 constexpr int kR = kSsimRadius;
 constexpr int kTaps = 2 * kR + 1;
+static_assert(kTaps == detail::kSsimTaps);
 // Elements per inner-loop chunk: five double accumulators stay in L1.
 constexpr size_t kChunk = 256;
 
@@ -59,8 +63,8 @@ struct SsimConstants {
 // sink(y, row) with row[(x - x0) * channels + c]. sink is called from TBB
 // worker threads, once per row.
 template <class Sink>
-void ssim_rows(const ImageF& a, const ImageF& b, SsimConstants k, int y0, int y1, int x0, int x1,
-               Sink&& sink) {
+void ssim_rows(SimdPath path, const ImageF& a, const ImageF& b, SsimConstants k, int y0, int y1,
+               int x0, int x1, Sink&& sink) {
   static const std::array<double, kTaps> w = gaussian_kernel();
   const int width = a.width, height = a.height;
   const size_t nc = static_cast<size_t>(a.channels);
@@ -78,8 +82,7 @@ void ssim_rows(const ImageF& a, const ImageF& b, SsimConstants k, int y0, int y1
     double* const m_bb = m_aa + padded_len;
     double* const m_ab = m_bb + padded_len;
     std::vector<double> out(out_len);
-    std::vector<double> mu(5 * kChunk);  // horizontal-pass accumulators
-    std::array<const float*, kTaps> rows_a{}, rows_b{};
+    std::array<const float*, kTaps> rows_a{}, rows_b{}, chunk_a{}, chunk_b{};
 
     for (int y = r.begin(); y != r.end(); ++y) {
       for (int t = 0; t < kTaps; ++t) {
@@ -87,34 +90,17 @@ void ssim_rows(const ImageF& a, const ImageF& b, SsimConstants k, int y0, int y1
         rows_a[t] = a.data.data() + src;
         rows_b[t] = b.data.data() + src;
       }
-      // Vertical pass in L1-sized chunks: tap-outer loops vectorise, and the
-      // five accumulators stay in cache.
+      // Vertical pass in L1-sized chunks: the five accumulators stay in cache.
       const size_t pad = static_cast<size_t>(kR) * nc;
       for (size_t i0 = 0; i0 < row_len; i0 += kChunk) {
         const size_t n = std::min(kChunk, row_len - i0);
-        double* oa = m_a + pad + i0;
-        double* ob = m_b + pad + i0;
-        double* oaa = m_aa + pad + i0;
-        double* obb = m_bb + pad + i0;
-        double* oab = m_ab + pad + i0;
-        std::fill_n(oa, n, 0.0);
-        std::fill_n(ob, n, 0.0);
-        std::fill_n(oaa, n, 0.0);
-        std::fill_n(obb, n, 0.0);
-        std::fill_n(oab, n, 0.0);
         for (int t = 0; t < kTaps; ++t) {
-          const float* ra = rows_a[t] + i0;
-          const float* rb = rows_b[t] + i0;
-          const double wt = w[t];
-          for (size_t i = 0; i < n; ++i) {
-            const double va = ra[i], vb = rb[i];
-            oa[i] += wt * va;
-            ob[i] += wt * vb;
-            oaa[i] += wt * (va * va);
-            obb[i] += wt * (vb * vb);
-            oab[i] += wt * (va * vb);
-          }
+          chunk_a[t] = rows_a[t] + i0;
+          chunk_b[t] = rows_b[t] + i0;
         }
+        const size_t o = pad + i0;
+        detail::vertical_moments(path, chunk_a, chunk_b, w, n,
+                                 {m_a + o, m_b + o, m_aa + o, m_bb + o, m_ab + o});
       }
       // Reflected columns, only needed when the output reaches the border.
       if (x0 < kR || x1 > width - kR) {
@@ -131,36 +117,13 @@ void ssim_rows(const ImageF& a, const ImageF& b, SsimConstants k, int y0, int y1
           }
         }
       }
-      // Horizontal pass + SSIM, again tap-outer over chunks so it vectorises.
-      // Output x reads padded pixels x .. x + 2kR.
+      // Horizontal pass + SSIM, again over chunks. Output x reads padded
+      // pixels x .. x + 2kR.
       for (size_t j0 = 0; j0 < out_len; j0 += kChunk) {
         const size_t n = std::min(kChunk, out_len - j0);
-        std::fill_n(mu.data(), 5 * kChunk, 0.0);
-        double* const ua = mu.data();
-        double* const ub = ua + kChunk;
-        double* const uaa = ub + kChunk;
-        double* const ubb = uaa + kChunk;
-        double* const uab = ubb + kChunk;
-        for (int t = 0; t < kTaps; ++t) {
-          const size_t q = out_begin + j0 + static_cast<size_t>(t) * nc;
-          const double wt = w[t];
-          for (size_t i = 0; i < n; ++i) {
-            ua[i] += wt * m_a[q + i];
-            ub[i] += wt * m_b[q + i];
-            uaa[i] += wt * m_aa[q + i];
-            ubb[i] += wt * m_bb[q + i];
-            uab[i] += wt * m_ab[q + i];
-          }
-        }
-        double* const o = out.data() + j0;
-        for (size_t i = 0; i < n; ++i) {
-          const double va = uaa[i] - ua[i] * ua[i];
-          const double vb = ubb[i] - ub[i] * ub[i];
-          const double cov = uab[i] - ua[i] * ub[i];
-          const double num = (2 * ua[i] * ub[i] + k.c1) * (2 * cov + k.c2);
-          const double den = (ua[i] * ua[i] + ub[i] * ub[i] + k.c1) * (va + vb + k.c2);
-          o[i] = num / den;
-        }
+        const size_t q = out_begin + j0;
+        detail::horizontal_ssim(path, {m_a + q, m_b + q, m_aa + q, m_bb + q, m_ab + q}, nc, w, n,
+                                k.c1, k.c2, out.data() + j0);
       }
       sink(y, out.data());
     }
@@ -190,6 +153,16 @@ double ssim(const ImageF& a, const ImageF& b, double data_range, const std::vect
 
 std::vector<double> ssim(const ImageF& a, const ImageF& b, double data_range,
                          const std::vector<const std::vector<uint8_t>*>& masks) {
+  return detail::ssim_on(detail::widest_simd_path(), a, b, data_range, masks);
+}
+
+ImageF ssim_map(const ImageF& a, const ImageF& b, double data_range) {
+  return detail::ssim_map_on(detail::widest_simd_path(), a, b, data_range);
+}
+
+std::vector<double> detail::ssim_on(SimdPath path, const ImageF& a, const ImageF& b,
+                                    double data_range,
+                                    const std::vector<const std::vector<uint8_t>*>& masks) {
   const SsimConstants k = check_and_constants(a, b, data_range, "metrics::ssim");
   for (const auto* mask : masks) detail::check_mask(a, mask, "metrics::ssim");
   const int nc = a.channels;
@@ -199,7 +172,7 @@ std::vector<double> ssim(const ImageF& a, const ImageF& b, double data_range,
   // does not depend on how TBB split the work: [mask * rows + y].
   std::vector<double> row_sum(n * rows, 0.0);
   std::vector<size_t> row_count(n * rows, 0);
-  ssim_rows(a, b, k, kR, a.height - kR, x0, x1, [&](int y, const double* row) {
+  ssim_rows(path, a, b, k, kR, a.height - kR, x0, x1, [&](int y, const double* row) {
     for (size_t m = 0; m < n; ++m) {
       const std::vector<uint8_t>* mask = masks[m];
       double sum = 0;
@@ -230,11 +203,11 @@ std::vector<double> ssim(const ImageF& a, const ImageF& b, double data_range,
   return out;
 }
 
-ImageF ssim_map(const ImageF& a, const ImageF& b, double data_range) {
+ImageF detail::ssim_map_on(SimdPath path, const ImageF& a, const ImageF& b, double data_range) {
   const SsimConstants k = check_and_constants(a, b, data_range, "metrics::ssim_map");
   ImageF map(a.width, a.height, a.channels);
   const size_t row_len = static_cast<size_t>(a.width) * a.channels;
-  ssim_rows(a, b, k, 0, a.height, 0, a.width, [&](int y, const double* row) {
+  ssim_rows(path, a, b, k, 0, a.height, 0, a.width, [&](int y, const double* row) {
     float* dst = map.data.data() + static_cast<size_t>(y) * row_len;
     for (size_t i = 0; i < row_len; ++i) dst[i] = static_cast<float>(row[i]);
   });

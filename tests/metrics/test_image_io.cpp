@@ -3,10 +3,13 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "metrics/image_io.h"
@@ -110,6 +113,41 @@ TEST(metrics_image_io, FailuresThrowJobErrorNamingThePath) {
   }
   EXPECT_TRUE(leftovers(dir.path()).empty());
   EXPECT_FALSE(std::filesystem::exists(dir.file("five.png")));
+}
+
+// png_byte against std::lround(clamp(v) * 255) on every float within 4096
+// ulps of each value where the rounding changes (v * 255 = k + 1/2) and of
+// the clamp's ends, plus a stride through all of [0, 1] and the odd values.
+TEST(metrics_image_io, PngBytesRoundHalfAwayFromZeroAsLroundDoes) {
+  const auto truth = [](float v) {
+    const float c = v > 0.0f ? std::min(v, 1.0f) : 0.0f;
+    return static_cast<uint8_t>(std::lround(c * 255.0f));
+  };
+  std::vector<float> centres = {0.0f, 1.0f};
+  for (int k = 0; k < 255; ++k) centres.push_back((float(k) + 0.5f) / 255.0f);
+  size_t checked = 0;
+  for (const float centre : centres) {
+    float below = centre, above = centre;
+    for (int step = 0; step < 4096; ++step) {
+      for (const float v : {below, above}) {
+        ASSERT_EQ(png_byte(v), truth(v)) << std::hexfloat << v;
+        ++checked;
+      }
+      below = std::nextafter(below, -1.0f);
+      above = std::nextafter(above, 2.0f);
+    }
+  }
+  for (uint32_t bits = 0; bits <= 0x3f800000u; bits += 997) {
+    float v;
+    std::memcpy(&v, &bits, sizeof v);
+    ASSERT_EQ(png_byte(v), truth(v)) << std::hexfloat << v;
+    ++checked;
+  }
+  EXPECT_EQ(png_byte(std::nanf("")), 0);
+  EXPECT_EQ(png_byte(-std::numeric_limits<float>::infinity()), 0);
+  EXPECT_EQ(png_byte(std::numeric_limits<float>::infinity()), 255);
+  EXPECT_EQ(png_byte(-0.0f), 0);
+  EXPECT_GT(checked, 2000000u);
 }
 
 }  // namespace
