@@ -288,13 +288,16 @@ AdaptiveImages trace_adaptive(const RaySetup& setup, Strata strata, int pilot_sp
                         PixelSamples s(levels, order_of_cell, rays);
                         for (size_t w = range.begin(); w < range.end(); ++w) {
                           const size_t pix = work[w];
-                          if (pilot[pix] == Pilot::Lit && whole_light != nullptr) {
+                          if (pilot[pix] != Pilot::Mixed && whole_light != nullptr) {
                             rays.start(pix);
                             const float* p = &positions.data[pix * 4];
-                            if (whole_light->sees_whole_light(glm::dvec3(p[0], p[1], p[2]),
-                                                              glm::dvec3(rays.origin()),
-                                                              glm::dvec3(rays.normal())))
-                              continue;  // V = 1 at any count: the pilot's figures stand
+                            const glm::dvec3 surface(p[0], p[1], p[2]);
+                            const glm::dvec3 origin(rays.origin()), normal(rays.normal());
+                            // V = 1 or 0 at any count: the pilot's figures stand.
+                            if (pilot[pix] == Pilot::Lit
+                                    ? whole_light->sees_whole_light(surface, origin, normal)
+                                    : whole_light->hides_whole_light(surface, origin, normal))
+                              continue;
                           }
                           s.pilot(pix, choice_key(setup.seed, pix, spp));
                           refine(s, levels.top(), target_std_error);

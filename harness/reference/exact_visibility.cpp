@@ -9,6 +9,7 @@
 #include <initializer_list>
 #include <limits>
 #include <numeric>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 
@@ -38,6 +39,16 @@ Polygon3 clip(const Polygon3& in, const Plane& plane) {
     if ((da >= 0.0) != (db >= 0.0)) out.push_back(a + (b - a) * (da / (da - db)));
   }
   return out;
+}
+
+// A segment (two points, or none) clipped to one plane's inside.
+Polygon3 clip_segment(const Polygon3& in, const Plane& plane) {
+  if (in.size() != 2) return {};
+  const double da = plane.distance(in[0]), db = plane.distance(in[1]);
+  if (da < 0.0 && db < 0.0) return {};
+  if (da >= 0.0 && db >= 0.0) return in;
+  const glm::dvec3 cut = in[0] + (in[1] - in[0]) * (da / (da - db));
+  return da >= 0.0 ? Polygon3{in[0], cut} : Polygon3{cut, in[1]};
 }
 
 // The light's frame: centre, unit axes along half_u and half_v, the unit
@@ -188,9 +199,10 @@ ExactVisibility::ExactVisibility(const Scene& scene, const std::vector<bool>& cl
     const size_t first = triangles_.size();
     double volume = 0.0;  // six times the signed volume
     for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
-      const Triangle t{glm::dvec3(mesh.positions[mesh.indices[i]]),
-                       glm::dvec3(mesh.positions[mesh.indices[i + 1]]),
-                       glm::dvec3(mesh.positions[mesh.indices[i + 2]]), 0};
+      Triangle t{glm::dvec3(mesh.positions[mesh.indices[i]]),
+                 glm::dvec3(mesh.positions[mesh.indices[i + 1]]),
+                 glm::dvec3(mesh.positions[mesh.indices[i + 2]])};
+      t.mesh = uint32_t(m);
       volume += glm::dot(t.a, glm::cross(t.b, t.c));
       triangles_.push_back(t);
     }
@@ -199,6 +211,39 @@ ExactVisibility::ExactVisibility(const Scene& scene, const std::vector<bool>& cl
         triangles_[i].outward = volume > 0 ? 1 : -1;
   }
   if (!triangles_.empty()) build(0, uint32_t(triangles_.size()));
+  link_neighbours();
+}
+
+void ExactVisibility::link_neighbours() {
+  struct Edge {
+    uint32_t mesh;
+    std::array<double, 6> ends;  // the lesser end first
+    uint32_t triangle;
+    int k;
+    bool operator<(const Edge& o) const { return std::tie(mesh, ends) < std::tie(o.mesh, o.ends); }
+    bool same(const Edge& o) const { return mesh == o.mesh && ends == o.ends; }
+  };
+  std::vector<Edge> edges;
+  for (uint32_t i = 0; i < triangles_.size(); ++i) {
+    const Triangle& t = triangles_[i];
+    if (t.outward == 0) continue;
+    const std::array<glm::dvec3, 3> v{t.a, t.b, t.c};
+    for (int k = 0; k < 3; ++k) {
+      glm::dvec3 p = v[size_t(k)], q = v[size_t((k + 1) % 3)];
+      if (std::tie(q.x, q.y, q.z) < std::tie(p.x, p.y, p.z)) std::swap(p, q);
+      edges.push_back({t.mesh, {p.x, p.y, p.z, q.x, q.y, q.z}, i, k});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  for (size_t e = 0; e < edges.size();) {
+    size_t end = e + 1;
+    while (end < edges.size() && edges[end].same(edges[e])) ++end;
+    if (end - e == 2) {  // exactly two triangles share it
+      triangles_[edges[e].triangle].neighbour[size_t(edges[e].k)] = edges[e + 1].triangle;
+      triangles_[edges[e + 1].triangle].neighbour[size_t(edges[e + 1].k)] = edges[e].triangle;
+    }
+    e = end;
+  }
 }
 
 ExactVisibility::~ExactVisibility() = default;
@@ -544,6 +589,92 @@ bool ExactVisibility::sees_whole_light(const glm::dvec3& surface, const glm::dve
         Polygon3 poly{t.a, t.b, t.c};
         for (const Plane& plane : planes) poly = clip(poly, plane);
         return poly.empty();
+      });
+}
+
+bool ExactVisibility::hides_whole_light(const glm::dvec3& surface, const glm::dvec3& origin,
+                                        const glm::dvec3& n) const {
+  if (light_.is_segment()) return false;
+  const double n_length = glm::length(n);
+  if (!(n_length > 0.0)) return false;
+  const double offset = glm::dot(n, origin - surface) / n_length;
+  if (!(offset > 0.0)) return false;
+  Frame f(light_);
+  if (!(f.hw > 0.0) || !(f.hh > 0.0)) return false;
+  constexpr double kWider = 1e-5;
+  // The horizon: the Monte Carlo rays traces no sample below the origin's
+  // plane. All of the light below it hides all of it; part of it, nothing
+  // this proves.
+  int below = 0;
+  for (const glm::dvec3& corner : f.corners()) {
+    const glm::dvec3 d = corner - origin;
+    const double h = glm::dot(n, d), margin = kWider * n_length * glm::length(d);
+    if (h < -margin) {
+      ++below;
+    } else if (!(h > margin)) {
+      return false;
+    }
+  }
+  if (below == 4) return true;
+  if (below > 0 || nodes_.empty()) return false;
+  const glm::dvec3 axis = f.centre - origin;
+  const double axis_length = glm::length(axis);
+  if (!(axis_length > 0.0)) return false;
+  const double size = std::max(f.hw, f.hh);
+  f.hw += kWider * size;
+  f.hh += kWider * size;
+  const double side = glm::dot(origin - f.centre, f.normal) >= 0.0 ? 1.0 : -1.0;
+  f.centre -= side * kWider * size * f.normal;
+  // The closed caster the ray to the light's centre crosses first.
+  const glm::dvec3 to_centre = f.centre - origin;
+  double first_hit = std::numeric_limits<double>::infinity();
+  const Triangle* first = nullptr;
+  traverse([&](const glm::dvec3& lo,
+               const glm::dvec3& hi) { return segment_meets_box(origin, to_centre, lo, hi); },
+           [&](const Triangle& t) {
+             if (t.outward == 0) return;
+             const double hit = segment_crossing(origin, to_centre, t.a, t.b, t.c);
+             if (hit < first_hit) {
+               first_hit = hit;
+               first = &t;
+             }
+           });
+  if (first == nullptr) return false;
+  // Inside it: every ray leaves it (as the exact visibility has it).
+  if (double(first->outward) *
+          glm::dot(glm::cross(first->b - first->a, first->c - first->a), to_centre) >
+      0.0)
+    return true;
+  const uint32_t caster = first->mesh;
+  const std::array<Plane, 5> rays = pyramid(f, origin);
+  const std::array<Plane, 5> wider = pyramid(f, origin - 0.25 * offset * axis / axis_length);
+  const auto faces = [&](const Triangle& t) {
+    const double facing = glm::dot(glm::cross(t.b - t.a, t.c - t.a), origin - t.a);
+    return facing > 0.0 ? 1 : facing < 0.0 ? -1 : 0;
+  };
+  return traverse(
+      [&](const glm::dvec3& lo, const glm::dvec3& hi) { return box_meets(lo, hi, wider); },
+      [&](const Triangle& t) {
+        if (t.mesh != caster) return true;
+        // Reaching the light's plane inside the pyramid: rays may pass
+        // beside it there.
+        if (!(rays[4].distance(t.a) > 0.0 && rays[4].distance(t.b) > 0.0 &&
+              rays[4].distance(t.c) > 0.0)) {
+          Polygon3 sides{t.a, t.b, t.c};
+          for (size_t i = 0; i < 4; ++i) sides = clip(sides, rays[i]);
+          for (const glm::dvec3& x : sides)
+            if (!(rays[4].distance(x) > 0.0)) return false;
+        }
+        const int own = faces(t);
+        const std::array<glm::dvec3, 3> v{t.a, t.b, t.c};
+        for (size_t k = 0; k < 3; ++k) {
+          const uint32_t across = t.neighbour[k];
+          if (own != 0 && across != kNoNeighbour && faces(triangles_[across]) == own) continue;
+          Polygon3 edge{v[k], v[(k + 1) % 3]};
+          for (const Plane& plane : wider) edge = clip_segment(edge, plane);
+          if (!edge.empty()) return false;  // a silhouette edge inside
+        }
+        return true;
       });
 }
 

@@ -49,6 +49,7 @@
 // there is no plane: the rays run along the line, and in each direction a
 // triangle crossing it hides everything beyond its nearest crossing. A point
 // light has no exact form here (Monte Carlo is exact for it).
+#include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <string>
@@ -90,6 +91,22 @@ class ExactVisibility {
   bool sees_whole_light(const glm::dvec3& surface, const glm::dvec3& origin,
                         const glm::dvec3& n) const;
 
+  // Whether every shadow ray from `origin` to a rectangular light provably
+  // misses it: the whole light below the plane through `origin` normal to
+  // n; or origin inside a closed caster; or a closed caster that the ray to
+  // the light's centre crosses, none of whose silhouette edges seen from
+  // origin meets the pyramid to the light and which does not reach the
+  // light's plane inside it. Then the set of rays that cross that caster has
+  // no boundary inside the pyramid and holds the centre's ray: it is every
+  // ray, and the pixel's V is 0 at every sample count, exactly. The same
+  // wider pyramid as sees_whole_light() (its apex set back only for the
+  // silhouette test; which side a triangle faces is seen from origin), an
+  // edge-on triangle or an edge shared by other than two triangles counting
+  // as silhouette. Needs the closed flags given to the constructor; false
+  // where it proves nothing.
+  bool hides_whole_light(const glm::dvec3& surface, const glm::dvec3& origin,
+                         const glm::dvec3& n) const;
+
   // The polygons whose union hides a rectangular light from p, in the light's
   // plane (coordinates along half_u and half_v, the light spanning ±half
   // sizes), counter-clockwise: for benchmarks and tests of the union itself.
@@ -124,13 +141,21 @@ class ExactVisibility {
     // A closed caster's: +1 when its mesh winds outward (positive signed
     // volume), -1 inward; 0 for any other caster.
     int outward = 0;
+    uint32_t mesh = 0;  // index into the scene's meshes
+    // A closed caster's: the triangle across edge k (a-b, b-c, c-a), or
+    // kNoNeighbour where no single other triangle shares it.
+    std::array<uint32_t, 3> neighbour{kNoNeighbour, kNoNeighbour, kNoNeighbour};
   };
+  static constexpr uint32_t kNoNeighbour = 0xffffffffu;
   struct Node {
     glm::dvec3 lo, hi;
     uint32_t first = 0, count = 0;  // leaf: triangles [first, first + count)
     uint32_t left = 0, right = 0;   // inner: children (count == 0)
   };
   uint32_t build(uint32_t first, uint32_t count);
+  // Fills the closed casters' Triangle::neighbour (after build() has put the
+  // triangles in their final order), matching edges by vertex positions.
+  void link_neighbours();
   // Calls visit(triangle) for the triangles of every leaf whose box, and its
   // ancestors', keep(lo, hi) accepts. A visit that returns bool stops the
   // walk by returning false, and traverse() then returns false.

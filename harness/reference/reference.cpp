@@ -336,6 +336,14 @@ void hash_image(Hasher& h, const ImageF& img) {
 
 void hash_vec3(Hasher& h, const glm::vec3& v) { h.add(v.x).add(v.y).add(v.z); }
 
+// Per mesh, whether it is a closed caster (ExactVisibility's constructor).
+std::vector<bool> closed_casters(const Scene& scene) {
+  std::vector<bool> closed;
+  for (const Mesh& m : scene.meshes)
+    closed.push_back(m.casts_shadow && !m.double_sided && analyse_topology(m).closed());
+  return closed;
+}
+
 }  // namespace
 
 Result compute(const Scene& scene, const ImageF& positions, const ImageF& geometric_normals,
@@ -367,10 +375,7 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
     const auto t0 = std::chrono::steady_clock::now();
     // Closed casters keep only the triangles that face the point: either
     // side of a closed mesh covers its shadow once, whichever way it winds.
-    std::vector<bool> closed;
-    for (const Mesh& m : scene.meshes)
-      closed.push_back(m.casts_shadow && !m.double_sided && analyse_topology(m).closed());
-    const ExactVisibility exact(scene, closed);
+    const ExactVisibility exact(scene, closed_casters(scene));
     r.visibility = exact.image(positions, geometric_normals);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     r.std_error = ImageF(positions.width, positions.height, 1, 0.0f);
@@ -396,11 +401,12 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
     const detail::Layout layout = detail::make_layout(s.spp, strata);
     const detail::RaySetup setup(scene, casters, layout, positions, geometric_normals, s.seed);
     if (s.adaptive) {
-      // The proof that a lit pilot missed nothing needs every caster in
-      // polygonal form (no alpha masks, no analytic shapes).
+      // The proofs that an agreeing pilot missed nothing need every caster
+      // in polygonal form (no alpha masks, no analytic shapes); the one for
+      // occluded pilots, which casters are closed.
       std::optional<ExactVisibility> whole_light;
       if (!scene.light.is_segment() && ExactVisibility::unsupported_reason(scene).empty())
-        whole_light.emplace(scene);
+        whole_light.emplace(scene, closed_casters(scene));
       detail::AdaptiveImages a = detail::trace_adaptive(
           setup, strata, s.pilot_spp, s.target_std_error, whole_light ? &*whole_light : nullptr);
       r.visibility = std::move(a.visibility);

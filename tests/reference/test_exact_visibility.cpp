@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
+#include <vector>
 
 #include "reference/exact_visibility.h"
 #include "test_scenes.h"
@@ -310,6 +312,103 @@ TEST(ReferenceExact, SeesTheWholeLightNeverForASegmentOrAPointLight) {
   point.light.half_u = {0, 0, 0};
   point.light.half_v = {0, 0, 0};
   EXPECT_FALSE(ExactVisibility(point).sees_whole_light({0, 0, 0}, {0, 1e-4, 0}, {0, 1, 0}));
+}
+
+// The shadow of a convex box from p, on the light's plane y = 10: the convex
+// hull of its eight corners projected from p (all between p and the plane).
+// Returns the least distance by which the light's corners lie inside that
+// hull (negative: some corner outside): the margin of an umbra.
+double box_umbra_margin(const glm::dvec3& p, const glm::dvec3& lo, const glm::dvec3& hi) {
+  std::vector<glm::dvec2> pts;
+  for (int i = 0; i < 8; ++i) {
+    const glm::dvec3 v((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
+    const double k = (10.0 - p.y) / (v.y - p.y);
+    pts.push_back({p.x + (v.x - p.x) * k, p.z + (v.z - p.z) * k});
+  }
+  // Andrew's monotone chain, counter-clockwise.
+  std::sort(pts.begin(), pts.end(), [](const glm::dvec2& a, const glm::dvec2& b) {
+    return a.x < b.x || (a.x == b.x && a.y < b.y);
+  });
+  const auto cross = [](const glm::dvec2& o, const glm::dvec2& a, const glm::dvec2& b) {
+    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+  };
+  std::vector<glm::dvec2> hull;
+  for (int pass = 0; pass < 2; ++pass) {
+    const size_t start = hull.size();
+    for (const glm::dvec2& q : pts) {
+      while (hull.size() >= start + 2 && cross(hull[hull.size() - 2], hull.back(), q) <= 0.0)
+        hull.pop_back();
+      hull.push_back(q);
+    }
+    hull.pop_back();
+    std::reverse(pts.begin(), pts.end());
+  }
+  double margin = std::numeric_limits<double>::infinity();
+  for (const glm::dvec2 corner :
+       {glm::dvec2(-1, -1), glm::dvec2(1, -1), glm::dvec2(1, 1), glm::dvec2(-1, 1)})
+    for (size_t i = 0; i < hull.size(); ++i) {
+      const glm::dvec2 a = hull[i], b = hull[(i + 1) % hull.size()];
+      margin = std::min(margin, cross(a, b, corner) / glm::length(b - a));
+    }
+  return margin;
+}
+
+// hides_whole_light, the proof that an occluded pilot missed nothing, on
+// ground points under a closed box (the ground casting too, as open
+// geometry): it may only hold where the box's projected hull covers the
+// whole light, and must hold where it covers it with room to spare.
+TEST(ReferenceExact, HidesTheWholeLightExactlyWhereABoxCoversAllOfIt) {
+  const glm::dvec3 lo(-1.5, 3.0, -1.2), hi(1.7, 3.6, 1.4);
+  sb::Scene scene;
+  scene.light = sbtest::square_light();
+  scene.meshes.push_back(box("box", glm::vec3(lo), glm::vec3(hi)));
+  scene.meshes.push_back(
+      sbtest::quad("ground", {-20, 0, -20}, {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}, true));
+  const ExactVisibility exact(scene, {true, false});
+  int proven = 0, umbra = 0;
+  for (int i = 0; i <= 160; ++i)
+    for (int j = 0; j <= 160; ++j) {
+      const double x = -4.0 + 0.05 * i, z = -4.0 + 0.051 * j;
+      const double eps = 0x1p-16 * 20.0;
+      const glm::dvec3 surface(x, 0.0, z), origin(x, eps, z);
+      const bool proof = exact.hides_whole_light(surface, origin, {0, 1, 0});
+      const double margin = box_umbra_margin(origin, lo, hi);
+      if (proof) {
+        ++proven;
+        EXPECT_GT(margin, 0.0) << "x " << x << " z " << z;
+        EXPECT_EQ(exact.visibility(surface, {0, 1, 0}), 0.0) << "x " << x << " z " << z;
+      }
+      if (margin > 1e-3) {
+        ++umbra;
+        EXPECT_TRUE(proof) << "x " << x << " z " << z << " margin " << margin;
+      }
+    }
+  EXPECT_GT(umbra, 2000);
+  EXPECT_GE(proven, umbra);
+}
+
+// The horizon alone, a point inside a closed caster, and what proves
+// nothing: an open quad however large, a light partly below the horizon.
+TEST(ReferenceExact, HidesTheWholeLightBelowTheHorizonInsideACasterAndNowhereElse) {
+  sb::Scene scene;
+  scene.light = sbtest::square_light();
+  scene.meshes.push_back(box("box", {-0.5f, 1.0f, -0.5f}, {0.5f, 2.0f, 0.5f}));
+  scene.meshes.push_back(
+      sbtest::quad("plate", {-9, 5, -9}, {9, 5, -9}, {9, 5, 9}, {-9, 5, 9}, true));
+  const ExactVisibility exact(scene, {true, false});
+  const glm::dvec3 up(0, 1, 0), down(0, -1, 0);
+  // Facing away from the light: all of it below the horizon.
+  EXPECT_TRUE(exact.hides_whole_light({3, 0, 0}, {3, -1e-4, 0}, down));
+  // Tilted so that the plane through (3, 0, 0) meets y = 10 at x = 0, half
+  // the light below it: no proof.
+  const glm::dvec3 half = glm::normalize(glm::dvec3(10.0, 3.0, 0.0));
+  EXPECT_FALSE(exact.hides_whole_light({3, 0, 0}, glm::dvec3(3, 0, 0) + 1e-4 * half, half));
+  // Inside the box, facing up.
+  EXPECT_TRUE(exact.hides_whole_light({0.1, 1.5, 0.2}, {0.1, 1.5001, 0.2}, up));
+  // Under the open plate only (beside the box): it covers the light, but an
+  // open caster proves nothing.
+  EXPECT_EQ(exact.visibility({3, 0, 0}, up), 0.0);
+  EXPECT_FALSE(exact.hides_whole_light({3, 0, 0}, {3, 1e-4, 0}, up));
 }
 
 }  // namespace
