@@ -9,6 +9,7 @@
 #include <initializer_list>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -118,6 +119,55 @@ bool box_meets(const glm::dvec3& lo, const glm::dvec3& hi, const std::array<Plan
   for (const Plane& plane : planes)
     if (box_outside(lo, hi, plane)) return false;
   return true;
+}
+
+constexpr double kProofWider = 1e-5;  // of the light's size, and of distances
+
+// Where both proofs start (sees_whole_light, hides_whole_light): the light
+// taken wider than the rays (1e-5 of its size each way, in its own plane),
+// how far origin lies above the surface along n, the unit axis from origin
+// to the light's centre, and how many of the wider light's corners lie
+// clearly above and below origin's plane (by 1e-5 of their distance). Empty
+// for a segment or a point light, a zero normal, an origin not above the
+// surface or on the light's centre.
+struct ProofStart {
+  Frame light;
+  double offset = 0.0;
+  glm::dvec3 axis{0.0};
+  int above = 0, below = 0;
+};
+
+// The pyramid from apex to the wider light, its cap moved 1e-5 of the
+// light's size beyond the light's plane: it holds every ray from a point
+// between apex and the light (on its axis) to a light sample.
+std::array<Plane, 5> proof_pyramid(const ProofStart& s, const glm::dvec3& apex) {
+  std::array<Plane, 5> planes = pyramid(s.light, apex);
+  planes[4].point -= kProofWider * std::max(s.light.hw, s.light.hh) * planes[4].normal;
+  return planes;
+}
+
+std::optional<ProofStart> proof_start(const AreaLight& light, const glm::dvec3& surface,
+                                      const glm::dvec3& origin, const glm::dvec3& n) {
+  if (light.is_segment()) return std::nullopt;
+  ProofStart s{Frame(light)};
+  Frame& f = s.light;
+  const double n_length = glm::length(n);
+  if (!(n_length > 0.0) || !(f.hw > 0.0) || !(f.hh > 0.0)) return std::nullopt;
+  s.offset = glm::dot(n, origin - surface) / n_length;
+  if (!(s.offset > 0.0)) return std::nullopt;
+  const double size = std::max(f.hw, f.hh);
+  f.hw += kProofWider * size;
+  f.hh += kProofWider * size;
+  const double axis_length = glm::length(f.centre - origin);
+  if (!(axis_length > 0.0)) return std::nullopt;
+  s.axis = (f.centre - origin) / axis_length;
+  for (const glm::dvec3& corner : f.corners()) {
+    const glm::dvec3 d = corner - origin;
+    const double h = glm::dot(n, d), margin = kProofWider * n_length * glm::length(d);
+    s.above += h > margin ? 1 : 0;
+    s.below += h < -margin ? 1 : 0;
+  }
+  return s;
 }
 
 constexpr double kIntegerRange = 1073741824.0;  // 2^30: the light's larger half-size
@@ -557,31 +607,14 @@ double ExactVisibility::union_area(const std::vector<std::vector<glm::dvec2>>& p
 
 bool ExactVisibility::sees_whole_light(const glm::dvec3& surface, const glm::dvec3& origin,
                                        const glm::dvec3& n) const {
-  if (light_.is_segment()) return false;
-  const double n_length = glm::length(n);
-  if (!(n_length > 0.0)) return false;
-  const double offset = glm::dot(n, origin - surface) / n_length;
-  if (!(offset > 0.0)) return false;
-  Frame f(light_);
-  if (!(f.hw > 0.0) || !(f.hh > 0.0)) return false;
-  constexpr double kWider = 1e-5;
   // Every light point above the ray origin's plane: the horizon test of the
   // Monte Carlo rays (pixel_rays.cpp) keeps every sample.
-  for (const glm::dvec3& corner : f.corners()) {
-    const glm::dvec3 d = corner - origin;
-    if (!(glm::dot(n, d) > kWider * n_length * glm::length(d))) return false;
-  }
-  const glm::dvec3 axis = f.centre - origin;
-  const double axis_length = glm::length(axis);
-  if (!(axis_length > 0.0)) return false;
-  const double size = std::max(f.hw, f.hh);
-  f.hw += kWider * size;
-  f.hh += kWider * size;
-  const double side = glm::dot(origin - f.centre, f.normal) >= 0.0 ? 1.0 : -1.0;
-  f.centre -= side * kWider * size * f.normal;
+  const std::optional<ProofStart> start = proof_start(light_, surface, origin, n);
+  if (!start || start->above != 4) return false;
   // The apex stays above the surface's tangent plane (by at least 3/4 of
   // the offset), so the surface the point lies on never meets the pyramid.
-  const std::array<Plane, 5> planes = pyramid(f, origin - 0.25 * offset * axis / axis_length);
+  const std::array<Plane, 5> planes =
+      proof_pyramid(*start, origin - 0.25 * start->offset * start->axis);
   // No triangle keeps any part inside the pyramid.
   return traverse(
       [&](const glm::dvec3& lo, const glm::dvec3& hi) { return box_meets(lo, hi, planes); },
@@ -594,37 +627,15 @@ bool ExactVisibility::sees_whole_light(const glm::dvec3& surface, const glm::dve
 
 bool ExactVisibility::hides_whole_light(const glm::dvec3& surface, const glm::dvec3& origin,
                                         const glm::dvec3& n) const {
-  if (light_.is_segment()) return false;
-  const double n_length = glm::length(n);
-  if (!(n_length > 0.0)) return false;
-  const double offset = glm::dot(n, origin - surface) / n_length;
-  if (!(offset > 0.0)) return false;
-  Frame f(light_);
-  if (!(f.hw > 0.0) || !(f.hh > 0.0)) return false;
-  constexpr double kWider = 1e-5;
-  // The horizon: the Monte Carlo rays traces no sample below the origin's
+  // The horizon: the Monte Carlo rays trace no sample below the origin's
   // plane. All of the light below it hides all of it; part of it, nothing
   // this proves.
-  int below = 0;
-  for (const glm::dvec3& corner : f.corners()) {
-    const glm::dvec3 d = corner - origin;
-    const double h = glm::dot(n, d), margin = kWider * n_length * glm::length(d);
-    if (h < -margin) {
-      ++below;
-    } else if (!(h > margin)) {
-      return false;
-    }
-  }
-  if (below == 4) return true;
-  if (below > 0 || nodes_.empty()) return false;
-  const glm::dvec3 axis = f.centre - origin;
-  const double axis_length = glm::length(axis);
-  if (!(axis_length > 0.0)) return false;
-  const double size = std::max(f.hw, f.hh);
-  f.hw += kWider * size;
-  f.hh += kWider * size;
-  const double side = glm::dot(origin - f.centre, f.normal) >= 0.0 ? 1.0 : -1.0;
-  f.centre -= side * kWider * size * f.normal;
+  const std::optional<ProofStart> start = proof_start(light_, surface, origin, n);
+  if (!start) return false;
+  if (start->below == 4) return true;
+  if (start->above != 4 || nodes_.empty()) return false;
+  const Frame& f = start->light;
+  const double offset = start->offset;
   // The closed caster the ray to the light's centre crosses first.
   const glm::dvec3 to_centre = f.centre - origin;
   double first_hit = std::numeric_limits<double>::infinity();
@@ -646,8 +657,8 @@ bool ExactVisibility::hides_whole_light(const glm::dvec3& surface, const glm::dv
       0.0)
     return true;
   const uint32_t caster = first->mesh;
-  const std::array<Plane, 5> rays = pyramid(f, origin);
-  const std::array<Plane, 5> wider = pyramid(f, origin - 0.25 * offset * axis / axis_length);
+  const std::array<Plane, 5> rays = proof_pyramid(*start, origin);
+  const std::array<Plane, 5> wider = proof_pyramid(*start, origin - 0.25 * offset * start->axis);
   const auto faces = [&](const Triangle& t) {
     const double facing = glm::dot(glm::cross(t.b - t.a, t.c - t.a), origin - t.a);
     return facing > 0.0 ? 1 : facing < 0.0 ? -1 : 0;

@@ -302,6 +302,28 @@ TEST(ReferenceExact, SeesTheWholeLightPastABlockerOnlyBeyondTheMargin) {
   }
 }
 
+// Seen from far to the side, rays reach the light's edge at a grazing
+// angle. From (-20, 1e-4, 0) the ray to the light's edge x = 1 crosses
+// y = 9.999 at x = 0.9979002: a blocker there from x = 0.997897 on hides a
+// sliver of the light (the exact visibility says so), and one from 0.9981
+// on hides nothing.
+TEST(ReferenceExact, SeesTheWholeLightNotPastABlockerAtTheLightsEdgeSeenAtAGrazingAngle) {
+  const glm::dvec3 surface(-20, 0, 0), origin(-20, 1e-4, 0), up(0, 1, 0);
+  const auto blocker_from = [](float x0) {
+    sb::Scene scene;
+    scene.light = sbtest::square_light();
+    scene.meshes.push_back(sbtest::quad("blocker", {x0, 9.999f, -0.5f}, {1.5f, 9.999f, -0.5f},
+                                        {1.5f, 9.999f, 0.5f}, {x0, 9.999f, 0.5f}, true));
+    return scene;
+  };
+  const ExactVisibility in_the_way(blocker_from(0.997897f));
+  EXPECT_LT(in_the_way.visibility(surface, up), 1.0);
+  EXPECT_FALSE(in_the_way.sees_whole_light(surface, origin, up));
+  const ExactVisibility clear(blocker_from(0.9981f));
+  EXPECT_EQ(clear.visibility(surface, up), 1.0);
+  EXPECT_TRUE(clear.sees_whole_light(surface, origin, up));
+}
+
 TEST(ReferenceExact, SeesTheWholeLightNeverForASegmentOrAPointLight) {
   sb::Scene segment;
   segment.light = sbtest::square_light();
