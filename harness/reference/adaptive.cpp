@@ -171,12 +171,13 @@ constexpr int kTile = 8;  // pixels a side
 constexpr double kErrorFallPerLevel = 2.83;
 
 // A pixel sent to refinement: level by level while its error is above the
-// target; straight to the full count when its samples all agree (a
-// neighbour saw what they have not, and only the full count is sure to see
-// it where the uniform reference does), or when the error's fall per level
-// puts the target at level K anyway. The full count is traced in the
-// uniform reference's coherent order. A mixed estimate whose error is 0
-// (every pair agrees, the pairs do not) is not trusted to meet any target.
+// target; straight to the full count when its samples all agree (nothing
+// proved them right, or a neighbour saw what they have not, and only the
+// full count is sure to see it where the uniform reference does), or when
+// the error's fall per level puts the target at level K anyway. The full
+// count is traced in the uniform reference's coherent order. A mixed
+// estimate whose error is 0 (every pair agrees, the pairs do not) is not
+// trusted to meet any target.
 void refine(PixelSamples& s, int top, double target) {
   while (s.level() < top) {
     if (!s.mixed()) {
@@ -224,6 +225,8 @@ AdaptiveImages trace_adaptive(const RaySetup& setup, Strata strata, int pilot_sp
                      ImageF(width, height, 1, 0.0f)};
   const size_t pixels = positions.pixel_count();
   std::vector<Pilot> pilot(pixels, Pilot::None);
+  // Agreeing pilots proven to see the whole light, or none of it.
+  std::vector<uint8_t> proven(pixels, 0);
 
   const auto store = [&](size_t pix, const PixelSamples& s) {
     out.visibility.data[pix] = float(double(s.reached()) / double(s.count()));
@@ -246,6 +249,15 @@ AdaptiveImages trace_adaptive(const RaySetup& setup, Strata strata, int pilot_sp
                           pilot[pix] = s.mixed()                  ? Pilot::Mixed
                                        : s.reached() == s.count() ? Pilot::Lit
                                                                   : Pilot::Occluded;
+                          if (whole_light != nullptr && pilot[pix] != Pilot::Mixed) {
+                            const float* p = &positions.data[pix * 4];
+                            const glm::dvec3 surface(p[0], p[1], p[2]);
+                            const glm::dvec3 origin(rays.origin()), normal(rays.normal());
+                            proven[pix] =
+                                pilot[pix] == Pilot::Lit
+                                    ? whole_light->sees_whole_light(surface, origin, normal)
+                                    : whole_light->hides_whole_light(surface, origin, normal);
+                          }
                         }
                     });
 
@@ -271,7 +283,9 @@ AdaptiveImages trace_adaptive(const RaySetup& setup, Strata strata, int pilot_sp
         for (int x = tx; x < std::min(tx + kTile, width); ++x) {
           const size_t pix = size_t(y) * size_t(width) + size_t(x);
           if (pilot[pix] == Pilot::None) continue;
-          if (pilot[pix] == Pilot::Mixed || disagreeing_window(pix)) {
+          const bool refine_it = pilot[pix] == Pilot::Mixed ||
+                                 (whole_light != nullptr ? !proven[pix] : disagreeing_window(pix));
+          if (refine_it) {
             work.push_back(pix);
             taken[pix] = 1;
           }
@@ -288,17 +302,6 @@ AdaptiveImages trace_adaptive(const RaySetup& setup, Strata strata, int pilot_sp
                         PixelSamples s(levels, order_of_cell, rays);
                         for (size_t w = range.begin(); w < range.end(); ++w) {
                           const size_t pix = work[w];
-                          if (pilot[pix] != Pilot::Mixed && whole_light != nullptr) {
-                            rays.start(pix);
-                            const float* p = &positions.data[pix * 4];
-                            const glm::dvec3 surface(p[0], p[1], p[2]);
-                            const glm::dvec3 origin(rays.origin()), normal(rays.normal());
-                            // V = 1 or 0 at any count: the pilot's figures stand.
-                            if (pilot[pix] == Pilot::Lit
-                                    ? whole_light->sees_whole_light(surface, origin, normal)
-                                    : whole_light->hides_whole_light(surface, origin, normal))
-                              continue;
-                          }
                           s.pilot(pix, choice_key(setup.seed, pix, spp));
                           refine(s, levels.top(), target_std_error);
                           store(pix, s);
@@ -314,7 +317,7 @@ AdaptiveImages trace_adaptive(const RaySetup& setup, Strata strata, int pilot_sp
           const int nx = x + dx, ny = y + dy;
           if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
           const size_t n = size_t(ny) * size_t(width) + size_t(nx);
-          if (pilot[n] == Pilot::None || taken[n]) continue;
+          if (pilot[n] == Pilot::None || taken[n] || proven[n]) continue;
           taken[n] = 1;
           next.push_back(n);
         }

@@ -23,17 +23,23 @@
 // samples is not trusted), level by level, or straight to level K when the
 // error's fall per level puts the target there. A pilot whose samples all
 // agree (all lit or all occluded) has an estimated error of 0 that says
-// nothing about a small occluder the pilot missed; it stops only if every
-// covered pixel within kNeighbourhood pixels (a 5×5 window) has a pilot
-// that agrees with it, all lit or all occluded alike, or, when lit, when the
-// casters' triangles provably leave the whole light in view
-// (ExactVisibility::sees_whole_light: no triangle meets the pyramid from its
-// ray origin to the light, so every sample at every count reaches it).
-// Otherwise it goes straight to level K. A pixel so refined that turns out mixed sends its
-// own agreeing neighbours to level K in turn, until no more do: a penumbra
-// that the pilots saw in one pixel is followed, at full samples, to
-// wherever it fades out. Level K is traced in the uniform reference's
-// order (coherent packets), skipping the samples already taken.
+// nothing about a small occluder the pilot missed. Where the casters have
+// an exact polygonal form and the light is a rectangle (`whole_light`
+// given), it stops only when that is proven: lit, when no caster triangle
+// meets the pyramid from its ray origin to the light
+// (ExactVisibility::sees_whole_light); occluded, when a closed caster
+// provably covers the whole light (hides_whole_light). Every sample at any
+// count then agrees, so the pilot's figures are the full count's. Otherwise
+// it goes straight to level K. Without the proofs (alpha-masked or analytic
+// casters, a segment light) it stops only if every covered pixel within
+// kNeighbourhood pixels (a 5×5 window) has a pilot that agrees with it, all
+// lit or all occluded alike; otherwise it goes to level K, and if it then
+// turns out mixed it sends its own agreeing neighbours to level K in turn,
+// until no more do: a penumbra that the pilots saw in one pixel is
+// followed, at full samples, to wherever it fades out (an isolated soft
+// pixel among agreeing ones can be missed there; the proofs cannot miss
+// it). Level K is traced in the uniform reference's order (coherent
+// packets).
 #include <cstdint>
 #include <string>
 
@@ -62,7 +68,8 @@ struct AdaptiveImages {
 
 // The setup's layout must be make_layout(spp, strata) with spp and
 // pilot_spp as adaptive_layout_problem() accepts. `whole_light`, when given,
-// proves lit pilots (built over the same casters; null: the window alone).
+// proves agreeing pilots (built over the same casters, with their closed
+// flags; null: the window rule).
 AdaptiveImages trace_adaptive(const RaySetup& setup, Strata strata, int pilot_spp,
                               double target_std_error,
                               const ExactVisibility* whole_light = nullptr);

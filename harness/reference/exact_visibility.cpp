@@ -42,14 +42,48 @@ Polygon3 clip(const Polygon3& in, const Plane& plane) {
   return out;
 }
 
-// A segment (two points, or none) clipped to one plane's inside.
-Polygon3 clip_segment(const Polygon3& in, const Plane& plane) {
-  if (in.size() != 2) return {};
-  const double da = plane.distance(in[0]), db = plane.distance(in[1]);
-  if (da < 0.0 && db < 0.0) return {};
-  if (da >= 0.0 && db >= 0.0) return in;
-  const glm::dvec3 cut = in[0] + (in[1] - in[0]) * (da / (da - db));
-  return da >= 0.0 ? Polygon3{in[0], cut} : Polygon3{cut, in[1]};
+// Whether any part of triangle abc lies inside all five planes: clipping as
+// clip() does, on fixed buffers (five planes leave at most eight vertices),
+// after the cheap answers (all inside; all outside one plane).
+bool triangle_meets(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                    const std::array<Plane, 5>& planes) {
+  bool all_inside = true;
+  for (const Plane& plane : planes) {
+    const double da = plane.distance(a), db = plane.distance(b), dc = plane.distance(c);
+    if (da < 0.0 && db < 0.0 && dc < 0.0) return false;
+    all_inside = all_inside && da >= 0.0 && db >= 0.0 && dc >= 0.0;
+  }
+  if (all_inside) return true;
+  std::array<glm::dvec3, 10> in{a, b, c}, out{};
+  size_t n = 3;
+  for (const Plane& plane : planes) {
+    size_t m = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const glm::dvec3& p = in[i];
+      const glm::dvec3& q = in[(i + 1) % n];
+      const double dp = plane.distance(p), dq = plane.distance(q);
+      if (dp >= 0.0) out[m++] = p;
+      if ((dp >= 0.0) != (dq >= 0.0)) out[m++] = p + (q - p) * (dp / (dp - dq));
+    }
+    if (m == 0) return false;
+    std::swap(in, out);
+    n = m;
+  }
+  return true;
+}
+
+// Whether any part of segment pq lies inside all five planes (parametric
+// clipping: the part left is t in [t0, t1]).
+bool segment_meets(const glm::dvec3& p, const glm::dvec3& q, const std::array<Plane, 5>& planes) {
+  double t0 = 0.0, t1 = 1.0;
+  for (const Plane& plane : planes) {
+    const double dp = plane.distance(p), dq = plane.distance(q);
+    if (dp < 0.0 && dq < 0.0) return false;
+    if (dp < 0.0) t0 = std::max(t0, dp / (dp - dq));
+    if (dq < 0.0) t1 = std::min(t1, dp / (dp - dq));
+    if (t0 > t1) return false;
+  }
+  return true;
 }
 
 // The light's frame: centre, unit axes along half_u and half_v, the unit
@@ -139,11 +173,32 @@ struct ProofStart {
 
 // The pyramid from apex to the wider light, its cap moved 1e-5 of the
 // light's size beyond the light's plane: it holds every ray from a point
-// between apex and the light (on its axis) to a light sample.
-std::array<Plane, 5> proof_pyramid(const ProofStart& s, const glm::dvec3& apex) {
-  std::array<Plane, 5> planes = pyramid(s.light, apex);
-  planes[4].point -= kProofWider * std::max(s.light.hw, s.light.hh) * planes[4].normal;
-  return planes;
+// between apex and the light (on its axis) to a light sample. With its
+// bounding box, a cheaper first test for the hierarchy's boxes.
+struct ProofPyramid {
+  std::array<Plane, 5> planes;
+  glm::dvec3 lo{0.0}, hi{0.0};
+  bool meets(const glm::dvec3& box_lo, const glm::dvec3& box_hi) const {
+    return box_lo.x <= hi.x && box_lo.y <= hi.y && box_lo.z <= hi.z && lo.x <= box_hi.x &&
+           lo.y <= box_hi.y && lo.z <= box_hi.z && box_meets(box_lo, box_hi, planes);
+  }
+};
+
+ProofPyramid proof_pyramid(const ProofStart& s, const glm::dvec3& apex) {
+  ProofPyramid p{pyramid(s.light, apex)};
+  const double beyond = kProofWider * std::max(s.light.hw, s.light.hh);
+  p.planes[4].point -= beyond * p.planes[4].normal;
+  // The pyramid ends at the moved cap, where its section is the light's
+  // scaled from apex.
+  const double depth = std::fabs(glm::dot(apex - s.light.centre, s.light.normal));
+  const double scale = depth > 0.0 ? (depth + beyond) / depth : 1.0;
+  p.lo = p.hi = apex;
+  for (const glm::dvec3& corner : s.light.corners()) {
+    const glm::dvec3 x = apex + (corner - apex) * scale;
+    p.lo = glm::min(p.lo, x);
+    p.hi = glm::max(p.hi, x);
+  }
+  return p;
 }
 
 std::optional<ProofStart> proof_start(const AreaLight& light, const glm::dvec3& surface,
@@ -253,6 +308,7 @@ ExactVisibility::ExactVisibility(const Scene& scene, const std::vector<bool>& cl
                  glm::dvec3(mesh.positions[mesh.indices[i + 1]]),
                  glm::dvec3(mesh.positions[mesh.indices[i + 2]])};
       t.mesh = uint32_t(m);
+      t.normal = glm::cross(t.b - t.a, t.c - t.a);
       volume += glm::dot(t.a, glm::cross(t.b, t.c));
       triangles_.push_back(t);
     }
@@ -332,7 +388,9 @@ uint32_t ExactVisibility::build(uint32_t first, uint32_t count) {
 template <typename Keep, typename Visit>
 bool ExactVisibility::traverse(const Keep& keep, const Visit& visit) const {
   if (nodes_.empty()) return true;
-  std::vector<uint32_t> stack{0};
+  // One per thread, kept: a walk per pixel would otherwise allocate.
+  thread_local std::vector<uint32_t> stack;
+  stack.assign(1, 0);
   while (!stack.empty()) {
     const Node& node = nodes_[stack.back()];
     stack.pop_back();
@@ -613,16 +671,10 @@ bool ExactVisibility::sees_whole_light(const glm::dvec3& surface, const glm::dve
   if (!start || start->above != 4) return false;
   // The apex stays above the surface's tangent plane (by at least 3/4 of
   // the offset), so the surface the point lies on never meets the pyramid.
-  const std::array<Plane, 5> planes =
-      proof_pyramid(*start, origin - 0.25 * start->offset * start->axis);
+  const ProofPyramid rays = proof_pyramid(*start, origin - 0.25 * start->offset * start->axis);
   // No triangle keeps any part inside the pyramid.
-  return traverse(
-      [&](const glm::dvec3& lo, const glm::dvec3& hi) { return box_meets(lo, hi, planes); },
-      [&](const Triangle& t) {
-        Polygon3 poly{t.a, t.b, t.c};
-        for (const Plane& plane : planes) poly = clip(poly, plane);
-        return poly.empty();
-      });
+  return traverse([&](const glm::dvec3& lo, const glm::dvec3& hi) { return rays.meets(lo, hi); },
+                  [&](const Triangle& t) { return !triangle_meets(t.a, t.b, t.c, rays.planes); });
 }
 
 bool ExactVisibility::hides_whole_light(const glm::dvec3& surface, const glm::dvec3& origin,
@@ -657,36 +709,35 @@ bool ExactVisibility::hides_whole_light(const glm::dvec3& surface, const glm::dv
       0.0)
     return true;
   const uint32_t caster = first->mesh;
-  const std::array<Plane, 5> rays = proof_pyramid(*start, origin);
-  const std::array<Plane, 5> wider = proof_pyramid(*start, origin - 0.25 * offset * start->axis);
+  const std::array<Plane, 5> rays = proof_pyramid(*start, origin).planes;
+  const ProofPyramid wider = proof_pyramid(*start, origin - 0.25 * offset * start->axis);
   const auto faces = [&](const Triangle& t) {
-    const double facing = glm::dot(glm::cross(t.b - t.a, t.c - t.a), origin - t.a);
+    const double facing = glm::dot(t.normal, origin - t.a);
     return facing > 0.0 ? 1 : facing < 0.0 ? -1 : 0;
   };
-  return traverse(
-      [&](const glm::dvec3& lo, const glm::dvec3& hi) { return box_meets(lo, hi, wider); },
-      [&](const Triangle& t) {
-        if (t.mesh != caster) return true;
-        // Reaching the light's plane inside the pyramid: rays may pass
-        // beside it there.
-        if (!(rays[4].distance(t.a) > 0.0 && rays[4].distance(t.b) > 0.0 &&
-              rays[4].distance(t.c) > 0.0)) {
-          Polygon3 sides{t.a, t.b, t.c};
-          for (size_t i = 0; i < 4; ++i) sides = clip(sides, rays[i]);
-          for (const glm::dvec3& x : sides)
-            if (!(rays[4].distance(x) > 0.0)) return false;
-        }
-        const int own = faces(t);
-        const std::array<glm::dvec3, 3> v{t.a, t.b, t.c};
-        for (size_t k = 0; k < 3; ++k) {
-          const uint32_t across = t.neighbour[k];
-          if (own != 0 && across != kNoNeighbour && faces(triangles_[across]) == own) continue;
-          Polygon3 edge{v[k], v[(k + 1) % 3]};
-          for (const Plane& plane : wider) edge = clip_segment(edge, plane);
-          if (!edge.empty()) return false;  // a silhouette edge inside
-        }
-        return true;
-      });
+  return traverse([&](const glm::dvec3& lo, const glm::dvec3& hi) { return wider.meets(lo, hi); },
+                  [&](const Triangle& t) {
+                    if (t.mesh != caster) return true;
+                    // Reaching the light's plane inside the pyramid: rays may pass
+                    // beside it there.
+                    if (!(rays[4].distance(t.a) > 0.0 && rays[4].distance(t.b) > 0.0 &&
+                          rays[4].distance(t.c) > 0.0)) {
+                      Polygon3 sides{t.a, t.b, t.c};
+                      for (size_t i = 0; i < 4; ++i) sides = clip(sides, rays[i]);
+                      for (const glm::dvec3& x : sides)
+                        if (!(rays[4].distance(x) > 0.0)) return false;
+                    }
+                    const int own = faces(t);
+                    const std::array<glm::dvec3, 3> v{t.a, t.b, t.c};
+                    for (size_t k = 0; k < 3; ++k) {
+                      const uint32_t across = t.neighbour[k];
+                      if (own != 0 && across != kNoNeighbour && faces(triangles_[across]) == own)
+                        continue;
+                      if (segment_meets(v[k], v[(k + 1) % 3], wider.planes))
+                        return false;  // a silhouette edge inside
+                    }
+                    return true;
+                  });
 }
 
 double ExactVisibility::visibility(const glm::dvec3& p, const glm::dvec3& n) const {

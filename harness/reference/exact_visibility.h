@@ -141,7 +141,8 @@ class ExactVisibility {
     // A closed caster's: +1 when its mesh winds outward (positive signed
     // volume), -1 inward; 0 for any other caster.
     int outward = 0;
-    uint32_t mesh = 0;  // index into the scene's meshes
+    uint32_t mesh = 0;       // index into the scene's meshes
+    glm::dvec3 normal{0.0};  // (b - a) × (c - a)
     // A closed caster's: the triangle across edge k (a-b, b-c, c-a), or
     // kNoNeighbour where no single other triangle shares it.
     std::array<uint32_t, 3> neighbour{kNoNeighbour, kNoNeighbour, kNoNeighbour};
