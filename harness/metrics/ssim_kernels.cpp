@@ -73,6 +73,13 @@ using Weights = std::array<double, kSsimTaps>;
 void vertical_baseline(const Rows& ra, const Rows& rb, const Weights& w, size_t n, Moments out) {
   vertical_body(ra, rb, w, n, out);
 }
+void horizontal_baseline(ConstMoments in, size_t stride, const Weights& w, size_t n, double c1,
+                         double c2, double* out) {
+  horizontal_body(in, stride, w, n, c1, c2, out);
+}
+
+// The wider copies exist on x86-64 only; elsewhere the baseline is all.
+#if defined(__x86_64__)
 [[gnu::target("avx2")]] void vertical_avx2(const Rows& ra, const Rows& rb, const Weights& w,
                                            size_t n, Moments out) {
   vertical_body(ra, rb, w, n, out);
@@ -83,11 +90,6 @@ void vertical_baseline(const Rows& ra, const Rows& rb, const Weights& w, size_t 
                                                                         Moments out) {
   vertical_body(ra, rb, w, n, out);
 }
-
-void horizontal_baseline(ConstMoments in, size_t stride, const Weights& w, size_t n, double c1,
-                         double c2, double* out) {
-  horizontal_body(in, stride, w, n, c1, c2, out);
-}
 [[gnu::target("avx2")]] void horizontal_avx2(ConstMoments in, size_t stride, const Weights& w,
                                              size_t n, double c1, double c2, double* out) {
   horizontal_body(in, stride, w, n, c1, c2, out);
@@ -96,6 +98,7 @@ void horizontal_baseline(ConstMoments in, size_t stride, const Weights& w, size_
     ConstMoments in, size_t stride, const Weights& w, size_t n, double c1, double c2, double* out) {
   horizontal_body(in, stride, w, n, c1, c2, out);
 }
+#endif
 
 }  // namespace
 
@@ -113,10 +116,16 @@ std::string to_string(SimdPath path) {
 
 bool runs_here(SimdPath path) {
   switch (path) {
+#if defined(__x86_64__)
     case SimdPath::Avx2:
       return __builtin_cpu_supports("avx2");
     case SimdPath::Avx512:
       return __builtin_cpu_supports("avx512f");
+#else
+    case SimdPath::Avx2:
+    case SimdPath::Avx512:
+      return false;
+#endif
     case SimdPath::Baseline:
       break;
   }
@@ -133,28 +142,22 @@ SimdPath widest_simd_path() {
 void vertical_moments(SimdPath path, const std::array<const float*, kSsimTaps>& rows_a,
                       const std::array<const float*, kSsimTaps>& rows_b,
                       const std::array<double, kSsimTaps>& w, size_t n, Moments out) {
-  switch (path) {
-    case SimdPath::Avx512:
-      return vertical_avx512(rows_a, rows_b, w, n, out);
-    case SimdPath::Avx2:
-      return vertical_avx2(rows_a, rows_b, w, n, out);
-    case SimdPath::Baseline:
-      break;
-  }
+#if defined(__x86_64__)
+  if (path == SimdPath::Avx512) return vertical_avx512(rows_a, rows_b, w, n, out);
+  if (path == SimdPath::Avx2) return vertical_avx2(rows_a, rows_b, w, n, out);
+#endif
+  (void)path;  // elsewhere every path is the baseline
   vertical_baseline(rows_a, rows_b, w, n, out);
 }
 
 void horizontal_ssim(SimdPath path, ConstMoments in, size_t stride,
                      const std::array<double, kSsimTaps>& w, size_t n, double c1, double c2,
                      double* out) {
-  switch (path) {
-    case SimdPath::Avx512:
-      return horizontal_avx512(in, stride, w, n, c1, c2, out);
-    case SimdPath::Avx2:
-      return horizontal_avx2(in, stride, w, n, c1, c2, out);
-    case SimdPath::Baseline:
-      break;
-  }
+#if defined(__x86_64__)
+  if (path == SimdPath::Avx512) return horizontal_avx512(in, stride, w, n, c1, c2, out);
+  if (path == SimdPath::Avx2) return horizontal_avx2(in, stride, w, n, c1, c2, out);
+#endif
+  (void)path;  // elsewhere every path is the baseline
   horizontal_baseline(in, stride, w, n, c1, c2, out);
 }
 

@@ -21,7 +21,9 @@ namespace sb::metrics::detail {
 enum class SimdPath { Baseline, Avx2, Avx512 };
 
 std::string to_string(SimdPath path);
-// Whether this CPU can run the path (Baseline: always).
+// Whether this CPU can run the path (Baseline: always; the others only on
+// x86-64, where they are built). Asking a kernel for a path that does not
+// run here is the caller's error.
 bool runs_here(SimdPath path);
 // The widest path this CPU runs: what ssim() and ssim_map() use.
 SimdPath widest_simd_path();

@@ -27,24 +27,30 @@ struct Plane {
   double distance(const glm::dvec3& x) const { return glm::dot(normal, x - point); }
 };
 
-// Sutherland–Hodgman against one plane, keeping the inside.
-Polygon3 clip(const Polygon3& in, const Plane& plane) {
-  Polygon3 out;
-  if (in.empty()) return out;
-  out.reserve(in.size() + 1);
-  for (size_t i = 0; i < in.size(); ++i) {
+// Sutherland–Hodgman against one plane, keeping the inside: the n corners
+// of `in` to `out` (room for 2n), returning how many it keeps.
+size_t clip_into(const glm::dvec3* in, size_t n, const Plane& plane, glm::dvec3* out) {
+  size_t m = 0;
+  for (size_t i = 0; i < n; ++i) {
     const glm::dvec3& a = in[i];
-    const glm::dvec3& b = in[(i + 1) % in.size()];
+    const glm::dvec3& b = in[(i + 1) % n];
     const double da = plane.distance(a), db = plane.distance(b);
-    if (da >= 0.0) out.push_back(a);
-    if ((da >= 0.0) != (db >= 0.0)) out.push_back(a + (b - a) * (da / (da - db)));
+    if (da >= 0.0) out[m++] = a;
+    if ((da >= 0.0) != (db >= 0.0)) out[m++] = a + (b - a) * (da / (da - db));
   }
+  return m;
+}
+
+Polygon3 clip(const Polygon3& in, const Plane& plane) {
+  Polygon3 out(2 * in.size());
+  out.resize(clip_into(in.data(), in.size(), plane, out.data()));
   return out;
 }
 
-// Whether any part of triangle abc lies inside all five planes: clipping as
-// clip() does, on fixed buffers (five planes leave at most eight vertices),
-// after the cheap answers (all inside; all outside one plane).
+// Whether any part of triangle abc lies inside all five planes: clipped on
+// fixed buffers (a convex polygon gains at most one corner a plane, so
+// eight at most), after the cheap answers (all inside; all outside one
+// plane).
 bool triangle_meets(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
                     const std::array<Plane, 5>& planes) {
   bool all_inside = true;
@@ -54,20 +60,12 @@ bool triangle_meets(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& 
     all_inside = all_inside && da >= 0.0 && db >= 0.0 && dc >= 0.0;
   }
   if (all_inside) return true;
-  std::array<glm::dvec3, 10> in{a, b, c}, out{};
+  std::array<glm::dvec3, 16> in{a, b, c}, out{};
   size_t n = 3;
   for (const Plane& plane : planes) {
-    size_t m = 0;
-    for (size_t i = 0; i < n; ++i) {
-      const glm::dvec3& p = in[i];
-      const glm::dvec3& q = in[(i + 1) % n];
-      const double dp = plane.distance(p), dq = plane.distance(q);
-      if (dp >= 0.0) out[m++] = p;
-      if ((dp >= 0.0) != (dq >= 0.0)) out[m++] = p + (q - p) * (dp / (dp - dq));
-    }
-    if (m == 0) return false;
+    n = clip_into(in.data(), n, plane, out.data());
+    if (n == 0) return false;
     std::swap(in, out);
-    n = m;
   }
   return true;
 }
@@ -440,7 +438,7 @@ std::vector<glm::dvec2> ExactVisibility::hidden_intervals(const glm::dvec3& surf
   bool leaves_through_it = false;
   // Whether a triangle can hide anything; updates the inside test.
   const auto candidate = [&](const Triangle& t) {
-    const glm::dvec3 normal = glm::cross(t.b - t.a, t.c - t.a);
+    const glm::dvec3& normal = t.normal;
     if (t.outward != 0) {
       const double hit = segment_crossing(p, to_centre, t.a, t.b, t.c);
       if (hit < first_hit) {
@@ -614,7 +612,7 @@ std::vector<std::vector<glm::dvec2>> ExactVisibility::occluding_polygons(
   bool leaves_through_it = false;
   traverse([&](const glm::dvec3& lo, const glm::dvec3& hi) { return box_meets(lo, hi, planes); },
            [&](const Triangle& t) {
-             const glm::dvec3 normal = glm::cross(t.b - t.a, t.c - t.a);
+             const glm::dvec3& normal = t.normal;
              const double facing = glm::dot(normal, p - t.a);
              if (t.outward != 0) {
                const double hit = segment_crossing(p, to_centre, t.a, t.b, t.c);
@@ -704,10 +702,7 @@ bool ExactVisibility::hides_whole_light(const glm::dvec3& surface, const glm::dv
            });
   if (first == nullptr) return false;
   // Inside it: every ray leaves it (as the exact visibility has it).
-  if (double(first->outward) *
-          glm::dot(glm::cross(first->b - first->a, first->c - first->a), to_centre) >
-      0.0)
-    return true;
+  if (double(first->outward) * glm::dot(first->normal, to_centre) > 0.0) return true;
   const uint32_t caster = first->mesh;
   const std::array<Plane, 5> rays = proof_pyramid(*start, origin).planes;
   const ProofPyramid wider = proof_pyramid(*start, origin - 0.25 * offset * start->axis);

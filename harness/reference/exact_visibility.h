@@ -81,11 +81,11 @@ class ExactVisibility {
   // surface point `surface` offset along n) to a rectangular light provably
   // reaches it: every light point lies above the plane through `origin`
   // normal to n, and no caster triangle meets the pyramid from `origin` to
-  // the light. Then the pixel's V is 1 at every sample count, exactly. The
-  // pyramid is taken a little wider than the rays (its apex a quarter of the
-  // offset back along its axis, the light 1e-5 of its size larger and that
-  // much farther), far beyond float rounding, so a triangle that a ray could
-  // graze counts as meeting it. False for a segment or a point light, and
+  // the light. Then the pixel's V is 1 at every sample count. The pyramid is
+  // taken a little wider than the rays (its apex a quarter of the offset
+  // back along its axis, the light 1e-5 of its size wider in its own plane,
+  // the cap that much beyond it), far beyond float rounding, so a triangle
+  // that a ray could graze counts as meeting it. False for a segment or a point light, and
   // when origin is not above the surface. The adaptive reference's proof
   // that a lit pilot missed nothing (adaptive.h).
   bool sees_whole_light(const glm::dvec3& surface, const glm::dvec3& origin,
@@ -98,7 +98,7 @@ class ExactVisibility {
   // origin meets the pyramid to the light and which does not reach the
   // light's plane inside it. Then the set of rays that cross that caster has
   // no boundary inside the pyramid and holds the centre's ray: it is every
-  // ray, and the pixel's V is 0 at every sample count, exactly. The same
+  // ray, and the pixel's V is 0 at every sample count. The same
   // wider pyramid as sees_whole_light() (its apex set back only for the
   // silhouette test; which side a triangle faces is seen from origin), an
   // edge-on triangle or an edge shared by other than two triangles counting

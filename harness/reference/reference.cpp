@@ -51,8 +51,9 @@ constexpr uint32_t kMethodVersion = 5;
 // casters keeping their near side again.
 constexpr uint32_t kExactMethodVersion = 3;
 // Bumped whenever the adaptive reference's figures may change for the same
-// settings. 2: lit pilots proven to see the whole light stop there (their
-// sample counts fall; their values were already 1).
+// settings. 2: where the proofs apply, an agreeing pilot stops only when
+// proven to see the whole light or none of it (sample counts fall, and a
+// soft pixel the 5×5 window let through is now refined).
 constexpr uint32_t kAdaptiveVersion = 2;
 constexpr char kMagic[8] = {'S', 'B', 'R', 'E', 'F', '\r', '\n', '\x1a'};
 constexpr uint32_t kFileVersion = 1;
