@@ -4,9 +4,11 @@
 // cannot be trusted is reported and its job rerun.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <fstream>
 #include <map>
@@ -65,6 +67,11 @@ TEST(ResumeAfterKill, ARunKilledWithSigkillMidBatchResumesWithEveryRecordOnce) {
   const auto dir = test_folder();
   const auto config = write_config(dir, slow_experiment());
   const fs::path out = dir / "run";
+  // The killed run's processes become ours when their parent dies, so that
+  // the rerun below starts only once every one of them has gone: kill()
+  // returns before a process has exited and closed its files, and the rerun
+  // would otherwise race the driver's exit for the folder's lock.
+  ASSERT_EQ(::prctl(PR_SET_CHILD_SUBREAPER, 1), 0);
   // The run in a process group of its own, so that one kill reaches the
   // driver and its child as a user's Ctrl-\ or a scheduler's kill would.
   const pid_t pid = ::fork();
@@ -83,12 +90,15 @@ TEST(ResumeAfterKill, ARunKilledWithSigkillMidBatchResumesWithEveryRecordOnce) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   ::kill(-pid, SIGKILL);
   int status = 0;
-  ::waitpid(pid, &status, 0);
+  while (::waitpid(-pid, &status, 0) > 0 || errno == EINTR) {
+  }
+  EXPECT_EQ(errno, ECHILD);
+  ::prctl(PR_SET_CHILD_SUBREAPER, 0);
   const size_t before_kill = record_files(out);
   ASSERT_GE(before_kill, 2u);
   ASSERT_LT(before_kill, 7u) << "the run finished before it could be killed";
 
-  // The rerun takes the folder: no child of the killed run holds its lock.
+  // The rerun takes the folder: the killed run left no lock behind.
   const CliRun rerun = run_shadowbench("run " + config + " --out " + out.string() + " --no-cache");
   EXPECT_EQ(rerun.exit_code, 0) << rerun.output;
   EXPECT_NE(rerun.output.find("0 failed, " + std::to_string(before_kill) + " resumed"),
