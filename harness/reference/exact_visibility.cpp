@@ -296,9 +296,6 @@ ExactVisibility::ExactVisibility(const Scene& scene, const std::vector<bool>& cl
     const Mesh& mesh = scene.meshes[m];
     if (!mesh.casts_shadow) continue;
     const bool is_closed = m < closed.size() && closed[m] && !mesh.double_sided;
-    for (const glm::vec3& x : mesh.positions)
-      caster_extent_ = std::max(
-          {caster_extent_, double(std::fabs(x.x)), double(std::fabs(x.y)), double(std::fabs(x.z))});
     const size_t first = triangles_.size();
     double volume = 0.0;  // six times the signed volume
     for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
@@ -409,9 +406,21 @@ bool ExactVisibility::traverse(const Keep& keep, const Visit& visit) const {
 }
 
 glm::dvec3 ExactVisibility::viewpoint(const glm::dvec3& surface, const glm::dvec3& n) const {
-  const double eps = detail::kOffsetRelative * std::max({std::fabs(surface.x), std::fabs(surface.y),
-                                                         std::fabs(surface.z), caster_extent_});
-  return surface + eps * n;
+  // The caster triangles the surface point lies on, by the Monte Carlo
+  // reference's own test (ray_offset.h).
+  const double radius = detail::offset_radius(surface);
+  double largest = 0.0;
+  traverse(
+      [&](const glm::dvec3& lo, const glm::dvec3& hi) {
+        const glm::dvec3 outside = glm::max(lo - surface, glm::max(surface - hi, glm::dvec3(0.0)));
+        return glm::dot(outside, outside) <= radius * radius;
+      },
+      [&](const Triangle& t) {
+        largest = std::max(largest, detail::lies_on_scale(surface, radius, t.a, t.b, t.c));
+      });
+  // Along the unit normal, as the Monte Carlo rays start.
+  const double length = glm::length(n);
+  return length > 0.0 ? surface + detail::offset_from(surface, largest) / length * n : surface;
 }
 
 std::vector<glm::dvec2> ExactVisibility::hidden_intervals(const glm::dvec3& surface,

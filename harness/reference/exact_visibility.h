@@ -15,10 +15,10 @@
 // half-size maps to 2^30, so a vertex moves by at most 2^-31 of it and the
 // area by under 1e-8 of the light's.
 //
-// The occluders are seen from p + ε·n, ε = 2^-16 · max(|p|∞, the casters'
-// largest |coordinate|): the Monte Carlo reference's ray offset, with the
-// casters' extent for its per-triangle one (ray_offset.h); the tangent plane
-// stays p's own.
+// The occluders are seen from p + ε·n (n made unit), ε = 2^-16 · max(|p|∞,
+// M), M the largest |coordinate| of the caster triangles p lies on: the
+// Monte Carlo reference's ray offset, by its own test (ray_offset.h); the
+// tangent plane stays p's own.
 //
 // Candidates come from a bounding-volume hierarchy over the casters'
 // triangles, culled by the pyramid's five planes. A closed caster keeps only
@@ -169,7 +169,6 @@ class ExactVisibility {
   std::vector<Triangle> triangles_;
   std::vector<Node> nodes_;
   std::string unsupported_;
-  double caster_extent_ = 0.0;  // the largest |coordinate| of any caster vertex
 };
 
 }  // namespace sb::reference

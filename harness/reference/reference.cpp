@@ -44,12 +44,16 @@ constexpr const char* kMethod = "embree_stratified_packet16";
 // 2: horizon test, viewer-facing normals; 3: alpha masks; 4: ray offsets from
 // the point and its own triangles, not the scene's radius (ray_offset.h);
 // 5: analytic shapes (Mesh::analytic) occlude instead of their meshes and
-// join the key.
-constexpr uint32_t kMethodVersion = 5;
+// join the key; 6: the triangles a point lies on are those within the
+// offset's radius of their own bounds (ray_offset.h), not whatever Embree's
+// leaves visited, so that the exact reference applies the same test.
+constexpr uint32_t kMethodVersion = 6;
 // Bumped whenever the exact reference's answer may change. 2: a point inside
 // a closed caster is in its umbra; 3: the same by a segment test, closed
-// casters keeping their near side again.
-constexpr uint32_t kExactMethodVersion = 3;
+// casters keeping their near side again; 4: the viewpoint offset by Monte
+// Carlo's rule (the triangles the point lies on), not by the casters'
+// largest coordinate.
+constexpr uint32_t kExactMethodVersion = 4;
 // Bumped whenever the adaptive reference's figures may change for the same
 // settings. 2: where the proofs apply, an agreeing pilot stops only when
 // proven to see the whole light or none of it (sample counts fall, and a
