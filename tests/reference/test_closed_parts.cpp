@@ -6,7 +6,8 @@
 // a room wound inward (seen from inside) around a cube and a hollow box
 // (its cavity wound inward); a box with another resting on it (touching
 // face to face) and a third pushed into it, both wound inward; and
-// hand-made points inside one part behind another.
+// hand-made points inside one part behind another, and inside a part that
+// the light pokes out of.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -264,6 +265,36 @@ TEST(ReferenceClosedParts, APointInsideOnePartBehindAnotherIsInItsUmbra) {
     EXPECT_EQ(exact.visibility.data[i], 0.0f);
     const glm::dvec3 surface(points[i]), up(0, 1, 0);
     EXPECT_TRUE(proofs.hides_whole_light(surface, surface + 1e-4 * up, up));
+  }
+}
+
+// A closed box around the point that the light pokes out of (its side
+// x = 0.2 cuts the light, which spans x in [-1, 1]): rays to the light's
+// part inside the box meet nothing, rays to the rest cross that side, so
+// V = 0.6 exactly. The box winds around the point as often as around the
+// light's centre, yet keeping only the sides that face the point (none,
+// from inside) would read V = 1: a part the light touches keeps every
+// triangle.
+TEST(ReferenceClosedParts, APartTheLightPokesOutOfKeepsEveryTriangle) {
+  sb::Scene scene;
+  scene.light = sbtest::square_light();
+  scene.meshes.push_back(sb::make_box("housing", {-1.4f, 5.5f, 0}, {1.6f, 6.5f, 3.0f}));
+  const std::vector<glm::vec3> points{
+      {-0.9f, 0, 0.3f}, {-0.7f, 0, 0.3f}, {-0.5f, 0, 0.3f}, {-0.3f, 0, 0.3f}, {-0.1f, 0, 0.3f}};
+  sb::ImageF positions(int(points.size()), 1, 4, 1.0f), normals(int(points.size()), 1, 3, 0.0f);
+  for (size_t i = 0; i < points.size(); ++i) {
+    for (int c = 0; c < 3; ++c) positions.data[i * 4 + size_t(c)] = points[i][c];
+    normals.data[i * 3 + 1] = 1.0f;
+  }
+  Settings exact_settings;
+  exact_settings.exact = true;
+  const Result exact = ref::compute(scene, positions, normals, exact_settings);
+  const Result mc = ref::compute(scene, positions, normals, {1024, 1});
+  for (size_t i = 0; i < points.size(); ++i) {
+    SCOPED_TRACE("point " + std::to_string(i));
+    EXPECT_NEAR(exact.visibility.data[i], 0.6, 1e-6);
+    EXPECT_NEAR(mc.visibility.data[i], 0.6,
+                4.0 * std::max(double(mc.std_error.data[i]), 1.0 / 1024));
   }
 }
 
