@@ -188,6 +188,14 @@ TEST(ReferenceClosedParts, ExactAgreesWithMonteCarloOnPartsWoundBothWays) {
   expect_exact_agrees(two_cubes_one_inverted(), "two cubes, one inverted");
 }
 
+// The same under a linear light (the square's u side), whose exact form
+// (hidden intervals) applies the same rule.
+TEST(ReferenceClosedParts, ExactAgreesWithMonteCarloOnPartsWoundBothWaysUnderASegment) {
+  sb::Scene scene = two_cubes_one_inverted();
+  scene.light.half_v = {0, 0, 0};
+  expect_exact_agrees(scene, "two cubes, one inverted, segment light");
+}
+
 TEST(ReferenceClosedParts, ExactAgreesWithMonteCarloOnNestedShells) {
   expect_exact_agrees(room_around_a_cube_and_a_hollow_box(), "room, cube, hollow box");
 }
