@@ -47,12 +47,14 @@ Polygon3 clip(const Polygon3& in, const Plane& plane) {
   return out;
 }
 
-// Whether any part of triangle abc lies inside all five planes: clipped on
+// Whether any part of triangle abc lies inside all N planes: clipped on
 // fixed buffers (a convex polygon gains at most one corner a plane, so
-// eight at most), after the cheap answers (all inside; all outside one
+// 3 + N at most), after the cheap answers (all inside; all outside one
 // plane).
+template <size_t N>
 bool triangle_meets(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
-                    const std::array<Plane, 5>& planes) {
+                    const std::array<Plane, N>& planes) {
+  static_assert(N <= 13, "the buffers hold 16 corners");
   bool all_inside = true;
   for (const Plane& plane : planes) {
     const double da = plane.distance(a), db = plane.distance(b), dc = plane.distance(c);
@@ -272,6 +274,107 @@ bool below(double h0, double h1, glm::dvec2& interval) {
   return true;
 }
 
+// A unit vector perpendicular to the unit vector d.
+glm::dvec3 any_perpendicular(const glm::dvec3& d) {
+  const glm::dvec3 axis = std::fabs(d.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  return glm::normalize(glm::cross(d, axis));
+}
+
+// The light (a rectangle or a segment) grown by a hair, 1e-6 of its size,
+// on every side, as the six planes of a box facing in.
+std::array<Plane, 6> light_box(const AreaLight& l) {
+  const glm::dvec3 centre(l.center), half_u(l.half_u), half_v(l.half_v);
+  const double lu = glm::length(half_u), lv = glm::length(half_v);
+  glm::dvec3 u = lu > 0.0 ? half_u / lu : glm::dvec3(1, 0, 0);
+  glm::dvec3 v = lv > 0.0 ? half_v / lv : any_perpendicular(u);
+  if (!(lu > 0.0) && lv > 0.0) u = any_perpendicular(v);
+  const glm::dvec3 n = glm::normalize(glm::cross(u, v));
+  const double hair = 1e-6 * std::max(lu, lv);
+  std::array<Plane, 6> box;
+  size_t i = 0;
+  for (const auto& [axis, half] : {std::pair{u, lu + hair}, {v, lv + hair}, {n, hair}}) {
+    box[i++] = {axis, centre - half * axis};
+    box[i++] = {-axis, centre + half * axis};
+  }
+  return box;
+}
+
+// The closed parts' crossings of the segment from a point p to the light's
+// centre, to tell whether some part winds around p more often than around
+// the centre: then every ray from p to the light crosses it (no closed
+// part touches the light, so all of the light lies where the centre does)
+// and p is in its umbra. Otherwise a ray that crosses a part crosses one
+// of its triangles that faces p, whichever way the part winds: were every
+// crossing along the normal, the winding number at the light would be
+// lower than at p. Per part, crossings within 1e-9 of the segment's length
+// of each other are one crossing when they agree in direction (the segment
+// passes through an edge or a vertex, found in every triangle there) and
+// none when they do not (it grazes the part). The leaving ones count +1,
+// the entering ones -1, and the part winds around p more when the sum is
+// positive. Crossings of different parts never merge: two parts touching
+// face to face are crossed twice.
+class PartCrossings {
+ public:
+  PartCrossings(const glm::dvec3& from, const glm::dvec3& to_centre)
+      : from_(from), to_centre_(to_centre), crossings_(scratch()) {
+    crossings_.clear();
+  }
+  PartCrossings(const PartCrossings&) = delete;
+  PartCrossings& operator=(const PartCrossings&) = delete;
+
+  // Notes where the segment crosses triangle abc (normal its winding's,
+  // `outward` its part's orientation) of closed part `part`; returns where
+  // along the segment, or +inf.
+  double add(uint32_t part, int outward, const glm::dvec3& a, const glm::dvec3& b,
+             const glm::dvec3& c, const glm::dvec3& normal) {
+    const double s = segment_crossing(from_, to_centre_, a, b, c);
+    if (s <= 1.0)
+      crossings_.push_back({part, s, double(outward) * glm::dot(normal, to_centre_) > 0.0});
+    return s;
+  }
+
+  // Whether some part winds around the segment's start more often than
+  // around its end.
+  bool winds_around_start() {
+    constexpr double kSameCrossing = 1e-9;
+    std::sort(crossings_.begin(), crossings_.end(), [](const Crossing& x, const Crossing& y) {
+      return std::tie(x.part, x.s) < std::tie(y.part, y.s);
+    });
+    for (size_t i = 0; i < crossings_.size();) {
+      const uint32_t part = crossings_[i].part;
+      int leaving_minus_entering = 0;
+      while (i < crossings_.size() && crossings_[i].part == part) {
+        bool all_leave = true, all_enter = true;
+        double last = crossings_[i].s;
+        for (; i < crossings_.size() && crossings_[i].part == part &&
+               crossings_[i].s - last <= kSameCrossing;
+             ++i) {
+          all_leave = all_leave && crossings_[i].leaves;
+          all_enter = all_enter && !crossings_[i].leaves;
+          last = crossings_[i].s;
+        }
+        leaving_minus_entering += all_leave ? 1 : all_enter ? -1 : 0;
+      }
+      if (leaving_minus_entering > 0) return true;
+    }
+    return false;
+  }
+
+ private:
+  struct Crossing {
+    uint32_t part;
+    double s;
+    bool leaves;  // along the part's outward normal
+  };
+  // One per thread, kept: a query per pixel would otherwise allocate.
+  static std::vector<Crossing>& scratch() {
+    thread_local std::vector<Crossing> crossings;
+    return crossings;
+  }
+  glm::dvec3 from_, to_centre_;
+  std::vector<Crossing>& crossings_;
+};
+
 }  // namespace
 
 std::string ExactVisibility::unsupported_reason(const Scene& scene) {
@@ -296,26 +399,55 @@ ExactVisibility::ExactVisibility(const Scene& scene, const std::vector<bool>& cl
     const Mesh& mesh = scene.meshes[m];
     if (!mesh.casts_shadow) continue;
     const bool is_closed = m < closed.size() && closed[m] && !mesh.double_sided;
-    for (const glm::vec3& x : mesh.positions)
-      caster_extent_ = std::max(
-          {caster_extent_, double(std::fabs(x.x)), double(std::fabs(x.y)), double(std::fabs(x.z))});
-    const size_t first = triangles_.size();
-    double volume = 0.0;  // six times the signed volume
     for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
       Triangle t{glm::dvec3(mesh.positions[mesh.indices[i]]),
                  glm::dvec3(mesh.positions[mesh.indices[i + 1]]),
                  glm::dvec3(mesh.positions[mesh.indices[i + 2]])};
       t.mesh = uint32_t(m);
       t.normal = glm::cross(t.b - t.a, t.c - t.a);
-      volume += glm::dot(t.a, glm::cross(t.b, t.c));
+      t.outward = is_closed ? 1 : 0;  // closed; find_parts() orients it
       triangles_.push_back(t);
     }
-    if (is_closed && volume != 0.0)
-      for (size_t i = first; i < triangles_.size(); ++i)
-        triangles_[i].outward = volume > 0 ? 1 : -1;
   }
   if (!triangles_.empty()) build(0, uint32_t(triangles_.size()));
   link_neighbours();
+  find_parts();
+}
+
+void ExactVisibility::find_parts() {
+  const std::array<Plane, 6> light = light_box(light_);
+  std::vector<uint32_t> part_triangles;
+  uint32_t parts = 0;
+  for (uint32_t seed = 0; seed < triangles_.size(); ++seed) {
+    if (triangles_[seed].outward == 0 || triangles_[seed].part != kNoPart) continue;
+    // Every triangle reached through shared edges (each closed caster's
+    // edge has exactly two).
+    const uint32_t part = parts++;
+    triangles_[seed].part = part;
+    part_triangles.assign(1, seed);
+    // Six times the signed volume, about a corner of the part's own (its
+    // rounding scales with the part's size, not with its distance).
+    const glm::dvec3 origin = triangles_[seed].a;
+    double volume = 0.0;
+    bool touches_light = false;
+    for (size_t q = 0; q < part_triangles.size(); ++q) {
+      const Triangle& t = triangles_[part_triangles[q]];
+      volume += glm::dot(t.a - origin, glm::cross(t.b - origin, t.c - origin));
+      touches_light = touches_light || triangle_meets(t.a, t.b, t.c, light);
+      for (const uint32_t across : t.neighbour)
+        if (across != kNoNeighbour && triangles_[across].part == kNoPart) {
+          triangles_[across].part = part;
+          part_triangles.push_back(across);
+        }
+    }
+    // A part the light touches winds differently around its points: it
+    // keeps every triangle, as an open caster does.
+    const int outward = touches_light ? 0 : volume < 0.0 ? -1 : 1;
+    for (const uint32_t i : part_triangles) {
+      triangles_[i].outward = outward;
+      if (touches_light) triangles_[i].part = kNoPart;
+    }
+  }
 }
 
 void ExactVisibility::link_neighbours() {
@@ -409,9 +541,21 @@ bool ExactVisibility::traverse(const Keep& keep, const Visit& visit) const {
 }
 
 glm::dvec3 ExactVisibility::viewpoint(const glm::dvec3& surface, const glm::dvec3& n) const {
-  const double eps = detail::kOffsetRelative * std::max({std::fabs(surface.x), std::fabs(surface.y),
-                                                         std::fabs(surface.z), caster_extent_});
-  return surface + eps * n;
+  // The caster triangles the surface point lies on, by the Monte Carlo
+  // reference's own test (ray_offset.h).
+  const double radius = detail::offset_radius(surface);
+  double largest = 0.0;
+  traverse(
+      [&](const glm::dvec3& lo, const glm::dvec3& hi) {
+        const glm::dvec3 outside = glm::max(lo - surface, glm::max(surface - hi, glm::dvec3(0.0)));
+        return glm::dot(outside, outside) <= radius * radius;
+      },
+      [&](const Triangle& t) {
+        largest = std::max(largest, detail::lies_on_scale(surface, radius, t.a, t.b, t.c));
+      });
+  // Along the unit normal, as the Monte Carlo rays start.
+  const double length = glm::length(n);
+  return length > 0.0 ? surface + detail::offset_from(surface, largest) / length * n : surface;
 }
 
 std::vector<glm::dvec2> ExactVisibility::hidden_intervals(const glm::dvec3& surface,
@@ -431,21 +575,14 @@ std::vector<glm::dvec2> ExactVisibility::hidden_intervals(const glm::dvec3& surf
   const glm::dvec3 m = glm::cross(a, b);  // the plane of p, A and B
   const double ml = glm::length(m);
 
-  // The inside-a-closed-caster test of occluding_polygons, on the segment to
+  // The inside-a-closed-part test of occluding_polygons, on the segment to
   // the light's centre (the segment's midpoint).
   const glm::dvec3 to_centre = glm::dvec3(light_.center) - p;
-  double first_hit = std::numeric_limits<double>::infinity();
-  bool leaves_through_it = false;
-  // Whether a triangle can hide anything; updates the inside test.
+  PartCrossings crossings(p, to_centre);
+  // Whether a triangle can hide anything; notes its crossing for the test.
   const auto candidate = [&](const Triangle& t) {
     const glm::dvec3& normal = t.normal;
-    if (t.outward != 0) {
-      const double hit = segment_crossing(p, to_centre, t.a, t.b, t.c);
-      if (hit < first_hit) {
-        first_hit = hit;
-        leaves_through_it = double(t.outward) * glm::dot(normal, to_centre) > 0.0;
-      }
-    }
+    if (t.part != kNoPart) crossings.add(t.part, t.outward, t.a, t.b, t.c, normal);
     const double facing = glm::dot(normal, p - t.a);
     if (std::fabs(facing) <= on_plane * glm::length(normal)) return false;  // contains p
     if (double(t.outward) * facing < 0.0) return false;  // a closed caster's far side
@@ -473,7 +610,7 @@ std::vector<glm::dvec2> ExactVisibility::hidden_intervals(const glm::dvec3& surf
           if (xa < 0.0) t_a = std::min(t_a, segment_crossing(p, a, t.a, t.b, t.c));
           if (xb > 0.0) t_b = std::min(t_b, segment_crossing(p, b, t.a, t.b, t.c));
         });
-    if (leaves_through_it) return {{0.0, 1.0}};
+    if (crossings.winds_around_start()) return {{0.0, 1.0}};
     if (t_a <= 1.0) out.push_back({0.0, (t_a * xa - xa) / (xb - xa)});
     if (t_b <= 1.0) out.push_back({(t_b * xb - xa) / (xb - xa), 1.0});
     return out;
@@ -524,7 +661,7 @@ std::vector<glm::dvec2> ExactVisibility::hidden_intervals(const glm::dvec3& surf
         if (std::isnan(s0) || std::isnan(s1)) return;  // reaches p itself: no extent
         out.push_back({std::min(s0, s1), std::max(s0, s1)});
       });
-  if (leaves_through_it) return {{0.0, 1.0}};
+  if (crossings.winds_around_start()) return {{0.0, 1.0}};
   return out;
 }
 
@@ -603,24 +740,16 @@ std::vector<std::vector<glm::dvec2>> ExactVisibility::occluding_polygons(
   // Triangles whose plane passes this close to p contain it, as seen from
   // p: their projection has no area.
   const double on_plane = 1e-12 * std::max(glm::length(p), 1.0);
-  // Whether p is inside a closed caster: the first closed triangle that the
-  // segment from p to the light's centre crosses is then left through its
-  // outward side. The segment lies in the pyramid, so every triangle it can
-  // cross is visited.
+  // Whether p is inside a closed part that the light is outside of
+  // (PartCrossings), by the segment from p to the light's centre. It lies
+  // in the pyramid, so every triangle it can cross is visited.
   const glm::dvec3 to_centre = f.centre - p;
-  double first_hit = std::numeric_limits<double>::infinity();
-  bool leaves_through_it = false;
+  PartCrossings crossings(p, to_centre);
   traverse([&](const glm::dvec3& lo, const glm::dvec3& hi) { return box_meets(lo, hi, planes); },
            [&](const Triangle& t) {
              const glm::dvec3& normal = t.normal;
              const double facing = glm::dot(normal, p - t.a);
-             if (t.outward != 0) {
-               const double hit = segment_crossing(p, to_centre, t.a, t.b, t.c);
-               if (hit < first_hit) {
-                 first_hit = hit;
-                 leaves_through_it = double(t.outward) * glm::dot(normal, to_centre) > 0.0;
-               }
-             }
+             if (t.part != kNoPart) crossings.add(t.part, t.outward, t.a, t.b, t.c, normal);
              if (std::fabs(facing) <= on_plane * glm::length(normal)) return;
              if (double(t.outward) * facing < 0.0) return;  // a closed caster's far side
              if (glm::dot(n, t.a - surface) < 0.0 && glm::dot(n, t.b - surface) < 0.0 &&
@@ -630,8 +759,9 @@ std::vector<std::vector<glm::dvec2>> ExactVisibility::occluding_polygons(
              for (const Plane& plane : planes) poly = clip(poly, plane);
              add(clip(poly, tangent), true);
            });
-  // Inside a closed caster every ray towards the light is blocked.
-  if (leaves_through_it) return {{{-f.hw, -f.hh}, {f.hw, -f.hh}, {f.hw, f.hh}, {-f.hw, f.hh}}};
+  // Inside a closed part every ray towards the light is blocked.
+  if (crossings.winds_around_start())
+    return {{{-f.hw, -f.hh}, {f.hw, -f.hh}, {f.hw, f.hh}, {-f.hw, f.hh}}};
   return out;
 }
 
@@ -686,24 +816,26 @@ bool ExactVisibility::hides_whole_light(const glm::dvec3& surface, const glm::dv
   if (start->above != 4 || nodes_.empty()) return false;
   const Frame& f = start->light;
   const double offset = start->offset;
-  // The closed caster the ray to the light's centre crosses first.
+  // The closed part the ray to the light's centre crosses first.
   const glm::dvec3 to_centre = f.centre - origin;
+  PartCrossings crossings(origin, to_centre);
   double first_hit = std::numeric_limits<double>::infinity();
   const Triangle* first = nullptr;
   traverse([&](const glm::dvec3& lo,
                const glm::dvec3& hi) { return segment_meets_box(origin, to_centre, lo, hi); },
            [&](const Triangle& t) {
-             if (t.outward == 0) return;
-             const double hit = segment_crossing(origin, to_centre, t.a, t.b, t.c);
+             if (t.part == kNoPart) return;
+             const double hit = crossings.add(t.part, t.outward, t.a, t.b, t.c, t.normal);
              if (hit < first_hit) {
                first_hit = hit;
                first = &t;
              }
            });
   if (first == nullptr) return false;
-  // Inside it: every ray leaves it (as the exact visibility has it).
-  if (double(first->outward) * glm::dot(first->normal, to_centre) > 0.0) return true;
-  const uint32_t caster = first->mesh;
+  // Inside a closed part: every ray leaves it (as the exact visibility has it).
+  if (crossings.winds_around_start()) return true;
+  // That part alone (a closed surface), whichever way it winds.
+  const uint32_t part = first->part;
   const std::array<Plane, 5> rays = proof_pyramid(*start, origin).planes;
   const ProofPyramid wider = proof_pyramid(*start, origin - 0.25 * offset * start->axis);
   const auto faces = [&](const Triangle& t) {
@@ -712,7 +844,7 @@ bool ExactVisibility::hides_whole_light(const glm::dvec3& surface, const glm::dv
   };
   return traverse([&](const glm::dvec3& lo, const glm::dvec3& hi) { return wider.meets(lo, hi); },
                   [&](const Triangle& t) {
-                    if (t.mesh != caster) return true;
+                    if (t.part != part) return true;
                     // Reaching the light's plane inside the pyramid: rays may pass
                     // beside it there.
                     if (!(rays[4].distance(t.a) > 0.0 && rays[4].distance(t.b) > 0.0 &&

@@ -15,21 +15,29 @@
 // half-size maps to 2^30, so a vertex moves by at most 2^-31 of it and the
 // area by under 1e-8 of the light's.
 //
-// The occluders are seen from p + ε·n, ε = 2^-16 · max(|p|∞, the casters'
-// largest |coordinate|): the Monte Carlo reference's ray offset, with the
-// casters' extent for its per-triangle one (ray_offset.h); the tangent plane
-// stays p's own.
+// The occluders are seen from p + ε·n (n made unit), ε = 2^-16 · max(|p|∞,
+// M), M the largest |coordinate| of the caster triangles p lies on: the
+// Monte Carlo reference's ray offset, by its own test (ray_offset.h); the
+// tangent plane stays p's own.
 //
 // Candidates come from a bounding-volume hierarchy over the casters'
-// triangles, culled by the pyramid's five planes. A closed caster keeps only
-// its near side seen from p, the triangles whose outward normal (by the sign
-// of the mesh's volume) faces p: their projections cover its shadow once,
-// as all of its triangles would. A point inside a closed caster (a
-// silhouette pixel that landed on a back face and took the viewer-facing
-// normal, or interpenetrating parts) is in its umbra, as every Monte Carlo
-// shadow ray from it is blocked: the first closed triangle that the segment
-// to the light's centre crosses is then crossed from inside, and the whole
-// light is covered. Open and double-sided casters keep every triangle.
+// triangles, culled by the pyramid's five planes. A closed caster is split
+// into its parts, the triangles connected through shared edges (each a
+// closed surface, consistently wound: scenes/topology.h), and each part is
+// oriented by the sign of its own volume, whatever its mesh's total. A point
+// that a part winds around more often than around the light's centre
+// (the segment from p to the centre leaves it more often than it enters it)
+// is inside it while the light is not: every Monte Carlo shadow ray from it
+// is blocked, and the whole light is covered. That happens to a silhouette
+// pixel that landed on a back face and took the viewer-facing normal, and
+// to a point of one part inside another. Otherwise each part keeps only the
+// triangles that face p: a ray that crosses the part crosses one of them
+// (were every crossing along the normal, the part would wind around p more
+// than around the light), and their projections cover its shadow. This
+// holds for any part, wound either way, nested in another (a cavity, a
+// room around the light) or touching it, and is fastest when the kept side
+// is the near one. A part that the light itself touches, and open and
+// double-sided casters, keep every triangle.
 // Casters with an alpha mask or an analytic shape have no exact polygonal
 // form here: `unsupported()` names the first.
 //
@@ -42,9 +50,9 @@
 // is one more interval, and V = 1 − length(union of the intervals). Candidates
 // come from the same hierarchy, culled by the wedge's planes through p and
 // each end, the plane through A and B that closes it, and the plane through
-// p, A and B from both sides. Near side only for closed casters, and the
-// inside-a-closed-caster test, as for a rectangle. A triangle lying in that
-// plane hides nothing (as with a rectangle, a set of measure zero in p). When p
+// p, A and B from both sides. Closed parts keep the side facing p, and the
+// inside-a-closed-part test applies, as for a rectangle. A triangle lying in
+// that plane hides nothing (as with a rectangle, a set of measure zero in p). When p
 // lies on the segment's line (the ends less than 1e-7 rad apart seen from p)
 // there is no plane: the rays run along the line, and in each direction a
 // triangle crossing it hides everything beyond its nearest crossing. A point
@@ -93,16 +101,16 @@ class ExactVisibility {
 
   // Whether every shadow ray from `origin` to a rectangular light provably
   // misses it: the whole light below the plane through `origin` normal to
-  // n; or origin inside a closed caster; or a closed caster that the ray to
-  // the light's centre crosses, none of whose silhouette edges seen from
-  // origin meets the pyramid to the light and which does not reach the
-  // light's plane inside it. Then the set of rays that cross that caster has
-  // no boundary inside the pyramid and holds the centre's ray: it is every
-  // ray, and the pixel's V is 0 at every sample count. The same
-  // wider pyramid as sees_whole_light() (its apex set back only for the
-  // silhouette test; which side a triangle faces is seen from origin), an
-  // edge-on triangle or an edge shared by other than two triangles counting
-  // as silhouette. Needs the closed flags given to the constructor; false
+  // n; or origin inside a closed part (as visibility() tells it); or the
+  // first closed part that the ray to the light's centre crosses has no
+  // silhouette edge seen from origin that meets the pyramid to the light,
+  // and does not reach the light's plane inside it. Then the set of rays
+  // that cross that part has no boundary inside the pyramid and holds the
+  // centre's ray: it is every ray, and the pixel's V is 0 at every sample
+  // count. The same wider pyramid as sees_whole_light() (its apex set back
+  // only for the silhouette test; which side a triangle faces is seen from
+  // origin), an edge-on triangle or an edge shared by other than two
+  // triangles counting as silhouette. Needs the closed flags given to the constructor; false
   // where it proves nothing.
   bool hides_whole_light(const glm::dvec3& surface, const glm::dvec3& origin,
                          const glm::dvec3& n) const;
@@ -138,16 +146,18 @@ class ExactVisibility {
  private:
   struct Triangle {
     glm::dvec3 a, b, c;
-    // A closed caster's: +1 when its mesh winds outward (positive signed
-    // volume), -1 inward; 0 for any other caster.
+    // A closed part's: +1 when its part winds outward (positive signed
+    // volume), -1 inward; 0 for any other caster's.
     int outward = 0;
-    uint32_t mesh = 0;       // index into the scene's meshes
-    glm::dvec3 normal{0.0};  // (b - a) × (c - a)
+    uint32_t mesh = 0;        // index into the scene's meshes
+    uint32_t part = kNoPart;  // its closed part (see above), or kNoPart
+    glm::dvec3 normal{0.0};   // (b - a) × (c - a)
     // A closed caster's: the triangle across edge k (a-b, b-c, c-a), or
     // kNoNeighbour where no single other triangle shares it.
     std::array<uint32_t, 3> neighbour{kNoNeighbour, kNoNeighbour, kNoNeighbour};
   };
   static constexpr uint32_t kNoNeighbour = 0xffffffffu;
+  static constexpr uint32_t kNoPart = 0xffffffffu;
   struct Node {
     glm::dvec3 lo, hi;
     uint32_t first = 0, count = 0;  // leaf: triangles [first, first + count)
@@ -157,6 +167,9 @@ class ExactVisibility {
   // Fills the closed casters' Triangle::neighbour (after build() has put the
   // triangles in their final order), matching edges by vertex positions.
   void link_neighbours();
+  // Labels the closed casters' parts through those neighbours and orients
+  // each by its own signed volume; a part the light touches is left open.
+  void find_parts();
   // Calls visit(triangle) for the triangles of every leaf whose box, and its
   // ancestors', keep(lo, hi) accepts. A visit that returns bool stops the
   // walk by returning false, and traverse() then returns false.
@@ -169,7 +182,6 @@ class ExactVisibility {
   std::vector<Triangle> triangles_;
   std::vector<Node> nodes_;
   std::string unsupported_;
-  double caster_extent_ = 0.0;  // the largest |coordinate| of any caster vertex
 };
 
 }  // namespace sb::reference

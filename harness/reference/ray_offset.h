@@ -9,8 +9,13 @@
 // differences). So the origin moves along the normal by
 //   eps = kOffsetRelative · max(max_i |p_i|, M),
 // M the largest |coordinate| of the caster triangles p lies on, within that
-// same rounding (an Embree point query; 0 on receivers, which no ray can
-// hit). Nothing farther away enters: a huge ground does not blur the contact
+// same rounding (0 on receivers, which no ray can hit): the triangles whose
+// bounds lie within kOffsetRelative · max_i |p_i| of p and whose plane lies
+// within kOffsetRelative · (their own largest |coordinate|) of it
+// (lies_on_scale() below). The Monte Carlo reference finds the candidates
+// with an Embree point query, the exact one with its own hierarchy; both
+// apply that one test, so both offset every point alike. Nothing farther
+// away enters: a huge ground does not blur the contact
 // shadow of a small object elsewhere on it (it did with an offset scaled by
 // the whole scene's radius), though points on a huge caster get the offset
 // that caster's coordinates need. Analytic shapes (Mesh::analytic) add
@@ -28,6 +33,17 @@ namespace sb::reference::detail {
 // 2^-16: 128 ulps of a coordinate (float spacing is 2^-23 relative). On
 // rasterised G-buffers of the shipped scenes acne appears at 2^-20.
 constexpr float kOffsetRelative = 0x1p-16f;
+
+// The query radius around p: kOffsetRelative · max_i |p_i|.
+double offset_radius(const glm::dvec3& p);
+
+// Triangle abc's share of M at p: its largest |coordinate| when p lies on it
+// up to rounding (as above, `radius` = offset_radius(p)), else 0.
+double lies_on_scale(const glm::dvec3& p, double radius, const glm::dvec3& a, const glm::dvec3& b,
+                     const glm::dvec3& c);
+
+// eps from p and M: kOffsetRelative · max(max_i |p_i|, M).
+double offset_from(const glm::dvec3& p, double largest);
 
 class RayOffset {
  public:

@@ -44,17 +44,26 @@ constexpr const char* kMethod = "embree_stratified_packet16";
 // 2: horizon test, viewer-facing normals; 3: alpha masks; 4: ray offsets from
 // the point and its own triangles, not the scene's radius (ray_offset.h);
 // 5: analytic shapes (Mesh::analytic) occlude instead of their meshes and
-// join the key.
-constexpr uint32_t kMethodVersion = 5;
+// join the key; 6: the triangles a point lies on are those within the
+// offset's radius of their own bounds (ray_offset.h), not whatever Embree's
+// leaves visited, so that the exact reference applies the same test.
+constexpr uint32_t kMethodVersion = 6;
 // Bumped whenever the exact reference's answer may change. 2: a point inside
 // a closed caster is in its umbra; 3: the same by a segment test, closed
-// casters keeping their near side again.
-constexpr uint32_t kExactMethodVersion = 3;
+// casters keeping their near side again; 4: the viewpoint offset by Monte
+// Carlo's rule (the triangles the point lies on), not by the casters'
+// largest coordinate; 5: each closed part (triangles connected through
+// shared edges) oriented by its own volume, and a point inside one when it
+// winds around the point more than around the light's centre, not by the
+// mesh's total volume and the first crossing.
+constexpr uint32_t kExactMethodVersion = 5;
 // Bumped whenever the adaptive reference's figures may change for the same
 // settings. 2: where the proofs apply, an agreeing pilot stops only when
 // proven to see the whole light or none of it (sample counts fall, and a
-// soft pixel the 5×5 window let through is now refined).
-constexpr uint32_t kAdaptiveVersion = 2;
+// soft pixel the 5×5 window let through is now refined); 3: the proof of an
+// occluded pilot by kExactMethodVersion 5's inside test, and its silhouette
+// test over the part the centre's ray crosses, not the whole mesh.
+constexpr uint32_t kAdaptiveVersion = 3;
 constexpr char kMagic[8] = {'S', 'B', 'R', 'E', 'F', '\r', '\n', '\x1a'};
 constexpr uint32_t kFileVersion = 1;
 
@@ -374,8 +383,8 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
     r.seed = s.seed;
     r.method = kExactMethod;
     const auto t0 = std::chrono::steady_clock::now();
-    // Closed casters keep only the triangles that face the point: either
-    // side of a closed mesh covers its shadow once, whichever way it winds.
+    // Closed casters keep only the triangles that face the point, part by
+    // part (exact_visibility.h): right whichever way each part winds.
     const ExactVisibility exact(scene, closed_casters(scene));
     r.visibility = exact.image(positions, geometric_normals);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

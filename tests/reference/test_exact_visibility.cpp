@@ -79,9 +79,9 @@ TEST(ReferenceExact, APlateParallelToTheLightMatchesTheClosedForm) {
     for (int i = 0; i <= 346; ++i)
       for (int j = 0; j <= 314; ++j) {
         const double x = -3.0 + 0.0173 * i, z = -3.0 + 0.0191 * j;
-        // The reference looks from 2^-16 · max(|p|∞, the casters' largest
-        // coordinate, 4) above the surface, as Monte Carlo's rays start.
-        const double eps = 0x1p-16 * std::max({std::abs(x), std::abs(z), 4.0});
+        // The reference looks from 2^-16 · max(|p|∞, M) above the surface,
+        // as Monte Carlo's rays start: the ground is no caster, so M = 0.
+        const double eps = 0x1p-16 * std::max(std::abs(x), std::abs(z));
         const double truth = plate_visibility(x, eps, z);
         worst = std::max(worst, std::abs(exact.visibility({x, 0.0, z}, {0, 1, 0}) - truth));
         penumbra += truth > 0.0 && truth < 1.0;

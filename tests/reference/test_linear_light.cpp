@@ -90,13 +90,6 @@ struct HalfPlane {
     if (f0 > 0.0 && f1 > 0.0) return 0.0;
     return f0 <= 0.0 ? s : 1.0 - s;
   }
-  // The largest |coordinate| of the casters: the exact reference's offset.
-  double extent() const {
-    double e = 0.0;
-    for (const glm::vec3& x : scene.meshes[0].positions)
-      e = std::max({e, double(std::fabs(x.x)), double(std::fabs(x.y)), double(std::fabs(x.z))});
-    return e;
-  }
 };
 
 std::vector<HalfPlane> half_planes() {
@@ -188,8 +181,9 @@ TEST(referenceLinearLight, ExactMatchesTheHalfPlaneClosedForm) {
     int penumbra = 0;
     for (size_t i = 0; i < points.size(); ++i) {
       const glm::dvec3 p(points[i]);
-      // 2^-16 * max(|p|inf, the casters' largest coordinate) above the ground.
-      const double eps = 0x1p-16 * std::max({std::fabs(p.x), std::fabs(p.z), hp.extent()});
+      // 2^-16 * max(|p|inf, M) above the ground, as Monte Carlo's rays
+      // start: the ground is no caster, so M = 0.
+      const double eps = 0x1p-16 * std::max(std::fabs(p.x), std::fabs(p.z));
       double s = 0.0;
       const double f = hp.fraction(p + glm::dvec3(0, eps, 0), &s);
       const double v = exact.visibility(p, {0, 1, 0});
@@ -381,9 +375,10 @@ TEST(referenceLinearLight, HiddenIntervalsAndTheirUnion) {
   s.meshes.push_back(
       sbtest::quad("b", {0.2f, 5, -1}, {0.25f, 5, -1}, {0.25f, 5, 1}, {0.2f, 5, 1}, true));
   const ExactVisibility exact(s);
-  // From the origin, offset by 2^-16 * 5 (the casters' largest coordinate)
-  // up: x on the light = x on the plate * (10 - e) / (5 - e).
-  const double e = 5.0 * 0x1p-16, k = (10.0 - e) / (5.0 - e);
+  // From the origin itself, as Monte Carlo's rays start there (2^-16 of
+  // its coordinates, 0; it lies on no caster): x on the light = x on the
+  // plate * 10 / 5.
+  const double k = 2.0;
   const auto s_of = [&](double x) { return (double(float(x)) * k + 1.0) / 2.0; };
   double covered = 0.0;
   for (const glm::dvec2& i : exact.hidden_intervals({0, 0, 0}, {0, 1, 0})) {
