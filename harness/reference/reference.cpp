@@ -44,8 +44,9 @@ constexpr const char* kMethod = "embree_stratified_packet16";
 // 2: horizon test, viewer-facing normals; 3: alpha masks; 4: ray offsets from
 // the point and its own triangles, not the scene's radius (ray_offset.h);
 // 5: analytic shapes (Mesh::analytic) occlude instead of their meshes and
-// join the key.
-constexpr uint32_t kMethodVersion = 5;
+// join the key; 6: Embree's robust mode (rays through shared edges no
+// longer slip between the triangles, embree_scene.h).
+constexpr uint32_t kMethodVersion = 6;
 // Bumped whenever the exact reference's answer may change. 2: a point inside
 // a closed caster is in its umbra; 3: the same by a segment test, closed
 // casters keeping their near side again.
