@@ -37,11 +37,13 @@ class Device {
 
 // How Embree meets rays that pass through an edge or a vertex shared by
 // neighbouring triangles. Robust (RTC_SCENE_FLAG_ROBUST, every scene of the
-// harness): conservative traversal and no arithmetic shortcuts, so such a
-// ray hits one of the triangles. Fast (Embree's default) can let it slip
-// between both: light leaking through a closed or tessellated caster, single
-// rays in an umbra (tests/reference/test_reference_watertight.cpp). Fast is
-// there only for bench_reference to measure what robustness costs.
+// harness): conservative traversal and no arithmetic shortcuts, meant for
+// exactly those rays; in tests/reference/test_reference_watertight.cpp none
+// slips through (Embree promises no watertightness for every ray, see
+// embree/embree#387). Fast (Embree's default) lets some slip between both
+// triangles: light leaking through a closed or tessellated caster, single
+// rays in an umbra. Fast is there only to show what robustness costs and
+// changes (bench_reference, that test).
 enum class Traversal : uint8_t { Robust, Fast };
 
 class FlatScene {

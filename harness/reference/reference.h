@@ -40,8 +40,8 @@
 // max(max|p_i|, M), M the largest |coordinate| of the caster triangles p lies
 // on (ray_offset.h): float rounding at p, never the size of the whole scene.
 // Rays end at distance*(1 - 1e-4) before the light sample. Embree traces
-// them in robust mode, so a ray through an edge two caster triangles share
-// hits one of them (embree_scene.h).
+// them in robust mode, so that a ray through an edge two caster triangles
+// share does not slip between them (embree_scene.h).
 //
 // Standard error: the collapsed-strata estimate. Horizontally neighbouring
 // strata (on a segment, neighbours along it) are paired (a triple closes an
