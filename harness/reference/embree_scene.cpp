@@ -120,13 +120,14 @@ void Device::check(const char* what) {
   if (!message.empty()) throw JobError(std::string("Embree: ") + what + ": " + message);
 }
 
-void FlatScene::begin() {
+void FlatScene::begin(Traversal traversal) {
   scene_ = rtcNewScene(device_.get());
   device_.check("rtcNewScene");
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-  // No RTC_SCENE_FLAG_ROBUST: measured 15% slower on the sphere grid, and at
-  // 1024 spp it changed single rays in 0.1% of pixels with no net bias.
-  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_NONE);
+  // Robust: without it, shadow rays through an edge two caster triangles
+  // share can miss both (embree_scene.h; its cost: docs/results.md).
+  rtcSetSceneFlags(scene_,
+                   traversal == Traversal::Robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
 }
 
 void FlatScene::add(const Mesh& mesh, size_t index) {

@@ -3,6 +3,7 @@
 // with an analytic shape (Mesh::analytic), of that shape (internal).
 #include <embree3/rtcore.h>
 
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -34,6 +35,17 @@ class Device {
   std::string first_error_;
 };
 
+// How Embree meets rays that pass through an edge or a vertex shared by
+// neighbouring triangles. Robust (RTC_SCENE_FLAG_ROBUST, every scene of the
+// harness): conservative traversal and no arithmetic shortcuts, meant for
+// exactly those rays; in tests/reference/test_reference_watertight.cpp none
+// slips through (Embree promises no watertightness for every ray, see
+// embree/embree#387). Fast (Embree's default) lets some slip between both
+// triangles: light leaking through a closed or tessellated caster, single
+// rays in an umbra. Fast is there only to show what robustness costs and
+// changes (bench_reference, that test).
+enum class Traversal : uint8_t { Robust, Fast };
+
 class FlatScene {
  public:
   // Every mesh for which `take(mesh)` is true becomes one geometry
@@ -41,9 +53,10 @@ class FlatScene {
   // a mesh that has one, its analytic shape. mesh_of_geometry maps geomID to
   // mesh index, shape_of_geometry to what that geometry is.
   template <typename Pred>
-  FlatScene(Device& device, const Scene& scene, Pred take, bool analytic_shapes = false)
+  FlatScene(Device& device, const Scene& scene, Pred take, bool analytic_shapes = false,
+            Traversal traversal = Traversal::Robust)
       : device_(device), source_(scene) {
-    begin();
+    begin(traversal);
     try {
       for (size_t i = 0; i < scene.meshes.size(); ++i) {
         if (!take(scene.meshes[i])) continue;
@@ -85,7 +98,7 @@ class FlatScene {
   };
 
  private:
-  void begin();
+  void begin(Traversal traversal);
   void add(const Mesh& mesh, size_t index);
   void add_shape(const Mesh& mesh, size_t index);
   // Both queries' filter, with its data.

@@ -46,7 +46,9 @@ constexpr const char* kMethod = "embree_stratified_packet16";
 // 5: analytic shapes (Mesh::analytic) occlude instead of their meshes and
 // join the key; 6: the triangles a point lies on are those within the
 // offset's radius of their own bounds (ray_offset.h), not whatever Embree's
-// leaves visited, so that the exact reference applies the same test.
+// leaves visited, so that the exact reference applies the same test; and
+// Embree's robust mode (rays through shared edges no longer slip between the
+// triangles, embree_scene.h).
 constexpr uint32_t kMethodVersion = 6;
 // Bumped whenever the exact reference's answer may change. 2: a point inside
 // a closed caster is in its umbra; 3: the same by a segment test, closed

@@ -26,8 +26,9 @@
 // Sampling: `spp` stratified samples on the light (n×n jittered grid when
 // spp = n*n, near-square equal-area cells otherwise; on a segment light, spp
 // cells of length 1/spp along it; see stratify.h), drawn
-// from a counter-based RNG keyed by (seed, pixel index, spp): results are
-// bit-identical for any thread count and across calls. Across Embree's ISAs
+// from a counter-based RNG keyed by (seed, pixel index, spp) (SplitMix64,
+// core/counter_rng.h; no std distribution): results are bit-identical for
+// any thread count, across calls and with any standard library. Across Embree's ISAs
 // they can differ by single rays in a few silhouette pixels: Settings::
 // embree_config pins the ISA (embree_isa.h). 16 neighbouring strata of one
 // pixel go into one rtcOccluded16 packet (shadow_packet.h says how its unused
@@ -38,7 +39,9 @@
 // light, which would start rays inside closed solids), eps = 2^-16 *
 // max(max|p_i|, M), M the largest |coordinate| of the caster triangles p lies
 // on (ray_offset.h): float rounding at p, never the size of the whole scene.
-// Rays end at distance*(1 - 1e-4) before the light sample.
+// Rays end at distance*(1 - 1e-4) before the light sample. Embree traces
+// them in robust mode, so that a ray through an edge two caster triangles
+// share does not slip between them (embree_scene.h).
 //
 // Standard error: the collapsed-strata estimate. Horizontally neighbouring
 // strata (on a segment, neighbours along it) are paired (a triple closes an

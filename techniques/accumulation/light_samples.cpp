@@ -2,8 +2,9 @@
 
 #include <cmath>
 #include <cstdint>
-#include <random>
 #include <stdexcept>
+
+#include "core/counter_rng.h"
 
 namespace sb::shadow {
 namespace {
@@ -38,8 +39,6 @@ float wrap_unit(double x) {
 
 std::vector<glm::vec2> light_samples(int n, bool jitter, unsigned seed) {
   if (n < 1) throw std::invalid_argument("light_samples: n must be at least 1");
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u01(0.0f, 1.0f);
   std::vector<glm::vec2> out;
   out.reserve(size_t(n));
 
@@ -48,8 +47,10 @@ std::vector<glm::vec2> light_samples(int n, bool jitter, unsigned seed) {
   if (cols <= kMaxGridAspect * rows) {
     for (int r = 0; r < rows; ++r)
       for (int c = 0; c < cols; ++c) {
-        const float s = (float(c) + (jitter ? u01(rng) : 0.5f)) / float(cols);
-        const float t = (float(r) + (jitter ? u01(rng) : 0.5f)) / float(rows);
+        // Stratum k's jitter is draws 2k (s) and 2k + 1 (t) of the seed's stream.
+        const uint64_t k = uint64_t(r) * uint64_t(cols) + uint64_t(c);
+        const float s = (float(c) + (jitter ? uniform_float(seed, 2 * k) : 0.5f)) / float(cols);
+        const float t = (float(r) + (jitter ? uniform_float(seed, 2 * k + 1) : 0.5f)) / float(rows);
         out.emplace_back(s, t);
       }
     return out;
@@ -62,8 +63,8 @@ std::vector<glm::vec2> light_samples(int n, bool jitter, unsigned seed) {
   const double step = 1.0 / double(dyadic);
   double shift_s = 0.0, shift_t = 0.0;
   if (jitter) {
-    shift_s = u01(rng);
-    shift_t = u01(rng);
+    shift_s = uniform_float(seed, 0);
+    shift_t = uniform_float(seed, 1);
   }
   for (int i = 0; i < n; ++i) {
     const double s = (double(i) + 0.5) / double(n);
@@ -75,12 +76,11 @@ std::vector<glm::vec2> light_samples(int n, bool jitter, unsigned seed) {
 
 std::vector<float> segment_samples(int n, bool jitter, unsigned seed) {
   if (n < 1) throw std::invalid_argument("segment_samples: n must be at least 1");
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u01(0.0f, 1.0f);
   std::vector<float> out;
   out.reserve(size_t(n));
   for (int i = 0; i < n; ++i)
-    out.push_back(wrap_unit((double(i) + (jitter ? double(u01(rng)) : 0.5)) / double(n)));
+    out.push_back(wrap_unit(
+        (double(i) + (jitter ? double(uniform_float(seed, uint64_t(i))) : 0.5)) / double(n)));
   return out;
 }
 

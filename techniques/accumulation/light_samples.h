@@ -11,6 +11,13 @@
 //     its dyadic interval), whose star discrepancy is O(log N / N) for any N;
 //     jitter adds one seeded toroidal shift to all points (Cranley–Patterson
 //     rotation), which keeps that structure and makes every point uniform.
+//
+// The jitter's uniforms are draws of core/counter_rng.h's generator,
+// uniform_float(seed, j) (SplitMix64's output j, top 24 bits * 2^-24): on
+// the grid, stratum k = row * n + column takes j = 2k for s and 2k + 1 for
+// t; the Hammersley shift takes j = 0 (s) and 1 (t); a segment's stratum i
+// takes j = i. The same (n, jitter, seed) gives the same bits with any
+// standard library.
 #include <glm/vec2.hpp>
 #include <vector>
 

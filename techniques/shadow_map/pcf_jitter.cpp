@@ -9,13 +9,10 @@
 //
 // Parameters, defaults and ranges: docs/parameters.md (generated from their
 // declarations by `shadowbench list --markdown`).
-#include <algorithm>
-#include <cmath>
 #include <memory>
-#include <numbers>
-#include <random>
 
 #include "common/map_lookup.h"
+#include "shadow_map/jittered_disk.h"
 #include "shadow_map/shadow_map_variants.h"
 
 namespace sb::shadow {
@@ -42,22 +39,6 @@ float lit_fraction(vec3 t) {
   return sum / float(taps);
 }
 )";
-
-// N points on the unit disk: a golden-angle (Vogel) spiral with each radius
-// jittered inside its equal-area ring, ordered outermost first.
-std::vector<glm::vec2> jittered_disk(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u01(0.0f, 1.0f);
-  const float golden = std::numbers::pi_v<float> * (3.0f - std::sqrt(5.0f));
-  std::vector<glm::vec2> points;
-  for (int i = 0; i < n; ++i) {
-    const float r = std::sqrt((float(i) + u01(rng)) / float(n));
-    const float phi = float(i) * golden;
-    points.emplace_back(r * std::cos(phi), r * std::sin(phi));
-  }
-  std::reverse(points.begin(), points.end());
-  return points;
-}
 
 class JitteredPcf final : public SingleMapTechnique {
  public:

@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "accumulation/light_samples.h"
+#include "splitmix64_sequence.h"
 
 namespace sb::shadow {
 namespace {
@@ -155,6 +157,38 @@ TEST(LightSamples, ASegmentGetsOnePointInEachOfNStrata) {
   const LightSampleLayouts both = light_sample_layouts(16, true, 3);
   EXPECT_EQ(both.square, light_samples(16, true, 3));
   EXPECT_EQ(both.line, segment_samples(16, true, 3));
+}
+
+// The jitter is the documented function of (seed, index) (light_samples.h):
+// uniform j of the seed's SplitMix64 stream, whatever the standard library.
+// Grid stratum k takes j = 2k (s) and 2k + 1 (t); the Hammersley shift
+// j = 0 and 1; a segment's stratum i takes j = i.
+TEST(LightSamples, JitterIsTheDocumentedFunctionOfSeedAndIndex) {
+  for (const unsigned seed : {1u, 7u, 2147483647u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const std::vector<float> u = sbtest::splitmix64_uniforms(seed, 2 * 24);
+    // 24 = 4×6: the grid, rows of 6.
+    const auto grid = light_samples(24, true, seed);
+    for (int k = 0; k < 24; ++k) {
+      const int r = k / 6, c = k % 6;
+      EXPECT_EQ(grid[size_t(k)].x, (float(c) + u[size_t(2 * k)]) / 6.0f) << "stratum " << k;
+      EXPECT_EQ(grid[size_t(k)].y, (float(r) + u[size_t(2 * k + 1)]) / 4.0f) << "stratum " << k;
+    }
+    // 13 (prime): the Hammersley set shifted by (u_0, u_1), mod 1.
+    const auto hammersley = light_samples(13, true, seed);
+    for (int i = 0; i < 13; ++i) {
+      double radical = 0.0, digit = 0.5;
+      for (int b = i; b > 0; b /= 2, digit /= 2) radical += (b % 2) * digit;
+      const double s = (i + 0.5) / 13.0 + double(u[0]);
+      const double t = radical + 0.5 / 16.0 + double(u[1]);
+      EXPECT_FLOAT_EQ(hammersley[size_t(i)].x, float(s - std::floor(s))) << "point " << i;
+      EXPECT_FLOAT_EQ(hammersley[size_t(i)].y, float(t - std::floor(t))) << "point " << i;
+    }
+    const std::vector<float> segment = segment_samples(16, true, seed);
+    for (int i = 0; i < 16; ++i)
+      EXPECT_EQ(segment[size_t(i)], float((double(i) + double(u[size_t(i)])) / 16.0))
+          << "stratum " << i;
+  }
 }
 
 }  // namespace
