@@ -175,11 +175,16 @@ ImageMetrics compare_images(const ImageF& test, const ImageF& ref, const Regions
   std::vector<const std::vector<uint8_t>*> masks = {&regions.measured, &regions.penumbra,
                                                     &soft_union};
   if (regions.any_receiver) masks.push_back(&regions.receivers);
+  // Geometry shares the SSIM pass unless the technique wrote something other
+  // than the reference outside it (on the sky, say): then it needs its own.
+  const bool geometry_shares = metrics::matches_outside(t, ref, regions.geometry);
+  if (geometry_shares) masks.push_back(&regions.geometry);
   const size_t first_extra = masks.size();
   masks.insert(masks.end(), extra.begin(), extra.end());
   const std::vector<metrics::ErrorStats> stats = metrics::compare(t, ref, masks);
   ImageMetrics m{region_stats(stats[0]), region_stats(stats[1]), region_stats(stats[2])};
-  m.geometry = region_stats(metrics::compare_within(t, ref, regions.geometry));
+  m.geometry = region_stats(geometry_shares ? stats[first_extra - 1]
+                                            : metrics::compare_within(t, ref, regions.geometry));
   if (regions.any_receiver) m.receivers = region_stats(stats[3]);
   if (extra_stats != nullptr)
     for (size_t i = first_extra; i < stats.size(); ++i)

@@ -159,5 +159,26 @@ TEST(GeometryRegion, ATechniqueWrongOnTheSkyKeepsItsGeometryFiguresSsimIncluded)
             compare(wrong.test, wrong.ref, &region).ssim);
 }
 
+TEST(GeometryRegion, MatchesOutsideSaysWhenTheRegionCanShareTheOtherMasksSsimPass) {
+  const Framed right = framed(6, 6, 6, 6);
+  const std::vector<uint8_t> region = geometry_mask(horizon_of(right.g));
+  // The cut column differs (the executor gives it the reference's values
+  // before this test); the sky and attached pixels agree.
+  Framed cut_from_ref = right;
+  for (size_t p = 0; p < region.size(); ++p)
+    if (right.g.positions.data[p * 4 + 3] != 0.0f && !region[p])
+      cut_from_ref.test.data[p] = cut_from_ref.ref.data[p];
+  EXPECT_FALSE(matches_outside(right.test, right.ref, region));
+  ASSERT_TRUE(matches_outside(cut_from_ref.test, cut_from_ref.ref, region));
+  const ErrorStats shared = compare(cut_from_ref.test, cut_from_ref.ref, &region);
+  const ErrorStats own = compare_within(cut_from_ref.test, cut_from_ref.ref, region);
+  EXPECT_EQ(shared.rmse, own.rmse);
+  EXPECT_EQ(shared.ssim, own.ssim);
+  // One sky pixel off by the least float step no longer matches.
+  Framed speck = cut_from_ref;
+  speck.test.data[0] = std::nextafter(1.0f, 0.0f);
+  EXPECT_FALSE(matches_outside(speck.test, speck.ref, region));
+}
+
 }  // namespace
 }  // namespace sb::metrics
