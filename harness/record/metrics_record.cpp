@@ -71,6 +71,7 @@ json ImageMetrics::to_json() const {
   json j = {{"all", all.to_json()},
             {"penumbra", penumbra.to_json()},
             {"soft_union", soft_union.to_json()}};
+  if (geometry) j["geometry"] = geometry->to_json();
   if (receivers) j["receivers"] = receivers->to_json();
   if (near_third) j["near_third"] = near_third->to_json();
   if (middle_third) j["middle_third"] = middle_third->to_json();
@@ -82,6 +83,7 @@ ImageMetrics ImageMetrics::from_json(const Fields& f) {
   ImageMetrics m{RegionStats::from_json(f.object("all")),
                  RegionStats::from_json(f.object("penumbra")),
                  RegionStats::from_json(f.object("soft_union"))};
+  if (f.has("geometry")) m.geometry = RegionStats::from_json(f.object("geometry"));
   if (f.has("receivers")) m.receivers = RegionStats::from_json(f.object("receivers"));
   if (f.has("near_third")) m.near_third = RegionStats::from_json(f.object("near_third"));
   if (f.has("middle_third")) m.middle_third = RegionStats::from_json(f.object("middle_third"));
@@ -113,6 +115,8 @@ std::optional<MetricPath> MetricPath::parse(const std::string& dotted) {
     p.image_ = &MetricsRecord::shaded;
   if (region == "all")
     p.region_ = [](const ImageMetrics& m) { return &m.all; };
+  else if (region == "geometry")
+    p.region_ = [](const ImageMetrics& m) { return m.geometry ? &*m.geometry : nullptr; };
   else if (region == "penumbra")
     p.region_ = [](const ImageMetrics& m) { return &m.penumbra; };
   else if (region == "soft_union")

@@ -24,15 +24,20 @@ struct RegionStats {
   static RegionStats from_json(const Fields& f);
 };
 
-// The regions: all measured pixels, the reference's penumbra, the soft
-// pixels of either image, and the measured pixels on meshes that cast no
-// shadow (a ground: where the seed papers compare shadows; absent when the
-// image has none, and in records written before it existed). With the
+// The regions (docs/results.md, "Regions"): all measured pixels, sky and
+// attached shadow included (kept for older records and tools); `geometry`,
+// the measured surface pixels outside attached shadow, the error that does
+// not depend on framing (absent from records written before it existed);
+// the reference's penumbra, the soft pixels of either image, and the
+// measured pixels on meshes that cast no shadow (a ground: where the seed
+// papers compare shadows; absent when the image has none, and in records
+// written before it existed). With the
 // config's metrics.distance_thirds, the visibility's measured pixels also
 // by distance from the camera (metrics/distance_thirds.h): near_third,
 // middle_third, far_third.
 struct ImageMetrics {
   RegionStats all, penumbra, soft_union;
+  std::optional<RegionStats> geometry = std::nullopt;
   std::optional<RegionStats> receivers = std::nullopt;
   std::optional<RegionStats> near_third = std::nullopt;
   std::optional<RegionStats> middle_third = std::nullopt;
@@ -50,10 +55,10 @@ struct MetricsRecord {
 };
 
 // A metric named by its dotted path under "metrics":
-// <visibility|shaded>.<all|penumbra|soft_union|receivers|near_third|
-// middle_third|far_third>.<key>, e.g. visibility.all.rmse or
+// <visibility|shaded>.<geometry|all|penumbra|soft_union|receivers|
+// near_third|middle_third|far_third>.<key>, e.g. visibility.geometry.rmse or
 // visibility.all.frac_over_0.05 (a key may hold dots). A region the record
-// lacks (receivers, the thirds) reads as NaN.
+// lacks (geometry in older records, receivers, the thirds) reads as NaN.
 class MetricPath {
  public:
   // nullopt when `dotted` names no number of the schema.

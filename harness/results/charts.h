@@ -25,10 +25,11 @@ namespace sb {
 
 struct ChartOptions {
   // A dotted path into record["metrics"] (record/metrics_record.h, MetricPath):
-  // <visibility|shaded>.<all|penumbra|soft_union>.<key>, e.g.
-  // visibility.penumbra.rmse, shaded.all.ssim, visibility.all.frac_over_0.05.
+  // <visibility|shaded>.<region>.<key>, e.g. visibility.penumbra.rmse,
+  // shaded.geometry.ssim, visibility.all.frac_over_0.05. The default region,
+  // geometry, does not change with framing (docs/results.md, "Regions").
   // For psnr and ssim higher is better, and the Pareto front follows that.
-  std::string error_metric = "visibility.all.rmse";
+  std::string error_metric = "visibility.geometry.rmse";
 };
 
 struct ChartFile {

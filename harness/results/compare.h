@@ -11,7 +11,7 @@
 //     code reports (compare_exit_code). With --normalize control the same
 //     test runs on the per-frame ratios to the control job, whatever the
 //     hosts; --timing none compares no time at all;
-//   - error: the chosen metric (default metrics.visibility.all.rmse); a
+//   - error: the chosen metric (default metrics.visibility.geometry.rmse); a
 //     regression is an increase by more than error_threshold (absolute), an
 //     improvement a decrease by more than it. Compared whatever the hosts.
 // A job that was ok in BASE and is failed in NEW is a regression too.
@@ -31,9 +31,9 @@ struct CompareOptions {
   // 0.02 and 0.10: from the false-alarm and detection table in docs/ci.md
   // (bench/ci_gate_trials.py), not chosen by hand.
   double alpha = 0.02;
-  double time_threshold = 0.10;                // relative change of the median frame time
-  double error_threshold = 0.005;              // absolute change of the error metric
-  std::string metric = "visibility.all.rmse";  // a path under a record's "metrics"
+  double time_threshold = 0.10;                     // relative change of the median frame time
+  double error_threshold = 0.005;                   // absolute change of the error metric
+  std::string metric = "visibility.geometry.rmse";  // a path under a record's "metrics"
   // Which samples: "frame", "technique" (its passes' sum) or "none" (errors only).
   std::string timing = "frame";
   // "none": absolute times, same host fingerprint only; "control": the

@@ -18,6 +18,7 @@
 #include "gl/gl.h"
 #include "gl/gpu_scene.h"
 #include "metrics/distance_thirds.h"
+#include "metrics/geometry_region.h"
 #include "metrics/image_io.h"
 #include "metrics/light_horizon.h"
 #include "metrics/metrics.h"
@@ -114,11 +115,11 @@ void reset_gl_state() { gl::reset_state(); }
 
 // Pixel sets shared by every job of one (scene, resolution).
 struct Regions {
-  std::vector<uint8_t> measured;    // all but the pixels whose tangent plane cuts the light
-  std::vector<uint8_t> penumbra;    // the reference's soft pixels, measured ones only
-  std::vector<uint8_t> attached;    // the light wholly below the tangent plane: V = 0
-  std::vector<uint8_t> receivers;   // measured pixels on meshes that cast no shadow
-  std::vector<uint8_t> classified;  // measured geometry outside attached shadow: record "classes"
+  std::vector<uint8_t> measured;   // all but the pixels whose tangent plane cuts the light
+  std::vector<uint8_t> penumbra;   // the reference's soft pixels, measured ones only
+  std::vector<uint8_t> attached;   // the light wholly below the tangent plane: V = 0
+  std::vector<uint8_t> receivers;  // measured pixels on meshes that cast no shadow
+  std::vector<uint8_t> geometry;   // measured surface outside attached shadow; record "classes"
   bool any_receiver = false;
   // metrics.distance_thirds: the measured pixels by distance from the camera.
   std::optional<std::array<std::vector<uint8_t>, 3>> distance_thirds;
@@ -156,7 +157,9 @@ ImageF shade(const FrameSetup& f, const ImageF& visibility) {
 // reference's penumbra; the soft pixels of either the technique or the
 // reference (`soft_union`), which also sees light bleeding into a true umbra
 // and blur outside the true penumbra; and, when the view holds any, the
-// pixels on meshes that cast no shadow (`receivers`).
+// pixels on meshes that cast no shadow (`receivers`). `geometry`, the surface
+// outside attached shadow, is measured on its own (metrics/geometry_region.h):
+// its SSIM windows see the reference's values everywhere outside it.
 //
 // SSIM's windows reach past the mask, so the unmeasured pixels take the
 // reference's values first: they add no error to a neighbour either.
@@ -172,10 +175,16 @@ ImageMetrics compare_images(const ImageF& test, const ImageF& ref, const Regions
   std::vector<const std::vector<uint8_t>*> masks = {&regions.measured, &regions.penumbra,
                                                     &soft_union};
   if (regions.any_receiver) masks.push_back(&regions.receivers);
+  // Geometry shares the SSIM pass unless the technique wrote something other
+  // than the reference outside it (on the sky, say): then it needs its own.
+  const bool geometry_shares = metrics::matches_outside(t, ref, regions.geometry);
+  if (geometry_shares) masks.push_back(&regions.geometry);
   const size_t first_extra = masks.size();
   masks.insert(masks.end(), extra.begin(), extra.end());
   const std::vector<metrics::ErrorStats> stats = metrics::compare(t, ref, masks);
   ImageMetrics m{region_stats(stats[0]), region_stats(stats[1]), region_stats(stats[2])};
+  m.geometry = region_stats(geometry_shares ? stats[first_extra - 1]
+                                            : metrics::compare_within(t, ref, regions.geometry));
   if (regions.any_receiver) m.receivers = region_stats(stats[3]);
   if (extra_stats != nullptr)
     for (size_t i = first_extra; i < stats.size(); ++i)
@@ -496,10 +505,7 @@ class JobExecutor::Impl {
     for (auto& m : regions.measured) m = m ? 0 : 1;
     apply_attached_shadow(regions.attached, ref.visibility);
     regions.penumbra = mask_and(metrics::penumbra_mask(ref.visibility), regions.measured);
-    regions.classified.resize(regions.measured.size());
-    for (size_t i = 0; i < regions.classified.size(); ++i)
-      regions.classified[i] =
-          regions.measured[i] && !regions.attached[i] && positions.data[i * 4 + 3] != 0.0f ? 1 : 0;
+    regions.geometry = metrics::geometry_mask(horizon);
     if (e_.distance_thirds)
       regions.distance_thirds =
           metrics::distance_thirds(positions, st.scene.camera.eye, regions.measured);
@@ -615,8 +621,8 @@ class JobExecutor::Impl {
     const ImageF shaded = shade(frame, visibility);
     r.metrics = measure(visibility, shaded, baseline);
     if (baseline.second) r.second_reference = measure_second(visibility, baseline);
-    r.classes = ClassesRecord{metrics::confusion_matrix(visibility, baseline.ref.visibility,
-                                                        baseline.regions.classified)};
+    r.classes = ClassesRecord{
+        metrics::confusion_matrix(visibility, baseline.ref.visibility, baseline.regions.geometry)};
     if (auto warning = noise_warning(*r.metrics, baseline.ref)) r.warnings.push_back(*warning);
     phases.measure = lap.seconds();
     if (o_.write_images) r.images = write_job_images(r.job_id, visibility, shaded, baseline);

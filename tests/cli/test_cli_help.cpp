@@ -71,7 +71,7 @@ TEST(CliHelp, SpecificOptionsAndDefaults) {
   for (const char* expected :
        {"--alpha A=0.02", "--time-threshold R=0.1", "--error-threshold E=0.005",
         "--normalize {none,control}=none", "--timing {frame,technique,none}=frame",
-        "--metric PATH=visibility.all.rmse", "BASE_DIR", "NEW_DIR"})
+        "--metric PATH=visibility.geometry.rmse", "BASE_DIR", "NEW_DIR"})
     EXPECT_NE(compare.output.find(expected), std::string::npos) << expected << "\n"
                                                                 << compare.output;
   // compare-builds judges ratios to the control job by default.

@@ -50,6 +50,7 @@ inline JobRecord make_record(const std::string& job_id, const std::vector<double
   m.visibility.all.rmse = rmse;
   m.visibility.all.psnr = -20 * std::log10(rmse);
   m.visibility.penumbra.rmse = penumbra_rmse;
+  m.visibility.geometry = m.visibility.all;  // compare's default region
   r.metrics = m;
   return r;
 }

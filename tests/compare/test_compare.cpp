@@ -138,7 +138,7 @@ TEST(Compare, ErrorRegressionByAbsoluteThreshold) {
 
   // A NaN error where there was a number is a regression.
   auto nan_run = one_job(20.0, 1);
-  nan_run[0].metrics->visibility.all.rmse = std::nan("");
+  nan_run[0].metrics->visibility.geometry->rmse = std::nan("");
   r = compare_runs(one_job(20.0, 1), nan_run, CompareOptions{});
   EXPECT_EQ(r.jobs[0].error, Verdict::kRegression);
 }

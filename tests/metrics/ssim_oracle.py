@@ -5,8 +5,12 @@ Wang et al. 2004 settings, on two raw float dumps written by the C++ test.
 Dump format: b"SBF1", uint32 LE width, height, channels, then width*height*
 channels float32 LE values (row-major, row 0 on top, interleaved channels).
 
-Usage: ssim_oracle.py [--float32] A B [--map OUT]
+Usage: ssim_oracle.py [--float32] A B [--map OUT] [--region MASK]
 Prints the mean SSIM (repr). --map writes skimage's full SSIM map as a dump.
+--region MASK (a one-channel dump, nonzero inside) prints the SSIM of a region
+as docs/results.md defines it: every pixel of A outside the region takes B's
+value, then the mean of skimage's map over the region's pixels at least 5
+pixels from every border (skimage's own crop).
 --float32 keeps the inputs float32 (skimage then filters in float32);
 otherwise they are promoted to float64, the most exact reference.
 Exit code 3 means scikit-image is missing.
@@ -54,11 +58,18 @@ def main(argv):
         i = args.index("--map")
         map_out = args[i + 1]
         del args[i:i + 2]
+    region = None
+    if "--region" in args:
+        i = args.index("--region")
+        region = read_dump(args[i + 1])[:, :, 0] != 0
+        del args[i:i + 2]
     if len(args) != 2:
         sys.exit(__doc__)
     a, b = (read_dump(p) for p in args)
     if not as_f32:
         a, b = a.astype(np.float64), b.astype(np.float64)
+    if region is not None:
+        a = np.where(region[:, :, np.newaxis], a, b)
     kw = dict(gaussian_weights=True, sigma=1.5, use_sample_covariance=False,
               data_range=1.0, full=True)
     if a.shape[2] == 1:
@@ -68,6 +79,11 @@ def main(argv):
         mssim, smap = structural_similarity(a, b, channel_axis=-1, **kw)
     if map_out:
         write_dump(map_out, smap)
+    if region is not None:
+        pad = 5  # skimage's crop: (win_size - 1) // 2 for the 11x11 window
+        inside = np.zeros_like(region)
+        inside[pad:-pad, pad:-pad] = region[pad:-pad, pad:-pad]
+        mssim = smap[inside].mean() if inside.any() else float("nan")
     print(repr(float(mssim)))
 
 

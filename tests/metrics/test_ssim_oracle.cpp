@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <string>
 
+#include "metrics/geometry_region.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
 #include "test_util.h"
@@ -138,6 +139,59 @@ TEST(metrics_ssim_oracle, SmallestImage) {
   // 11 rows: the cropped interior is a single row.
   const ImageF a = test::pattern_image(13, 11, 1);
   check_against_skimage("smallest", a, test::blur_shift(a, 1, 1));
+}
+
+// The geometry region's SSIM (compare_within) against skimage on the image
+// whose pixels outside the region took the reference's values, averaged over
+// the region's interior pixels: the oracle does both steps itself. The test
+// image is wrong everywhere outside the region (a sky the technique got
+// wrong), which must not reach the region's windows.
+void check_region_against_skimage(const std::string& name, const ImageF& a, const ImageF& b,
+                                  const std::vector<uint8_t>& region) {
+  test::TempDir dir("ssim_region_" + name);
+  ImageF mask(a.width, a.height, 1);
+  for (size_t p = 0; p < region.size(); ++p) mask.data[p] = region[p] ? 1.0f : 0.0f;
+  test::write_dump(dir.file("a.sbf"), a);
+  test::write_dump(dir.file("b.sbf"), b);
+  test::write_dump(dir.file("region.sbf"), mask);
+  const OracleRun ref = run_oracle(quote(dir.file("a.sbf")) + " " + quote(dir.file("b.sbf")) +
+                                   " --region " + quote(dir.file("region.sbf")));
+  ASSERT_TRUE(ref.ok) << ref.output;
+  const double ours = compare_within(a, b, region).ssim;
+  EXPECT_NEAR(ours, ref.value, kTol) << name;
+  std::printf("[ %s ] region ssim ours %.12f skimage %.12f\n", name.c_str(), ours, ref.value);
+}
+
+// A disc of surface in a frame of sky; the test image's sky is noise.
+std::vector<uint8_t> disc(int w, int h) {
+  std::vector<uint8_t> region(static_cast<size_t>(w) * h, 0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double dx = x - 0.5 * w, dy = y - 0.55 * h;
+      region[static_cast<size_t>(y) * w + x] = dx * dx + dy * dy < 0.12 * w * w ? 1 : 0;
+    }
+  return region;
+}
+
+TEST(metrics_ssim_oracle, GeometryRegionOneChannel) {
+  const ImageF ref = test::pattern_image(47, 39, 1);
+  ImageF test = test::blur_shift(ref, 2, 1);
+  const std::vector<uint8_t> region = disc(47, 39);
+  const ImageF sky = test::noise_image(47, 39, 1, 6);
+  for (size_t p = 0; p < region.size(); ++p)
+    if (!region[p]) test.data[p] = sky.data[p];
+  check_region_against_skimage("geometry1", test, ref, region);
+}
+
+TEST(metrics_ssim_oracle, GeometryRegionThreeChannels) {
+  const ImageF ref = test::pattern_image(41, 33, 3);
+  ImageF test = test::blur_shift(ref, -1, 2);
+  const std::vector<uint8_t> region = disc(41, 33);
+  const ImageF sky = test::noise_image(41, 33, 3, 7);
+  for (size_t p = 0; p < region.size(); ++p)
+    if (!region[p])
+      for (size_t c = 0; c < 3; ++c) test.data[p * 3 + c] = sky.data[p * 3 + c];
+  check_region_against_skimage("geometry3", test, ref, region);
 }
 
 }  // namespace

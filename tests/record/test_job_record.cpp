@@ -166,6 +166,27 @@ TEST(JobRecord, TheReceiversRegionRoundTripsAndOlderRecordsLackIt) {
   EXPECT_FALSE(MetricPath::parse("visibility.ground.rmse").has_value());
 }
 
+TEST(JobRecord, TheGeometryRegionRoundTripsInBothImagesAndOlderRecordsLackIt) {
+  JobRecord r = full_record();
+  r.metrics->visibility.geometry = region(0.0625);
+  r.metrics->shaded.geometry = region(0.03125);
+  const json j = r.to_json();
+  EXPECT_EQ(j["metrics"]["visibility"]["geometry"]["rmse"], 0.0625);
+  EXPECT_EQ(j["metrics"]["shaded"]["geometry"]["rmse"], 0.03125);
+  const JobRecord back = JobRecord::from_json(j);
+  EXPECT_EQ(back.to_json(), j);
+  EXPECT_EQ(MetricPath::parse("visibility.geometry.rmse")->of(*back.metrics), 0.0625);
+  EXPECT_EQ(MetricPath::parse("shaded.geometry.rmse")->of(*back.metrics), 0.03125);
+  // A record written before the region existed reads, and its geometry
+  // figures are NaN, never `all`'s.
+  json old = j;
+  old["metrics"]["visibility"].erase("geometry");
+  old["metrics"]["shaded"].erase("geometry");
+  const JobRecord older = JobRecord::from_json(old);
+  EXPECT_FALSE(older.metrics->visibility.geometry.has_value());
+  EXPECT_TRUE(std::isnan(MetricPath::parse("visibility.geometry.rmse")->of(*older.metrics)));
+}
+
 TEST(JobRecord, TheDistanceThirdsRoundTripAndRecordsWithoutThemReadNaN) {
   JobRecord r = full_record();
   r.metrics->visibility.near_third = region(0.25);

@@ -25,8 +25,10 @@ std::vector<JobRecord> records() {
   control.frame_ratio = RatioSeries::of({1.25, 1.5, 1.375});
   ok.timing->control = control;
   MetricsRecord m;
-  m.visibility.all.rmse = 0.0625;
-  m.visibility.all.psnr = 24.08;
+  m.visibility.geometry = RegionStats{};
+  m.visibility.geometry->rmse = 0.0625;
+  m.visibility.geometry->psnr = 24.08;
+  m.visibility.all.rmse = 0.046875;  // with the sky: no table shows it
   m.visibility.penumbra.rmse = 0.125;
   ok.metrics = m;
   JobRecord skipped =
@@ -78,7 +80,9 @@ std::vector<JobRecord> records_with_second_reference() {
   rs[0].metrics->visibility.penumbra.rmse = 0.1;
   SecondReferenceRecord second;
   second.reference = mc;
-  second.visibility.all.rmse = 0.0675;
+  second.visibility.geometry = RegionStats{};
+  second.visibility.geometry->rmse = 0.0675;
+  second.visibility.all.rmse = 0.05;
   second.visibility.penumbra.rmse = 0.125;
   rs[0].second_reference = second;
   rs[1].reference = exact;
@@ -125,6 +129,27 @@ TEST(ReportColumns, CellsAgreeAcrossTheTables) {
   EXPECT_NE(csv.find(",skipped,,,,,,,,,,,,,,,,,,,casters are not closed\n"), std::string::npos)
       << csv;
   EXPECT_THROW(report_column("nonsense"), std::out_of_range);
+}
+
+TEST(ReportColumns, ErrorColumnsAreTheGeometryRegionsAndOlderRecordsLeaveThemEmpty) {
+  auto rs = records();
+  RegionStats& g = *rs[0].metrics->visibility.geometry;
+  g.mae = 0.03125;
+  g.max_error = 0.5;
+  g.ssim = 0.875;
+  g.frac_over_005 = 0.25;
+  RegionStats& all = rs[0].metrics->visibility.all;  // sky included: other numbers
+  all.mae = all.max_error = all.ssim = all.frac_over_005 = all.psnr = 0.75;
+  EXPECT_EQ(report_column("rmse").cell(rs[0]), "0.06250");
+  EXPECT_EQ(report_column("mae").cell(rs[0]), "0.03125");
+  EXPECT_EQ(report_column("max_error").cell(rs[0]), "0.5000");
+  EXPECT_EQ(report_column("psnr").cell(rs[0]), "24.08");
+  EXPECT_EQ(report_column("ssim").cell(rs[0]), "0.8750");
+  EXPECT_EQ(report_column("frac_over_0.05").cell(rs[0]), "0.2500");
+  // A record written before the region existed: empty cells, not `all`'s.
+  rs[0].metrics->visibility.geometry.reset();
+  for (const char* name : {"rmse", "mae", "max_error", "psnr", "ssim", "frac_over_0.05"})
+    EXPECT_EQ(report_column(name).cell(rs[0]), "") << name;
 }
 
 TEST(ReportColumns, PenumbraMissedAndInventedComeFromTheRecordsClasses) {
