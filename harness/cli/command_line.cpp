@@ -156,6 +156,9 @@ void add_compare_options(CLI::App* sub, Args& a, std::string& normalize) {
              "which times: whole frames, the technique's passes, or none (errors only)");
   add_choice(sub, "--normalize", normalize, {"none", "control"},
              "compare absolute times (same host only) or each frame's ratio to the control job's");
+  add_choice(sub, "--correction", a.compare.correction, {"holm", "bh", "none"},
+             "share alpha across the jobs tested: Holm (family-wise), Benjamini-Hochberg, or "
+             "none (alpha per job)");
 }
 
 // A positional argument: its name is its placeholder, so no type name.

@@ -10,6 +10,7 @@
 #include "core/format_number.h"
 #include "record/timing_stats.h"
 #include "results/mann_whitney.h"
+#include "results/multiple_testing.h"
 
 namespace sb {
 namespace {
@@ -153,6 +154,8 @@ void check_options(const CompareOptions& o) {
     throw InputError("", "--timing", "expected frame, technique or none, found '" + o.timing + "'");
   if (o.normalize != "none" && o.normalize != "control")
     throw InputError("", "--normalize", "expected none or control, found '" + o.normalize + "'");
+  if (!parse_correction(o.correction))
+    throw InputError("", "--correction", "expected holm, bh or none, found '" + o.correction + "'");
   if (!metric_path(o.metric))
     throw InputError("", "--metric",
                      "no record has metrics." + o.metric +
@@ -244,13 +247,29 @@ void compare_time(const JobRecord& rb, const JobRecord& rn, const FingerprintPai
   c.base_median_ms = summarize(sbase).median;
   c.new_median_ms = summarize(sn).median;
   c.change = c.base_median_ms > 0 ? c.new_median_ms / c.base_median_ms - 1 : 0;
-  c.p = mann_whitney_u(sbase, sn).p;
-  if (*c.p < o.alpha && c.change > o.time_threshold)
-    c.time = Verdict::kRegression;
-  else if (*c.p < o.alpha && c.change < -o.time_threshold)
-    c.time = Verdict::kImprovement;
-  else
-    c.time = Verdict::kUnchanged;
+  c.p = mann_whitney_u(sbase, sn).p;  // judged in judge_times, across the jobs
+}
+
+// The time verdicts, once every job's p is known: each p adjusted across
+// the jobs tested, then compared with alpha.
+void judge_times(CompareResult& out, const CompareOptions& o) {
+  std::vector<JobComparison*> tested;
+  std::vector<double> p;
+  for (auto& c : out.jobs)
+    if (c.p) {
+      tested.push_back(&c);
+      p.push_back(*c.p);
+    }
+  out.time_tests = int(tested.size());
+  const std::vector<double> adjusted = adjust_p_values(p, *parse_correction(o.correction));
+  for (size_t i = 0; i < tested.size(); ++i) {
+    JobComparison& c = *tested[i];
+    c.p_adjusted = adjusted[i];
+    const bool significant = adjusted[i] < o.alpha;
+    c.time = significant && c.change > o.time_threshold    ? Verdict::kRegression
+             : significant && c.change < -o.time_threshold ? Verdict::kImprovement
+                                                           : Verdict::kUnchanged;
+  }
 }
 
 }  // namespace
@@ -320,6 +339,7 @@ CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector
   }
   for (const auto& id : new_order)
     if (!b.count(id)) out.only_new.push_back(id);
+  judge_times(out, o);
 
   bool any_ok = false;
   for (const auto& c : out.jobs) any_ok = any_ok || (c.base_status == "ok" && c.new_status == "ok");
@@ -342,6 +362,18 @@ int compare_exit_code(const CompareResult& r) {
   return r.time_refused > 0 ? kExitBadInput : kExitOk;
 }
 
+namespace {
+
+// How alpha applies: after the correction across the jobs tested, or per job.
+std::string alpha_scope(const CompareResult& r, const CompareOptions& o) {
+  const Correction c = *parse_correction(o.correction);
+  if (c == Correction::kNone) return " per job (--correction none)";
+  return std::string(" after ") + correction_name(c) + "'s correction across the " +
+         std::to_string(r.time_tests) + " job(s) tested (--correction " + to_string(c) + ")";
+}
+
+}  // namespace
+
 std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
   size_t w = 3;
   for (const auto& c : r.jobs) w = std::max(w, c.job_id.size());
@@ -354,27 +386,30 @@ std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
   else
     s += "time: Mann-Whitney U on " + time_label(o) + "s" +
          (ratios ? " (--normalize control)" : ", absolute (--normalize none)") +
-         format_number(", alpha %g", o.alpha) +
+         format_number(", alpha %g", o.alpha) + alpha_scope(r, o) +
          format_number(", threshold %.1f %%; ", o.time_threshold * 100);
   s += "error: " + o.metric + format_number(", threshold %g (absolute)\n", o.error_threshold);
   s += format_hosts(r, o);
   s += "\n";
   const char* unit = ratios ? "ratio" : "ms";
-  std::snprintf(line, sizeof line, "%-*s %10s %10s %8s %8s  %-12s %10s %10s  %s\n", int(w), "job",
-                (std::string("base ") + unit).c_str(), (std::string("new ") + unit).c_str(),
-                "change", "p", "time", (label + " base").c_str(), (label + " new").c_str(),
+  std::snprintf(line, sizeof line, "%-*s %10s %10s %8s %8s %8s  %-12s %10s %10s  %s\n", int(w),
+                "job", (std::string("base ") + unit).c_str(), (std::string("new ") + unit).c_str(),
+                "change", "p", "p adj", "time", (label + " base").c_str(), (label + " new").c_str(),
                 "error");
   s += line;
   for (const auto& c : r.jobs) {
     const bool timed = c.time != Verdict::kNotCompared;
     const char* median = ratios ? "%.4f" : "%.3f";
+    const auto p_text = [](const std::optional<double>& p) {
+      return p ? format_number(*p < 1e-3 ? "%.1e" : "%.4f", *p) : std::string("-");
+    };
     std::snprintf(
-        line, sizeof line, "%-*s %10s %10s %8s %8s  %-12s %10s %10s  %s\n", int(w),
+        line, sizeof line, "%-*s %10s %10s %8s %8s %8s  %-12s %10s %10s  %s\n", int(w),
         c.job_id.c_str(), timed ? format_number(median, c.base_median_ms).c_str() : "-",
         timed ? format_number(median, c.new_median_ms).c_str() : "-",
         timed ? format_number("%+.1f%%", std::fabs(c.change) < 5e-4 ? 0.0 : c.change * 100).c_str()
               : "-",
-        c.p ? format_number(*c.p < 1e-3 ? "%.1e" : "%.4f", *c.p).c_str() : "-",
+        p_text(c.p).c_str(), p_text(c.p_adjusted).c_str(),
         c.time_refused ? "not compared" : to_string(c.time), error_text(c.base_error).c_str(),
         error_text(c.new_error).c_str(), to_string(c.error));
     s += line;
@@ -389,7 +424,8 @@ std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
       std::string what;
       if (c.time == Verdict::kRegression)
         what += time_label(o) + format_number(" %+.1f %%", c.change * 100) +
-                format_number(" (p = %.2g)", c.p.value_or(1));
+                format_number(" (p = %.2g", c.p.value_or(1)) +
+                format_number(", adjusted %.2g)", c.p_adjusted.value_or(1));
       if (c.error == Verdict::kRegression)
         what += std::string(what.empty() ? "" : ", ") + label + " " + error_text(c.base_error) +
                 " -> " + error_text(c.new_error);

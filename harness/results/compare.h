@@ -10,7 +10,10 @@
 //     otherwise the job's time is refused ("not compared"), which the exit
 //     code reports (compare_exit_code). With --normalize control the same
 //     test runs on the per-frame ratios to the control job, whatever the
-//     hosts; --timing none compares no time at all;
+//     hosts; --timing none compares no time at all. The p-values of all
+//     jobs whose time was tested are adjusted together (--correction, Holm
+//     by default; results/multiple_testing.h), so that alpha bounds the
+//     chance that unchanged code fails the run, not each job's;
 //   - error: the chosen metric (default metrics.visibility.all.rmse); a
 //     regression is an increase by more than error_threshold (absolute), an
 //     improvement a decrease by more than it. Compared whatever the hosts.
@@ -39,6 +42,9 @@ struct CompareOptions {
   // "none": absolute times, same host fingerprint only; "control": the
   // per-frame ratios to timing.control, whatever the hosts.
   std::string normalize = "none";
+  // "holm", "bh" or "none": how alpha is shared across the jobs whose time
+  // is tested (docs/ci.md, "Many jobs, one alpha").
+  std::string correction = "holm";
 };
 
 enum class Verdict { kUnchanged, kRegression, kImprovement, kNotCompared };
@@ -53,6 +59,9 @@ struct JobComparison {
   double base_median_ms = 0, new_median_ms = 0;
   double change = 0;        // new median / base median - 1
   std::optional<double> p;  // absent without samples on both sides
+  // p adjusted across the jobs tested (CompareOptions::correction); the
+  // verdict compares this one with alpha.
+  std::optional<double> p_adjusted;
   Verdict time = Verdict::kNotCompared;
   // The time was not compared because it would mean nothing: other hosts
   // (absolute times), or no control timing (ratios). The note says which.
@@ -77,6 +86,7 @@ struct CompareResult {
   std::vector<std::string> only_base, only_new;
   int regressions = 0, improvements = 0;  // jobs with any regression / any improvement and none
   int time_refused = 0;                   // jobs whose time was refused (time_refused)
+  int time_tests = 0;                     // jobs whose time was tested: the correction's family
   // Of the jobs ok on both sides, each distinct pair of fingerprints.
   std::vector<FingerprintPair> hosts, builds;
 };
