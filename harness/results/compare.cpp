@@ -11,6 +11,7 @@
 #include "record/timing_stats.h"
 #include "results/mann_whitney.h"
 #include "results/multiple_testing.h"
+#include "results/reference_identity.h"
 
 namespace sb {
 namespace {
@@ -156,7 +157,7 @@ void check_options(const CompareOptions& o) {
     throw InputError("", "--normalize", "expected none or control, found '" + o.normalize + "'");
   if (!parse_correction(o.correction))
     throw InputError("", "--correction", "expected holm, bh or none, found '" + o.correction + "'");
-  if (!metric_path(o.metric))
+  if (o.metric != "none" && !metric_path(o.metric))
     throw InputError("", "--metric",
                      "no record has metrics." + o.metric +
                          ": expected <visibility|shaded>.<all|penumbra|soft_union>.<key> "
@@ -200,6 +201,31 @@ std::string format_hosts(const CompareResult& r, const CompareOptions& o) {
     s += "build: differs (shown, not refused):\n";
     for (const auto& d : p.differences) s += "  " + d + "\n";
   }
+  return s;
+}
+
+// The lines about the references under the table's header: which jobs'
+// references differ, in what, and whether their errors were compared.
+std::string format_references(const CompareResult& r, const CompareOptions& o) {
+  std::string s;
+  for (const auto& d : r.references) {
+    s += "reference: differs for " + std::to_string(d.jobs.size()) + " job(s)";
+    if (o.allow_reference_change)
+      s += "; errors compared anyway (--allow-reference-change): a change of error may be the "
+           "reference's, not the technique's:\n";
+    else
+      s += "; their errors are not compared (a change of error could be the reference's), and "
+           "compare exits 2 unless something regressed (4). --allow-reference-change compares "
+           "them anyway; --metric none compares times only:\n";
+    for (const auto& line : d.differences) s += "  " + line + "\n";
+    std::string jobs;
+    for (const auto& id : d.jobs) jobs += (jobs.empty() ? "" : ", ") + id;
+    s += "  jobs: " + jobs + "\n";
+  }
+  if (r.references_without_key > 0)
+    s += "reference: " + std::to_string(r.references_without_key) +
+         " job(s) have no reference cache_key on either side (records from before it was "
+         "always written): checked on method, spp, seed, embree_isa and adaptive settings only\n";
   return s;
 }
 
@@ -272,6 +298,38 @@ void judge_times(CompareResult& out, const CompareOptions& o) {
   }
 }
 
+void add_note(JobComparison& c, const std::string& note) {
+  c.note += (c.note.empty() ? "" : "; ") + note;
+}
+
+// Whether the job's errors compare: the same reference on both sides
+// (results/reference_identity.h). Notes a difference in `out` and the job.
+bool same_reference(const JobRecord& rb, const JobRecord& rn, const CompareOptions& o,
+                    JobComparison& c, CompareResult& out) {
+  const auto fb = reference_identity_fields(rb.reference);
+  const auto fn = reference_identity_fields(rn.reference);
+  if (fb.back().second.empty() && fn.back().second.empty()) ++out.references_without_key;
+  const std::vector<std::string> differences = field_differences(fb, fn);
+  if (differences.empty()) return true;
+  auto group =
+      std::find_if(out.references.begin(), out.references.end(),
+                   [&](const ReferenceDifference& d) { return d.differences == differences; });
+  if (group == out.references.end()) {
+    out.references.push_back({differences, {}});
+    group = out.references.end() - 1;
+  }
+  group->jobs.push_back(c.job_id);
+  std::string names;
+  for (const auto& d : differences) names += (names.empty() ? "" : ", ") + d.substr(0, d.find(':'));
+  if (o.allow_reference_change) {
+    add_note(c, "the references differ (" + names +
+                    "); error compared anyway (--allow-reference-change)");
+    return true;
+  }
+  add_note(c, "error not compared: the references differ (" + names + "; see above)");
+  return false;
+}
+
 }  // namespace
 
 CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector<JobRecord>& fresh,
@@ -315,10 +373,16 @@ CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector
     compare_time(rb, rn, host, o, c);
 
     // Error.
+    if (o.metric == "none") {
+      out.jobs.push_back(std::move(c));
+      continue;
+    }
     c.base_error = metric_value(rb, o.metric);
     c.new_error = metric_value(rn, o.metric);
     metric_seen = metric_seen || c.base_error || c.new_error;
-    if (c.base_error && c.new_error) {
+    if (c.base_error && c.new_error && !same_reference(rb, rn, o, c, out)) {
+      c.error_refused = true;
+    } else if (c.base_error && c.new_error) {
       const double eb = *c.base_error, en = *c.new_error;
       if (std::isnan(eb) && std::isnan(en)) {
         c.error = Verdict::kUnchanged;
@@ -343,12 +407,13 @@ CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector
 
   bool any_ok = false;
   for (const auto& c : out.jobs) any_ok = any_ok || (c.base_status == "ok" && c.new_status == "ok");
-  if (any_ok && !metric_seen)
+  if (any_ok && !metric_seen && o.metric != "none")
     throw InputError("", "--metric",
                      "no record has metrics." + o.metric +
                          " (try visibility.all.rmse, visibility.penumbra.rmse, shaded.all.ssim)");
   for (const auto& c : out.jobs) {
     if (c.time_refused) ++out.time_refused;
+    if (c.error_refused) ++out.error_refused;
     if (c.regressed())
       ++out.regressions;
     else if (c.time == Verdict::kImprovement || c.error == Verdict::kImprovement)
@@ -359,7 +424,7 @@ CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector
 
 int compare_exit_code(const CompareResult& r) {
   if (r.regressions > 0) return kExitRegression;
-  return r.time_refused > 0 ? kExitBadInput : kExitOk;
+  return r.time_refused > 0 || r.error_refused > 0 ? kExitBadInput : kExitOk;
 }
 
 namespace {
@@ -388,8 +453,12 @@ std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
          (ratios ? " (--normalize control)" : ", absolute (--normalize none)") +
          format_number(", alpha %g", o.alpha) + alpha_scope(r, o) +
          format_number(", threshold %.1f %%; ", o.time_threshold * 100);
-  s += "error: " + o.metric + format_number(", threshold %g (absolute)\n", o.error_threshold);
+  if (o.metric == "none")
+    s += "error: not compared (--metric none)\n";
+  else
+    s += "error: " + o.metric + format_number(", threshold %g (absolute)\n", o.error_threshold);
   s += format_hosts(r, o);
+  s += format_references(r, o);
   s += "\n";
   const char* unit = ratios ? "ratio" : "ms";
   std::snprintf(line, sizeof line, "%-*s %10s %10s %8s %8s %8s  %-12s %10s %10s  %s\n", int(w),
@@ -411,7 +480,7 @@ std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
               : "-",
         p_text(c.p).c_str(), p_text(c.p_adjusted).c_str(),
         c.time_refused ? "not compared" : to_string(c.time), error_text(c.base_error).c_str(),
-        error_text(c.new_error).c_str(), to_string(c.error));
+        error_text(c.new_error).c_str(), c.error_refused ? "not compared" : to_string(c.error));
     s += line;
   }
   bool notes = false;
@@ -445,6 +514,7 @@ std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
                 r.jobs.size(), r.regressions, r.improvements);
   s += line;
   if (r.time_refused > 0) s += ", " + std::to_string(r.time_refused) + " with time not compared";
+  if (r.error_refused > 0) s += ", " + std::to_string(r.error_refused) + " with error not compared";
   s += "\n";
   return s;
 }
