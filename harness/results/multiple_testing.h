@@ -2,7 +2,8 @@
 // Adjusted p-values for a family of tests, so that `compare` can judge many
 // jobs at one alpha: without a correction, 50 unchanged jobs, each tested
 // at 0.02 and failing the run when slower (half of the rejections), fail it
-// in 1 - 0.99^50 = 39.5 % of the runs (docs/ci.md, "Many jobs, one alpha").
+// in up to 1 - 0.99^50 = 39.5 % of the runs (30 % measured; docs/ci.md,
+// "Many jobs, one alpha").
 //   - Holm (1979), step-down: with p sorted ascending, p~(i) =
 //     max over j <= i of min(1, (m - j + 1) p(j)). Rejecting p~ < alpha keeps
 //     the chance of ANY false rejection (family-wise error rate) <= alpha,
