@@ -39,6 +39,13 @@ int compare_dirs(const std::string& base, const std::string& fresh, const Compar
         "shadowbench: the time of %d job(s) was not compared (other or unknown hosts, or no "
         "control timing): use --normalize control, or --timing none for errors only\n",
         r.time_refused);
+  if (r.error_refused > 0)
+    std::fprintf(
+        stderr,
+        "shadowbench: the error of %d job(s) was not compared (BASE and NEW used different "
+        "references; the fields are listed above): use --allow-reference-change to "
+        "compare them anyway, or --metric none for times only\n",
+        r.error_refused);
   return compare_exit_code(r);
 }
 

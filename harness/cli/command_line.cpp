@@ -151,13 +151,18 @@ void add_compare_options(CLI::App* sub, Args& a, std::string& normalize) {
                   "flag a larger error only beyond this absolute change")
       ->type_name("E")
       ->check(number_check());
-  add_metric(
-      sub, a,
-      "the error compared: <visibility|shaded>.<geometry|all|penumbra|soft_union|...>.<key>");
+  add_metric(sub, a,
+             "the error compared: <visibility|shaded>.<geometry|all|penumbra|soft_union|...>.<key>, "
+             "or none (times only)");
   add_choice(sub, "--timing", a.compare.timing, {"frame", "technique", "none"},
              "which times: whole frames, the technique's passes, or none (errors only)");
   add_choice(sub, "--normalize", normalize, {"none", "control"},
              "compare absolute times (same host only) or each frame's ratio to the control job's");
+  add_choice(sub, "--correction", a.compare.correction, {"holm", "bh", "none"},
+             "share alpha across the jobs tested: Holm (family-wise), Benjamini-Hochberg, or "
+             "none (alpha per job)");
+  sub->add_flag("--allow-reference-change", a.compare.allow_reference_change,
+                "compare errors also where BASE and NEW used different references (noted)");
 }
 
 // A positional argument: its name is its placeholder, so no type name.

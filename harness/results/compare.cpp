@@ -10,6 +10,8 @@
 #include "core/format_number.h"
 #include "record/timing_stats.h"
 #include "results/mann_whitney.h"
+#include "results/multiple_testing.h"
+#include "results/reference_identity.h"
 
 namespace sb {
 namespace {
@@ -153,7 +155,9 @@ void check_options(const CompareOptions& o) {
     throw InputError("", "--timing", "expected frame, technique or none, found '" + o.timing + "'");
   if (o.normalize != "none" && o.normalize != "control")
     throw InputError("", "--normalize", "expected none or control, found '" + o.normalize + "'");
-  if (!metric_path(o.metric))
+  if (!parse_correction(o.correction))
+    throw InputError("", "--correction", "expected holm, bh or none, found '" + o.correction + "'");
+  if (o.metric != "none" && !metric_path(o.metric))
     throw InputError("", "--metric",
                      "no record has metrics." + o.metric +
                          ": expected <visibility|shaded>.<all|penumbra|soft_union>.<key> "
@@ -197,6 +201,31 @@ std::string format_hosts(const CompareResult& r, const CompareOptions& o) {
     s += "build: differs (shown, not refused):\n";
     for (const auto& d : p.differences) s += "  " + d + "\n";
   }
+  return s;
+}
+
+// The lines about the references under the table's header: which jobs'
+// references differ, in what, and whether their errors were compared.
+std::string format_references(const CompareResult& r, const CompareOptions& o) {
+  std::string s;
+  for (const auto& d : r.references) {
+    s += "reference: differs for " + std::to_string(d.jobs.size()) + " job(s)";
+    if (o.allow_reference_change)
+      s += "; errors compared anyway (--allow-reference-change): a change of error may be the "
+           "reference's, not the technique's:\n";
+    else
+      s += "; their errors are not compared (a change of error could be the reference's), and "
+           "compare exits 2 unless something regressed (4). --allow-reference-change compares "
+           "them anyway; --metric none compares times only:\n";
+    for (const auto& line : d.differences) s += "  " + line + "\n";
+    std::string jobs;
+    for (const auto& id : d.jobs) jobs += (jobs.empty() ? "" : ", ") + id;
+    s += "  jobs: " + jobs + "\n";
+  }
+  if (r.references_without_key > 0)
+    s += "reference: " + std::to_string(r.references_without_key) +
+         " job(s) have no reference cache_key on either side (records from before it was "
+         "always written): checked on method, spp, seed, embree_isa and adaptive settings only\n";
   return s;
 }
 
@@ -244,13 +273,61 @@ void compare_time(const JobRecord& rb, const JobRecord& rn, const FingerprintPai
   c.base_median_ms = summarize(sbase).median;
   c.new_median_ms = summarize(sn).median;
   c.change = c.base_median_ms > 0 ? c.new_median_ms / c.base_median_ms - 1 : 0;
-  c.p = mann_whitney_u(sbase, sn).p;
-  if (*c.p < o.alpha && c.change > o.time_threshold)
-    c.time = Verdict::kRegression;
-  else if (*c.p < o.alpha && c.change < -o.time_threshold)
-    c.time = Verdict::kImprovement;
-  else
-    c.time = Verdict::kUnchanged;
+  c.p = mann_whitney_u(sbase, sn).p;  // judged in judge_times, across the jobs
+}
+
+// The time verdicts, once every job's p is known: each p adjusted across
+// the jobs tested, then compared with alpha.
+void judge_times(CompareResult& out, const CompareOptions& o) {
+  std::vector<JobComparison*> tested;
+  std::vector<double> p;
+  for (auto& c : out.jobs)
+    if (c.p) {
+      tested.push_back(&c);
+      p.push_back(*c.p);
+    }
+  out.time_tests = int(tested.size());
+  const std::vector<double> adjusted = adjust_p_values(p, *parse_correction(o.correction));
+  for (size_t i = 0; i < tested.size(); ++i) {
+    JobComparison& c = *tested[i];
+    c.p_adjusted = adjusted[i];
+    const bool significant = adjusted[i] < o.alpha;
+    c.time = significant && c.change > o.time_threshold    ? Verdict::kRegression
+             : significant && c.change < -o.time_threshold ? Verdict::kImprovement
+                                                           : Verdict::kUnchanged;
+  }
+}
+
+void add_note(JobComparison& c, const std::string& note) {
+  c.note += (c.note.empty() ? "" : "; ") + note;
+}
+
+// Whether the job's errors compare: the same reference on both sides
+// (results/reference_identity.h). Notes a difference in `out` and the job.
+bool same_reference(const JobRecord& rb, const JobRecord& rn, const CompareOptions& o,
+                    JobComparison& c, CompareResult& out) {
+  const auto fb = reference_identity_fields(rb.reference);
+  const auto fn = reference_identity_fields(rn.reference);
+  if (fb.back().second.empty() && fn.back().second.empty()) ++out.references_without_key;
+  const std::vector<std::string> differences = field_differences(fb, fn);
+  if (differences.empty()) return true;
+  auto group =
+      std::find_if(out.references.begin(), out.references.end(),
+                   [&](const ReferenceDifference& d) { return d.differences == differences; });
+  if (group == out.references.end()) {
+    out.references.push_back({differences, {}});
+    group = out.references.end() - 1;
+  }
+  group->jobs.push_back(c.job_id);
+  std::string names;
+  for (const auto& d : differences) names += (names.empty() ? "" : ", ") + d.substr(0, d.find(':'));
+  if (o.allow_reference_change) {
+    add_note(c, "the references differ (" + names +
+                    "); error compared anyway (--allow-reference-change)");
+    return true;
+  }
+  add_note(c, "error not compared: the references differ (" + names + "; see above)");
+  return false;
 }
 
 }  // namespace
@@ -296,10 +373,16 @@ CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector
     compare_time(rb, rn, host, o, c);
 
     // Error.
+    if (o.metric == "none") {
+      out.jobs.push_back(std::move(c));
+      continue;
+    }
     c.base_error = metric_value(rb, o.metric);
     c.new_error = metric_value(rn, o.metric);
     metric_seen = metric_seen || c.base_error || c.new_error;
-    if (c.base_error && c.new_error) {
+    if (c.base_error && c.new_error && !same_reference(rb, rn, o, c, out)) {
+      c.error_refused = true;
+    } else if (c.base_error && c.new_error) {
       const double eb = *c.base_error, en = *c.new_error;
       if (std::isnan(eb) && std::isnan(en)) {
         c.error = Verdict::kUnchanged;
@@ -320,15 +403,17 @@ CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector
   }
   for (const auto& id : new_order)
     if (!b.count(id)) out.only_new.push_back(id);
+  judge_times(out, o);
 
   bool any_ok = false;
   for (const auto& c : out.jobs) any_ok = any_ok || (c.base_status == "ok" && c.new_status == "ok");
-  if (any_ok && !metric_seen)
+  if (any_ok && !metric_seen && o.metric != "none")
     throw InputError("", "--metric",
                      "no record has metrics." + o.metric +
                          " (try visibility.all.rmse, visibility.penumbra.rmse, shaded.all.ssim)");
   for (const auto& c : out.jobs) {
     if (c.time_refused) ++out.time_refused;
+    if (c.error_refused) ++out.error_refused;
     if (c.regressed())
       ++out.regressions;
     else if (c.time == Verdict::kImprovement || c.error == Verdict::kImprovement)
@@ -339,8 +424,20 @@ CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector
 
 int compare_exit_code(const CompareResult& r) {
   if (r.regressions > 0) return kExitRegression;
-  return r.time_refused > 0 ? kExitBadInput : kExitOk;
+  return r.time_refused > 0 || r.error_refused > 0 ? kExitBadInput : kExitOk;
 }
+
+namespace {
+
+// How alpha applies: after the correction across the jobs tested, or per job.
+std::string alpha_scope(const CompareResult& r, const CompareOptions& o) {
+  const Correction c = *parse_correction(o.correction);
+  if (c == Correction::kNone) return " per job (--correction none)";
+  return std::string(" after ") + correction_name(c) + "'s correction across the " +
+         std::to_string(r.time_tests) + " job(s) tested (--correction " + to_string(c) + ")";
+}
+
+}  // namespace
 
 std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
   size_t w = 3;
@@ -354,29 +451,36 @@ std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
   else
     s += "time: Mann-Whitney U on " + time_label(o) + "s" +
          (ratios ? " (--normalize control)" : ", absolute (--normalize none)") +
-         format_number(", alpha %g", o.alpha) +
+         format_number(", alpha %g", o.alpha) + alpha_scope(r, o) +
          format_number(", threshold %.1f %%; ", o.time_threshold * 100);
-  s += "error: " + o.metric + format_number(", threshold %g (absolute)\n", o.error_threshold);
+  if (o.metric == "none")
+    s += "error: not compared (--metric none)\n";
+  else
+    s += "error: " + o.metric + format_number(", threshold %g (absolute)\n", o.error_threshold);
   s += format_hosts(r, o);
+  s += format_references(r, o);
   s += "\n";
   const char* unit = ratios ? "ratio" : "ms";
-  std::snprintf(line, sizeof line, "%-*s %10s %10s %8s %8s  %-12s %10s %10s  %s\n", int(w), "job",
-                (std::string("base ") + unit).c_str(), (std::string("new ") + unit).c_str(),
-                "change", "p", "time", (label + " base").c_str(), (label + " new").c_str(),
+  std::snprintf(line, sizeof line, "%-*s %10s %10s %8s %8s %8s  %-12s %10s %10s  %s\n", int(w),
+                "job", (std::string("base ") + unit).c_str(), (std::string("new ") + unit).c_str(),
+                "change", "p", "p adj", "time", (label + " base").c_str(), (label + " new").c_str(),
                 "error");
   s += line;
   for (const auto& c : r.jobs) {
     const bool timed = c.time != Verdict::kNotCompared;
     const char* median = ratios ? "%.4f" : "%.3f";
+    const auto p_text = [](const std::optional<double>& p) {
+      return p ? format_number(*p < 1e-3 ? "%.1e" : "%.4f", *p) : std::string("-");
+    };
     std::snprintf(
-        line, sizeof line, "%-*s %10s %10s %8s %8s  %-12s %10s %10s  %s\n", int(w),
+        line, sizeof line, "%-*s %10s %10s %8s %8s %8s  %-12s %10s %10s  %s\n", int(w),
         c.job_id.c_str(), timed ? format_number(median, c.base_median_ms).c_str() : "-",
         timed ? format_number(median, c.new_median_ms).c_str() : "-",
         timed ? format_number("%+.1f%%", std::fabs(c.change) < 5e-4 ? 0.0 : c.change * 100).c_str()
               : "-",
-        c.p ? format_number(*c.p < 1e-3 ? "%.1e" : "%.4f", *c.p).c_str() : "-",
+        p_text(c.p).c_str(), p_text(c.p_adjusted).c_str(),
         c.time_refused ? "not compared" : to_string(c.time), error_text(c.base_error).c_str(),
-        error_text(c.new_error).c_str(), to_string(c.error));
+        error_text(c.new_error).c_str(), c.error_refused ? "not compared" : to_string(c.error));
     s += line;
   }
   bool notes = false;
@@ -389,7 +493,8 @@ std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
       std::string what;
       if (c.time == Verdict::kRegression)
         what += time_label(o) + format_number(" %+.1f %%", c.change * 100) +
-                format_number(" (p = %.2g)", c.p.value_or(1));
+                format_number(" (p = %.2g", c.p.value_or(1)) +
+                format_number(", adjusted %.2g)", c.p_adjusted.value_or(1));
       if (c.error == Verdict::kRegression)
         what += std::string(what.empty() ? "" : ", ") + label + " " + error_text(c.base_error) +
                 " -> " + error_text(c.new_error);
@@ -409,6 +514,7 @@ std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
                 r.jobs.size(), r.regressions, r.improvements);
   s += line;
   if (r.time_refused > 0) s += ", " + std::to_string(r.time_refused) + " with time not compared";
+  if (r.error_refused > 0) s += ", " + std::to_string(r.error_refused) + " with error not compared";
   s += "\n";
   return s;
 }

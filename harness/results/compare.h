@@ -10,10 +10,17 @@
 //     otherwise the job's time is refused ("not compared"), which the exit
 //     code reports (compare_exit_code). With --normalize control the same
 //     test runs on the per-frame ratios to the control job, whatever the
-//     hosts; --timing none compares no time at all;
+//     hosts; --timing none compares no time at all. The p-values of all
+//     jobs whose time was tested are adjusted together (--correction, Holm
+//     by default; results/multiple_testing.h), so that alpha bounds the
+//     chance that unchanged code fails the run, not each job's;
 //   - error: the chosen metric (default metrics.visibility.geometry.rmse); a
 //     regression is an increase by more than error_threshold (absolute), an
-//     improvement a decrease by more than it. Compared whatever the hosts.
+//     improvement a decrease by more than it. Compared whatever the hosts,
+//     but only between records of the same reference
+//     (results/reference_identity.h): otherwise the job's error is refused
+//     ("not compared") unless allow_reference_change; --metric none compares
+//     no error at all.
 // A job that was ok in BASE and is failed in NEW is a regression too.
 #include <optional>
 #include <string>
@@ -31,14 +38,20 @@ struct CompareOptions {
   // 0.02 and 0.10: from the false-alarm and detection table in docs/ci.md
   // (bench/ci_gate_trials.py), not chosen by hand.
   double alpha = 0.02;
-  double time_threshold = 0.10;                     // relative change of the median frame time
-  double error_threshold = 0.005;                   // absolute change of the error metric
-  std::string metric = "visibility.geometry.rmse";  // a path under a record's "metrics"
+  double time_threshold = 0.10;   // relative change of the median frame time
+  double error_threshold = 0.005;  // absolute change of the error metric
+  // A path under "metrics"; "none": times only.
+  std::string metric = "visibility.geometry.rmse";
   // Which samples: "frame", "technique" (its passes' sum) or "none" (errors only).
   std::string timing = "frame";
   // "none": absolute times, same host fingerprint only; "control": the
   // per-frame ratios to timing.control, whatever the hosts.
   std::string normalize = "none";
+  // "holm", "bh" or "none": how alpha is shared across the jobs whose time
+  // is tested (docs/ci.md, "Many jobs, one alpha").
+  std::string correction = "holm";
+  // Compare errors also where BASE's and NEW's references differ (noted).
+  bool allow_reference_change = false;
 };
 
 enum class Verdict { kUnchanged, kRegression, kImprovement, kNotCompared };
@@ -53,6 +66,9 @@ struct JobComparison {
   double base_median_ms = 0, new_median_ms = 0;
   double change = 0;        // new median / base median - 1
   std::optional<double> p;  // absent without samples on both sides
+  // p adjusted across the jobs tested (CompareOptions::correction); the
+  // verdict compares this one with alpha.
+  std::optional<double> p_adjusted;
   Verdict time = Verdict::kNotCompared;
   // The time was not compared because it would mean nothing: other hosts
   // (absolute times), or no control timing (ratios). The note says which.
@@ -60,6 +76,9 @@ struct JobComparison {
   // Error metric; absent where a record lacks it.
   std::optional<double> base_error, new_error;
   Verdict error = Verdict::kNotCompared;
+  // The error was not compared because BASE and NEW were measured against
+  // different references (without allow_reference_change).
+  bool error_refused = false;
   std::string note;  // why something was not compared, or a status change
   bool regressed() const;
 };
@@ -72,19 +91,34 @@ struct FingerprintPair {
   bool same() const { return !base.empty() && base == fresh; }
 };
 
+// The jobs whose BASE and NEW references differ in the same fields.
+struct ReferenceDifference {
+  std::vector<std::string> differences;  // `spp: "64" vs "256"`
+  std::vector<std::string> jobs;
+};
+
 struct CompareResult {
   std::vector<JobComparison> jobs;  // in BASE order, then jobs only in NEW are listed apart
   std::vector<std::string> only_base, only_new;
   int regressions = 0, improvements = 0;  // jobs with any regression / any improvement and none
   int time_refused = 0;                   // jobs whose time was refused (time_refused)
+  int error_refused = 0;                  // jobs whose error was refused (error_refused)
+  int time_tests = 0;                     // jobs whose time was tested: the correction's family
+  // Of the jobs ok on both sides whose errors were looked at, those whose
+  // references differ, grouped by what differs; and how many had no cache
+  // key on either side (so that only the other fields could be checked).
+  std::vector<ReferenceDifference> references;
+  int references_without_key = 0;
   // Of the jobs ok on both sides, each distinct pair of fingerprints.
   std::vector<FingerprintPair> hosts, builds;
 };
 
 // The exit code of `shadowbench compare` for a result: kExitRegression when
-// some job regressed; else 2 (kExitBadInput) when some job's time was
-// refused, so that a gate that could not judge time is not green (use
-// --normalize control, or --timing none to judge errors only); else 0.
+// some job regressed; else 2 (kExitBadInput) when some job's time or error
+// was refused, so that a gate that could not judge is not green (use
+// --normalize control, or --timing none to judge errors only; for errors
+// across references, --allow-reference-change, or --metric none to judge
+// times only); else 0.
 int compare_exit_code(const CompareResult& r);
 
 // Throws InputError for an options value out of range or an unknown metric.

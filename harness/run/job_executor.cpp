@@ -478,6 +478,13 @@ class JobExecutor::Impl {
       reference::Result out =
           cache ? reference::get(st.scene, positions, normals, settings, o_.cache_dir)
                 : reference::compute(st.scene, positions, normals, settings);
+      // The key names the reference in the record even when nothing is
+      // cached, so that `compare` can tell two references apart.
+      if (out.cache_key.empty()) {
+        reference::Settings keyed = settings;
+        if (!out.exact_fallback.empty()) keyed.exact = false;  // as reference::get keys it
+        out.cache_key = reference::cache_key(st.scene, positions, normals, keyed);
+      }
       const std::string samples = out.method == reference::kExactMethod ? std::string("exact")
                                   : out.method == reference::kAdaptiveMethod
                                       ? "adaptive, mean " + std::to_string(out.mean_spp) + " of " +

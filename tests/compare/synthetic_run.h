@@ -92,6 +92,23 @@ inline JobRecord make_controlled_record(const std::string& job_id,
   return r;
 }
 
+// The records as measured against a Monte Carlo reference of `spp` samples
+// per pixel whose cache key is `cache_key` (record["reference"]).
+inline ReferenceRecord mc_reference(int spp, const std::string& cache_key) {
+  ReferenceRecord ref;
+  ref.method = "embree_stratified_packet16";
+  ref.spp = spp;
+  ref.seed = 1;
+  ref.embree_isa = "avx2";
+  ref.cache_key = cache_key;
+  return ref;
+}
+inline std::vector<JobRecord> against(std::vector<JobRecord> records,
+                                      const ReferenceRecord& reference) {
+  for (auto& r : records) r.reference = reference;
+  return records;
+}
+
 inline std::filesystem::path temp_dir(const std::string& name) {
   auto dir = std::filesystem::temp_directory_path() / "shadowbench_test_compare" / name;
   std::filesystem::remove_all(dir);
