@@ -602,6 +602,11 @@ class JobExecutor::Impl {
     gl::throw_if_errors(tv.name + " prepare");
     glFinish();  // prepare's GL work in prepare's time, not the first frame's
     phases.prepare = lap.seconds();
+    // The parent stores the record before this one while prepare runs; no
+    // write of its overlaps a frame (docs/robustness.md). Its wait is
+    // overhead, in no phase.
+    events_.await_listener();
+    lap.seconds();
 
     r.timing = time_frames(*technique, tv.name, frame, control);
     phases.frames = lap.seconds();
