@@ -12,7 +12,9 @@
 //                                     Kinds: "timed" (one timed frame and its
 //                                     control frame), "parent-io" (the
 //                                     parent storing a record, printing a
-//                                     line, writing the reports).
+//                                     line, writing the reports), "await"
+//                                     (a child waiting for the parent's
+//                                     answer before a job's frames).
 //   SHADOWBENCH_SLOW_PARENT_IO=<ms>   with the trace on, storing a record
 //                                     takes at least <ms>: a slow disk on
 //                                     purpose, so that a write that can

@@ -19,6 +19,7 @@
 #include "core/names.h"
 #include "results/store.h"
 #include "run/child_process.h"
+#include "run/io_trace.h"
 
 namespace sb {
 
@@ -62,6 +63,7 @@ class PipeEvents final : public RunEvents {
     send({{"event", "finished"}, {"record", record.to_json()}});
   }
   void await_listener() override {
+    const std::int64_t began = io_trace_enabled() ? monotonic_ns() : 0;
     send({{"event", "await"}});
     // The parent handles events in order: once it answers, it has stored
     // every record sent before, and writes nothing until the next event.
@@ -76,6 +78,7 @@ class PipeEvents final : public RunEvents {
     }
     if (reply != kHeard)
       throw std::runtime_error("the parent process answered \"" + reply + "\", not \"heard\"");
+    if (began != 0) write_trace({{"await", "the parent's answer", began, monotonic_ns()}});
   }
   void fatal(const std::string& message) { send({{"event", "fatal"}, {"message", message}}); }
 
