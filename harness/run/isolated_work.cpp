@@ -104,7 +104,6 @@ class ReplyChannel {
   }
   ReplyChannel(const ReplyChannel&) = delete;
   ReplyChannel& operator=(const ReplyChannel&) = delete;
-  int parent_end() const { return fds_[0]; }
   int child_end() const { return fds_[1]; }
   // Each process keeps only its own end: the child's read then ends when
   // the parent's end closes.
