@@ -68,8 +68,8 @@ ResultsStore::ResultsStore(std::string run_dir) : dir_(std::move(run_dir)) {
         untrusted_.push_back(file + ": holds the record of job \"" + r.job_id + "\"");
         continue;
       }
-      const std::string key = r.job_id;
-      records_[key] = std::move(r);
+      const nlohmann::json as_json = r.to_json();
+      keep(std::move(r), as_json);
     } catch (const InputError& ex) {
       untrusted_.push_back(ex.what());  // names the file and the place
     } catch (const RecordError& ex) {
@@ -90,22 +90,33 @@ void ResultsStore::put(const JobRecord& record) { put_all({record}); }
 
 void ResultsStore::put_all(const std::vector<JobRecord>& records) {
   for (const JobRecord& r : records) {
+    const nlohmann::json j = r.to_json();
     write_file_atomically((fs::path(dir_) / "records" / (r.job_id + ".json")).string(),
-                          json_text(r.to_json(), 2) + "\n");
-    records_[r.job_id] = r;
+                          json_text(j, 2) + "\n");
+    keep(r, j);
   }
   rewrite_jsonl();
 }
 
+void ResultsStore::keep(JobRecord record, const nlohmann::json& as_json) {
+  const std::string id = record.job_id;
+  lines_[id] = json_text(as_json) + "\n";
+  records_[id] = std::move(record);
+}
+
+std::vector<std::string> ResultsStore::ordered_ids() const {
+  std::vector<std::string> out;
+  std::set<std::string> seen;
+  for (const auto& id : order_)
+    if (records_.count(id) > 0 && seen.insert(id).second) out.push_back(id);
+  for (const auto& [id, r] : records_)
+    if (seen.insert(id).second) out.push_back(id);
+  return out;
+}
+
 std::vector<JobRecord> ResultsStore::records() const {
   std::vector<JobRecord> out;
-  std::set<std::string> seen;
-  for (const auto& id : order_) {
-    auto it = records_.find(id);
-    if (it != records_.end() && seen.insert(id).second) out.push_back(it->second);
-  }
-  for (const auto& [id, r] : records_)
-    if (seen.insert(id).second) out.push_back(r);
+  for (const auto& id : ordered_ids()) out.push_back(records_.at(id));
   return out;
 }
 
@@ -113,7 +124,7 @@ void ResultsStore::rewrite_index() const { rewrite_jsonl(); }
 
 void ResultsStore::rewrite_jsonl() const {
   std::string text;
-  for (const auto& r : records()) text += json_text(r.to_json()) + "\n";
+  for (const auto& id : ordered_ids()) text += lines_.at(id);
   write_file_atomically((fs::path(dir_) / "results.jsonl").string(), text);
 }
 

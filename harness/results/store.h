@@ -37,9 +37,14 @@ class ResultsStore {
   std::vector<JobRecord> records() const;  // in plan order, then the rest
 
  private:
+  std::vector<std::string> ordered_ids() const;  // records()'s order
+  void keep(JobRecord record, const nlohmann::json& as_json);
   void rewrite_jsonl() const;
   std::string dir_;
   std::map<std::string, JobRecord> records_;
+  // Each record's results.jsonl line, made once: a run's every record
+  // rewrites the file, which would otherwise serialise every record again.
+  std::map<std::string, std::string> lines_;
   std::vector<std::string> order_;
   std::vector<std::string> untrusted_;
 };

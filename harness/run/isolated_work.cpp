@@ -1,10 +1,15 @@
 #include "run/isolated_work.h"
 
 #include <signal.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <array>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <deque>
 #include <optional>
 #include <set>
@@ -14,6 +19,7 @@
 #include "core/names.h"
 #include "results/store.h"
 #include "run/child_process.h"
+#include "run/io_trace.h"
 
 namespace sb {
 
@@ -25,10 +31,15 @@ namespace {
 constexpr size_t kStderrTail = 20;  // lines kept for a failed record
 constexpr int kExitContextFailed = 71;
 
-// The child's side: every event is one JSON line up the pipe.
+// The parent's answer to "await": it has done all that the child's events
+// so far asked.
+constexpr const char* kHeard = "heard\n";
+
+// The child's side: every event is one JSON line up the pipe; the parent
+// answers "await" on `reply_fd`.
 class PipeEvents final : public RunEvents {
  public:
-  explicit PipeEvents(int fd) : fd_(fd) {}
+  PipeEvents(int fd, int reply_fd) : fd_(fd), reply_fd_(reply_fd) {}
   void log(const std::string& line) override { send({{"event", "log"}, {"line", line}}); }
   void backend(const GlIdentity& gl) override {
     send({{"event", "backend"},
@@ -51,6 +62,24 @@ class PipeEvents final : public RunEvents {
   void job_finished(JobRecord record) override {
     send({{"event", "finished"}, {"record", record.to_json()}});
   }
+  void await_listener() override {
+    const std::int64_t began = io_trace_enabled() ? monotonic_ns() : 0;
+    send({{"event", "await"}});
+    // The parent handles events in order: once it answers, it has stored
+    // every record sent before, and writes nothing until the next event.
+    std::string reply;
+    char c = 0;
+    while (c != '\n') {
+      const ssize_t n = ::read(reply_fd_, &c, 1);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0 || reply.size() > 16)
+        throw std::runtime_error("the parent process stopped answering");
+      reply += c;
+    }
+    if (reply != kHeard)
+      throw std::runtime_error("the parent process answered \"" + reply + "\", not \"heard\"");
+    if (began != 0) write_trace({{"await", "the parent's answer", began, monotonic_ns()}});
+  }
   void fatal(const std::string& message) { send({{"event", "fatal"}, {"message", message}}); }
 
  private:
@@ -58,7 +87,47 @@ class PipeEvents final : public RunEvents {
     if (!write_fully(fd_, json_text(j) + "\n"))
       throw std::runtime_error("the parent process stopped listening");
   }
-  int fd_;
+  int fd_, reply_fd_;
+};
+
+// The channel on which the parent answers the child's "await": a socket
+// pair, so that answering a child that has just died is an error (EPIPE)
+// rather than a SIGPIPE that kills the parent.
+class ReplyChannel {
+ public:
+  ReplyChannel() {
+    if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds_.data()) != 0)
+      throw std::runtime_error(std::string("cannot create a socket pair: ") + std::strerror(errno));
+  }
+  ~ReplyChannel() {
+    for (int& fd : fds_) close(fd);
+  }
+  ReplyChannel(const ReplyChannel&) = delete;
+  ReplyChannel& operator=(const ReplyChannel&) = delete;
+  int child_end() const { return fds_[1]; }
+  // Each process keeps only its own end: the child's read then ends when
+  // the parent's end closes.
+  void keep_parent_end() { close(fds_[1]); }
+  void keep_child_end() { close(fds_[0]); }
+  // False when the child has gone; it then needs no answer.
+  bool answer() const {
+    const std::string text = kHeard;
+    size_t done = 0;
+    while (done < text.size()) {
+      const ssize_t n = ::send(fds_[0], text.data() + done, text.size() - done, MSG_NOSIGNAL);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) return false;
+      done += size_t(n);
+    }
+    return true;
+  }
+
+ private:
+  static void close(int& fd) {
+    if (fd >= 0) ::close(fd);
+    fd = -1;
+  }
+  std::array<int, 2> fds_{-1, -1};
 };
 
 // The parent's view of one child.
@@ -69,6 +138,10 @@ struct ChildState {
   std::set<std::string> finished;
   std::deque<std::string> stderr_tail;
   std::string fatal;
+  // Between the answer to "await" and the child's next event its frames
+  // run: the stderr lines that come meanwhile are printed after them.
+  bool rendering = false;
+  std::vector<std::string> held_stderr;
 };
 
 std::string seconds_text(double s) { return format_number("%g", s); }
@@ -96,8 +169,10 @@ IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const Emb
 
   while (!remaining.empty()) {
     const ResolutionWork chunk{work.resolution, remaining};
+    ReplyChannel replies;
     ChildProcess child = ChildProcess::start([&](int fd) {
-      PipeEvents pipe(fd);
+      replies.keep_child_end();
+      PipeEvents pipe(fd, replies.child_end());
       std::optional<JobExecutor> executor;
       try {
         executor.emplace(e, o, embree, pipe);
@@ -108,14 +183,24 @@ IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const Emb
       executor->run_scene(scene, {chunk});
       return 0;
     });
+    replies.keep_parent_end();
     const Clock::time_point child_started = Clock::now();
     ChildState c;
     const auto on_stderr = [&](const std::string& line) {
       c.stderr_tail.push_back(line);
       if (c.stderr_tail.size() > kStderrTail) c.stderr_tail.pop_front();
-      events.child_stderr(line);
+      if (c.rendering)
+        c.held_stderr.push_back(line);
+      else
+        events.child_stderr(line);
+    };
+    const auto done_rendering = [&] {
+      c.rendering = false;
+      for (const std::string& line : c.held_stderr) events.child_stderr(line);
+      c.held_stderr.clear();
     };
     const auto on_message = [&](const std::string& line) {
+      done_rendering();
       const json j = json::parse(line, nullptr, false);
       const std::string event = j.is_object() && j.contains("event") && j["event"].is_string()
                                     ? j["event"].get<std::string>()
@@ -145,6 +230,9 @@ IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const Emb
           c.finished.insert(r.job_id);
           c.last_finished = Clock::now();
           events.job_finished(std::move(r));
+        } else if (event == "await") {
+          // Every event before this one is done: the child may render.
+          c.rendering = replies.answer();
         } else if (event == "fatal") {
           c.fatal = j.at("message").get<std::string>();
         } else {
@@ -177,6 +265,7 @@ IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const Emb
         break;
       }
     }
+    done_rendering();
     const int status = child.wait();
     std::erase_if(remaining, [&](size_t i) {
       return c.finished.count(job_id(sv.name, res.label(), e.techniques[i].name)) > 0;

@@ -29,6 +29,7 @@
 #include "results/store.h"
 #include "run/gbuffer.h"
 #include "run/injected_delay.h"
+#include "run/io_trace.h"
 #include "run/job_identity.h"
 #include "run/stability_probe.h"
 #include "scenes/need_providers.h"
@@ -614,6 +615,11 @@ class JobExecutor::Impl {
     gl::throw_if_errors(tv.name + " prepare");
     glFinish();  // prepare's GL work in prepare's time, not the first frame's
     phases.prepare = lap.seconds();
+    // The parent stores the record before this one while prepare runs; no
+    // write of its overlaps a frame (docs/robustness.md). Its wait is
+    // overhead, in no phase.
+    events_.await_listener();
+    lap.seconds();
 
     r.timing = time_frames(*technique, tv.name, frame, control);
     phases.frames = lap.seconds();
@@ -716,6 +722,8 @@ class JobExecutor::Impl {
         injected_delay_ && injected_delay_->applies_to(name) ? &*injected_delay_ : nullptr;
     FrameSamples coarse, fine;
     std::vector<double> control_ms;
+    const bool tracing = io_trace_enabled();
+    std::vector<TraceSpan> trace;  // SHADOWBENCH_IO_TRACE (run/io_trace.h)
     const auto frame_name = [&](int i) {
       return name + (i < 0 ? std::string(" compile frame") : " frame " + std::to_string(i));
     };
@@ -735,11 +743,13 @@ class JobExecutor::Impl {
         o_.take_turn(name);
       const bool control_first = control != nullptr && i >= 0 && i % 2 == 1;
       gl::PassTimer::Frame before{}, after{};
+      const std::int64_t began = tracing ? monotonic_ns() : 0;
       if (control_first) before = control_frame(i);
       const auto frame =
           run_frame(timer, technique, frame_name(i), gl::PassDetail::Coarse, f, delay);
       if (control != nullptr && i >= 0 && !control_first) after = control_frame(i);
       if (!timed) continue;
+      if (tracing) trace.push_back({"timed", frame_name(i), began, monotonic_ns()});
       coarse.add(frame);
       if (control != nullptr) control_ms.push_back((control_first ? before : after).total_ms);
     }
@@ -751,9 +761,14 @@ class JobExecutor::Impl {
     // Per-pass detail in frames of its own, so its syncs never reach the
     // technique's time above.
     if (o_.pass_detail == gl::PassDetail::Fine)
-      for (int i = 0; i < e_.timed_frames; ++i)
-        fine.add(run_frame(timer, technique, name + " fine frame " + std::to_string(i),
-                           gl::PassDetail::Fine, f, delay));
+      for (int i = 0; i < e_.timed_frames; ++i) {
+        const std::int64_t began = tracing ? monotonic_ns() : 0;
+        const std::string fine_name = name + " fine frame " + std::to_string(i);
+        fine.add(run_frame(timer, technique, fine_name, gl::PassDetail::Fine, f, delay));
+        if (tracing) trace.push_back({"timed", fine_name, began, monotonic_ns()});
+      }
+    // The test-only trace, written once the frames are done.
+    write_trace(trace);
 
     // Statistics plus the raw per-frame samples, in frame order: comparisons
     // between runs test the samples themselves (shadowbench compare).

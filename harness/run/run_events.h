@@ -34,6 +34,11 @@ class RunEvents {
   virtual void job_started(const JobRecord& base) = 0;
   // A job's final record: ok, skipped or failed.
   virtual void job_finished(JobRecord record) = 0;
+  // A job is about to render its frames: returns once whoever hears these
+  // events has done all they asked (records stored, lines printed), so that
+  // none of it overlaps a timed frame (docs/robustness.md). In one process
+  // every event is done when its call returns.
+  virtual void await_listener() {}
 };
 
 }  // namespace sb

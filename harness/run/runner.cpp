@@ -13,6 +13,7 @@
 #include "results/report.h"
 #include "results/run_lock.h"
 #include "results/store.h"
+#include "run/io_trace.h"
 #include "run/isolated_work.h"
 #include "run/job_executor.h"
 #include "run/job_identity.h"
@@ -51,6 +52,7 @@ class StoreEvents final : public ParentEvents {
 
   void log(const std::string& line) override {
     if (quiet_) return;
+    const ParentIoSpan io("log");
     progress_.clear();
     std::printf("%s\n", line.c_str());
     std::fflush(stdout);
@@ -75,15 +77,18 @@ class StoreEvents final : public ParentEvents {
       // A bad scene file: its jobs fail, the other scenes still run, and the
       // run's exit code says "bad input". Said even with --quiet.
       ++summary_.bad_input;
+      const ParentIoSpan io("bad input");
       progress_.clear();
       std::fprintf(stderr, "shadowbench: error: %s\n", bad_input.c_str());
     }
   }
   void phase(const std::string& scene, const std::string& resolution,
              const std::string& what) override {
+    const ParentIoSpan io("progress");
     progress_.start_job(scene, resolution, what);
   }
   void job_started(const JobRecord& base) override {
+    const ParentIoSpan io("progress");
     progress_.start_job(base.scene_variant, base.resolution, base.technique_variant);
   }
   void job_finished(JobRecord record) override {
@@ -91,6 +96,7 @@ class StoreEvents final : public ParentEvents {
     if (record.status == JobStatus::Ok) ++summary_.ok;
     if (record.status == JobStatus::Skipped) ++summary_.skipped;
     if (record.status == JobStatus::Failed) ++summary_.failed;
+    const ParentIoSpan io("record " + record.job_id, true);
     store_.put(record);
     ++done_;
     // Jobs that rendered carry their duration; the rest took no time.
@@ -114,6 +120,7 @@ class StoreEvents final : public ParentEvents {
     log(line);
   }
   void child_stderr(const std::string& line) override {
+    const ParentIoSpan io("stderr");
     progress_.clear();
     std::fprintf(stderr, "%s\n", line.c_str());
     progress_.draw();
@@ -154,8 +161,12 @@ class Runner {
     progress_ = Progress(stderr, !o_.quiet && isatty(fileno(stderr)), order.size());
     StoreEvents events(store_, progress_, summary_, o_.quiet, order.size());
     report_untrusted_records();
+    slow_parent_io_ns();  // a malformed test-only variable is bad input before any job
     // A run killed between a record and results.jsonl left the two apart.
-    store_.rewrite_index();
+    {
+      const ParentIoSpan io("index");
+      store_.rewrite_index();
+    }
 
     embree_ = choose_embree(e_, o_);
     limits_.job_seconds = o_.job_seconds.value_or(e_.limits.job_seconds);
@@ -178,7 +189,10 @@ class Runner {
       if (!work.empty()) run_scene(s, work, events);
     }
     progress_.clear();
-    write_reports(store_.dir(), store_.records(), e_.name + " (" + o_.run_id + ")");
+    {
+      const ParentIoSpan io("reports");
+      write_reports(store_.dir(), store_.records(), e_.name + " (" + o_.run_id + ")");
+    }
     return summary_;
   }
 
