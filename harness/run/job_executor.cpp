@@ -292,8 +292,8 @@ class JobExecutor::Impl {
         events_(events),
         injected_delay_(InjectedDelay::from_environment()) {
     context_ = gl::create_context(o_.backend);
-    timing_source_ =
-        context_->is_software() ? gl::TimingSource::CpuFinish : gl::TimingSource::GpuQuery;
+    timing_source_ = o_.timing_source.value_or(
+        context_->is_software() ? gl::TimingSource::CpuFinish : gl::TimingSource::GpuQuery);
     events_.backend({context_->platform(), context_->renderer(), context_->version(),
                      gl::to_string(timing_source_)});
   }
