@@ -1,13 +1,22 @@
 #pragma once
-// Times one frame in brackets. On software rasterisers (llvmpipe)
-// GL_TIME_ELAPSED reports roughly one tile's time, so each bracket is closed
-// by glFinish and a steady CPU clock there; on GPUs timer queries are used.
+// Times one frame in brackets. A bracket's time is the wall time from its
+// start to the end of its last command, CPU work included, on either kind:
+// - CpuFinish (llvmpipe and other software rasterisers, whose
+//   GL_TIME_ELAPSED reports roughly one tile's time): glFinish and a steady
+//   clock at both ends.
+// - GpuQuery (GPUs): GL timestamps, without a sync. The start is the GL's
+//   time when the CPU enters the bracket (glGetInteger64v(GL_TIMESTAMP)), or
+//   the GPU's end of the previous bracket's commands if that is later; the
+//   end is a timestamp query after the bracket's last command. A GPU's
+//   GL_TIME_ELAPSED would count only what the GPU executes, so a technique's
+//   CPU work (silhouettes, read-backs, CPU reconstruction) would go missing.
+//   The time is never less than the CPU's own time inside the bracket.
 //
 // Two kinds of bracket: the harness's own (`bracket`: the G-buffer, the whole
 // technique, shading), always timed; and a technique's named passes
-// (`scope`), timed only in PassDetail::Fine. Every bracket costs a sync, so
-// coarse timing gives every technique the same three, whatever its number
-// of passes (accumulation has 2N + 1).
+// (`scope`), timed only in PassDetail::Fine. Every CpuFinish bracket costs a
+// sync, so coarse timing gives every technique the same three, whatever its
+// number of passes (accumulation has 2N + 1).
 #include <chrono>
 #include <string>
 #include <utility>
@@ -18,7 +27,12 @@
 namespace sb::gl {
 
 enum class TimingSource { CpuFinish, GpuQuery };
-std::string to_string(TimingSource s);  // "cpu_glfinish" / "gl_timer_query"
+// "cpu_glfinish" / "gl_timestamp_query" (records before December 2026 have
+// "gl_timer_query": GL_TIME_ELAPSED brackets, without the CPU's work).
+std::string to_string(TimingSource s);
+// Whether the current context's timestamp queries count (GL_QUERY_COUNTER_BITS
+// of GL_TIMESTAMP is not 0): GpuQuery needs them.
+bool timestamp_queries_supported();
 
 enum class PassDetail { Coarse, Fine };
 std::string to_string(PassDetail d);                       // "coarse" / "fine"
@@ -26,6 +40,8 @@ PassDetail pass_detail_from_string(const std::string& s);  // throws std::invali
 
 class PassTimer {
  public:
+  // With GpuQuery, throws std::runtime_error when the context has no
+  // timestamp queries: its times would be silently wrong.
   explicit PassTimer(TimingSource source, PassDetail detail = PassDetail::Fine);
   ~PassTimer();
   PassTimer(const PassTimer&) = delete;
@@ -47,7 +63,7 @@ class PassTimer {
     std::vector<std::pair<std::string, double>> passes;
     double total_ms = 0.0;
   };
-  Frame end_frame();
+  Frame end_frame();  // GpuQuery: throws std::runtime_error if the GL's clocks disagree
 
   // RAII pass bracket: `auto p = timer.scope("depth");`
   class Scope {
@@ -83,7 +99,16 @@ class PassTimer {
   Clock::time_point pass_start_;
   std::string current_;
   std::vector<std::pair<std::string, double>> cpu_passes_;
-  std::vector<std::pair<std::string, GLuint>> queries_;
+  // GpuQuery: each closed bracket's start on the GL's clock, its end query
+  // and the CPU's time inside it, in the order they were closed.
+  struct Stamped {
+    std::string name;
+    GLint64 gl_start_ns = 0;
+    GLuint end_query = 0;
+    double cpu_ms = 0.0;
+  };
+  GLint64 gl_start_ns_ = 0;
+  std::vector<Stamped> stamped_;
   std::vector<GLuint> free_queries_;
 };
 

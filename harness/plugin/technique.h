@@ -80,6 +80,24 @@ class Technique {
   virtual void prepare(const FrameInputs& in) = 0;
   // One frame, timed. Every GL command belongs to a named pass of `timer`,
   // e.g. auto pass = timer.scope("shadow_map");
+  //
+  // The technique's time is everything render() does, CPU and GPU, from its
+  // call to the end of its last GL command, on every kind of bracket
+  // (gl/pass_timer.h); CPU work needs no marking:
+  // - cpu_glfinish (llvmpipe, software rasterisers): glFinish, then a steady
+  //   clock until a glFinish after render() returns. CPU work, command
+  //   submission, read-back waits and rasterisation all count, one after
+  //   another.
+  // - gl_timestamp_query (GPUs): from the GL's clock when render() is called
+  //   (or when the GPU finishes the G-buffer bracket's commands, if later) to
+  //   a GL timestamp after its last command, and never less than the CPU's
+  //   time in render(). CPU work (silhouettes, read-backs, reconstruction)
+  //   counts as on llvmpipe; GPU work that runs while the CPU works counts
+  //   once, not twice.
+  // GL commands still running on the GPU when render() returns count (the
+  // end waits for them); work moved out of render() does not, so none may
+  // be: no fence waited on in the next frame, no CPU work on a thread that
+  // outlives the call.
   virtual void render(const FrameInputs& in, gl::PassTimer& timer) = 0;
 };
 

@@ -302,8 +302,10 @@ class JobExecutor::Impl {
         events_(events),
         injected_delay_(InjectedDelay::from_environment()) {
     context_ = gl::create_context(o_.backend);
-    timing_source_ =
-        context_->is_software() ? gl::TimingSource::CpuFinish : gl::TimingSource::GpuQuery;
+    // Timestamps where the GL's clock can be trusted; CPU clocks otherwise.
+    const bool timestamps = !context_->is_software() && gl::timestamp_queries_supported();
+    timing_source_ = o_.timing_source.value_or(timestamps ? gl::TimingSource::GpuQuery
+                                                          : gl::TimingSource::CpuFinish);
     events_.backend({context_->platform(), context_->renderer(), context_->version(),
                      gl::to_string(timing_source_)});
   }

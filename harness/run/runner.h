@@ -36,6 +36,10 @@ struct RunOptions {
   // Coarse: one timing bracket around each technique. Fine: also time each
   // of its passes, in extra frames that never enter the technique's time.
   gl::PassDetail pass_detail = gl::PassDetail::Coarse;
+  // How brackets are timed. Empty: by the context, CPU clocks on software
+  // rasterisers, GL timestamps on GPUs (gl/pass_timer.h). Tests set
+  // GpuQuery to run the GPUs' path on llvmpipe.
+  std::optional<gl::TimingSource> timing_source;
   // Interleaved A/B runs (`compare-builds`, run/take_turns.h): called with
   // the technique variant's name before every block of this many timed
   // frames; it returns when this run may go on. Empty: never waits.
