@@ -2,8 +2,8 @@
 
 #include <cstdlib>
 #include <ctime>
-#include <optional>
 
+#include "core/error.h"
 #include "core/hash.h"
 #include "core/names.h"
 #include "reference/embree_isa.h"
@@ -51,11 +51,16 @@ json technique_spec(const TechniqueVariant& tv) {
   return {{"name", tv.info->name}, {"params", tv.params.json()}};
 }
 
-// SHADOWBENCH_INJECT_DELAY as set, when it slows this job; else null.
+// SHADOWBENCH_INJECT_DELAY as set, when it slows this job; else null. A
+// malformed value is kept as it is: the executor reports it, not this.
 json injected_delay_spec(const TechniqueVariant& tv) {
-  const std::optional<InjectedDelay> delay = InjectedDelay::from_environment();
-  if (!delay || !delay->applies_to(tv.name)) return nullptr;
-  return std::getenv(kInjectDelayVariable);
+  const char* value = std::getenv(kInjectDelayVariable);
+  if (value == nullptr || *value == '\0') return nullptr;
+  try {
+    if (!InjectedDelay::parse(value).applies_to(tv.name)) return nullptr;
+  } catch (const InputError&) {
+  }
+  return value;
 }
 
 }  // namespace

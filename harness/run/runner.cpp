@@ -226,7 +226,7 @@ class Runner {
     if (why.empty()) return true;
     ++summary_.respecified;
     summary_.add_rerun_reason(why);
-    events.log("job " + id + ": runs again, unlike the earlier run in this folder: " + why);
+    events.log("job " + id + ": runs again: " + why);
     return false;
   }
 
