@@ -64,6 +64,9 @@ int cmd_run(const Args& a) {
     const auto md = make_markdown(read_job_records(o.run_dir), e.name + " (" + o.run_id + ")");
     std::printf("\n%s\n", md.c_str());
   }
+  // Why finished jobs ran again, even with --quiet: their old numbers are gone.
+  for (const auto& [why, count] : s.rerun_reasons)
+    std::printf("%d job%s rerun: %s\n", count, count == 1 ? "" : "s", why.c_str());
   std::printf("%d ok, %d skipped, %d failed, %d resumed", s.ok, s.skipped, s.failed, s.resumed);
   if (s.crashed + s.timed_out > 0)
     std::printf(" (of the failed, %d crashed and %d timed out)", s.crashed, s.timed_out);

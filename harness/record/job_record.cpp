@@ -76,6 +76,7 @@ json JobRecord::to_json() const {
   r["experiment"] = experiment;
   r["job_id"] = job_id;
   r["spec_hash"] = spec_hash;
+  if (spec) r["spec"] = *spec;
   r["scene_variant"] = scene_variant;
   r["scene"] = scene.to_json();
   r["technique_variant"] = technique_variant;
@@ -133,6 +134,7 @@ JobRecord JobRecord::from_json(const json& j) {
   r.config_hash = f.get<std::string>("config_hash");
   r.job_id = f.get<std::string>("job_id");
   r.spec_hash = f.get<std::string>("spec_hash");
+  if (f.has("spec")) r.spec = f.get<nlohmann::json>("spec");
   r.scene_variant = f.get<std::string>("scene_variant");
   r.technique_variant = f.get<std::string>("technique_variant");
   r.resolution = f.get<std::string>("resolution");

@@ -57,7 +57,10 @@ struct JobRecord {
   std::string run_id, experiment;
   std::string config, config_hash;  // the config path as given; FNV-1a 64 of its bytes
   std::string job_id;
-  std::string spec_hash;  // of everything in the config that decides the numbers
+  std::string spec_hash;  // of `spec`: what a rerun compares to keep the record
+  // The named settings that decide the job's numbers (run/job_identity.h),
+  // so that a rerun can say which changed; absent from older records.
+  std::optional<nlohmann::json> spec;
   std::string scene_variant, technique_variant, resolution;
   int width = 0, height = 0;
   SceneRecord scene;

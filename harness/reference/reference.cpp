@@ -436,6 +436,16 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
   return r;
 }
 
+std::string method_id(const Settings& s) {
+  std::string sampled =
+      std::string(s.adaptive ? kAdaptiveMethod : kMethod) + "/" + std::to_string(kMethodVersion);
+  if (s.adaptive) sampled += "." + std::to_string(kAdaptiveVersion);
+  sampled += std::string(" on Embree ") + RTC_VERSION_STRING;
+  if (!s.exact) return sampled;
+  return std::string(kExactMethod) + "/" + std::to_string(kExactMethodVersion) + ", else " +
+         sampled;
+}
+
 std::string cache_key(const Scene& scene, const ImageF& positions, const ImageF& geometric_normals,
                       const Settings& s) {
   Hasher h;

@@ -89,6 +89,15 @@ inline constexpr const char* kAdaptiveMethod = "embree_stratified_adaptive";
 // Result::method of the exact reference (exact_visibility.h).
 inline constexpr const char* kExactMethod = "exact_clipper";
 
+// The method that `s` asks for, with the version constants that change its
+// numbers when bumped, and the Embree version that traces it: what a run's
+// spec hash holds (run/job_identity.h), so that a bump reruns old jobs.
+// "embree_stratified_packet16/5 on Embree 3.13.5"; adaptive
+// "embree_stratified_adaptive/5.2 on Embree ..." (method version, then the
+// adaptive version); exact "exact_clipper/3, else <the Monte Carlo id>",
+// since a scene the exact reference cannot do gets Monte Carlo instead.
+std::string method_id(const Settings& s);
+
 struct Result {
   ImageF visibility;                   // 1 channel
   ImageF std_error;                    // 1 channel, per-pixel standard error of the estimate

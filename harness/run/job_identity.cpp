@@ -1,12 +1,16 @@
 #include "run/job_identity.h"
 
+#include <cstdlib>
 #include <ctime>
 
+#include "core/error.h"
 #include "core/hash.h"
 #include "core/names.h"
 #include "reference/embree_isa.h"
+#include "reference/reference.h"
 #include "results/store.h"
 #include "run/host_info.h"
+#include "run/injected_delay.h"
 
 namespace sb {
 
@@ -30,29 +34,87 @@ EmbreeChoice choose_embree(const Experiment& e, const RunOptions& o) {
   return c;
 }
 
-std::string job_spec_hash(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
-                          const SceneVariant& sv, const Resolution& res,
-                          const TechniqueVariant& tv) {
-  json spec = {{"scene",
-                {{"type", sv.type},
-                 {"params", sv.params.json()},
-                 {"light", sv.light},
-                 {"camera", sv.camera},
-                 {"infer_receivers", sv.infer_receivers}}},
-               {"resolution", res.label()},
-               {"technique", {{"name", tv.info->name}, {"params", tv.params.json()}}},
-               {"frames", {e.warmup_frames, e.timed_frames}},
-               // Monte Carlo's as it always was, so old runs still resume.
-               {"reference", e.reference.exact
-                                 ? json::array({"exact"})
-                                 : json::array({e.reference.spp, e.reference.seed, embree.isa})},
-               {"backend", gl::to_string(o.backend)}};
-  if (e.stability) spec["stability"] = {e.stability->to_json(), sv.max_rmse.value_or(-1.0)};
-  if (e.distance_thirds) spec["distance_thirds"] = true;
-  if (e.reference.second_exact)
-    spec["second_reference"] = *e.reference.second_exact
-                                   ? json::array({"exact"})
-                                   : json::array({e.reference.spp, e.reference.seed, embree.isa});
+namespace {
+
+// A reference's settings as `run` hands them to reference::get.
+reference::Settings reference_settings(const ReferenceConfig& c, const EmbreeChoice& embree,
+                                       bool exact) {
+  reference::Settings s(c.spp, c.seed, embree.config);
+  s.exact = exact;
+  s.adaptive = c.adaptive;
+  s.pilot_spp = c.pilot_spp;
+  s.target_std_error = c.target_std_error;
+  return s;
+}
+
+json technique_spec(const TechniqueVariant& tv) {
+  return {{"name", tv.info->name}, {"params", tv.params.json()}};
+}
+
+// SHADOWBENCH_INJECT_DELAY as set, when it slows this job; else null. A
+// malformed value is kept as it is: the executor reports it, not this.
+json injected_delay_spec(const TechniqueVariant& tv) {
+  const char* value = std::getenv(kInjectDelayVariable);
+  if (value == nullptr || *value == '\0') return nullptr;
+  try {
+    if (!InjectedDelay::parse(value).applies_to(tv.name)) return nullptr;
+  } catch (const InputError&) {
+  }
+  return value;
+}
+
+}  // namespace
+
+json job_spec(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
+              const SceneVariant& sv, const Resolution& res, const TechniqueVariant& tv) {
+  const ReferenceConfig& ref = e.reference;
+  // Every setting of the reference, those of the exact one included: a
+  // scene the exact reference cannot do gets Monte Carlo with them.
+  json spec = {
+      {"scene",
+       {{"type", sv.type},
+        {"params", sv.params.json()},
+        {"light", sv.light},
+        {"camera", sv.camera},
+        {"infer_receivers", sv.infer_receivers}}},
+      {"resolution", res.label()},
+      {"technique", technique_spec(tv)},
+      {"frames",
+       {{"warmup", e.warmup_frames},
+        {"timed", e.timed_frames},
+        {"control", e.control ? technique_spec(*e.control) : json(nullptr)}}},
+      {"timing",
+       {{"pass_detail", gl::to_string(o.pass_detail)},
+        {"turns", o.take_turn ? "every " + std::to_string(o.turn_block_frames) + " timed frames"
+                              : std::string("none")},
+        {"injected_delay", injected_delay_spec(tv)}}},
+      {"reference",
+       {{"method", ref.exact ? "exact" : "monte_carlo"},
+        {"method_id", reference::method_id(reference_settings(ref, embree, ref.exact))},
+        {"spp", ref.spp},
+        {"seed", ref.seed},
+        {"embree_isa", embree.isa},
+        {"adaptive", ref.adaptive},
+        {"pilot_spp", ref.pilot_spp},
+        {"target_std_error", ref.target_std_error}}},
+      {"second_reference", nullptr},
+      {"metrics", {{"distance_thirds", e.distance_thirds}}},
+      {"stability", nullptr},
+      {"backend", gl::to_string(o.backend)},
+      {"build", {{"fingerprint", describe_build().fingerprint.value_or("")}}}};
+  // The second reference takes the first's settings with the other method.
+  if (ref.second_exact)
+    spec["second_reference"] = {
+        {"method", *ref.second_exact ? "exact" : "monte_carlo"},
+        {"method_id", reference::method_id(reference_settings(ref, embree, *ref.second_exact))}};
+  if (e.stability) {
+    json& s = spec["stability"] = e.stability->to_json();
+    s["max_rmse"] = sv.max_rmse.value_or(e.stability->max_rmse);  // the scene's own, if any
+  }
+  return spec;
+}
+
+std::string job_spec_hash(const json& spec) {
   Hasher h;
   h.add(json_text(spec));
   return h.hex();
@@ -67,7 +129,8 @@ JobRecord identity_record(const Experiment& e, const RunOptions& o, const Embree
   r.config_hash = e.content_hash;
   r.experiment = e.name;
   r.job_id = job_id(sv.name, res.label(), tv.name);
-  r.spec_hash = job_spec_hash(e, o, embree, sv, res, tv);
+  r.spec = job_spec(e, o, embree, sv, res, tv);
+  r.spec_hash = job_spec_hash(*r.spec);
   r.scene_variant = sv.name;
   r.scene.type = sv.type;
   r.scene.variant = sv.name;

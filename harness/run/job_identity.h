@@ -3,6 +3,7 @@
 // isolated jobs knows it too: the spec hash a rerun compares, and the part
 // of the record that needs no rendering (config, scene and technique as
 // configured, resolution, backend, host, build).
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "config/experiment.h"
@@ -19,11 +20,20 @@ struct EmbreeChoice {
 };
 EmbreeChoice choose_embree(const Experiment& e, const RunOptions& o);
 
-// Everything in the config that decides a job's numbers. A rerun into the
-// same folder keeps a finished record only when its hash is the same.
-std::string job_spec_hash(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
-                          const SceneVariant& sv, const Resolution& res,
-                          const TechniqueVariant& tv);
+// Everything that decides a job's numbers, as named fields (the record's
+// "spec", docs/results.md): the scene, resolution and technique; the frame
+// counts and the control; how frames are timed (pass detail, turns between
+// two builds, an injected delay); the reference's method with its version
+// (reference::method_id) and all its settings, and the second reference's;
+// the metrics and stability settings; the backend; and the build's
+// fingerprint, since timings are kept. This function is the one place that
+// lists them.
+nlohmann::json job_spec(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
+                        const SceneVariant& sv, const Resolution& res, const TechniqueVariant& tv);
+
+// The hash of job_spec(). A rerun into the same folder keeps a finished
+// record only when its hash is the same (record/spec_changes.h says why not).
+std::string job_spec_hash(const nlohmann::json& spec);
 
 // The record's identity: everything but the built scene, the GL context's
 // strings and what the job measures. `sv`, `res` and `tv` must be elements

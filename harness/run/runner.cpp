@@ -10,6 +10,7 @@
 
 #include "core/names.h"
 #include "plan/shards.h"
+#include "record/spec_changes.h"
 #include "results/report.h"
 #include "results/run_lock.h"
 #include "results/store.h"
@@ -40,7 +41,18 @@ std::string to_string(Isolation isolation) {
   return "?";
 }
 
+void RunSummary::add_rerun_reason(const std::string& why) {
+  for (auto& [reason, count] : rerun_reasons)
+    if (reason == why) {
+      ++count;
+      return;
+    }
+  rerun_reasons.emplace_back(why, 1);
+}
+
 namespace {
+
+using json = nlohmann::json;
 
 // Where every job's events end, whichever process rendered it: the results
 // store, the progress line and the log.
@@ -223,12 +235,12 @@ class Runner {
         job_id(e_.scenes[s].name, e_.resolutions[r].label(), e_.techniques[t].name);
     const JobRecord* done = store_.finished(id);
     if (done == nullptr) return false;
-    if (done->spec_hash ==
-        job_spec_hash(e_, o_, embree_, e_.scenes[s], e_.resolutions[r], e_.techniques[t]))
-      return true;
+    const json spec = job_spec(e_, o_, embree_, e_.scenes[s], e_.resolutions[r], e_.techniques[t]);
+    const std::string why = rerun_reason(*done, spec, job_spec_hash(spec));
+    if (why.empty()) return true;
     ++summary_.respecified;
-    events.log("job " + id +
-               ": its settings changed since the earlier run in this folder; running it again");
+    summary_.add_rerun_reason(why);
+    events.log("job " + id + ": runs again: " + why);
     return false;
   }
 

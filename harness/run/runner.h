@@ -7,6 +7,8 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "config/experiment.h"
 #include "core/names.h"
@@ -61,6 +63,10 @@ struct RunSummary {
   int failed = 0;
   int resumed = 0;      // finished in an earlier run of the same directory
   int respecified = 0;  // finished earlier, but with other settings: run again
+  // Why they ran again (record/spec_changes.h), each with its count of
+  // jobs, in the order first met.
+  std::vector<std::pair<std::string, int>> rerun_reasons;
+  void add_rerun_reason(const std::string& why);
   int bad_input = 0;    // scene variants whose input (a glTF file, say) was bad
   int crashed = 0;      // failed jobs whose process died under them (isolation)
   int timed_out = 0;    // failed jobs killed at their time limit (isolation)

@@ -140,6 +140,28 @@ TEST(JobRecord, AnAdaptiveReferenceRoundTripsAndUniformOnesLackIt) {
   EXPECT_EQ(JobRecord::from_json(j).to_json(), j);
 }
 
+TEST(JobRecord, TheStoredSpecRoundTripsAndOlderRecordsLackIt) {
+  JobRecord r = full_record();
+  EXPECT_FALSE(r.to_json().contains("spec"));  // a record from before specs were stored
+  r.spec = json{{"reference", {{"adaptive", true}, {"spp", 64}, {"target_std_error", 0.01}}},
+                {"frames", {{"control", nullptr}}},
+                {"build", {{"fingerprint", "0123456789abcdef"}}}};
+  const json j = r.to_json();
+  EXPECT_EQ(j["spec"]["reference"]["adaptive"], true);
+  const JobRecord back = JobRecord::from_json(j);
+  ASSERT_TRUE(back.spec.has_value());
+  EXPECT_EQ(*back.spec, *r.spec);
+  EXPECT_EQ(back.to_json(), j);
+  json bad = j;
+  bad["spec"] = "adaptive";
+  try {
+    (void)JobRecord::from_json(bad);
+    FAIL() << "a spec that is not an object was read";
+  } catch (const RecordError& e) {
+    EXPECT_EQ(e.pointer(), "/spec") << e.what();
+  }
+}
+
 TEST(JobRecord, AnalyticCastersAreRecordedAndOlderRecordsReadAsNone) {
   json j = full_record().to_json();
   EXPECT_EQ(j["scene"]["analytic_casters"], 81);

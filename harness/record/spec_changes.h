@@ -1,0 +1,24 @@
+#pragma once
+// Why a finished job runs again: the named settings of its stored spec
+// (JobRecord::spec, run/job_identity.h) that differ from today's, as a
+// rerun reports them: "reference.adaptive changed (false -> true)".
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "record/job_record.h"
+
+namespace sb {
+
+// One "<dotted name> changed (<before> -> <after>)" per setting that differs,
+// nested objects compared member by member, in key order; a member on one
+// side only is "absent" on the other. Long values are cut to 80 characters.
+std::vector<std::string> spec_changes(const nlohmann::json& before, const nlohmann::json& after);
+
+// "" when `earlier` is kept (its spec_hash is `hash`); else why its job runs
+// again: the changed settings (at most three named, then how many more), or
+// that the record stores no spec (written before records kept theirs).
+std::string rerun_reason(const JobRecord& earlier, const nlohmann::json& spec,
+                         const std::string& hash);
+
+}  // namespace sb
