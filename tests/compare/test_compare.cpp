@@ -378,3 +378,23 @@ TEST(CompareHosts, UnknownNormalizeOrTimingIsBadInput) {
 }
 
 }  // namespace
+
+TEST(CompareHosts, AJobThatIsItsOwnControlIsNotJudgedOnRatios) {
+  // The control timed as a job too: its ratio is 1 whatever becomes of it,
+  // so it is left out of the ratio verdicts and of the correction's family.
+  const auto as_control = [](std::vector<JobRecord> run) {
+    for (JobRecord& r : run) r.technique_variant = r.timing->control->technique;
+    return run;
+  };
+  const auto base = as_control(controlled(10.0, 1.0, 1, 0.05, "shadow_map/size=1024"));
+  const auto fresh = as_control(controlled(10.0, 1.0, 2, 0.05, "shadow_map/size=1024"));
+  auto r = compare_runs(base, fresh, normalized());
+  EXPECT_FALSE(r.jobs[0].p.has_value());
+  EXPECT_EQ(r.time_tests, 0);
+  EXPECT_FALSE(r.jobs[0].time_refused);
+  EXPECT_TRUE(has(r.jobs[0].note, "this job is the control")) << r.jobs[0].note;
+  EXPECT_EQ(sb::compare_exit_code(r), 0);
+  // Absolute times (same host) are still judged: there the job is a job.
+  r = compare_runs(base, fresh, CompareOptions{});
+  EXPECT_TRUE(r.jobs[0].p.has_value());
+}
