@@ -87,7 +87,10 @@ json job_spec(const Experiment& e, const RunOptions& o, const EmbreeChoice& embr
        {{"pass_detail", gl::to_string(o.pass_detail)},
         {"turns", o.take_turn ? "every " + std::to_string(o.turn_block_frames) + " timed frames"
                               : std::string("none")},
-        {"injected_delay", injected_delay_spec(tv)}}},
+        {"injected_delay", injected_delay_spec(tv)},
+        // Forced bracket kind, or "auto": the context's (glFinish and CPU
+        // clocks on a software rasteriser, GL timestamps on a GPU).
+        {"source", o.timing_source ? gl::to_string(*o.timing_source) : std::string("auto")}}},
       {"reference",
        {{"method", ref.exact ? "exact" : "monte_carlo"},
         {"method_id", reference::method_id(reference_settings(ref, embree, ref.exact))},
