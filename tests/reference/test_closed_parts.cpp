@@ -51,22 +51,7 @@ sb::Mesh merged(const std::string& name, const std::vector<sb::Mesh>& parts) {
   return out;
 }
 
-sb::Mesh ground() {
-  return sbtest::quad("ground", {-6, 0, -6}, {-6, 0, 6}, {6, 0, 6}, {6, 0, -6}, false);
-}
-
-sb::Scene lit_from_above(sb::Mesh caster) {
-  sb::Scene s;
-  s.meshes.push_back(ground());
-  s.meshes.push_back(std::move(caster));
-  s.light.center = {0.6f, 6.0f, 0.3f};
-  s.light.half_u = {1.2f, 0, 0};
-  s.light.half_v = {0, 0, 1.2f};
-  s.camera.eye = {0, 9, 5};
-  s.camera.target = {0, 0, 0};
-  s.camera.fov_y_degrees = 40.0f;
-  return s;
-}
+sb::Scene lit_from_above(sb::Mesh caster) { return sbtest::over_plane(std::move(caster)); }
 
 // Two cubes over the ground, the smaller wound inward: the mesh's total
 // signed volume is the larger one's, positive.

@@ -2,6 +2,7 @@
 // Small scenes and hand-made G-buffers for the reference tests.
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "core/image.h"
 #include "core/scene.h"
@@ -45,11 +46,12 @@ inline sb::AreaLight square_light() {
   return l;
 }
 
-// A sphere floating over a ground plane (the receiver, not a caster), camera above.
-inline sb::Scene sphere_over_plane() {
+// `caster` over a ground plane (the receiver, not a caster), lit from above
+// by a 2.4 × 2.4 light, camera above.
+inline sb::Scene over_plane(sb::Mesh caster) {
   sb::Scene s;
   s.meshes.push_back(quad("ground", {-6, 0, -6}, {-6, 0, 6}, {6, 0, 6}, {6, 0, -6}, false));
-  s.meshes.push_back(sphere({0, 1.6f, 0}, 1.0f, 24, 16));
+  s.meshes.push_back(std::move(caster));
   s.light.center = {0.6f, 6.0f, 0.3f};
   s.light.half_u = {1.2f, 0, 0};
   s.light.half_v = {0, 0, 1.2f};
@@ -58,5 +60,8 @@ inline sb::Scene sphere_over_plane() {
   s.camera.fov_y_degrees = 40.0f;
   return s;
 }
+
+// A sphere floating over the ground plane.
+inline sb::Scene sphere_over_plane() { return over_plane(sphere({0, 1.6f, 0}, 1.0f, 24, 16)); }
 
 }  // namespace sbtest
