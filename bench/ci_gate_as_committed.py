@@ -15,6 +15,7 @@ of alphas and thresholds, this reads compare's own table: what CI would
 decide, correction across jobs included. Every trial's table is kept in
 OUT/trials.json. Usage:
   bench/ci_gate_as_committed.py --build build --out results/ci-gate-committed --trials 20
+  bench/ci_gate_as_committed.py --out results/ci-gate-committed --summarise-only
 """
 import argparse
 import json
@@ -34,7 +35,7 @@ def verdicts(table):
     for line in lines[header + 1:]:
         if not line.strip():
             break
-        out[line.split()[0]] = line[start:].split()[0]
+        out[line.split()[0]] = line[start:].split()[0].lower()  # "REGRESSION" in capitals
     return out
 
 
@@ -53,8 +54,16 @@ def main():
     ap.add_argument("--build", default="build")
     ap.add_argument("--out", default="results/ci-gate-committed")
     ap.add_argument("--trials", type=int, default=20)
+    ap.add_argument("--summarise-only", action="store_true",
+                    help="print the table from OUT/trials.json without running")
     args = ap.parse_args()
     os.chdir(Path(__file__).resolve().parent.parent)
+    if args.summarise_only:
+        trials = json.loads((Path(args.out) / "trials.json").read_text())
+        for t in trials:
+            t["verdicts"] = verdicts(t["table"])
+        summarise(trials)
+        return
     # The gated jobs, as the baseline names them: {technique variant: job id}.
     with open("results/baselines/ci/results.jsonl") as f:
         jobs = {r["technique_variant"]: r["job_id"] for r in map(json.loads, f)}
