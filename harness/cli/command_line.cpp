@@ -151,9 +151,10 @@ void add_compare_options(CLI::App* sub, Args& a, std::string& normalize) {
                   "flag a larger error only beyond this absolute change")
       ->type_name("E")
       ->check(number_check());
-  add_metric(sub, a,
-             "the error compared: <visibility|shaded>.<geometry|all|penumbra|soft_union|...>.<key>, "
-             "or none (times only)");
+  add_metric(
+      sub, a,
+      "the error compared: <visibility|shaded>.<geometry|all|penumbra|soft_union|...>.<key>, "
+      "or none (times only)");
   add_choice(sub, "--timing", a.compare.timing, {"frame", "technique", "none"},
              "which times: whole frames, the technique's passes, or none (errors only)");
   add_choice(sub, "--normalize", normalize, {"none", "control"},

@@ -63,7 +63,10 @@ class MetricPath {
  public:
   // nullopt when `dotted` names no number of the schema.
   static std::optional<MetricPath> parse(const std::string& dotted);
+  // NaN when the record has no such region (a region added after it was
+  // written, or one its job did not measure): holds() tells the two apart.
   double of(const MetricsRecord& m) const;
+  bool holds(const MetricsRecord& m) const { return region_(m.*image_) != nullptr; }
   const std::string& key() const { return key_; }  // "rmse", "frac_over_0.05", ...
 
  private:

@@ -139,6 +139,15 @@ std::optional<double> metric_value(const JobRecord& record, const std::string& d
   return path ? record.metric(*path) : std::nullopt;
 }
 
+// "BASE", "NEW", "BASE and NEW" or "": which records lack the metric's region.
+std::string side_without_region(const JobRecord& rb, const JobRecord& rn,
+                                const std::string& metric) {
+  const auto path = metric_path(metric);
+  if (!path || !rb.metrics || !rn.metrics) return "";
+  const bool base = path->holds(*rb.metrics), fresh = path->holds(*rn.metrics);
+  return base && fresh ? "" : !base && !fresh ? "BASE and NEW" : !base ? "BASE" : "NEW";
+}
+
 void check_options(const CompareOptions& o) {
   if (!(o.alpha > 0 && o.alpha < 1))
     throw InputError("", "--alpha",
@@ -386,7 +395,16 @@ CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector
     c.base_error = metric_value(rb, o.metric);
     c.new_error = metric_value(rn, o.metric);
     metric_seen = metric_seen || c.base_error || c.new_error;
-    if (c.base_error && c.new_error && !same_reference(rb, rn, o, c, out)) {
+    // A region one side never measured (a baseline from before it existed)
+    // reads NaN; compared, NaN -> number would pass as an improvement.
+    const std::string missing =
+        c.base_error && c.new_error ? side_without_region(rb, rn, o.metric) : std::string();
+    if (!missing.empty()) {
+      c.error_refused = true;
+      add_note(c, "error not compared: " + missing + "'s record has no " + o.metric +
+                      " (measured before that region existed?): re-record it, or pick "
+                      "another --metric");
+    } else if (c.base_error && c.new_error && !same_reference(rb, rn, o, c, out)) {
       c.error_refused = true;
     } else if (c.base_error && c.new_error) {
       const double eb = *c.base_error, en = *c.new_error;

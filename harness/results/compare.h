@@ -38,7 +38,7 @@ struct CompareOptions {
   // 0.02 and 0.10: from the false-alarm and detection table in docs/ci.md
   // (bench/ci_gate_trials.py), not chosen by hand.
   double alpha = 0.02;
-  double time_threshold = 0.10;   // relative change of the median frame time
+  double time_threshold = 0.10;    // relative change of the median frame time
   double error_threshold = 0.005;  // absolute change of the error metric
   // A path under "metrics"; "none": times only.
   std::string metric = "visibility.geometry.rmse";

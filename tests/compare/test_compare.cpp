@@ -143,6 +143,28 @@ TEST(Compare, ErrorRegressionByAbsoluteThreshold) {
   EXPECT_EQ(r.jobs[0].error, Verdict::kRegression);
 }
 
+TEST(Compare, ABaselineWithoutTheMetricsRegionIsNotComparedOnErrors) {
+  // A baseline recorded before `geometry` existed reads NaN there; taken as
+  // a value, NaN -> 0.05 would be an "improvement" and the gate would pass
+  // without comparing any error.
+  auto old_base = one_job(20.0, 1, 0.050);
+  old_base[0].metrics->visibility.geometry.reset();
+  auto r = compare_runs(old_base, one_job(20.0, 1, 0.500), CompareOptions{});
+  EXPECT_TRUE(r.jobs[0].error_refused);
+  EXPECT_NE(r.jobs[0].error, Verdict::kImprovement);
+  EXPECT_NE(r.jobs[0].note.find("BASE's record has no visibility.geometry.rmse"), std::string::npos)
+      << r.jobs[0].note;
+  EXPECT_EQ(sb::compare_exit_code(r), 2);
+  // Both sides without it; and a metric both sides hold still compares.
+  r = compare_runs(old_base, old_base, CompareOptions{});
+  EXPECT_NE(r.jobs[0].note.find("BASE and NEW's record"), std::string::npos) << r.jobs[0].note;
+  CompareOptions all;
+  all.metric = "visibility.all.rmse";
+  r = compare_runs(old_base, one_job(20.0, 1, 0.500), all);
+  EXPECT_FALSE(r.jobs[0].error_refused);
+  EXPECT_EQ(r.jobs[0].error, Verdict::kRegression);
+}
+
 TEST(Compare, UnknownMetricIsBadInput) {
   CompareOptions o;
   o.metric = "visibility.all.rsme";
