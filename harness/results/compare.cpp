@@ -242,6 +242,16 @@ std::string format_references(const CompareResult& r, const CompareOptions& o) {
 void compare_time(const JobRecord& rb, const JobRecord& rn, const FingerprintPair& host,
                   const CompareOptions& o, JobComparison& c) {
   if (o.timing == "none") return;
+  // Brackets of different rules charge different work (a GPU's timestamps
+  // count a technique's CPU work, its old elapsed-time queries did not), so
+  // neither their times nor their ratios compare. Older records name none.
+  if (!rb.timing_source.empty() && !rn.timing_source.empty() &&
+      rb.timing_source != rn.timing_source) {
+    c.time_refused = true;
+    c.note = "time not compared: the timing brackets differ (BASE " + rb.timing_source + ", NEW " +
+             rn.timing_source + "; docs/results.md, timing_source)";
+    return;
+  }
   std::vector<double> sbase, sn;
   if (o.normalize == "control") {
     const auto rbase = ratio_samples(rb, o.timing), rnew = ratio_samples(rn, o.timing);

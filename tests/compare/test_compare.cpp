@@ -420,3 +420,23 @@ TEST(CompareHosts, AJobThatIsItsOwnControlIsNotJudgedOnRatios) {
   r = compare_runs(base, fresh, CompareOptions{});
   EXPECT_TRUE(r.jobs[0].p.has_value());
 }
+
+TEST(CompareHosts, DifferentTimingBracketsAreNotComparedOnTime) {
+  // Same host, same samples: only the bracket rule differs, and it decides
+  // what a frame's time includes.
+  auto base = controlled(10.0, 2.0, 1), fresh = controlled(10.0, 2.0, 2);
+  base[0].timing_source = "gl_timer_query";
+  fresh[0].timing_source = "gl_timestamp_query";
+  for (const CompareOptions& o : {CompareOptions{}, normalized()}) {
+    const auto r = compare_runs(base, fresh, o);
+    EXPECT_TRUE(r.jobs[0].time_refused);
+    EXPECT_TRUE(has(r.jobs[0].note,
+                    "the timing brackets differ (BASE gl_timer_query, NEW "
+                    "gl_timestamp_query"))
+        << r.jobs[0].note;
+    EXPECT_EQ(r.jobs[0].error, Verdict::kUnchanged);  // errors do not depend on it
+    EXPECT_EQ(sb::compare_exit_code(r), 2);
+  }
+  fresh[0].timing_source = "gl_timer_query";
+  EXPECT_FALSE(compare_runs(base, fresh, normalized()).jobs[0].time_refused);
+}
