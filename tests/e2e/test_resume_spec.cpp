@@ -203,6 +203,18 @@ TEST(ResumeSpec, TheReferenceMethodVersionReruns) {
       << r.output;
 }
 
+TEST(ResumeSpec, TheTimingSourceReruns) {
+  // What a record of a run with forced timestamp brackets holds (RunOptions
+  // only: no option of the CLI forces them).
+  const fs::path out = finished_run({});
+  edit_record(out, [](json& r) { r["spec"]["timing"]["source"] = "gl_timestamp_query"; });
+  const CliRun r = run_into(out, {});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("1 job rerun: timing.source changed (gl_timestamp_query -> auto)"),
+            std::string::npos)
+      << r.output;
+}
+
 TEST(ResumeSpec, TheSecondReferenceReruns) {
   json second = tiny_config();
   second["reference"]["second_method"] = "exact";
