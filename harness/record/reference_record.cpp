@@ -23,6 +23,10 @@ nlohmann::json ReferenceRecord::to_json() const {
                      {"target_std_error", json_number(adaptive->target_std_error)},
                      {"mean_spp", json_number(adaptive->mean_spp)},
                      {"max_spp", adaptive->max_spp}};
+  if (adaptive && adaptive->unproven_stops)
+    j["adaptive"]["unproven_stops"] = *adaptive->unproven_stops;
+  if (adaptive && adaptive->stop_bias_bound)
+    j["adaptive"]["stop_bias_bound"] = json_number(*adaptive->stop_bias_bound);
   return j;
 }
 
@@ -49,6 +53,8 @@ ReferenceRecord ReferenceRecord::from_json(const Fields& f) {
     ar.target_std_error = a->get<double>("target_std_error");
     ar.mean_spp = a->get<double>("mean_spp");
     ar.max_spp = a->get<int>("max_spp");
+    ar.unproven_stops = a->find<std::int64_t>("unproven_stops");
+    ar.stop_bias_bound = a->find<double>("stop_bias_bound");
     r.adaptive = ar;
   }
   return r;

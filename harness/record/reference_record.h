@@ -11,13 +11,17 @@
 namespace sb {
 
 // record["reference"]["adaptive"], only for the adaptive reference
-// (reference.adaptive): its settings, and the light samples it took per
-// covered pixel (spp is the most any pixel may take).
+// (reference.adaptive): its settings, the light samples it took per
+// covered pixel (the pilot's included), and the pixels it stopped at their
+// pilot without a proof with the most such a stop can bias a pixel.
 struct AdaptiveReferenceRecord {
   int pilot_spp = 0;
   double target_std_error = 0;
   double mean_spp = 0;
   int max_spp = 0;
+  // Absent from records before adaptive version 4.
+  std::optional<std::int64_t> unproven_stops;
+  std::optional<double> stop_bias_bound;
 };
 
 struct ReferenceRecord {

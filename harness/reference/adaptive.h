@@ -5,41 +5,56 @@
 // Nested strata. spp = pilot * 4^K light samples form the uniform
 // reference's grid (n×n cells on a rectangle, spp cells along a segment;
 // stratify.h). Level k, k = 0..K, divides the light into pilot * 4^k cells,
-// each the union of a block of those fine cells: level k + 1 halves a
-// level-k cell both ways (on a segment, quarters it along the segment).
-// Every level-k cell holds one sample, taken in one of its fine cells chosen
-// at random (per pixel, level and cell, by hash): a fine cell's sample is
-// the uniform reference's own sample for that cell (pixel_rays.h), uniform
-// within it, so the level-k sample is uniform within the level-k cell, the
-// level-k samples are a jittered stratified sample of the light, and the
-// estimate at every level is unbiased. Refining keeps each cell's sample in
-// the child it fell in and draws the other three children's: at level K every
-// fine cell has its own sample, and the pixel's value and standard error are
-// bit-identical to the uniform reference's.
+// each the union of a block of those fine cells (on a segment, a run of
+// them). A level-k sample takes one sample in every level-k cell, in one of
+// its fine cells chosen at random (per pixel, stream, level and cell, by
+// hash): a fine cell's sample is uniform within it, so the level-k sample is
+// a jittered stratified sample of the light and its estimate is unbiased.
+// At level K every fine cell has its own sample: the uniform reference's
+// rays, so that a pixel estimated at the full count gets the uniform
+// reference's value and standard error bit for bit.
 //
-// Which pixels refine. Every covered pixel takes the pilot (level 0). A pilot
-// whose samples disagree is refined until its collapsed-strata standard
-// error (reference.h) is at most the target (an error of 0 with disagreeing
-// samples is not trusted), level by level, or straight to level K when the
-// error's fall per level puts the target there. A pilot whose samples all
-// agree (all lit or all occluded) has an estimated error of 0 that says
-// nothing about a small occluder the pilot missed. Where the casters have
-// an exact polygonal form and the light is a rectangle (`whole_light`
-// given), it stops only when that is proven: lit, when no caster triangle
-// meets the pyramid from its ray origin to the light
+// Decision and estimate are independent. Every covered pixel first traces a
+// pilot, a level-0 sample from a stream of its own (PixelRays, Stream::Pilot).
+// The pilot decides which level the pixel's estimate takes; the estimate is
+// then a fresh level-k sample from the estimate stream, which the decision
+// never saw. Given the level, its expectation is the pixel's V whatever the
+// pilot said, so the choice of level cannot bias it (a level picked from the
+// estimate's own samples did: stopping where those samples happened to agree
+// pulled values towards 0 and 1, by up to 0.02 at target 0.1 on the sphere
+// over a plane, in adaptive version 3 and before). The pilot's rays are the
+// price: pilot_spp / spp of a full-count pixel's.
+//
+// Which level. A pilot whose samples disagree takes the level at which its
+// collapsed-strata standard error (reference.h), falling about 2.83× a
+// level, reaches the target (level 0 when it already does; when that error
+// is 0, every pair agreeing, the unstratified binomial error stands in).
+// A pilot whose samples all agree says nothing about a small occluder it
+// missed. Where every caster lies within its triangles (alpha-masked ones
+// do: a mask only takes parts away; analytic shapes do not) and the light
+// is a rectangle (`whole_light` given), it stops only when that is proven: lit,
+// when no caster triangle meets the pyramid from its ray origin to the light
 // (ExactVisibility::sees_whole_light); occluded, when a closed caster
 // provably covers the whole light (hides_whole_light). Every sample at any
-// count then agrees, so the pilot's figures are the full count's. Otherwise
-// it goes straight to level K. Without the proofs (alpha-masked or analytic
-// casters, a segment light) it stops only if every covered pixel within
-// kNeighbourhood pixels (a 5×5 window) has a pilot that agrees with it, all
-// lit or all occluded alike; otherwise it goes to level K, and if it then
-// turns out mixed it sends its own agreeing neighbours to level K in turn,
-// until no more do: a penumbra that the pilots saw in one pixel is
-// followed, at full samples, to wherever it fades out (an isolated soft
-// pixel among agreeing ones can be missed there; the proofs cannot miss
-// it). Level K is traced in the uniform reference's order (coherent
-// packets).
+// count then agrees, and the value is exact (standard error 0). Otherwise it
+// goes to level K. Without the proofs (analytic casters, a segment light)
+// it stops only if every covered pixel within kNeighbourhood
+// pixels (a 5×5 window) has a pilot that agrees with it, all lit or all
+// occluded alike; otherwise it goes to level K, and if that turns out mixed
+// it sends its own agreeing neighbours to level K in turn, until no more do.
+//
+// What a stop without proof costs. n stratified samples all come out lit
+// with probability at most (1 - p)^n when a fraction p of the light is
+// hidden (the product of the strata's chances is at most their mean's
+// power), and the stop is then wrong by p. So at any pixel, whatever its V,
+// the window rule's bias is at most max_p p (1 - p)^n (stop_bias_bound) and
+// the root mean square error its stops add at most max_p p (1 - p)^(n/2)
+// (stop_rms_bound): the standard error such a pixel reports, instead of
+// the 0 its agreeing samples would give. The same bound is the standard
+// error of an estimate below level K whose samples all agree (unbiased, but
+// its own collapsed-strata error is 0); at level K the uniform reference's
+// definition is kept.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -61,10 +76,21 @@ inline constexpr int kNeighbourhood = 2;
 // pilot_spp * 4^K for K >= 0), else why not.
 std::string adaptive_layout_problem(int spp, int pilot_spp);
 
+// The bounds above for n agreeing samples (n >= 1): the most a stop can be
+// off on average, and its root mean square error.
+double stop_bias_bound(int n);
+double stop_rms_bound(int n);
+
 struct AdaptiveImages {
   ImageF visibility, std_error;
-  ImageF samples;  // light samples taken per pixel (0 off the surfaces)
+  // Light samples traced per pixel, pilot included (0 off the surfaces): at
+  // most spp + pilot_spp.
+  ImageF samples;
 };
+
+// Pixels stopped at their pilot without a proof (the window rule), as the
+// images tell them: the pilot's samples only, and a standard error above 0.
+size_t unproven_stops(const ImageF& samples, const ImageF& std_error, int pilot_spp);
 
 // The setup's layout must be make_layout(spp, strata) with spp and
 // pilot_spp as adaptive_layout_problem() accepts. `whole_light`, when given,

@@ -46,7 +46,7 @@ RaySetup::RaySetup(const Scene& scene, const FlatScene& casters, const Layout& l
 
 PixelRays::PixelRays(const RaySetup& setup) : s_(setup) { rtcInitIntersectContext(&context_); }
 
-void PixelRays::start(size_t pix) {
+void PixelRays::start(size_t pix, Stream stream) {
   const float* pp = &s_.positions.data[pix * 4];
   const float* np = &s_.normals.data[pix * size_t(s_.normals.channels)];
   const glm::vec3 p(pp[0], pp[1], pp[2]);
@@ -68,6 +68,7 @@ void PixelRays::start(size_t pix) {
   check_ray_range(origin_, base_, s_.eu, s_.ev, pix, s_.positions.width);
   packet_.reset(origin_);
   key_ = pixel_key(s_.seed, pix, uint64_t(s_.layout.spp));
+  if (stream == Stream::Pilot) key_ = mix64(key_ ^ 0x3c6ef372fe94f82bull);
 }
 
 void PixelRays::trace(const uint32_t* order_index, size_t count, uint8_t* reached) {

@@ -6,7 +6,8 @@
 //
 // Sample i of a pixel is stratum layout.order[i] drawn with sample_uv(key, i),
 // key = pixel_key(seed, pixel, spp) (stratify.h): the uniform reference
-// traces i = 0..spp-1; the adaptive one a nested subset (adaptive.h).
+// traces i = 0..spp-1; the adaptive one a nested subset (adaptive.h), and
+// its pilot draws from a second, independent stream.
 #include <embree3/rtcore.h>
 
 #include <cstddef>
@@ -37,6 +38,11 @@ struct RaySetup {
 
 bool covered(const ImageF& positions, size_t pixel);
 
+// Which of a pixel's two independent sample streams: the estimate's (the
+// uniform reference's samples) or the adaptive reference's pilot's, which
+// decides how many samples the estimate takes and is never part of it.
+enum class Stream : uint8_t { Estimate, Pilot };
+
 // One thread's tracer: start() a pixel, then trace() any of its samples.
 class PixelRays {
  public:
@@ -44,7 +50,7 @@ class PixelRays {
 
   // The pixel's ray origin and sample stream. Throws JobError when its rays
   // reach beyond what Embree can trace.
-  void start(size_t pixel);
+  void start(size_t pixel, Stream stream = Stream::Estimate);
   // reached[k] = 1 when sample order_index[k] reaches the light (samples
   // below the surface's tangent plane never do, and trace no ray).
   void trace(const uint32_t* order_index, size_t count, uint8_t* reached);

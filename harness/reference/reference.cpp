@@ -64,8 +64,12 @@ constexpr uint32_t kExactMethodVersion = 5;
 // proven to see the whole light or none of it (sample counts fall, and a
 // soft pixel the 5×5 window let through is now refined); 3: the proof of an
 // occluded pilot by kExactMethodVersion 5's inside test, and its silhouette
-// test over the part the centre's ray crosses, not the whole mesh.
-constexpr uint32_t kAdaptiveVersion = 3;
+// test over the part the centre's ray crosses, not the whole mesh; 4: the
+// pilot only decides, from a stream of its own, and the estimate is fresh
+// samples at the level decided (adaptive.h: unbiased), stops without proof
+// report the error such stops can hide, and samples count the pilot's; 5:
+// the proofs also with alpha-masked casters, each masked triangle whole.
+constexpr uint32_t kAdaptiveVersion = 5;
 constexpr char kMagic[8] = {'S', 'B', 'R', 'E', 'F', '\r', '\n', '\x1a'};
 constexpr uint32_t kFileVersion = 1;
 
@@ -103,7 +107,7 @@ void check_inputs(const ImageF& positions, const ImageF& normals, const Settings
 
 using detail::covered;
 
-void summarise(Result& r, const ImageF& positions) {
+void summarise(Result& r, const ImageF& positions, const Settings& s) {
   double sum = 0, psum = 0, psum2 = 0;
   size_t count = 0, pcount = 0;
   for (size_t i = 0; i < positions.pixel_count(); ++i) {
@@ -129,6 +133,10 @@ void summarise(Result& r, const ImageF& positions) {
   }
   r.mean_spp = count ? samples / double(count) : 0.0;
   r.max_spp = int(most);
+  if (r.method == kAdaptiveMethod) {
+    r.unproven_stops = int64_t(detail::unproven_stops(r.samples, r.std_error, s.pilot_spp));
+    r.stop_bias_bound = r.unproven_stops > 0 ? detail::stop_bias_bound(s.pilot_spp) : 0.0;
+  }
 }
 
 // spp on every covered pixel, 0 elsewhere: a uniform reference's samples.
@@ -267,8 +275,8 @@ bool deserialise(const std::string& bytes, const std::string& key, const ImageF&
   ImageF samples(w, h, 1);
   if (s.adaptive && !s.exact) {
     if (!in.get(samples.data, n)) return false;
-    for (float v : samples.data)
-      if (!(v >= 0.0f && v <= float(s.spp))) return false;
+    for (float v : samples.data)  // the pilot's samples come on top of the estimate's
+      if (!(v >= 0.0f && v <= float(s.spp + s.pilot_spp))) return false;
   } else {
     samples = uniform_samples(positions, s.exact ? 0 : s.spp);
   }
@@ -349,11 +357,25 @@ void hash_image(Hasher& h, const ImageF& img) {
 void hash_vec3(Hasher& h, const glm::vec3& v) { h.add(v.x).add(v.y).add(v.z); }
 
 // Per mesh, whether it is a closed caster (ExactVisibility's constructor).
+// An alpha-masked mesh never is: its mask cuts holes in it.
 std::vector<bool> closed_casters(const Scene& scene) {
   std::vector<bool> closed;
   for (const Mesh& m : scene.meshes)
-    closed.push_back(m.casts_shadow && !m.double_sided && analyse_topology(m).closed());
+    closed.push_back(m.casts_shadow && !m.double_sided && !m.alpha_tested() &&
+                     analyse_topology(m).closed());
   return closed;
+}
+
+// Whether the adaptive reference's proofs (adaptive.h) hold for the scene's
+// casters: a rectangular light, and every caster inside its triangles. An
+// alpha-masked caster is (its mask only takes parts away), so "no triangle
+// meets the pyramid" still proves a pilot lit, and, never closed, it proves
+// none occluded. An analytic shape bulges out of its triangles.
+bool proofs_hold(const Scene& scene) {
+  if (scene.light.is_segment() || scene.light.is_point()) return false;
+  return std::none_of(scene.meshes.begin(), scene.meshes.end(), [](const Mesh& m) {
+    return m.casts_shadow && m.analytic.kind != AnalyticShape::Kind::None;
+  });
 }
 
 }  // namespace
@@ -392,7 +414,7 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     r.std_error = ImageF(positions.width, positions.height, 1, 0.0f);
     r.samples = ImageF(positions.width, positions.height, 1, 0.0f);
-    summarise(r, positions);
+    summarise(r, positions, s);
     return r;
   }
 
@@ -413,12 +435,10 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
     const detail::Layout layout = detail::make_layout(s.spp, strata);
     const detail::RaySetup setup(scene, casters, layout, positions, geometric_normals, s.seed);
     if (s.adaptive) {
-      // The proofs that an agreeing pilot missed nothing need every caster
-      // in polygonal form (no alpha masks, no analytic shapes); the one for
-      // occluded pilots, which casters are closed.
+      // The proofs that an agreeing pilot missed nothing; the one for
+      // occluded pilots needs to know which casters are closed.
       std::optional<ExactVisibility> whole_light;
-      if (!scene.light.is_segment() && ExactVisibility::unsupported_reason(scene).empty())
-        whole_light.emplace(scene, closed_casters(scene));
+      if (proofs_hold(scene)) whole_light.emplace(scene, closed_casters(scene));
       detail::AdaptiveImages a = detail::trace_adaptive(
           setup, strata, s.pilot_spp, s.target_std_error, whole_light ? &*whole_light : nullptr);
       r.visibility = std::move(a.visibility);
@@ -432,7 +452,7 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
     device.check("rtcOccluded16");
   }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  summarise(r, positions);
+  summarise(r, positions, s);
   return r;
 }
 
@@ -518,7 +538,7 @@ Result get(const Scene& scene, const ImageF& positions, const ImageF& geometric_
     cached.isa = s.exact ? "" : resolve_isa(embree_config_of(s));
     cached.from_cache = true;
     cached.cache_key = key;
-    summarise(cached, positions);
+    summarise(cached, positions, s);
     return cached;
   };
   if (auto cached = from_cache()) return std::move(*cached);

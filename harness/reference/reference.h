@@ -75,9 +75,11 @@ struct Settings {
   // shapes, a point light) gets the Monte Carlo reference, and
   // Result::exact_fallback says why.
   bool exact = false;
-  // Adaptive sampling (adaptive.h): a pilot of pilot_spp samples per pixel,
-  // more only where the standard error is above target_std_error or the
-  // neighbourhood disagrees, up to spp (which must be pilot_spp * 4^K).
+  // Adaptive sampling (adaptive.h): a pilot of pilot_spp samples per pixel
+  // decides how many fresh samples, up to spp (which must be
+  // pilot_spp * 4^K), the pixel's estimate takes: the level planned to bring
+  // its standard error to target_std_error, or spp where an agreeing pilot
+  // is not proven (or, without proofs, its neighbourhood disagrees).
   bool adaptive = false;
   int pilot_spp = 4;
   double target_std_error = 0.01;
@@ -109,11 +111,17 @@ struct Result {
   int spp = 0;
   uint64_t seed = 0;
   // Light samples per pixel (0 off the surfaces): spp everywhere on them
-  // but for the adaptive reference, which also fills mean_spp and max_spp
-  // over the covered pixels.
+  // but for the adaptive reference (its pilot's included, so up to spp +
+  // pilot_spp), which also fills mean_spp and max_spp over the covered
+  // pixels.
   ImageF samples;
   double mean_spp = 0;
   int max_spp = 0;
+  // The adaptive reference's covered pixels stopped at an agreeing pilot
+  // without a proof (adaptive.h, the window rule), and the most such a stop
+  // can bias a pixel (0 when there is none).
+  int64_t unproven_stops = 0;
+  double stop_bias_bound = 0;
   std::string method;          // "embree_stratified_packet16", kAdaptiveMethod or kExactMethod
   std::string exact_fallback;  // why an exact reference asked for is Monte Carlo instead
   std::string isa;     // the Embree ISA that traced it ("avx2"), from Settings::embree_config

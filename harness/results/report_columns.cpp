@@ -174,6 +174,10 @@ std::string reference_label(const ReferenceRecord& r) {
                          format_number("%.1f", r.adaptive->mean_spp) + ", target std error " +
                          format_number("%g", r.adaptive->target_std_error) + " (" + r.method + ")"
                    : "Monte Carlo, " + std::to_string(r.spp) + " spp (" + r.method + ")";
+  if (r.adaptive && r.adaptive->unproven_stops.value_or(0) > 0)
+    out += "; " + std::to_string(*r.adaptive->unproven_stops) +
+           " px stopped at an agreeing pilot without proof (bias at most " +
+           format_number("%.3g", r.adaptive->stop_bias_bound.value_or(0.0)) + " each)";
   if (!r.exact_fallback.empty()) out += "; not exact: " + r.exact_fallback;
   return out;
 }

@@ -425,7 +425,8 @@ class JobExecutor::Impl {
     r.seconds = ref.seconds;
     if (ref.method == reference::kAdaptiveMethod)
       r.adaptive = AdaptiveReferenceRecord{e_.reference.pilot_spp, e_.reference.target_std_error,
-                                           ref.mean_spp, ref.max_spp};
+                                           ref.mean_spp,           ref.max_spp,
+                                           ref.unproven_stops,     ref.stop_bias_bound};
     return r;
   }
 

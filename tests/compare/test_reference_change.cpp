@@ -74,19 +74,19 @@ TEST(ReferenceChange, EachFieldIsChecked) {
        "embree_isa: \"avx2\" vs \"avx512\""},
       {"adaptive.pilot_spp",
        [](ReferenceRecord& r) {
-         r.adaptive = sb::AdaptiveReferenceRecord{64, 0.01, 80, 256};
+         r.adaptive = sb::AdaptiveReferenceRecord{64, 0.01, 80, 256, {}, {}};
        },
        "adaptive.pilot_spp: \"4\" vs \"64\""},
       {"adaptive.target_std_error",
        [](ReferenceRecord& r) {
-         r.adaptive = sb::AdaptiveReferenceRecord{4, 0.011, 80, 256};
+         r.adaptive = sb::AdaptiveReferenceRecord{4, 0.011, 80, 256, {}, {}};
        },
        "adaptive.target_std_error: \"0.01\" vs \"0.011\""},
       {"cache_key", [](ReferenceRecord& r) { r.cache_key = "ffff"; },
        "cache_key: \"00aa\" vs \"ffff\""},
   };
   ReferenceRecord ref = mc_reference(64, "00aa");
-  ref.adaptive = sb::AdaptiveReferenceRecord{4, 0.01, 20, 256};
+  ref.adaptive = sb::AdaptiveReferenceRecord{4, 0.01, 20, 256, {}, {}};
   for (const auto& c : cases) {
     ReferenceRecord changed = ref;
     c.change(changed);

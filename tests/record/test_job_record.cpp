@@ -133,10 +133,17 @@ TEST(JobRecord, AnAdaptiveReferenceRoundTripsAndUniformOnesLackIt) {
   JobRecord r = full_record();
   EXPECT_FALSE(r.to_json()["reference"].contains("adaptive"));
   r.reference->method = "embree_stratified_adaptive";
-  r.reference->adaptive = AdaptiveReferenceRecord{16, 0.01, 123.5, 1024};
-  const json j = r.to_json();
+  r.reference->adaptive = AdaptiveReferenceRecord{16, 0.01, 123.5, 1024, {}, {}};
+  json j = r.to_json();
   EXPECT_EQ(j["reference"]["adaptive"]["mean_spp"], 123.5);
   EXPECT_EQ(j["reference"]["adaptive"]["max_spp"], 1024);
+  EXPECT_FALSE(j["reference"]["adaptive"].contains("unproven_stops"));  // an older record's
+  EXPECT_EQ(JobRecord::from_json(j).to_json(), j);
+  r.reference->adaptive->unproven_stops = 7;
+  r.reference->adaptive->stop_bias_bound = 0.0223;
+  j = r.to_json();
+  EXPECT_EQ(j["reference"]["adaptive"]["unproven_stops"], 7);
+  EXPECT_EQ(j["reference"]["adaptive"]["stop_bias_bound"], 0.0223);
   EXPECT_EQ(JobRecord::from_json(j).to_json(), j);
 }
 

@@ -61,6 +61,21 @@ inline sb::Scene over_plane(sb::Mesh caster) {
   return s;
 }
 
+// A speck over ground point p: a horizontal quad, half sizes hx (along x)
+// and hz, 0.05 along the way from p to the light's centre, where the
+// pyramid (or triangle) from p to a light of the over_plane() size is about
+// 0.02 across.
+inline sb::Mesh speck_over(const sb::Scene& scene, glm::vec3 p, float hx, float hz) {
+  const glm::vec3 c = p + 0.05f / glm::length(scene.light.center - p) * (scene.light.center - p);
+  return quad("speck", c + glm::vec3(-hx, 0, -hz), c + glm::vec3(hx, 0, -hz),
+              c + glm::vec3(hx, 0, hz), c + glm::vec3(-hx, 0, hz), true);
+}
+
+// The surface point of a G-buffer pixel (RGBA32F positions).
+inline glm::vec3 position_at(const sb::ImageF& positions, size_t pix) {
+  return {positions.data[pix * 4], positions.data[pix * 4 + 1], positions.data[pix * 4 + 2]};
+}
+
 // A sphere floating over the ground plane.
 inline sb::Scene sphere_over_plane() { return over_plane(sphere({0, 1.6f, 0}, 1.0f, 24, 16)); }
 
