@@ -7,6 +7,8 @@
 #   share/doc/shadowbench/                   README.md and docs/
 #   include/shadowbench/, lib/shadowbench/cmake/   the plugin API for families
 #                                            built elsewhere (find_package(shadowbench))
+#   lib/shadowbench/libshadowbench_shadow_kit.a, include/shadowbench/common/
+#                                            the shadow-map kit they may link too
 # Every path is relative, so a moved prefix works (tests/install/).
 file(RELATIVE_PATH _bin_to_lib /p/${CMAKE_INSTALL_BINDIR} /p/${SHADOWBENCH_INSTALL_LIB_DIR})
 set_target_properties(shadowbench PROPERTIES INSTALL_RPATH "$ORIGIN/${_bin_to_lib}")
@@ -18,6 +20,9 @@ install(TARGETS shadowbench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS shadowbench_core LIBRARY DESTINATION ${SHADOWBENCH_INSTALL_LIB_DIR})
 install(TARGETS shadowbench_plugin_api EXPORT shadowbench-plugin-api
         LIBRARY DESTINATION ${SHADOWBENCH_INSTALL_LIB_DIR})
+# The shadow-map kit: a static library, linked into each plugin that uses it.
+install(TARGETS shadowbench_shadow_kit EXPORT shadowbench-plugin-api
+        ARCHIVE DESTINATION ${SHADOWBENCH_INSTALL_LIB_DIR})
 install(TARGETS ${_plugins} LIBRARY DESTINATION ${SHADOWBENCH_INSTALL_PLUGIN_DIR})
 
 install(FILES harness/results/plot_charts.py DESTINATION ${SHADOWBENCH_INSTALL_DATA_DIR})
@@ -57,11 +62,15 @@ if(NOT SHADOWBENCH_SANITIZE)
 endif()
 
 # The plugin API: its headers (core/, gl/, plugin/ and glad's), its library
-# and a package config that finds its plugin folder relative to itself.
+# and a package config that finds its plugin folder relative to itself; and
+# the shadow-map kit's headers beside them, so that "common/map_lookup.h"
+# names the same file in a built-in family and in one built elsewhere.
 foreach(part core gl plugin)
   install(DIRECTORY harness/${part}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/shadowbench/${part}
           FILES_MATCHING PATTERN "*.h")
 endforeach()
+install(DIRECTORY techniques/common/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/shadowbench/common
+        FILES_MATCHING PATTERN "*.h")
 install(DIRECTORY ${GLAD_OUT}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/shadowbench)
 # <prefix>/lib/shadowbench/cmake/ is on find_package()'s search path.
 set(_cmake_dir ${SHADOWBENCH_INSTALL_LIB_DIR}/cmake)

@@ -81,7 +81,9 @@ def main():
                  "./usr/share/shadowbench/configs/quick.json",
                  "./usr/share/man/man1/shadowbench.1.gz",
                  "./usr/share/bash-completion/completions/shadowbench",
-                 "./usr/share/doc/shadowbench/README.md"):
+                 "./usr/share/doc/shadowbench/README.md",
+                 "./usr/lib/shadowbench/libshadowbench_shadow_kit.a",
+                 "./usr/include/shadowbench/common/map_lookup.h"):
         if path not in files:
             sys.exit(f"the package lacks {path}")
 

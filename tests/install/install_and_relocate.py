@@ -4,7 +4,8 @@ the prefix, and uses it from there as a user would: --version names the moved
 folders, the binaries carry no absolute RUNPATH, configs/quick.json runs and
 `report` draws its charts; a technique family built against the moved
 prefix's plugin API (find_package(shadowbench)) is found through
-$SHADOWBENCH_PLUGIN_PATH beside the installed ones. Run by ctest
+$SHADOWBENCH_PLUGIN_PATH beside the installed ones; the shadow-map kit's
+headers and library are installed. Run by ctest
 (tests/install/CMakeLists.txt); prints how long each step took."""
 import argparse
 import glob
@@ -53,9 +54,29 @@ def check_runpaths(prefix, build):
                     sys.exit(f"{elf}: RUNPATH names the build folder: {path}")
 
 
+def check_shadow_kit(prefix, source):
+    """The shadow-map kit: its library, and exactly its headers (every
+    techniques/common/*.h of the source tree, nothing else) under
+    include/shadowbench/common/, where "common/x.h" finds them."""
+    library = os.path.join(prefix, "lib", "shadowbench", "libshadowbench_shadow_kit.a")
+    if not os.path.isfile(library):
+        sys.exit("the install lacks lib/shadowbench/libshadowbench_shadow_kit.a")
+    headers = sorted(os.path.basename(h) for h in
+                     glob.glob(os.path.join(source, "techniques", "common", "*.h")))
+    installed_dir = os.path.join(prefix, "include", "shadowbench", "common")
+    installed = sorted(os.listdir(installed_dir)) if os.path.isdir(installed_dir) else []
+    if not headers or installed != headers:
+        sys.exit(f"include/shadowbench/common holds {installed}, "
+                 f"not the kit's headers {headers}")
+    config = open(os.path.join(prefix, "lib", "shadowbench", "cmake",
+                               "shadowbench-plugin-api-targets.cmake")).read()
+    if "shadowbench::shadow_kit" not in config:
+        sys.exit("the installed package config does not define shadowbench::shadow_kit")
+
+
 def main():
     a = argparse.ArgumentParser()
-    for name in ("build", "plugin-source", "cmake", "cxx"):
+    for name in ("build", "source", "plugin-source", "cmake", "cxx"):
         a.add_argument("--" + name, required=True)
     a = a.parse_args()
     # Outside the build folder, so that no path of it can pass for the prefix.
@@ -86,6 +107,7 @@ def main():
                  "lib/shadowbench/cmake/shadowbenchConfig.cmake"):
         if not os.path.isfile(os.path.join(prefix, path)):
             sys.exit(f"the install lacks {path}")
+    check_shadow_kit(prefix, a.source)
 
     # The quick experiment from the installed configs, then its report.
     run_dir = os.path.join(a.work, "quick")
