@@ -4,8 +4,13 @@ the stages config → plan → run → measure → record → report. This check
 every #include "folder/..." of the project and fails when
   - folders include each other in a cycle,
   - a folder includes one that harness/README.md ranks after it,
-  - a technique plugin includes anything beyond the plugin API (core, gl,
-    plugin) and techniques/ itself,
+  - a technique includes anything beyond its own folder and the installed
+    API: the plugin API (core, gl, plugin) and the shadow-map kit (common),
+    which is installed too, so that a technique built elsewhere has all a
+    built-in has (two built-in families share a helper library with another:
+    those two edges are named below, and no other may appear),
+  - the kit includes anything beyond the plugin API (its headers are
+    installed: they may name nothing that is not),
   - a harness folder is missing from harness/README.md's table."""
 import collections
 import os
@@ -14,6 +19,10 @@ import sys
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([A-Za-z0-9_]+)/', re.M)
 PLUGIN_API = {"core", "gl", "plugin"}
+# shadowbench::shadow_kit, techniques/common/, installed as include/shadowbench/common/.
+SHADOW_KIT = "common"
+# Built-in families that use another family's helper library (not installed).
+SHARED_BETWEEN_FAMILIES = {("penumbra_wedge", "shadow_volume"), ("planar", "accumulation")}
 
 
 def folder_of(root, path):
@@ -39,6 +48,26 @@ def readme_ranks(root):
     return ranks
 
 
+def check_technique_include(root, path, dst):
+    """An include of folder `dst`/ in techniques/<src>/...: the installed API
+    only. Folders of neither the project nor the techniques are not ours."""
+    where = os.path.relpath(path, root)
+    src = where.split(os.sep)[1]
+    if dst == src or not any(os.path.isdir(os.path.join(root, *parts)) for parts in
+                             (("harness", dst), ("techniques", dst), (dst,))):
+        return
+    if src == SHADOW_KIT:
+        if dst not in PLUGIN_API:
+            sys.exit(f"{where} includes {dst}/: the shadow-map kit's headers are installed, "
+                     f"so it may use the plugin API only ({', '.join(sorted(PLUGIN_API))})")
+        return
+    if dst in PLUGIN_API or dst == SHADOW_KIT or (src, dst) in SHARED_BETWEEN_FAMILIES:
+        return
+    sys.exit(f"{where} includes {dst}/: techniques may use the installed API only "
+             f"({', '.join(sorted(PLUGIN_API | {SHADOW_KIT}))}), as a technique built "
+             f"elsewhere must")
+
+
 def main():
     root = sys.argv[1]
     graph = collections.defaultdict(set)
@@ -49,15 +78,13 @@ def main():
             with open(path, encoding="utf-8") as f:
                 text = f.read()
             for dst in INCLUDE.findall(text):
+                if top == "techniques":
+                    check_technique_include(root, path, dst)
                 if dst == src or not (os.path.isdir(os.path.join(root, "harness", dst)) or
                                       os.path.isdir(os.path.join(root, dst))):
                     continue
                 graph[src].add(dst)
                 where.setdefault((src, dst), os.path.relpath(path, root))
-                if top == "techniques" and dst not in PLUGIN_API | {"techniques"} and \
-                        not os.path.isdir(os.path.join(root, "techniques", dst)):
-                    sys.exit(f"{os.path.relpath(path, root)} includes {dst}/: plugins may use "
-                             f"the plugin API only ({', '.join(sorted(PLUGIN_API))})")
 
     # Cycles, by depth-first search.
     state = {}
