@@ -4,6 +4,10 @@
 // scene's boxes, Wimmer et al. 2004's B). Only its vertices are read: the
 // extremes of a linear or projective function with positive w over a convex
 // polytope lie at its vertices.
+//
+// What the kit guarantees here (shadowbench::shadow_kit, installed): plain
+// CPU code (no GL), in world units (or whatever space the planes and boxes
+// share); clip() costs O(vertices) per plane, visible_body() 6 clips per box.
 #include <glm/glm.hpp>
 #include <vector>
 

@@ -14,6 +14,11 @@
 // one leaf over another, however close, is. A texel that saw nothing
 // (window depth 1) next to one that saw something is always a cliff (an
 // occluder's outline).
+//
+// What the kit guarantees here (shadowbench::shadow_kit, installed): plain
+// CPU code (no GL) on a map already read back (reading it back, in render(),
+// is the caller's cost); points in world units, depths along the light's
+// axis; find_depth_cliffs() costs O(size²) and returns 2·size² bytes.
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <vector>

@@ -1,5 +1,27 @@
 #pragma once
 // The depth-only pass from a light point, shared by every shadow-map family.
+//
+// What the kit guarantees here (shadowbench::shadow_kit, installed):
+//   in     the scene on the GPU (FrameInputs::gpu), a LightFrustum
+//          (common/light_frustum.h) and the settings the parameters of
+//          depth_map_params() give: size in texels, depth format, bias in
+//          glPolygonOffset units and factor, culling;
+//   out    DepthMap::texture(): a size×size depth texture of window depths
+//          in [0, 1] (1 where nothing was drawn), clamped to a border of 1,
+//          with compare mode off (the sampler bound with it decides);
+//   GL     DepthMap() makes a texture, a framebuffer and two programs: call
+//          it in prepare(), with a context. render() leaves its framebuffer
+//          bound, the viewport at size×size, GL_DEPTH_TEST on with GL_LESS
+//          and the depth mask on, one of its programs in use and, after an
+//          alpha-tested caster, that caster's texture on unit 0; it restores
+//          the colour mask and turns polygon offset and face culling off;
+//   cost   one depth clear and one draw per caster mesh (and per receiver
+//          with `receivers_too`); memory about size² × 4 bytes (2 with "16").
+//
+// Culling: only casters the harness found closed (DrawInfo::cullable) are
+// culled, and it looks only when some technique of the run declared
+// need::kCasterClosedness. A technique that culls must declare it, or its
+// map would depend on which techniques run beside it.
 #include <string>
 #include <vector>
 
@@ -71,9 +93,9 @@ class DepthMap {
   gl::Program masked_program_;
 };
 
-// GLSL helpers for lookup passes: `light_coords(world)` returns the point in
-// the light's [0,1]^3 texture space, depth clamped to 1 so receivers beyond
-// the far plane compare as unshadowed when nothing is in front of them;
+// GLSL helpers for lookup passes (no #version: append them after one):
+// `light_coords(world)` returns the point in the light's [0,1]^3 texture space, depth clamped to 1
+// so receivers beyond the far plane compare as unshadowed when nothing is in front of them;
 // `offset_world(world, n, light_point, normal_offset)` moves the receiver
 // along its normal by normal_offset × its distance to the light point;
 // `above_horizon(n, world, light_point)` is 0 for light points below the

@@ -11,6 +11,21 @@
 // The light frustum, and the depth range the basis values are computed in,
 // are fitted in every frame (plugin/technique.h: prepare() must not depend on
 // the light).
+//
+// What the kit guarantees here (shadowbench::shadow_kit, installed):
+//   in     the parameters of filtered_map_params() and a BasisShader;
+//   out    V in every pixel of the visibility target, as map_lookup.h;
+//   GL     prepare() makes the depth map, the basis array (channels rounded
+//          up to layers of 4, 16- or 32-bit float, bilinear), the filter
+//          and two programs. render() leaves the state the lookup's draw()
+//          leaves (map_lookup.h), the basis array on unit 4;
+//   cost   per frame, timed as "shadow_map", "moments", "prefilter" (only
+//          with a prefilter and k > 1) and "lookup": the depth pass, one
+//          full-screen pass per layer over size² texels, the separable
+//          filter's 2 × layers passes of k taps, and the lookup; memory the
+//          depth map plus size² × layers × 4 channels (2 or 4 bytes each;
+//          1 or 2 channels for 1- or 2-channel bases), twice with a
+//          prefilter.
 #include <optional>
 #include <string>
 #include <vector>

@@ -2,6 +2,15 @@
 // Filter kernels shared by the PCF variants and the separable prefilters:
 // a k-tap 1D kernel whose outer product is the 2D one, so box and Gaussian
 // PCF and the box and Gaussian prefilters read the same weights.
+//
+// What the kit guarantees here (shadowbench::shadow_kit, installed):
+//   in     k, the kernel's side in taps (odd, 1..kMaxKernelTaps), and for
+//          Gaussian weights sigma in texels (taps are one texel apart);
+//   out    k weights, centre tap in the middle, summing to 1 up to float
+//          rounding (box: each 1/k); std::logic_error for an even or too
+//          large k (kernel_size_param() lets no such k through a config);
+//   GL     none: plain CPU code;
+//   cost   O(k).
 #include <string>
 #include <vector>
 

@@ -4,6 +4,9 @@
 // light's target (the lit side), v = n × u, origin at the light's centre, so
 // the light is the rectangle |x| <= half_width, |y| <= half_height of z = 0
 // and the scene lies at z > 0.
+//
+// What the kit guarantees here (shadowbench::shadow_kit, installed): header
+// only, plain CPU code (no GL), world units; each call O(1).
 #include <algorithm>
 #include <cmath>
 #include <glm/glm.hpp>

@@ -5,6 +5,22 @@
 // caster: receivers outside it cannot be shadowed from that point, so they
 // are lit by construction (the map's border reads "far"). The map is square
 // with square texels; tan_half_fov is its half-extent in x/z (and y/z).
+//
+// What the kit guarantees here (shadowbench::shadow_kit, installed):
+//   in     the scene on the CPU (its casters' triangles, its light, its
+//          bounds) and the eye, a point in world units, normally
+//          scene.light.center (or any point of the light);
+//   out    view (glm::lookAt from the eye along the light's axis), an
+//          off-axis GL projection (clip z in [-w, w]) and their product;
+//          near_plane = 0.99 × the nearest caster's distance along the axis,
+//          far_plane = 1.01 × the farthest point of the scene's bounding box
+//          inside the frustum (so every receiver the map covers has a depth
+//          in [0, 1]); all in world units. With no caster at all, view_projection is the
+//          identity and every point is lit;
+//   GL     none: plain CPU code, safe without a context;
+//   cost   one matrix-vector product per caster index (every index of every
+//          caster mesh), no allocation. Call it in render(), every frame,
+//          inside the timed pass that uses it: it depends on the light.
 #include <glm/glm.hpp>
 
 #include "core/scene.h"

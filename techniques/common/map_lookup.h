@@ -17,7 +17,29 @@
 //   view_depth(w)     a window depth of the map as distance along the light axis
 //   receiver_view_depth(), depth01(z)  the same for the receiver; z -> [0,1]
 //   clamp_unit(v)     clamp to [0,1] that keeps NaN (GLSL's clamp may not)
-// Units 4 and up are the variant's own.
+// Units 4 and up are the variant's own. The pass prepends `#version 450 core`
+// and the lines above; lit_fraction_glsl must not have a #version of its own,
+// nor redeclare the uniforms light_view_projection, light_view, light_point,
+// normal_offset, receiver_plane, weight or light_depth_range.
+//
+// What the kit guarantees here (shadowbench::shadow_kit, installed):
+//   in     the G-buffer and visibility target of FrameInputs, the frustum the
+//          map was drawn with, the DepthMapSettings (normal offset, receiver
+//          plane) and the map (DepthMap::texture());
+//   out    V in every pixel of in.visibility_framebuffer, by the rule above:
+//          0 where the map's eye (frustum.eye) is below the surface's
+//          tangent plane,
+//          `weight` outside the map's cone and on the background;
+//   GL     MapLookupPass() compiles a program and makes two samplers: call it
+//          in prepare(). draw() leaves in.visibility_framebuffer bound, the
+//          viewport at in.width×in.height, GL_DEPTH_TEST off, its program in
+//          use and textures on units 0-3 (samplers on 1 and 3 unbound
+//          again); blending is left as the caller set it;
+//   cost   one full-screen triangle: per pixel two G-buffer fetches and the
+//          taps lit_fraction() makes.
+//
+// SingleMapTechnique times its passes as "shadow_map" (fit + depth pass) and
+// "lookup", like every built-in map technique.
 #include <string>
 
 #include "common/depth_pass.h"

@@ -7,6 +7,19 @@
 // forming exp(c·v): out = m + log(Σ w_i·exp(c·(v_i − m)))/c, m the largest
 // tap, so every exponent is <= 0 and fp32 cannot overflow at any c (the
 // log-space filtering of exponential shadow maps, Salvi 2008).
+//
+// What the kit guarantees here (shadowbench::shadow_kit, installed):
+//   in     a size×size×layers GL_TEXTURE_2D_ARRAY and k weights (odd k,
+//          summing to 1; kernel.h makes them);
+//   out    the same texture, each layer convolved with the weights along x
+//          and then y, taps at whole texels, edges clamped;
+//   GL     the constructor makes a scratch array of the same size and format,
+//          framebuffers and a program: call it in prepare(). apply() turns
+//          GL_DEPTH_TEST and GL_BLEND off, sets the viewport to size×size,
+//          leaves its program in use, the last layer's framebuffer bound and
+//          a texture on unit 0;
+//   cost   2 × layers full-screen passes of size² texels × k taps; memory
+//          the scratch array, as large as the target.
 #include <vector>
 
 #include "gl/objects.h"

@@ -6,6 +6,18 @@
 // from the light's centre and emits the two triangles of a quad around it,
 // or a degenerate triangle when it is not. Nothing is built on the CPU and
 // nothing is uploaded per frame.
+//
+// What the kit guarantees here (shadowbench::shadow_kit, installed):
+//   in     the edge buffer of need::kSilhouetteEdges, which the technique
+//          must declare (FrameInputs::derived holds it only then), and the
+//          program the caller bound, its vertex shader built on
+//          kSilhouetteBandVertexGlsl;
+//   out    6 vertices per caster edge drawn as GL_TRIANGLES into whatever
+//          framebuffer is bound, with the caller's state (depth, blending);
+//   GL     draw_silhouette_bands() binds the edge buffer to shader-storage
+//          binding 0 and an empty vertex array; nothing else;
+//   cost   6 vertex-shader runs per caster edge, silhouette or not; no CPU
+//          work, no upload.
 #include "common/light_frustum.h"
 #include "gl/objects.h"
 #include "gl/program.h"
