@@ -28,6 +28,7 @@ install(TARGETS ${_plugins} LIBRARY DESTINATION ${SHADOWBENCH_INSTALL_PLUGIN_DIR
 install(FILES harness/results/plot_charts.py DESTINATION ${SHADOWBENCH_INSTALL_DATA_DIR})
 install(DIRECTORY configs/ DESTINATION ${SHADOWBENCH_INSTALL_DATA_DIR}/configs)
 install(FILES README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+# docs/ holds the example technique examples/my_pcf with its CMakeLists.txt.
 install(DIRECTORY docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR})
 
 # The man page (help2man, from --help-all and --version) and the bash

@@ -5,7 +5,8 @@ folders, the binaries carry no absolute RUNPATH, configs/quick.json runs and
 `report` draws its charts; a technique family built against the moved
 prefix's plugin API (find_package(shadowbench)) is found through
 $SHADOWBENCH_PLUGIN_PATH beside the installed ones; the shadow-map kit's
-headers and library are installed. Run by ctest
+headers and library are installed, and the shipped example built on it
+(installed_example.py) measures as the built-in it copies. Run by ctest
 (tests/install/CMakeLists.txt); prints how long each step took."""
 import argparse
 import glob
@@ -16,6 +17,8 @@ import subprocess
 import sys
 import tempfile
 import time
+
+import installed_example
 
 
 def run(what, *cmd, env=None, cwd=None, expect=0):
@@ -153,6 +156,11 @@ def main():
         env, SHADOWBENCH_PLUGIN_PATH=clash), expect=3)
     if "copy_of_shadow_map.so" not in out or "first by" not in out:
         sys.exit(f"the clash does not name both modules:\n{out}")
+
+    # The shipped example, built from the prefix's copy, beside pcf_box.
+    started_example = time.monotonic()
+    installed_example.build_and_compare(prefix, a.work, a.cmake, a.cxx, env, run)
+    print(f"the installed example my_pcf: {time.monotonic() - started_example:.1f} s")
     print(f"install test: {time.monotonic() - started:.1f} s in all")
     shutil.rmtree(a.work)
 
