@@ -9,7 +9,7 @@ packages=(
   python3-glad python3-matplotlib
   libopenimageio-dev openimageio-tools
   libtinygltf-dev libglm-dev nlohmann-json3-dev
-  libembree-dev libtbb-dev libpolyclipping-dev libboost-dev
+  libembree-dev libtbb-dev libpolyclipping-dev libboost-dev libssl-dev
   libbenchmark-dev libgtest-dev libgmock-dev
   libcli11-dev help2man
 )

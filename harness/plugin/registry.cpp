@@ -22,7 +22,16 @@ void Registry::add(TechniqueInfo info) {
                            (first.empty() ? std::string() : ", first by " + first));
   }
   origins_[info.name] = loading_;
+  if (!loading_.empty() && identities_.count(loading_) == 0)
+    identities_.emplace(loading_, identify_plugin(loading_));
   techniques_.push_back(std::move(info));
+}
+
+const PluginIdentity* Registry::plugin_of(const std::string& technique) const {
+  const auto origin = origins_.find(technique);
+  if (origin == origins_.end()) return nullptr;
+  const auto id = identities_.find(origin->second);
+  return id == identities_.end() ? nullptr : &id->second;
 }
 
 const TechniqueInfo* Registry::find(const std::string& name) const {

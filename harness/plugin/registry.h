@@ -14,6 +14,7 @@
 #include "core/install_layout.h"  // default_plugin_dir(), for callers of load_plugins
 #include "core/params.h"
 #include "plugin/needs.h"
+#include "plugin/plugin_identity.h"
 #include "plugin/technique.h"
 
 namespace sb {
@@ -39,6 +40,9 @@ class Registry {
   void add(TechniqueInfo info);  // throws std::logic_error on duplicates
   const TechniqueInfo* find(const std::string& name) const;
   const std::vector<TechniqueInfo>& all() const { return techniques_; }
+  // The module that registered `technique` (load_plugins); nullptr for one
+  // added otherwise (a test's own) or unknown.
+  const PluginIdentity* plugin_of(const std::string& technique) const;
 
   // Needs a plugin adds; the harness's own are found by the planner
   // (plan/need_resolution.h). Throws std::logic_error on duplicates.
@@ -59,6 +63,8 @@ class Registry {
   std::vector<std::string> module_paths_;
   std::map<std::string, std::string> origins_;  // technique (or "need x") -> module
   std::string loading_;                         // the module being registered
+  // Module -> its identity, hashed once, when it registers its first technique.
+  std::map<std::string, PluginIdentity> identities_;
 };
 
 }  // namespace sb

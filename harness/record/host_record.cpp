@@ -64,6 +64,9 @@ const OptionalString<BuildRecord> kBuildStrings[] = {
     {"build_type", &BuildRecord::build_type},
     {"cxx_flags", &BuildRecord::cxx_flags},
     {"fingerprint", &BuildRecord::fingerprint},
+    {"driver_sha256", &BuildRecord::driver_sha256},
+    {"core_sha256", &BuildRecord::core_sha256},
+    {"plugin_api_sha256", &BuildRecord::plugin_api_sha256},
 };
 const OptionalString<GlStack> kGlStackStrings[] = {
     {"mesa_version", &GlStack::mesa_version},

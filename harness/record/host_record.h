@@ -76,6 +76,11 @@ struct BuildRecord {
   std::optional<std::string> build_type;   // "Release"
   std::optional<std::string> cxx_flags;    // CMAKE_CXX_FLAGS and those of the build type
   std::optional<std::string> fingerprint;  // build_fingerprint(): 16 hex digits
+  // SHA-256 of the code that ran: the driver executable and the harness's
+  // two libraries (shadowbench_core, shadowbench_plugin_api). Not part of
+  // the fingerprint, which names the toolchain; the job's spec holds them,
+  // so that a rebuilt harness reruns. Absent in older records.
+  std::optional<std::string> driver_sha256, core_sha256, plugin_api_sha256;
 
   nlohmann::json to_json() const;
   static BuildRecord from_json(const Fields& f);

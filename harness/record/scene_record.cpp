@@ -78,8 +78,23 @@ SceneRecord SceneRecord::from_json(const Fields& f) {
   return s;
 }
 
+json PluginRecord::to_json() const {
+  return {{"file", file}, {"size", size}, {"sha256", sha256}, {"api_version", api_version}};
+}
+
+PluginRecord PluginRecord::from_json(const Fields& f) {
+  PluginRecord p;
+  p.file = f.get<std::string>("file");
+  p.size = f.get<std::int64_t>("size");
+  p.sha256 = f.get<std::string>("sha256");
+  p.api_version = f.get<int>("api_version");
+  return p;
+}
+
 json TechniqueRecord::to_json() const {
-  return {{"name", name}, {"family", family}, {"variant", variant}, {"params", params}};
+  json t = {{"name", name}, {"family", family}, {"variant", variant}, {"params", params}};
+  if (plugin) t["plugin"] = plugin->to_json();
+  return t;
 }
 
 TechniqueRecord TechniqueRecord::from_json(const Fields& f) {
@@ -88,6 +103,7 @@ TechniqueRecord TechniqueRecord::from_json(const Fields& f) {
   t.family = f.get<std::string>("family");
   t.variant = f.get<std::string>("variant");
   t.params = f.get<json>("params");
+  if (const auto p = f.find_object("plugin")) t.plugin = PluginRecord::from_json(*p);
   return t;
 }
 

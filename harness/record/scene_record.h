@@ -53,11 +53,26 @@ struct SceneRecord {
   static SceneRecord from_json(const Fields& f);
 };
 
+// technique.plugin: the module the technique came from (plugin/plugin_identity.h).
+struct PluginRecord {
+  std::string file;  // relative to its plugin folder: "shadow_map.so"
+  std::int64_t size = 0;
+  std::string sha256;  // of the module's bytes
+  int api_version = 0;
+
+  bool operator==(const PluginRecord&) const = default;
+  nlohmann::json to_json() const;
+  static PluginRecord from_json(const Fields& f);
+};
+
 struct TechniqueRecord {
   std::string name;
   std::string family;
   std::string variant;
   nlohmann::json params = nlohmann::json::object();  // all, defaults filled in
+  // Absent in records from before plugin identities, and for a technique
+  // no module registered (a test's own).
+  std::optional<PluginRecord> plugin;
 
   nlohmann::json to_json() const;
   static TechniqueRecord from_json(const Fields& f);

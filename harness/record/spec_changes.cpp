@@ -11,6 +11,17 @@ namespace {
 constexpr size_t kMaxValueChars = 80;
 constexpr size_t kMaxNamedChanges = 3;
 
+constexpr size_t kShownHashDigits = 12;
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+// A SHA-256 as its first digits, as git shows a commit: enough to tell two apart.
+std::string short_hash(const std::string& hex) {
+  return hex.size() > kShownHashDigits ? hex.substr(0, kShownHashDigits) + ".." : hex;
+}
+
 // Strings as they are (a variant, an ISA), everything else as JSON.
 std::string value_text(const json* v) {
   if (v == nullptr) return "absent";
@@ -19,8 +30,30 @@ std::string value_text(const json* v) {
   return text;
 }
 
+// A member's value in a change line; hashes (…sha256) shortened.
+std::string value_text(const json* v, const std::string& name) {
+  if (v != nullptr && v->is_string() && ends_with(name, "sha256"))
+    return short_hash(v->get<std::string>());
+  return value_text(v);
+}
+
+// The SHA-256 a plugin member (spec technique.plugin) holds, or "".
+std::string plugin_hash(const json& plugin) {
+  const auto it = plugin.find("sha256");
+  return it != plugin.end() && it->is_string() ? it->get<std::string>() : "";
+}
+
 void collect(const json* before, const json* after, const std::string& name,
              std::vector<std::string>& out) {
+  // A rebuilt plugin is one change, named by its file, whatever else of it changed.
+  if (before != nullptr && after != nullptr && before->is_object() && after->is_object() &&
+      (name == "plugin" || ends_with(name, ".plugin")) &&
+      plugin_hash(*before) != plugin_hash(*after)) {
+    out.push_back("plugin " + after->value("file", std::string("?")) + " changed (sha256 " +
+                  short_hash(plugin_hash(*before)) + " -> " + short_hash(plugin_hash(*after)) +
+                  ")");
+    return;
+  }
   if (before != nullptr && after != nullptr && before->is_object() && after->is_object()) {
     std::set<std::string> keys;  // both sides' members, in key order
     for (auto it = before->begin(); it != before->end(); ++it) keys.insert(it.key());
@@ -36,8 +69,8 @@ void collect(const json* before, const json* after, const std::string& name,
     return;
   }
   if (before != nullptr && after != nullptr && *before == *after) return;
-  out.push_back((name.empty() ? std::string("spec") : name) + " changed (" + value_text(before) +
-                " -> " + value_text(after) + ")");
+  out.push_back((name.empty() ? std::string("spec") : name) + " changed (" +
+                value_text(before, name) + " -> " + value_text(after, name) + ")");
 }
 
 }  // namespace

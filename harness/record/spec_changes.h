@@ -12,7 +12,11 @@ namespace sb {
 
 // One "<dotted name> changed (<before> -> <after>)" per setting that differs,
 // nested objects compared member by member, in key order; a member on one
-// side only is "absent" on the other. Long values are cut to 80 characters.
+// side only is "absent" on the other. Long values are cut to 80 characters,
+// SHA-256s (members named *sha256) to their first 12 hex digits. A plugin
+// whose hash changed (a rebuilt module: technique.plugin,
+// frames.control.plugin) is one change named by its file:
+// "plugin my_pcf.so changed (sha256 ab12ab12ab12.. -> cd34cd34cd34..)".
 std::vector<std::string> spec_changes(const nlohmann::json& before, const nlohmann::json& after);
 
 // "" when `earlier` is kept (its spec_hash is `hash`); else why its job runs

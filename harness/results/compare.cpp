@@ -83,6 +83,18 @@ const FingerprintPair& note_fingerprints(const JobRecord& rb, const JobRecord& r
   return host;
 }
 
+// Notes in `out` a technique whose plugin differs between a job's two
+// records (records without a plugin identity say nothing).
+void note_plugin(const JobRecord& rb, const JobRecord& rn, CompareResult& out) {
+  const auto& pb = rb.technique.plugin;
+  const auto& pn = rn.technique.plugin;
+  if (!pb || !pn || pb->sha256 == pn->sha256) return;
+  const std::string& name = rn.technique.name;
+  for (const auto& d : out.plugins)
+    if (d.technique == name) return;
+  out.plugins.push_back({name, *pb, *pn});
+}
+
 // The names of the differing fields ("cpu.model, gl_renderer"), for a job's note.
 std::string differing_fields(const FingerprintPair& host) {
   std::string names;
@@ -209,6 +221,24 @@ std::string format_hosts(const CompareResult& r, const CompareOptions& o) {
     if (p.same() || p.differences.empty()) continue;
     s += "build: differs (shown, not refused):\n";
     for (const auto& d : p.differences) s += "  " + d + "\n";
+  }
+  return s;
+}
+
+// A SHA-256 as its first digits, enough to tell two apart.
+std::string short_hash(const std::string& hex) {
+  constexpr size_t kShown = 12;
+  return hex.size() > kShown ? hex.substr(0, kShown) + ".." : hex;
+}
+
+// A line per technique whose plugin differs: information, not a refusal.
+std::string format_plugins(const CompareResult& r) {
+  std::string s;
+  for (const auto& d : r.plugins) {
+    s += "plugin " + d.fresh.file + " differs: sha256 " + short_hash(d.base.sha256) + " vs " +
+         short_hash(d.fresh.sha256);
+    if (d.base.file != d.fresh.file) s += " (BASE's file " + d.base.file + ")";
+    s += " (technique " + d.technique + "; shown, not refused)\n";
   }
   return s;
 }
@@ -384,6 +414,7 @@ CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector
     c.job_id = id;
     c.base_status = to_string(rb.status);
     c.new_status = to_string(rn.status);
+    note_plugin(rb, rn, out);
     if (c.base_status != "ok" || c.new_status != "ok") {
       if (c.base_status == "ok" && c.new_status == "failed")
         c.note = "failed in NEW: " + rn.reason.value_or("");
@@ -492,6 +523,7 @@ std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
   else
     s += "error: " + o.metric + format_number(", threshold %g (absolute)\n", o.error_threshold);
   s += format_hosts(r, o);
+  s += format_plugins(r);
   s += format_references(r, o);
   s += "\n";
   const char* unit = ratios ? "ratio" : "ms";

@@ -97,6 +97,14 @@ struct ReferenceDifference {
   std::vector<std::string> jobs;
 };
 
+// A technique whose plugin module differs between BASE and NEW (its
+// SHA-256): shown, not refused, since comparing two builds of a plugin is
+// what compare is for.
+struct PluginDifference {
+  std::string technique;
+  PluginRecord base, fresh;
+};
+
 struct CompareResult {
   std::vector<JobComparison> jobs;  // in BASE order, then jobs only in NEW are listed apart
   std::vector<std::string> only_base, only_new;
@@ -111,6 +119,9 @@ struct CompareResult {
   int references_without_key = 0;
   // Of the jobs ok on both sides, each distinct pair of fingerprints.
   std::vector<FingerprintPair> hosts, builds;
+  // Of the jobs on both sides whose records name their plugin, each
+  // technique whose plugin's hash differs, once, in the order met.
+  std::vector<PluginDifference> plugins;
 };
 
 // The exit code of `shadowbench compare` for a result: kExitRegression when

@@ -11,6 +11,8 @@
 #include <thread>
 #include <vector>
 
+#include "run/code_identity.h"
+
 // CMake passes these to this file only (harness/run/CMakeLists.txt).
 #ifndef SHADOWBENCH_COMPILER
 #define SHADOWBENCH_COMPILER ""
@@ -139,6 +141,13 @@ BuildRecord describe_build() {
   b.build_type = SHADOWBENCH_BUILD_TYPE;
   b.cxx_flags = std::string(trimmed(SHADOWBENCH_CXX_FLAGS));
   b.fingerprint = build_fingerprint(b);
+  const CodeIdentity& code = this_code();
+  const auto present = [](const std::string& s) {
+    return s.empty() ? std::nullopt : std::optional(s);
+  };
+  b.driver_sha256 = present(code.driver_sha256);
+  b.core_sha256 = present(code.core_sha256);
+  b.plugin_api_sha256 = present(code.plugin_api_sha256);
   return b;
 }
 

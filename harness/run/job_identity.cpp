@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "core/names.h"
+#include "plugin/registry.h"
 #include "reference/embree_isa.h"
 #include "reference/reference.h"
 #include "results/store.h"
@@ -47,8 +48,19 @@ reference::Settings reference_settings(const ReferenceConfig& c, const EmbreeCho
   return s;
 }
 
-json technique_spec(const TechniqueVariant& tv) {
-  return {{"name", tv.info->name}, {"params", tv.params.json()}};
+// The module that registered the technique, when one did (a test's own
+// registrations have none).
+const PluginIdentity* plugin_of(const Experiment& e, const TechniqueVariant& tv) {
+  return e.registry == nullptr ? nullptr : e.registry->plugin_of(tv.info->name);
+}
+
+// Its hash decides the numbers as much as the parameters do: a rebuilt
+// plugin reruns (record/spec_changes.h names it).
+json technique_spec(const Experiment& e, const TechniqueVariant& tv) {
+  json t = {{"name", tv.info->name}, {"params", tv.params.json()}};
+  if (const PluginIdentity* p = plugin_of(e, tv))
+    t["plugin"] = {{"file", p->file}, {"sha256", p->sha256}, {"api_version", p->api_version}};
+  return t;
 }
 
 // SHADOWBENCH_INJECT_DELAY as set, when it slows this job; else null. A
@@ -68,6 +80,7 @@ json injected_delay_spec(const TechniqueVariant& tv) {
 json job_spec(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
               const SceneVariant& sv, const Resolution& res, const TechniqueVariant& tv) {
   const ReferenceConfig& ref = e.reference;
+  const BuildRecord build = describe_build();
   // Every setting of the reference, those of the exact one included: a
   // scene the exact reference cannot do gets Monte Carlo with them.
   json spec = {
@@ -78,11 +91,11 @@ json job_spec(const Experiment& e, const RunOptions& o, const EmbreeChoice& embr
         {"camera", sv.camera},
         {"infer_receivers", sv.infer_receivers}}},
       {"resolution", res.label()},
-      {"technique", technique_spec(tv)},
+      {"technique", technique_spec(e, tv)},
       {"frames",
        {{"warmup", e.warmup_frames},
         {"timed", e.timed_frames},
-        {"control", e.control ? technique_spec(*e.control) : json(nullptr)}}},
+        {"control", e.control ? technique_spec(e, *e.control) : json(nullptr)}}},
       {"timing",
        {{"pass_detail", gl::to_string(o.pass_detail)},
         {"turns", o.take_turn ? "every " + std::to_string(o.turn_block_frames) + " timed frames"
@@ -104,7 +117,13 @@ json job_spec(const Experiment& e, const RunOptions& o, const EmbreeChoice& embr
       {"metrics", {{"distance_thirds", e.distance_thirds}}},
       {"stability", nullptr},
       {"backend", gl::to_string(o.backend)},
-      {"build", {{"fingerprint", describe_build().fingerprint.value_or("")}}}};
+      // The toolchain, and the code of the libraries that render and
+      // measure. Not the driver's: it embeds `git describe`, which every
+      // commit changes, and its own code (the command line) decides no number.
+      {"build",
+       {{"fingerprint", build.fingerprint.value_or("")},
+        {"core_sha256", build.core_sha256.value_or("")},
+        {"plugin_api_sha256", build.plugin_api_sha256.value_or("")}}}};
   // The second reference takes the first's settings with the other method.
   if (ref.second_exact)
     spec["second_reference"] = {
@@ -139,7 +158,9 @@ JobRecord identity_record(const Experiment& e, const RunOptions& o, const Embree
   r.scene.variant = sv.name;
   r.scene.params = sv.params.json();
   r.technique_variant = tv.name;
-  r.technique = {tv.info->name, tv.info->family, tv.name, tv.params.json()};
+  r.technique = {tv.info->name, tv.info->family, tv.name, tv.params.json(), std::nullopt};
+  if (const PluginIdentity* p = plugin_of(e, tv))
+    r.technique.plugin = PluginRecord{p->file, p->size, p->sha256, p->api_version};
   r.resolution = res.label();
   r.width = res.width;
   r.height = res.height;

@@ -388,6 +388,34 @@ TEST(CompareHosts, ADifferentBuildIsShownNotRefused) {
   EXPECT_TRUE(has(t, "compiler: (none) vs \"Clang 16.0.6\"")) << t;
 }
 
+TEST(CompareHosts, ADifferentPluginIsShownPerTechniqueNotRefused) {
+  auto base = one_job(20.0, 1, 0.05, "grid__320x240__pcf");
+  base.push_back(one_job(20.0, 3, 0.05, "grid__320x240__map")[0]);
+  auto fresh = one_job(20.0, 2, 0.05, "grid__320x240__pcf");
+  fresh.push_back(one_job(20.0, 4, 0.05, "grid__320x240__map")[0]);
+  const std::string old_hash(64, 'a'), new_hash(64, 'b');
+  const auto name = [](JobRecord& r, const std::string& technique, const std::string& sha256) {
+    r.technique.name = technique;
+    r.technique.plugin = sb::PluginRecord{"shadow_map.so", 1000, sha256, 1};
+  };
+  name(base[0], "pcf_box", old_hash);
+  name(base[1], "shadow_map", old_hash);
+  name(fresh[0], "pcf_box", new_hash);
+  name(fresh[1], "shadow_map", old_hash);  // this one's module is unchanged
+  const auto r = compare_runs(base, fresh, CompareOptions{});
+  EXPECT_EQ(sb::compare_exit_code(r), 0);  // information, not a refusal
+  const std::string t = sb::format_comparison(r, CompareOptions{});
+  EXPECT_TRUE(has(t,
+                  "plugin shadow_map.so differs: sha256 aaaaaaaaaaaa.. vs bbbbbbbbbbbb.. "
+                  "(technique pcf_box; shown, not refused)"))
+      << t;
+  EXPECT_FALSE(has(t, "technique shadow_map;")) << t;
+  // Records that name no plugin (older ones) say nothing either way.
+  base[0].technique.plugin.reset();
+  EXPECT_FALSE(has(sb::format_comparison(compare_runs(base, fresh, CompareOptions{}), {}),
+                   "plugin shadow_map.so differs"));
+}
+
 TEST(CompareHosts, UnknownNormalizeOrTimingIsBadInput) {
   CompareOptions o;
   o.normalize = "ratio";

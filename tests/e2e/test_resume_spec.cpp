@@ -18,6 +18,7 @@
 
 #include "../common/cli_run.h"
 #include "e2e_util.h"
+#include "plugin/plugin_identity.h"
 #include "reference/reference.h"
 #include "run/host_info.h"
 #include "run/job_identity.h"
@@ -225,8 +226,9 @@ TEST(ResumeSpec, TheSecondReferenceReruns) {
 TEST(ResumeSpec, TheControlReruns) {
   json no_control = tiny_config();
   no_control["frames"]["control"] = nullptr;
+  // The control as the spec names it, with its plugin (cut at 80 characters).
   expect_config_rerun(tiny_config(), no_control,
-                      "frames.control changed ({\"name\":\"none\",\"params\":{}} -> null)");
+                      "frames.control changed ({\"name\":\"none\",\"params\":{},\"plugin\":{");
 }
 
 TEST(ResumeSpec, TheWarmUpFramesRerun) {
@@ -311,6 +313,68 @@ TEST(ResumeSpec, AnotherBuildReruns) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("1 job rerun: build.fingerprint changed (fedcba9876543210 -> " +
                           describe_build().fingerprint.value() + ")"),
+            std::string::npos)
+      << r.output;
+}
+
+// sha256sum's digest of a file of the build tree: another implementation than the harness's.
+std::string sha256sum(const fs::path& file) {
+  const CliRun r = run_command("sha256sum '" + file.string() + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  return r.output.substr(0, 64);
+}
+
+TEST(ResumeSpec, TheRecordNamesItsPluginAndTheHarnesssCode) {
+  const json r = read_record(finished_run({}));
+  const fs::path build = fs::path(SHADOWBENCH_EXE).parent_path();
+  const fs::path none_so = build / "plugins" / "none.so";
+  const json& plugin = r["technique"]["plugin"];
+  EXPECT_EQ(plugin["file"], "none.so");
+  EXPECT_EQ(plugin["size"], std::int64_t(fs::file_size(none_so)));
+  EXPECT_EQ(plugin["sha256"], sha256sum(none_so));
+  EXPECT_EQ(plugin["api_version"], kPluginApiVersion);
+  EXPECT_EQ(r["build"]["driver_sha256"], sha256sum(SHADOWBENCH_EXE));
+  EXPECT_EQ(r["build"]["core_sha256"], sha256sum(build / "harness" / "libshadowbench_core.so"));
+  EXPECT_EQ(r["build"]["plugin_api_sha256"],
+            sha256sum(build / "harness" / "libshadowbench_plugin_api.so"));
+  // The spec holds what decides the numbers: the plugin's hash and the
+  // libraries', not the driver's (it embeds `git describe`).
+  const json& spec = r["spec"];
+  EXPECT_EQ(spec["technique"]["plugin"]["sha256"], plugin["sha256"]);
+  EXPECT_EQ(spec["technique"]["plugin"]["api_version"], kPluginApiVersion);
+  EXPECT_EQ(spec["build"]["core_sha256"], r["build"]["core_sha256"]);
+  EXPECT_EQ(spec["build"]["plugin_api_sha256"], r["build"]["plugin_api_sha256"]);
+  EXPECT_FALSE(spec["build"].contains("driver_sha256"));
+}
+
+TEST(ResumeSpec, ARebuiltPluginRerunsNamingIt) {
+  // What a record of the plugin before it was rebuilt holds.
+  const fs::path out = finished_run({});
+  std::string today;
+  edit_record(out, [&](json& r) {
+    today = r["spec"]["technique"]["plugin"]["sha256"].get<std::string>();
+    r["spec"]["technique"]["plugin"]["sha256"] = std::string(64, 'a');
+  });
+  const CliRun r = run_into(out, {});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("1 job rerun: plugin none.so changed (sha256 aaaaaaaaaaaa.. -> " +
+                          today.substr(0, 12) + "..)"),
+            std::string::npos)
+      << r.output;
+}
+
+TEST(ResumeSpec, ARebuiltHarnessReruns) {
+  // What a record of a build of other code (same compiler and flags) holds.
+  const fs::path out = finished_run({});
+  std::string today;
+  edit_record(out, [&](json& r) {
+    today = r["spec"]["build"]["core_sha256"].get<std::string>();
+    r["spec"]["build"]["core_sha256"] = std::string(64, 'c');
+  });
+  const CliRun r = run_into(out, {});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("1 job rerun: build.core_sha256 changed (cccccccccccc.. -> " +
+                          today.substr(0, 12) + "..)"),
             std::string::npos)
       << r.output;
 }

@@ -155,7 +155,8 @@ TEST(HostRecord, DifferencesNameTheFields) {
 }
 
 TEST(HostRecord, BuildFingerprintFollowsTheBuild) {
-  BuildRecord b{"0.1.0", "GNU 12.2.0", "Release", "-O3 -DNDEBUG", std::nullopt};
+  BuildRecord b{"0.1.0",      "GNU 12.2.0", "Release",    "-O3 -DNDEBUG",
+                std::nullopt, std::nullopt, std::nullopt, std::nullopt};
   const std::string fp = build_fingerprint(b);
   EXPECT_EQ(fp.size(), 16u);
   EXPECT_EQ(build_fingerprint(b), fp);
@@ -176,7 +177,8 @@ JobRecord fingerprinted_record() {
   r.gl_version = kVersion;
   r.host = sample_host();
   r.host.fingerprint = host_fingerprint(r.host, r.gl_renderer, r.gl_version);
-  r.build = {"0.1.0", "GNU 12.2.0", "Release", "-O3 -DNDEBUG", std::nullopt};
+  r.build = {"0.1.0",      "GNU 12.2.0", "Release",    "-O3 -DNDEBUG",
+             std::nullopt, std::nullopt, std::nullopt, std::nullopt};
   r.build.fingerprint = build_fingerprint(r.build);
   return r;
 }

@@ -169,6 +169,39 @@ TEST(JobRecord, TheStoredSpecRoundTripsAndOlderRecordsLackIt) {
   }
 }
 
+TEST(JobRecord, ThePluginAndTheCodeHashesRoundTripAndOlderRecordsLackThem) {
+  JobRecord r = full_record();
+  json j = r.to_json();  // a record from before plugin identities and code hashes
+  EXPECT_FALSE(j["technique"].contains("plugin"));
+  EXPECT_FALSE(j["build"].contains("core_sha256"));
+  EXPECT_FALSE(JobRecord::from_json(j).technique.plugin.has_value());
+  const std::string abc = "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad";
+  r.technique.plugin = PluginRecord{"shadow_map.so", 812345, abc, 1};
+  r.build.driver_sha256 = std::string(64, 'd');
+  r.build.core_sha256 = std::string(64, 'c');
+  r.build.plugin_api_sha256 = std::string(64, 'a');
+  j = r.to_json();
+  EXPECT_EQ(
+      j["technique"]["plugin"],
+      (json{{"file", "shadow_map.so"}, {"size", 812345}, {"sha256", abc}, {"api_version", 1}}));
+  EXPECT_EQ(j["build"]["driver_sha256"], std::string(64, 'd'));
+  EXPECT_EQ(j["build"]["core_sha256"], std::string(64, 'c'));
+  EXPECT_EQ(j["build"]["plugin_api_sha256"], std::string(64, 'a'));
+  const JobRecord back = JobRecord::from_json(json::parse(j.dump()));
+  ASSERT_TRUE(back.technique.plugin.has_value());
+  EXPECT_EQ(*back.technique.plugin, *r.technique.plugin);
+  EXPECT_EQ(back.build.core_sha256, r.build.core_sha256);
+  EXPECT_EQ(back.to_json(), j);
+  json bad = j;
+  bad["technique"]["plugin"].erase("sha256");
+  try {
+    (void)JobRecord::from_json(bad);
+    FAIL() << "a plugin without its hash was read";
+  } catch (const RecordError& e) {
+    EXPECT_EQ(e.pointer(), "/technique/plugin/sha256") << e.what();
+  }
+}
+
 TEST(JobRecord, AnalyticCastersAreRecordedAndOlderRecordsReadAsNone) {
   json j = full_record().to_json();
   EXPECT_EQ(j["scene"]["analytic_casters"], 81);

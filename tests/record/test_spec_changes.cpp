@@ -90,6 +90,41 @@ TEST(RerunReason, TheChangedSettingsAreNamedThreeAtMost) {
             "reference.adaptive changed (false -> true); and 2 more");
 }
 
+// The spec's technique member as job_spec writes it, for a plugin of this hash.
+json with_plugin(const std::string& sha256) {
+  json s = spec();
+  s["technique"] = {{"name", "my_pcf"},
+                    {"params", {{"k", 3}}},
+                    {"plugin", {{"file", "my_pcf.so"}, {"sha256", sha256}, {"api_version", 1}}}};
+  return s;
+}
+
+TEST(RerunReason, ARebuiltPluginIsNamedByItsFileWithBothHashesShort) {
+  JobRecord r = test::identity_record("s", "64x48", "my_pcf");
+  r.spec = with_plugin("ab12ab12ab12ab12ab12ab12ab12ab12ab12ab12ab12ab12ab12ab12ab12ab12");
+  const json after =
+      with_plugin("cd34cd34cd34cd34cd34cd34cd34cd34cd34cd34cd34cd34cd34cd34cd34cd34");
+  EXPECT_EQ(rerun_reason(r, after, "00000000000000bb"),
+            "plugin my_pcf.so changed (sha256 ab12ab12ab12.. -> cd34cd34cd34..)");
+  // The control's plugin is named the same way.
+  json control_before = spec(), control_after = spec();
+  control_before["frames"]["control"]["plugin"] = r.spec->at("technique").at("plugin");
+  control_after["frames"]["control"]["plugin"] = after.at("technique").at("plugin");
+  r.spec = control_before;
+  EXPECT_EQ(rerun_reason(r, control_after, "00000000000000bb"),
+            "plugin my_pcf.so changed (sha256 ab12ab12ab12.. -> cd34cd34cd34..)");
+}
+
+TEST(RerunReason, ARebuiltHarnessIsNamedWithShortHashes) {
+  JobRecord r = test::identity_record("s", "64x48", "none");
+  json before = spec(), after = spec();
+  before["build"] = {{"core_sha256", std::string(64, 'a')}};
+  after["build"] = {{"core_sha256", std::string(64, 'b')}};
+  r.spec = before;
+  EXPECT_EQ(rerun_reason(r, after, "00000000000000bb"),
+            "build.core_sha256 changed (aaaaaaaaaaaa.. -> bbbbbbbbbbbb..)");
+}
+
 TEST(RerunReason, AnEqualSpecUnderAnotherHashIsSaidToBeSo) {
   JobRecord r = test::identity_record("s", "64x48", "none");
   r.spec = spec();
