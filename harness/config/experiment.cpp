@@ -328,11 +328,8 @@ std::vector<TechniqueVariant> unavailable_variants(const std::string& name,
   stand_in->create = [why](const Params&) -> std::unique_ptr<Technique> { throw JobError(why); };
   const std::vector<json> combos = expand_sweeps(params, file, p + "/params");  // checks params
   std::vector<ParamSpec> given;
-  for (auto it = params.begin(); it != params.end(); ++it) {
-    ParamSpec spec;
-    spec.name = it.key();
-    given.push_back(std::move(spec));
-  }
+  for (auto it = params.begin(); it != params.end(); ++it)
+    given.push_back(string_param(it.key(), "", ""));  // only the name counts for naming
   std::vector<TechniqueVariant> out;
   for (const json& combo : combos) {
     TechniqueVariant v;

@@ -32,7 +32,12 @@ std::string accepted_values(const ParamSpec& p, bool markdown) {
     }
     case ParamType::Choice: {
       std::string list;
-      for (const auto& c : p.choices) list += (list.empty() ? "" : ", ") + quote + c + quote;
+      for (const auto& c : p.choices) {
+        if (!list.empty()) list += ", ";
+        list += quote;
+        list += c;
+        list += quote;
+      }
       return list;
     }
     case ParamType::Bool:
