@@ -42,7 +42,12 @@ if(NOT SHADOWBENCH_SANITIZE)
   add_custom_command(
     OUTPUT ${_man}.gz
     COMMAND ${CMAKE_COMMAND} -E make_directory ${CMAKE_BINARY_DIR}/share/man/man1
-    COMMAND ${HELP2MAN} --no-info --no-discard-stderr --help-option=--help-all
+    # The folders --help-all and --version print are the installed layout's,
+    # under <prefix>, not this build tree's (nor the builder's plugin path).
+    COMMAND ${CMAKE_COMMAND} -E env --unset=SHADOWBENCH_PLUGIN_PATH
+            SHADOWBENCH_PLUGIN_DIR=<prefix>/${SHADOWBENCH_INSTALL_PLUGIN_DIR}
+            SHADOWBENCH_SHARE_DIR=<prefix>/${SHADOWBENCH_INSTALL_DATA_DIR}
+            ${HELP2MAN} --no-info --no-discard-stderr --help-option=--help-all
             "--name=benchmark shadow-rendering techniques headlessly"
             --include=${PROJECT_SOURCE_DIR}/cmake/shadowbench.h2m
             --output=${_man} $<TARGET_FILE:shadowbench>

@@ -5,6 +5,7 @@
 #include "cli/commands.h"
 #include "config/param_table.h"
 #include "core/error.h"
+#include "core/nearest_names.h"
 #include "core/scene_types.h"
 #include "scenes/need_providers.h"
 
@@ -37,17 +38,13 @@ int list_markdown(const Registry& r) {
   return kExitOk;
 }
 
+// One line per parameter: what a config may give (range, rule, choices) and
+// what it means.
 void print_params(const std::vector<ParamSpec>& params) {
-  for (const auto& p : params) {
-    std::string extra;
-    if (!p.choices.empty()) {
-      for (const auto& c : p.choices) extra += (extra.empty() ? "" : "|") + c;
-      extra.insert(0, " {");
-      extra += "}";
-    }
-    std::printf("      %-14s %-8s default %-8s %s%s\n", p.name.c_str(), to_string(p.type).c_str(),
-                p.default_value.dump().c_str(), p.doc.c_str(), extra.c_str());
-  }
+  for (const auto& p : params)
+    std::printf("      %-14s %-8s default %-8s %s  [%s]\n", p.name.c_str(),
+                to_string(p.type).c_str(), p.default_value.dump().c_str(), p.doc.c_str(),
+                accepted_values(p, false).c_str());
 }
 
 }  // namespace
@@ -64,10 +61,18 @@ int cmd_list(const Args& a) {
     return a.names.empty() || std::find(a.names.begin(), a.names.end(), name) != a.names.end();
   };
   for (const std::string& name : a.names) {
-    if (r.find(name) == nullptr && find_scene_type(name) == nullptr)
-      throw InputError("", "list " + name,
-                       "no technique or scene type of that name (`shadowbench list --names` "
-                       "lists them)");
+    if (r.find(name) != nullptr || find_scene_type(name) != nullptr) continue;
+    std::vector<std::string> known;
+    for (const auto& t : r.all()) known.push_back(t.name);
+    for (const auto& st : scene_types()) known.push_back(st.name);
+    std::string message =
+        "no technique or scene type of that name (`shadowbench list --names` lists them)";
+    if (std::string near = did_you_mean(name, known); !near.empty()) message += ";" + near;
+    if (!r.load_failures().empty())
+      message += "\n  a plugin failed to load (the warnings above): it may have been its";
+    else if (!r.search_hint().empty())
+      message += "\n  " + r.search_hint();
+    throw InputError("", "list " + name, message);
   }
   if (a.names_only) {
     for (const auto& t : r.all())

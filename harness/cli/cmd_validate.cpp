@@ -29,6 +29,14 @@ int cmd_validate(const Args& a, bool show_plan) {
     std::fprintf(stderr, "shadowbench: error: %s\n", what.c_str());
     return kExitBadInput;
   }
+  // A technique whose plugin failed to load: the config may be right, the
+  // environment is not (exit 3, as with no plugins at all).
+  for (const TechniqueVariant& tv : e.techniques) {
+    if (tv.unavailable.empty()) continue;
+    std::fprintf(stderr, "shadowbench: error: %s\n",
+                 InputError(e.file, tv.pointer, tv.unavailable).what());
+    return kExitInternal;
+  }
   if (!show_plan)
     std::printf(
         "%s: ok: %zu scene variant(s) × %zu resolution(s) × %zu technique variant(s) = %zu jobs "

@@ -272,8 +272,8 @@ std::unique_ptr<CLI::App> make_command_line(Args& a) {
       "`shadowbench COMMAND --help` prints a command's options.\n"
       "Exit codes: 0 every job ok or skipped, 1 some job failed (the others' results are kept), "
       "2 bad input or usage (the message names the file and the place in it, or the option), "
-      "3 environment (no GL context, no plugins, run folder in use), 4 compare found a "
-      "regression.");
+      "3 environment (no GL context, no plugins, run folder in use; validate and plan: a plugin "
+      "CONFIG needs failed to load), 4 compare found a regression.");
 
   CLI::App* run = add_command(*app, "run",
                               "Render every job of CONFIG, time it, measure it against the "

@@ -2,7 +2,8 @@
 // run one command (cli/commands.h). `shadowbench --help` and docs/cli.md say
 // what each command takes.
 // Exit codes: 0 all jobs ok or skipped, 1 some job failed, 2 bad input
-// (config, arguments), 3 environment (no GL context, missing plugins),
+// (config, arguments), 3 environment (no GL context, missing plugins; for
+// validate and plan, a plugin the config needs failed to load),
 // 4 (compare) a significant regression over threshold; compare exits 2 too
 // when it could not compare some job's time (other hosts, no control).
 #include <CLI/CLI.hpp>

@@ -2,7 +2,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <filesystem>
 #include <stdexcept>
+#include <system_error>
 
 #include "cli/commands.h"
 #include "config/unread_params.h"
@@ -13,19 +15,42 @@
 
 namespace sb::cli {
 
+namespace {
+
+// A folder in the plugin path that holds no module at all is most likely a
+// wrong path (a build folder instead of its plugin folder, say).
+bool holds_no_plugin(const std::string& dir) {
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (it->path().extension() == ".so") return false;
+  return !ec;
+}
+
+}  // namespace
+
 Registry load_registry(const Args& a) {
   Registry r;
   std::vector<std::string> dirs = {a.plugins.empty() ? default_plugin_dir() : a.plugins};
   for (const std::string& dir : extra_plugin_dirs()) dirs.push_back(dir);
+  int from_path = 0;  // modules loaded from $SHADOWBENCH_PLUGIN_PATH
   try {
     for (size_t i = 0; i < dirs.size(); ++i) {
+      const char* origin = i == 0 ? "" : " (from $SHADOWBENCH_PLUGIN_PATH)";
       try {
-        r.load_plugins(dirs[i]);
+        const int loaded = r.load_plugins(dirs[i]);
+        if (i > 0) from_path += loaded;
       } catch (const std::runtime_error& e) {
-        if (i == 0) throw;
-        throw std::runtime_error(std::string(e.what()) + " (from $SHADOWBENCH_PLUGIN_PATH)");
+        throw std::runtime_error(std::string(e.what()) + origin);
       }
+      if (holds_no_plugin(dirs[i]))
+        std::fprintf(stderr, "shadowbench: warning: plugin folder %s%s holds no plugin (*.so)\n",
+                     dirs[i].c_str(), origin);
     }
+    // A module that failed is said by every command; only jobs naming a
+    // technique it might have registered fail (config/unknown_technique.h).
+    for (const PluginLoadFailure& f : r.load_failures())
+      std::fprintf(stderr, "shadowbench: warning: plugin %s failed to load: %s\n", f.file.c_str(),
+                   f.message.c_str());
     if (r.all().empty()) {
       std::string where;
       for (const std::string& d : dirs) where += (where.empty() ? "" : ", ") + d;
@@ -34,6 +59,15 @@ Registry load_registry(const Args& a) {
   } catch (const std::runtime_error& e) {
     std::fprintf(stderr, "shadowbench: %s\n", e.what());
     std::exit(kExitInternal);
+  }
+  // For an unknown technique: perhaps its plugin was never looked for.
+  if (dirs.size() == 1) {
+    r.set_search_hint("$SHADOWBENCH_PLUGIN_PATH is not set: only the plugins in " + dirs[0] +
+                      " were loaded (docs/install.md, \"Plugin folders\")");
+  } else if (from_path == 0) {
+    std::string path;
+    for (size_t i = 1; i < dirs.size(); ++i) path += (i == 1 ? "" : ":") + dirs[i];
+    r.set_search_hint("$SHADOWBENCH_PLUGIN_PATH (" + path + ") loaded no plugin");
   }
   return r;
 }

@@ -10,9 +10,11 @@
 #include <sstream>
 
 #include "config/json_file.h"
+#include "config/unknown_technique.h"
 #include "core/error.h"
 #include "core/hash.h"
 #include "core/names.h"
+#include "core/nearest_names.h"
 #include "core/scene_setup_check.h"
 #include "reference/adaptive.h"
 #include "reference/embree_isa.h"
@@ -314,11 +316,39 @@ std::vector<json> expand_sweeps(const json& params, const std::string& file,
   return out;
 }
 
+// The variants of a technique that may be a failed plugin's: its parameters
+// cannot be checked, so each sweep combination is named from the keys given.
+std::vector<TechniqueVariant> unavailable_variants(const std::string& name,
+                                                   const std::string& label, const json& params,
+                                                   const std::string& p, const std::string& why,
+                                                   const std::string& file) {
+  auto stand_in = std::make_shared<TechniqueInfo>();
+  stand_in->name = name;
+  stand_in->summary = "unavailable: " + why;
+  stand_in->create = [why](const Params&) -> std::unique_ptr<Technique> { throw JobError(why); };
+  const std::vector<json> combos = expand_sweeps(params, file, p + "/params");  // checks params
+  std::vector<ParamSpec> given;
+  for (auto it = params.begin(); it != params.end(); ++it)
+    given.push_back(string_param(it.key(), "", ""));  // only the name counts for naming
+  std::vector<TechniqueVariant> out;
+  for (const json& combo : combos) {
+    TechniqueVariant v;
+    v.info = stand_in.get();
+    v.stand_in = stand_in;
+    v.pointer = p;
+    v.params = Params(combo);
+    v.name = variant_name(label, given, combo);
+    v.unavailable = why;
+    out.push_back(std::move(v));
+  }
+  return out;
+}
+
 // The variants of one technique entry: a name, or {"name", "params", "label"}
 // whose list-valued params sweep.
 std::vector<TechniqueVariant> technique_variants(const Reader& r, const Registry& registry,
                                                  const json& given_entry, const std::string& p,
-                                                 const std::string& file) {
+                                                 const std::string& file, bool may_be_unavailable) {
   json entry = given_entry;
   if (entry.is_string()) entry = json{{"name", entry}};
   r.object(entry, p, "a technique (a name or an object)");
@@ -326,15 +356,16 @@ std::vector<TechniqueVariant> technique_variants(const Reader& r, const Registry
   if (!entry.contains("name")) r.fail(p + "/name", "expected a technique name, found nothing");
   const std::string name = r.string(entry["name"], p + "/name");
   const TechniqueInfo* info = registry.find(name);
-  if (info == nullptr) {
-    std::string known;
-    for (const auto& t : registry.all()) (known += known.empty() ? "" : ", ") += t.name;
-    r.fail(p + (given_entry.is_string() ? "" : "/name"),
-           ((("unknown technique \"" + name) += "\" (registered: ") += known) += ")");
-  }
   const std::string label = entry.contains("label") ? r.label(entry["label"], p + "/label") : name;
   const json params = entry.value("params", json::object());
   std::vector<TechniqueVariant> out;
+  if (info == nullptr) {
+    const UnknownTechnique unknown = unknown_technique(name, registry);
+    if (!unknown.plugin_failed || !may_be_unavailable)
+      r.fail(p + (given_entry.is_string() ? "" : "/name"), unknown.message);
+    // Perhaps the failed plugin's: its jobs fail, the others run.
+    return unavailable_variants(name, label, params, p, unknown.message, file);
+  }
   for (const json& combo : expand_sweeps(params, file, p + "/params")) {
     TechniqueVariant v;
     v.info = info;
@@ -400,8 +431,14 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
     const SceneType* st = find_scene_type(type);
     if (st == nullptr) {
       std::string known;
-      for (const auto& t : scene_types()) (known += known.empty() ? "" : ", ") += t.name;
-      r.fail(p + "/type", ((("unknown scene type \"" + type) += "\" (known: ") += known) += ")");
+      std::vector<std::string> names_known;
+      for (const auto& t : scene_types()) {
+        (known += known.empty() ? "" : ", ") += t.name;
+        names_known.push_back(t.name);
+      }
+      std::string near = did_you_mean(type, names_known);
+      r.fail(p + "/type", ((("unknown scene type \"" + type) += "\" (known: ") += known) +=
+                          ")" + (near.empty() ? near : ";" + near));
     }
     json light = entry.value("light", json::object());
     json camera = entry.value("camera", json::object());
@@ -452,7 +489,7 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
   names.clear();
   for (size_t i = 0; i < techniques.size(); ++i) {
     const std::string p = "/techniques/" + std::to_string(i);
-    for (TechniqueVariant& v : technique_variants(r, registry, techniques[i], p, file)) {
+    for (TechniqueVariant& v : technique_variants(r, registry, techniques[i], p, file, true)) {
       if (!names.insert(v.name).second)
         r.fail(p, "technique variant \"" + v.name +
                       "\" appears twice; give entries distinct \"label\"s");
@@ -498,9 +535,11 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
                             : nullptr;
   if (control == nullptr && registry.find(kDefaultControl) != nullptr)
     e.control =
-        technique_variants(r, registry, json(kDefaultControl), "/frames/control", file).front();
+        technique_variants(r, registry, json(kDefaultControl), "/frames/control", file, false)
+            .front();
   else if (control != nullptr && !control->is_null()) {
-    auto variants = technique_variants(r, registry, *control, "/frames/control", file);
+    // Every job is timed next to the control: without it none can run.
+    auto variants = technique_variants(r, registry, *control, "/frames/control", file, false);
     if (variants.size() != 1)
       r.fail("/frames/control/params",
              "expected one control variant, found a sweep of " + std::to_string(variants.size()));

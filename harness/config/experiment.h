@@ -3,6 +3,7 @@
 // GL context exists. List-valued parameters sweep: each combination becomes
 // one variant with a readable name.
 #include <cstdint>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -35,6 +36,12 @@ struct TechniqueVariant {
   std::string name;     // readable variant name: "pcf/k=5"
   std::string pointer;  // JSON pointer of its entry
   Params params;
+  // Why it cannot run: a name no plugin registered while some plugin failed
+  // to load (config/unknown_technique.h). Its jobs fail with this reason and
+  // the others run; `info` is then a stand-in that needs nothing, declares
+  // no parameter (`params` are as given, unchecked) and cannot be created.
+  std::string unavailable;
+  std::shared_ptr<const TechniqueInfo> stand_in;  // owns `info` when unavailable
 };
 
 struct Resolution {

@@ -18,35 +18,44 @@ std::string cell(const std::string& text) {
   return out;
 }
 
-std::string accepted(const ParamSpec& p) {
+}  // namespace
+
+std::string accepted_values(const ParamSpec& p, bool markdown) {
+  const std::string quote = markdown ? "`" : "";
   switch (p.type) {
     case ParamType::Int:
     case ParamType::Float: {
       std::string range = number(p.min) + " … " + number(p.max);
       if (!p.rule_doc.empty()) range += ", " + p.rule_doc;
+      if (p.sentinel) range += "; " + number(*p.sentinel) + " = chosen automatically";
       return range;
     }
     case ParamType::Choice: {
       std::string list;
-      for (const auto& c : p.choices) list += (list.empty() ? "`" : ", `") + c + "`";
+      for (const auto& c : p.choices) {
+        if (!list.empty()) list += ", ";
+        list += quote;
+        list += c;
+        list += quote;
+      }
       return list;
     }
     case ParamType::Bool:
       return "true, false";
     case ParamType::String:
-      return p.is_path ? "a file path, relative to the config" : "text";
+      if (!p.is_path) return "text";
+      return p.default_value == "" ? "a file path, relative to the config, required"
+                                   : "a file path, relative to the config";
   }
   return "";
 }
-
-}  // namespace
 
 std::string markdown_param_table(const std::vector<ParamSpec>& specs) {
   if (specs.empty()) return "No parameters.\n";
   std::string out = "| parameter | type | default | accepted | meaning |\n|---|---|---|---|---|\n";
   for (const auto& p : specs)
     out += "| `" + p.name + "` | " + to_string(p.type) + " | `" + cell(p.default_value.dump()) +
-           "` | " + cell(accepted(p)) + " | " + cell(p.doc) + " |\n";
+           "` | " + cell(accepted_values(p, true)) + " | " + cell(p.doc) + " |\n";
   return out;
 }
 

@@ -9,6 +9,10 @@
 
 namespace sb {
 
+// What a config may give: "1 … 15, odd", the choices, "a file path,
+// relative to the config, required"; with `markdown`, choices in backticks.
+std::string accepted_values(const ParamSpec& spec, bool markdown);
+
 // | parameter | type | default | accepted | meaning |, one row per spec.
 std::string markdown_param_table(const std::vector<ParamSpec>& specs);
 

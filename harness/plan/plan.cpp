@@ -51,7 +51,10 @@ Plan make_plan(const Experiment& e) {
         j.scene = s;
         j.resolution = r;
         j.technique = t;
-        if (!sp.error.empty()) {
+        if (!e.techniques[t].unavailable.empty()) {
+          j.status = PlannedJob::Status::Fail;
+          j.reason = e.techniques[t].unavailable;
+        } else if (!sp.error.empty()) {
           j.status = PlannedJob::Status::Fail;
           j.reason = sp.error;
         } else if (!sp.skip_reason[t].empty()) {

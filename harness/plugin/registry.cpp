@@ -56,6 +56,29 @@ const NeedProvider* Registry::find_provider(const std::string& name) const {
   return nullptr;
 }
 
+std::string Registry::register_module(const std::string& file, void (*entry)(Registry&)) {
+  const size_t techniques = techniques_.size();
+  const size_t providers = providers_.size();
+  loading_ = file;
+  std::string why;
+  try {
+    entry(*this);
+  } catch (const std::exception& e) {
+    // A technique or need another module registered (std::logic_error)
+    // lands here too: the module loaded first keeps it, this one fails.
+    why = e.what();
+  } catch (...) {
+    why = "threw a non-standard exception while registering";
+  }
+  loading_.clear();
+  if (why.empty()) return why;
+  // Half a module is no module: take back what it registered before the throw.
+  techniques_.erase(techniques_.begin() + std::ptrdiff_t(techniques), techniques_.end());
+  providers_.erase(providers_.begin() + std::ptrdiff_t(providers), providers_.end());
+  std::erase_if(origins_, [&file](const auto& origin) { return origin.second == file; });
+  return why;
+}
+
 int Registry::load_plugins(const std::string& dir) {
   namespace fs = std::filesystem;
   if (!fs::is_directory(dir)) throw std::runtime_error("plugin folder not found: " + dir);
@@ -71,22 +94,29 @@ int Registry::load_plugins(const std::string& dir) {
     if (!ec &&
         std::find(module_paths_.begin(), module_paths_.end(), canonical) != module_paths_.end())
       continue;
+    if (std::any_of(failures_.begin(), failures_.end(), [&](const PluginLoadFailure& failed) {
+          std::error_code ec2;
+          return fs::canonical(failed.file, ec2).string() == canonical && !ec2;
+        }))
+      continue;  // and a failed one fails once
     void* handle = dlopen(f.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (handle == nullptr)
-      throw std::runtime_error("cannot load plugin " + f.string() + ": " + dlerror());
+    if (handle == nullptr) {
+      const char* why = dlerror();
+      failures_.push_back({f.string(), why != nullptr ? why : "dlopen failed"});
+      continue;
+    }
     using Entry = void (*)(Registry&);
     auto entry = reinterpret_cast<Entry>(dlsym(handle, "shadowbench_register_plugin"));
-    if (entry == nullptr)
-      throw std::runtime_error("plugin " + f.string() + " has no shadowbench_register_plugin");
-    loading_ = f.string();
-    try {
-      entry(*this);
-    } catch (const std::logic_error& e) {
-      // Two modules with one technique or need: which one the user meant
-      // cannot be guessed, so neither silently wins.
-      throw std::runtime_error("plugin " + f.string() + ": " + e.what());
+    if (entry == nullptr) {
+      failures_.push_back({f.string(), "no shadowbench_register_plugin (is it a plugin?)"});
+      dlclose(handle);
+      continue;
     }
-    loading_.clear();
+    if (std::string why = register_module(f.string(), entry); !why.empty()) {
+      // Its code ran (and may own what it registered): never unloaded.
+      failures_.push_back({f.string(), why});
+      continue;
+    }
     modules_.push_back(handle);
     module_paths_.push_back(ec ? f.string() : canonical);
     ++loaded;

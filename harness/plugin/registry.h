@@ -35,6 +35,13 @@ struct TechniqueInfo {
   std::function<double(const Params&)> cost_weight = nullptr;
 };
 
+// A module load_plugins could not load: its path and the loader's own
+// words (dlerror(), the missing entry point, what registering threw).
+struct PluginLoadFailure {
+  std::string file;
+  std::string message;
+};
+
 class Registry {
  public:
   void add(TechniqueInfo info);  // throws std::logic_error on duplicates
@@ -50,13 +57,29 @@ class Registry {
   const NeedProvider* find_provider(const std::string& name) const;
   const std::vector<NeedProvider>& providers() const { return providers_; }
 
-  // Loads every *.so in `dir`; throws std::runtime_error naming the module on
-  // a missing entry point, a dlopen failure, or a technique or need another
-  // module registered already (naming both). A module already loaded from
-  // another folder name is skipped. Returns the count of modules loaded.
+  // Loads every *.so in `dir`; throws std::runtime_error only when `dir` is
+  // not a folder. A module that cannot be loaded (a dlopen failure, no entry
+  // point, a throw while registering, a technique or need another module
+  // registered already) is not fatal: whatever it registered is taken back
+  // and it is kept in load_failures(), so that commands not needing it still
+  // work. A module already loaded from another folder name is skipped.
+  // Returns the count of modules loaded.
   int load_plugins(const std::string& dir);
 
+  // The modules that failed to load, in load order.
+  const std::vector<PluginLoadFailure>& load_failures() const { return failures_; }
+
+  // Where plugins were looked for, said with an unknown technique
+  // ("$SHADOWBENCH_PLUGIN_PATH is not set: ..."); set by the driver, which
+  // knows its folders. "" for none.
+  void set_search_hint(std::string hint) { search_hint_ = std::move(hint); }
+  const std::string& search_hint() const { return search_hint_; }
+
  private:
+  // Runs a module's entry point; on a throw, takes back what it registered
+  // and returns why ("" when it registered fine).
+  std::string register_module(const std::string& file, void (*entry)(Registry&));
+
   std::vector<TechniqueInfo> techniques_;
   std::vector<NeedProvider> providers_;
   std::vector<void*> modules_;  // kept open for the process lifetime
@@ -65,6 +88,8 @@ class Registry {
   std::string loading_;                         // the module being registered
   // Module -> its identity, hashed once, when it registers its first technique.
   std::map<std::string, PluginIdentity> identities_;
+  std::vector<PluginLoadFailure> failures_;
+  std::string search_hint_;
 };
 
 }  // namespace sb

@@ -32,6 +32,7 @@
 #include "run/io_trace.h"
 #include "run/job_identity.h"
 #include "run/stability_probe.h"
+#include "run/technique_phase.h"
 #include "scenes/need_providers.h"
 #include "scenes/receiver_inference.h"
 
@@ -321,6 +322,11 @@ class JobExecutor::Impl {
       const Resolution& res = e_.resolutions[w.resolution];
       std::vector<size_t> pending;
       for (size_t i : w.techniques) {
+        if (!e_.techniques[i].unavailable.empty()) {  // its plugin failed to load
+          finish_unrun(sv, st.error.empty() ? &st : nullptr, res, e_.techniques[i],
+                       JobStatus::Failed, e_.techniques[i].unavailable);
+          continue;
+        }
         if (!st.error.empty()) {
           finish_unrun(sv, nullptr, res, e_.techniques[i], JobStatus::Failed, st.error);
           continue;
@@ -613,10 +619,14 @@ class JobExecutor::Impl {
                Control* control, JobRecord& r, PhasesRecord& phases) {
     Lap lap;
     gl::take_debug_errors();
-    std::unique_ptr<Technique> technique = tv.info->create(tv.params);
-    technique->prepare(frame.in);
-    gl::throw_if_errors(tv.name + " prepare");
-    glFinish();  // prepare's GL work in prepare's time, not the first frame's
+    const std::string& who = tv.info->name;
+    std::unique_ptr<Technique> technique = in_technique_phase(who, "prepare", [&] {
+      std::unique_ptr<Technique> t = tv.info->create(tv.params);
+      t->prepare(frame.in);
+      gl::throw_if_errors(tv.name + " prepare");
+      glFinish();  // prepare's GL work in prepare's time, not the first frame's
+      return t;
+    });
     phases.prepare = lap.seconds();
     // The parent stores the record before this one while prepare runs; no
     // write of its overlaps a frame (docs/robustness.md). Its wait is
@@ -624,12 +634,16 @@ class JobExecutor::Impl {
     events_.await_listener();
     lap.seconds();
 
-    r.timing = time_frames(*technique, tv.name, frame, control);
+    r.timing = time_frames(*technique, tv, frame, control);
     phases.frames = lap.seconds();
     if (injected_delay_ && injected_delay_->applies_to(tv.name))
       r.warnings.push_back(injected_delay_->describe());
 
-    ImageF visibility = frame.targets.read_visibility();
+    ImageF visibility = in_technique_phase(who, "read-back", [&] {
+      ImageF v = frame.targets.read_visibility();
+      gl::throw_if_errors(tv.name + " read-back");
+      return v;
+    });
     const VisibilityCheckRecord check = check_visibility(visibility);
     r.visibility_check = check;
     apply_attached_shadow(baseline.regions.attached, visibility);
@@ -718,8 +732,9 @@ class JobExecutor::Impl {
   // The compile frame, the warm-up and the timed frames, each next to a
   // control frame (in ABBA order: job-control, control-job, ...), and with
   // --pass-timing fine as many frames again with each pass its own bracket.
-  TimingRecord time_frames(Technique& technique, const std::string& name, const FrameSetup& f,
+  TimingRecord time_frames(Technique& technique, const TechniqueVariant& tv, const FrameSetup& f,
                            Control* control) const {
+    const std::string& name = tv.name;
     gl::PassTimer timer(timing_source_);
     const InjectedDelay* delay =
         injected_delay_ && injected_delay_->applies_to(name) ? &*injected_delay_ : nullptr;
@@ -729,6 +744,12 @@ class JobExecutor::Impl {
     std::vector<TraceSpan> trace;  // SHADOWBENCH_IO_TRACE (run/io_trace.h)
     const auto frame_name = [&](int i) {
       return name + (i < 0 ? std::string(" compile frame") : " frame " + std::to_string(i));
+    };
+    // The job's own frames; a throw in one is the technique's, in "render".
+    const auto job_frame = [&](const std::string& what, gl::PassDetail detail) {
+      return in_technique_phase(tv.info->name, "render", [&] {
+        return run_frame(timer, technique, what, detail, f, delay);
+      });
     };
     const auto control_frame = [&](int i) {
       return run_frame(timer, *control->technique,
@@ -748,8 +769,7 @@ class JobExecutor::Impl {
       gl::PassTimer::Frame before{}, after{};
       const std::int64_t began = tracing ? monotonic_ns() : 0;
       if (control_first) before = control_frame(i);
-      const auto frame =
-          run_frame(timer, technique, frame_name(i), gl::PassDetail::Coarse, f, delay);
+      const auto frame = job_frame(frame_name(i), gl::PassDetail::Coarse);
       if (control != nullptr && i >= 0 && !control_first) after = control_frame(i);
       if (!timed) continue;
       if (tracing) trace.push_back({"timed", frame_name(i), began, monotonic_ns()});
@@ -760,14 +780,14 @@ class JobExecutor::Impl {
     // frame came last, one more untimed frame of the job.
     if (control != nullptr && o_.pass_detail != gl::PassDetail::Fine && frames > 0 &&
         (frames - 1) % 2 == 0)
-      run_frame(timer, technique, name + " readback frame", gl::PassDetail::Coarse, f, delay);
+      job_frame(name + " readback frame", gl::PassDetail::Coarse);
     // Per-pass detail in frames of its own, so its syncs never reach the
     // technique's time above.
     if (o_.pass_detail == gl::PassDetail::Fine)
       for (int i = 0; i < e_.timed_frames; ++i) {
         const std::int64_t began = tracing ? monotonic_ns() : 0;
         const std::string fine_name = name + " fine frame " + std::to_string(i);
-        fine.add(run_frame(timer, technique, fine_name, gl::PassDetail::Fine, f, delay));
+        fine.add(job_frame(fine_name, gl::PassDetail::Fine));
         if (tracing) trace.push_back({"timed", fine_name, began, monotonic_ns()});
       }
     // The test-only trace, written once the frames are done.

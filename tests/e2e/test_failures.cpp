@@ -112,10 +112,10 @@ TEST(Failures, AFailingJobLeavesTheOthersIntact) {
   EXPECT_EQ(records[0]["status"], "ok");
   EXPECT_EQ(records[1]["status"], "failed");
   const std::string reason = records[1]["reason"];
-  EXPECT_NE(reason.find("gl_error compile frame"), std::string::npos) << reason;
+  EXPECT_EQ(reason.rfind("gl_error: render: gl_error compile frame", 0), 0u) << reason;
   EXPECT_NE(reason.find("GL_INVALID_ENUM"), std::string::npos) << reason;
   EXPECT_EQ(records[2]["status"], "failed");
-  EXPECT_EQ(records[2]["reason"], "cannot prepare");
+  EXPECT_EQ(records[2]["reason"], "throws: prepare: cannot prepare");  // the phase named
   EXPECT_EQ(records[3]["status"], "ok") << records[3].dump();
 }
 
