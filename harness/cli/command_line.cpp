@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "cli/technique_template.h"
 #include "cli/version.h"
 #include "core/error.h"
 #include "gl/pass_timer.h"
@@ -413,6 +414,27 @@ std::unique_ptr<CLI::App> make_command_line(Args& a) {
       add_command(*scene, "info", "Describe a scene: meshes, triangles, materials, light, bounds.",
                   "shadowbench scene info configs/models/jeep.glb");
   add_argument(scene_info, "SCENE", a.scene_spec, "a .glb or .gltf file, or a SCENE-SPEC");
+
+  CLI::App* new_technique = add_command(
+      *app, "new-technique",
+      "Write a plugin folder for a new technique NAME: its source (a working shadow map with PCF "
+      "to start from), CMakeLists.txt, a config that runs it beside its nearest built-ins, and a "
+      "README with the commands to build, load and run it.",
+      "shadowbench new-technique my_pcf --dir ~/my_pcf");
+  add_argument(new_technique, "NAME", a.new_name,
+               "the technique's name: a lowercase C identifier no plugin uses");
+  new_technique->get_option("NAME")->required();
+  std::vector<std::string> families;
+  std::string family_doc = "the template:";
+  for (const TechniqueTemplate& t : technique_templates()) {
+    families.push_back(t.family);
+    family_doc += (families.size() == 1 ? " " : "; ") + t.family + ", " + t.summary;
+  }
+  add_choice(new_technique, "--family", a.family, families, family_doc);
+  new_technique
+      ->add_option("--dir", a.dir, "the folder to write, which must not exist (default: NAME)")
+      ->type_name("DIR");
+  add_plugins(new_technique, a);
 
   CLI::App* help = add_command(*app, "help", "Print the help of a command, or of all of them.",
                                "shadowbench help compare");

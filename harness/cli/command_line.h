@@ -44,6 +44,9 @@ struct Args {
   std::vector<std::string> merge_dirs;  // merge: the run folders
   bool allow_mixed_hosts = false;       // merge
   std::optional<double> job_timeout;    // run: seconds, over limits.job_seconds
+  std::string new_name;                 // new-technique: NAME
+  std::string family = "plugin_api";    // new-technique: the template
+  std::string dir;                      // new-technique: the folder (default: NAME)
 };
 
 // The parser, writing into `args`. Kept alive for as long as `args` is read.

@@ -1,0 +1,51 @@
+// shadowbench new-technique NAME: a plugin folder that builds against this
+// shadowbench and runs beside the built-ins it is nearest to.
+#include <cstdio>
+#include <filesystem>
+
+#include "cli/commands.h"
+#include "cli/new_technique.h"
+#include "core/error.h"
+#include "core/install_layout.h"
+
+namespace sb::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// How CMake finds this shadowbench's plugin API: a build folder has
+// shadowbenchConfig.cmake beside the executable, an installed prefix under
+// lib/shadowbench/cmake (cmake/install.cmake).
+std::string cmake_hint(const std::string& exe_dir) {
+  std::error_code ec;
+  if (!exe_dir.empty() && fs::exists(fs::path(exe_dir) / "shadowbenchConfig.cmake", ec))
+    return "-Dshadowbench_DIR=" + exe_dir;
+  const fs::path prefix = fs::path(exe_dir).parent_path();
+  if (!exe_dir.empty() &&
+      fs::exists(prefix / "lib" / "shadowbench" / "cmake" / "shadowbenchConfig.cmake", ec))
+    return "-DCMAKE_PREFIX_PATH=" + prefix.string();
+  return "-DCMAKE_PREFIX_PATH=/path/to/shadowbench/prefix";
+}
+
+}  // namespace
+
+int cmd_new_technique(const Args& a) {
+  const TechniqueTemplate* tmpl = find_technique_template(a.family);
+  if (tmpl == nullptr)  // the parser's choice check lists the families
+    throw InputError("", "command line", "no template for --family '" + a.family + "'");
+  const Registry registry = load_registry(a);
+  if (const std::string problem = technique_name_problem(a.new_name, registry); !problem.empty())
+    throw InputError("", "command line", problem);
+  const std::string folder = a.dir.empty() ? a.new_name : a.dir;
+  const std::string exe_dir = executable_dir();
+  const std::map<std::string, std::string> values = {
+      {"@CMAKE_HINT@", cmake_hint(exe_dir)},
+      {"@SHADOWBENCH@", exe_dir.empty() ? "shadowbench" : exe_dir + "/shadowbench"}};
+  for (const std::string& path : write_technique_folder(*tmpl, a.new_name, values, folder))
+    std::printf("wrote %s\n", path.c_str());
+  std::printf("%s (%s): build, load and run it as %s/README.md says.\n", a.new_name.c_str(),
+              tmpl->summary.c_str(), folder.c_str());
+  return kExitOk;
+}
+
+}  // namespace sb::cli
