@@ -117,6 +117,20 @@ void reset_state() {
   glStencilMask(0xff);
   glUseProgram(0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  // The harness reads V back with glGetTextureImage: a pixel pack buffer,
+  // row length, skips or read clamp left behind would make it fail, or
+  // read rows shifted or values clamped into [0, 1] without an error.
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  for (const GLenum store :
+       {GL_PACK_ROW_LENGTH, GL_PACK_IMAGE_HEIGHT, GL_PACK_SKIP_ROWS, GL_PACK_SKIP_PIXELS,
+        GL_PACK_SKIP_IMAGES, GL_PACK_SWAP_BYTES, GL_PACK_LSB_FIRST, GL_UNPACK_ROW_LENGTH,
+        GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_SKIP_IMAGES,
+        GL_UNPACK_SWAP_BYTES, GL_UNPACK_LSB_FIRST})
+    glPixelStorei(store, 0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glClampColor(GL_CLAMP_READ_COLOR, GL_FIXED_ONLY);
 }
 
 const char* const kFullscreenVertexShader = R"(#version 450 core

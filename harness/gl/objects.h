@@ -68,7 +68,8 @@ void draw_fullscreen_triangle();
 // default blend equation and factors), scissor, stencil or depth test (and
 // their default functions), culling (back faces, CCW front), polygon offset
 // or depth clamp; every write mask on; no program; the default framebuffer
-// bound.
+// bound; no pixel pack or unpack buffer, the default pixel-store state and
+// no read clamp (so that reading V back reads what the technique wrote).
 void reset_state();
 // Called when a context is made: drops names that belonged to the last one.
 void forget_context_objects();

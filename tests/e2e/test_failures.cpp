@@ -3,11 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <memory>
+#include <utility>
 
 #include "config/experiment.h"
 #include "core/error.h"
 #include "e2e_util.h"
 #include "gl/gl.h"
+#include "gl/objects.h"
 #include "plugin/registry.h"
 #include "results/store.h"
 #include "run/runner.h"
@@ -36,6 +39,7 @@ class FailsWithOddState final : public Technique {
  public:
   void prepare(const FrameInputs& /*in*/) override {}
   void render(const FrameInputs& /*in*/, gl::PassTimer& timer) override {
+    // NOLINTNEXTLINE(clang-analyzer-deadcode.DeadStores): a scope, ended by the throw
     auto pass = timer.scope("odd_state");
     glEnable(GL_BLEND);
     glBlendEquation(GL_MAX);
@@ -50,6 +54,65 @@ class FailsWithOddState final : public Technique {
     throw JobError("failed mid-frame");
   }
 };
+
+// Another technique, which then leaves behind the pixel-pack state a
+// technique that reads its own data back might: a bound pack buffer, a row
+// length, skips and alignment, and clamping on read.
+class LeavesPixelStoreState final : public Technique {
+ public:
+  explicit LeavesPixelStoreState(std::unique_ptr<Technique> inner) : inner_(std::move(inner)) {}
+  void prepare(const FrameInputs& in) override {
+    inner_->prepare(in);
+    pack_buffer_ = gl::make_buffer(64, nullptr, GL_DYNAMIC_STORAGE_BIT);
+  }
+  void render(const FrameInputs& in, gl::PassTimer& timer) override {
+    inner_->render(in, timer);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, pack_buffer_.get());
+    glPixelStorei(GL_PACK_ROW_LENGTH, 7);
+    glPixelStorei(GL_PACK_SKIP_ROWS, 3);
+    glPixelStorei(GL_PACK_SKIP_PIXELS, 2);
+    glPixelStorei(GL_PACK_ALIGNMENT, 8);
+    glClampColor(GL_CLAMP_READ_COLOR, GL_TRUE);
+  }
+
+ private:
+  std::unique_ptr<Technique> inner_;
+  gl::Buffer pack_buffer_;
+};
+
+// The harness reads V back after the technique's last frame: pixel-store
+// state it left behind must neither fail that read (a GL error in
+// "read-back") nor shift or clamp what is read.
+TEST(Failures, PixelStoreStateLeftByATechniqueDoesNotReachTheReadBack) {
+  Registry registry;
+  registry.load_plugins(SHADOWBENCH_PLUGIN_DIR);
+  TechniqueInfo leaves = *registry.find("shadow_map");
+  leaves.name = "shadow_map_leftovers";
+  leaves.family = "test";
+  leaves.create = [create = leaves.create](const Params& p) {
+    return std::make_unique<LeavesPixelStoreState>(create(p));
+  };
+  registry.add(leaves);
+  const nlohmann::json config = {
+      {"name", "leftovers"},
+      {"scenes", {{{"type", "sphere_grid"}, {"params", {{"grid", 2}, {"light_size", 2.0}}}}}},
+      {"techniques", {"shadow_map_leftovers", "shadow_map"}},
+      {"resolutions", {{40, 30}}},
+      {"frames", {{"warmup", 0}, {"timed", 2}}},
+      {"reference", {{"spp", 4}}}};
+  const RunOutput out = run_with_registry(config, registry, "leftovers");
+  ASSERT_EQ(out.records.size(), 2u);
+  ASSERT_EQ(out.records[0]["status"], "ok") << out.records[0].dump();
+  ASSERT_EQ(out.records[1]["status"], "ok") << out.records[1].dump();
+  // Read whole and unshifted: the same V as shadow_map's, so the same errors.
+  const auto& leftovers = out.records[0]["metrics"]["visibility"]["all"];
+  const auto& clean = out.records[1]["metrics"]["visibility"]["all"];
+  ASSERT_GT(clean["rmse"].get<double>(), 0.0);
+  EXPECT_EQ(leftovers["pixel_count"], clean["pixel_count"]);
+  EXPECT_EQ(leftovers["rmse"], clean["rmse"]);
+  EXPECT_EQ(leftovers["mean_signed"], clean["mean_signed"]);
+  EXPECT_EQ(leftovers["max_error"], clean["max_error"]);
+}
 
 // Accumulation blends its passes additively: a blend equation, scissor or
 // depth function left behind by a failed job must not reach it.
