@@ -2,8 +2,19 @@
 
 namespace sb::cli {
 
+const char* const kBuildLoadRun = R"(Build, load, run (from this folder):
+
+    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release @CMAKE_HINT@ && cmake --build build
+    export SHADOWBENCH_PLUGIN_PATH=$PWD/build
+    @SHADOWBENCH@ run @NAME@.json --out results/@NAME@
+
+The last command prints a table of every job's time and error against the
+ray-traced reference; `results/@NAME@/` holds the records, tables and images.
+)";
+
 const std::vector<TechniqueTemplate>& technique_templates() {
-  static const std::vector<TechniqueTemplate> templates = {plugin_api_template()};
+  static const std::vector<TechniqueTemplate> templates = {plugin_api_template(),
+                                                           shadow_map_template()};
   return templates;
 }
 

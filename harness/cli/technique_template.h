@@ -23,6 +23,10 @@ struct TechniqueTemplate {
   std::vector<TemplateFile> files;
 };
 
+// The README's "Build, load, run" paragraph, the same in every template:
+// tests/out_of_tree/scaffold_build_and_run.py runs its indented lines.
+extern const char* const kBuildLoadRun;
+
 // Every template, the default (--family's default) first.
 const std::vector<TechniqueTemplate>& technique_templates();
 
@@ -31,5 +35,6 @@ const TechniqueTemplate* find_technique_template(const std::string& family);
 
 // One template per file of technique_templates/.
 TechniqueTemplate plugin_api_template();
+TechniqueTemplate shadow_map_template();
 
 }  // namespace sb::cli

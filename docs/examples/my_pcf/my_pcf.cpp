@@ -6,7 +6,7 @@
 // The kit gives it the built-in pcf_box's light frustum, depth pass, biases,
 // culling and map lookup; only the filter, lit_fraction() below, is its own.
 // Written as the same filter, its visibility equals pcf_box's for the same
-// parameters (tests/install/ checks their RMSE agrees to 1e-6).
+// parameters (shadowbench's tests check that the RMSEs agree to 1e-6).
 //
 // Per frame, in render() (timed):
 //   shadow_map — fit the light's frustum to the casters, render the depth map;
@@ -83,7 +83,7 @@ sb::TechniqueInfo my_pcf_info() {
   sb::TechniqueInfo info;
   info.name = "my_pcf";
   info.family = "my_pcf";
-  info.summary = "k×k box PCF on the shadow-map kit (docs/examples/my_pcf)";
+  info.summary = "k×k box PCF on the shadow-map kit, pcf_box's filter as a plugin";
   // The depth pass culls only casters known to be closed, and they are
   // known only when a technique asks (common/depth_pass.h).
   info.needs = sb::Needs{sb::need::kCasterClosedness};

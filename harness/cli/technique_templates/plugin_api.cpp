@@ -4,6 +4,8 @@
 // light frustum and depth pass; its config runs it beside shadow_map, pcf_box
 // and pcss. tests/out_of_tree/scaffold_build_and_run.py builds what it writes
 // against an installed prefix and runs it.
+#include <string>
+
 #include "cli/technique_template.h"
 
 namespace sb::cli {
@@ -216,23 +218,19 @@ shadowbench_add_plugin(@NAME@ @NAME@.cpp)
   "reference": {"spp": 64, "seed": 1}
 }
 )FILE"});
-  t.files.push_back({"README.md", R"FILE(# @NAME@
+  t.files.push_back(
+      {"README.md",
+       R"FILE(# @NAME@
 
 A shadow technique plugin for shadowbench, written by `shadowbench new-technique`:
 a shadow map from the light's centre with k×k percentage-closer filtering,
 using the plugin API alone. Edit `@NAME@.cpp`; `@NAME@.json` runs it beside
 its nearest built-ins (shadow_map, pcf_box, pcss) on a small sphere grid.
 
-Build, load, run (from this folder):
-
-    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release @CMAKE_HINT@ && cmake --build build
-    export SHADOWBENCH_PLUGIN_PATH=$PWD/build
-    @SHADOWBENCH@ run @NAME@.json --out results/@NAME@
-
-The last command prints a table of every job's time and error against the
-ray-traced reference; `results/@NAME@/` holds the records, tables and images.
-After a change, rebuild and run into a new `--out` folder: a rerun into the same
-folder resumes the jobs it finished.
+)FILE" + std::string(kBuildLoadRun) +
+           R"FILE(A rerun into the same folder resumes the jobs it finished, except those of a
+plugin whose .so changed since: after a rebuild, @NAME@'s jobs run again
+(records hold the plugin's SHA-256).
 
 What a technique must do, and how to compare it fairly: the guide,
 docs/writing_a_technique.md (installed under share/doc/shadowbench/).
