@@ -26,48 +26,64 @@ std::optional<glm::dvec4> mesh_plane(const Mesh& m, double eps) {
   return glm::dvec4(n, d);
 }
 
-bool can_shadow_nothing(const Scene& scene, size_t mesh) {
-  return can_shadow_nothing(scene, mesh, scene.bounds());
+namespace {
+
+// Each vertex some triangle uses, once per mesh.
+std::vector<glm::vec3> referenced_vertices(const Scene& scene) {
+  std::vector<glm::vec3> points;
+  std::vector<char> seen;
+  for (const Mesh& m : scene.meshes) {
+    seen.assign(m.positions.size(), 0);
+    for (uint32_t v : m.indices) {
+      if (seen[v] != 0) continue;
+      seen[v] = 1;
+      points.push_back(m.positions[v]);
+    }
+  }
+  return points;
 }
 
-bool can_shadow_nothing(const Scene& scene, size_t mesh, const Bounds& all) {
-  const Mesh& m = scene.meshes.at(mesh);
-  if (all.empty() || m.triangle_count() == 0) return false;
+}  // namespace
+
+bool can_shadow_nothing(const Scene& scene, size_t mesh) { return ShadowNothingTest(scene)(mesh); }
+
+ShadowNothingTest::ShadowNothingTest(const Scene& scene)
+    : scene_(scene), bounds_(scene.bounds()), vertices_(referenced_vertices(scene)) {}
+
+bool ShadowNothingTest::operator()(size_t mesh) const {
+  const Mesh& m = scene_.meshes.at(mesh);
+  if (bounds_.empty() || m.triangle_count() == 0) return false;
   // Flatness within a millionth of the scene's size. Geometry sunk into the
   // plane by up to a thousandth (a tree's roots, a model resting a little
   // into its floor) is hidden by it from a camera on the light's side.
-  const double eps = 1e-6 * std::max(double(all.radius()), 1e-6);
-  const double sunk = 1e-3 * std::max(double(all.radius()), 1e-6);
+  const double eps = 1e-6 * std::max(double(bounds_.radius()), 1e-6);
+  const double sunk = 1e-3 * std::max(double(bounds_.radius()), 1e-6);
   const auto plane = mesh_plane(m, eps);
   if (!plane) return false;
   glm::dvec3 n(*plane);
   double d = plane->w;
-  const glm::dvec3 corners[4] = {scene.light.point(0, 0), scene.light.point(1, 0),
-                                 scene.light.point(0, 1), scene.light.point(1, 1)};
+  const glm::dvec3 corners[4] = {scene_.light.point(0, 0), scene_.light.point(1, 0),
+                                 scene_.light.point(0, 1), scene_.light.point(1, 1)};
   if (glm::dot(n, corners[0]) + d < 0.0) {  // orient towards the light
     n = -n;
     d = -d;
   }
   for (const auto& c : corners)
     if (!(glm::dot(n, c) + d > eps)) return false;
-  if (!(glm::dot(n, glm::dvec3(scene.camera.eye)) + d > eps)) return false;
-  for (size_t j = 0; j < scene.meshes.size(); ++j) {
-    if (j == mesh) continue;
-    const Mesh& other = scene.meshes[j];
-    for (uint32_t v : other.indices)
-      if (glm::dot(n, glm::dvec3(other.positions[v])) + d < -sunk) return false;
-  }
-  return true;
+  if (!(glm::dot(n, glm::dvec3(scene_.camera.eye)) + d > eps)) return false;
+  // Every other mesh on the light's side or sunk by less than `sunk`. The
+  // mesh's own vertices, within eps of its plane, pass that test too, so
+  // the tree holds them as well.
+  return !vertices_.any_below(n, d, sunk);
 }
 
 std::vector<std::string> infer_receivers(Scene& scene) {
   // Decided on the scene as loaded, then applied: each decision is exact on
   // its own, since a receiver still stands where it stood.
   std::vector<size_t> receivers;
-  const Bounds bounds = scene.bounds();
+  const ShadowNothingTest shadows_nothing(scene);
   for (size_t i = 0; i < scene.meshes.size(); ++i)
-    if (scene.meshes[i].casts_shadow && can_shadow_nothing(scene, i, bounds))
-      receivers.push_back(i);
+    if (scene.meshes[i].casts_shadow && shadows_nothing(i)) receivers.push_back(i);
   std::vector<std::string> names;
   for (size_t i : receivers) {
     scene.meshes[i].casts_shadow = false;

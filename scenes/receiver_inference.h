@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/scene.h"
+#include "scenes/point_box_tree.h"
 
 namespace sb {
 
@@ -25,12 +26,25 @@ namespace sb {
 std::optional<glm::dvec4> mesh_plane(const Mesh& mesh, double eps);
 
 // Whether meshes[mesh] is such a mesh (casting or not). Also the rule for a
-// receiver that filtered maps may draw: nothing lies behind it.
+// receiver that filtered maps may draw: nothing lies behind it. Builds the
+// test below for one question: a loop over meshes makes one test instead.
 bool can_shadow_nothing(const Scene& scene, size_t mesh);
-// The same with the scene's bounds given: a loop over every mesh computes
-// them once, not once per mesh (found by tests/fuzz/fuzz_scene_spec: 600
-// spheres took over 30 s in `scene info`).
-bool can_shadow_nothing(const Scene& scene, size_t mesh, const Bounds& scene_bounds);
+
+// can_shadow_nothing for the meshes of one scene, which must outlive it and
+// not change: the scene's bounds and a box tree over its vertices are made
+// once, so that M planar meshes cost O(V log V) and M tree queries, not
+// O(M·V) (a 200,000-node glTF of one instanced triangle took minutes in
+// `validate` and `run`; issue 42).
+class ShadowNothingTest {
+ public:
+  explicit ShadowNothingTest(const Scene& scene);
+  bool operator()(size_t mesh) const;
+
+ private:
+  const Scene& scene_;
+  Bounds bounds_;
+  PointBoxTree vertices_;  // every vertex an index refers to, of every mesh
+};
 
 // Marks every such casting mesh `casts_shadow = false` and returns their
 // names, in scene order. Meshes that already cast nothing are not listed.

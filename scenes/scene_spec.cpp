@@ -99,12 +99,12 @@ std::string describe_scene(const Scene& s) {
   };
   size_t closed = 0, inferred = 0;
   std::string meshes;
-  const Bounds bounds = s.bounds();
+  const ShadowNothingTest shadows_nothing(s);
   for (size_t i = 0; i < s.meshes.size(); ++i) {
     const Mesh& m = s.meshes[i];
     const MeshTopology t = analyse_topology(m);
     closed += t.closed() ? 1 : 0;
-    const bool infer = m.casts_shadow && can_shadow_nothing(s, i, bounds);
+    const bool infer = m.casts_shadow && shadows_nothing(i);
     inferred += infer ? 1 : 0;
     std::snprintf(
         line, sizeof line, "  %-24s %9zu tris  %-8s %-6s %s%s%s\n", m.name.c_str(),

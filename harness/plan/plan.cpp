@@ -1,5 +1,8 @@
 #include "plan/plan.h"
 
+#include <algorithm>
+#include <string>
+
 #include "core/error.h"
 #include "core/names.h"
 #include "scenes/receiver_inference.h"
@@ -15,8 +18,16 @@ ScenePlan plan_scene(const Experiment& e, const SceneVariant& sv, Derive derive)
     p.scene = build_scene(sv, e.file);
     if (sv.infer_receivers) p.inferred_receivers = infer_receivers(p.scene);
     if (!p.inferred_receivers.empty()) {
+      // The first few by name: a file of 200,000 instanced quads would
+      // otherwise print a line of 200,000 names (the records keep them all).
+      constexpr size_t kNamed = 8;
+      const auto& all = p.inferred_receivers;
       std::string names;
-      for (const auto& n : p.inferred_receivers) names += (names.empty() ? "'" : ", '") + n + "'";
+      for (size_t i = 0; i < std::min(all.size(), kNamed); ++i)
+        names += (names.empty() ? "'" : ", '") + all[i] + "'";
+      if (all.size() > kNamed)
+        names += " and " + std::to_string(all.size() - kNamed) + " more (" +
+                 std::to_string(all.size()) + " meshes)";
       p.log.push_back("inferred receivers (planar, can shadow nothing): " + names);
     }
     ResolvedNeeds needs = resolve_needs(p.scene, infos, e.registry, derive);

@@ -276,11 +276,11 @@ struct FrameSamples {
 std::vector<MeshDrawFlags> draw_flags(const ScenePlan& st) {
   std::vector<MeshDrawFlags> flags(st.scene.meshes.size());
   const auto* topology = st.derived.find<CasterTopology>(need::kCasterClosedness);
-  const Bounds bounds = st.scene.bounds();
+  const ShadowNothingTest shadows_nothing(st.scene);
   for (size_t i = 0; i < flags.size(); ++i) {
     const Mesh& m = st.scene.meshes[i];
     flags[i].closed = m.casts_shadow && topology != nullptr && (*topology)[i].closed();
-    flags[i].nothing_behind = !m.casts_shadow && can_shadow_nothing(st.scene, i, bounds);
+    flags[i].nothing_behind = !m.casts_shadow && shadows_nothing(i);
   }
   return flags;
 }

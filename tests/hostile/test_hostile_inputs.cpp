@@ -39,6 +39,7 @@ struct Case {
   std::string config;  // bytes: some paths are not UTF-8 on purpose
   std::string out;
   std::vector<int> validate, run;
+  double seconds = kWallSeconds;  // each command's bound
 };
 
 // gtest prints a parameter that fails: its name is enough.
@@ -64,6 +65,7 @@ std::vector<Case> load_cases() {
                                : from_hex(c["out"]);
     k.validate = c["validate"].get<std::vector<int>>();
     k.run = c["run"].get<std::vector<int>>();
+    if (c.contains("seconds") && !c["seconds"].is_null()) k.seconds = c["seconds"].get<double>();
     cases.push_back(std::move(k));
   }
   return cases;
@@ -140,6 +142,7 @@ void check(const Case& c, const std::string& command, const std::vector<std::str
       << "exit " << o.exit_code << ":\n"
       << o.output;
   EXPECT_LE(o.max_rss_kib, kMaxResidentKib) << "peak resident set " << o.max_rss_kib << " KiB";
+  EXPECT_LE(o.seconds, c.seconds) << "took " << o.seconds << " s";
   if (o.exit_code == 2) {
     EXPECT_NE(o.output.find("shadowbench: error: "), std::string::npos) << o.output;
   }
