@@ -1,18 +1,21 @@
 // The timing contract of Technique::prepare() (plugin/technique.h): it runs
 // once per (scene, resolution), untimed, and must not depend on the light or
-// the camera. Whatever it derived from the light would go stale when the
-// light moves, and a technique that did so would be charging its per-frame
-// work to the untimed prepare().
+// the camera. Whatever it derived from either would go stale when that
+// moves, and a technique that did so would be charging its per-frame work to
+// the untimed prepare().
 //
 // The check, for every technique the plugins register (default parameters)
 // and the technique variants of configs/quick.json: technique A is prepared
 // under light L1 and renders a frame; the light moves (its centre shifts,
 // it turns and tilts) and A renders again. A fresh technique B, prepared
 // under the moved light, renders too. A's second frame must equal B's to
-// the bit: everything light-dependent happened in render().
+// the bit: everything light-dependent happened in render(). The same again
+// with the camera moved instead of the light (a new G-buffer, view and
+// projection, as a camera animated between frames would give).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <glm/gtc/quaternion.hpp>
 #include <memory>
 #include <string>
@@ -84,6 +87,38 @@ AreaLight moved(const AreaLight& l) {
   return m;
 }
 
+// The camera elsewhere: to the left, higher and nearer, looking at another
+// point, so that every pixel sees another surface point than before.
+Camera moved(const Camera& c) {
+  Camera m = c;
+  m.eye = c.eye + glm::vec3(-1.6f, 0.7f, -0.9f);
+  m.target = c.target + glm::vec3(0.4f, -0.3f, -0.2f);
+  return m;
+}
+
+// A plausible breach of the contract: it keeps the camera's matrices from
+// prepare() and hands them to the technique it wraps every frame, as a
+// technique that set its camera uniforms once in prepare() would.
+class StaleCamera final : public Technique {
+ public:
+  explicit StaleCamera(std::unique_ptr<Technique> inner) : inner_(std::move(inner)) {}
+  void prepare(const FrameInputs& in) override {
+    inner_->prepare(in);
+    prepared_ = in;
+  }
+  void render(const FrameInputs& in, gl::PassTimer& timer) override {
+    FrameInputs stale = in;
+    stale.view = prepared_.view;
+    stale.projection = prepared_.projection;
+    stale.view_projection = prepared_.view_projection;
+    inner_->render(stale, timer);
+  }
+
+ private:
+  std::unique_ptr<Technique> inner_;
+  FrameInputs prepared_;
+};
+
 class TimingContract : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -101,17 +136,6 @@ class TimingContract : public ::testing::Test {
     }
     gpu_ = std::make_unique<GpuScene>(scene_, adjacency, flags);
     targets_ = std::make_unique<FrameTargets>(kWidth, kHeight);
-    const glm::mat4 view = scene_.camera.view();
-    const glm::mat4 projection = scene_.camera.projection(float(kWidth) / float(kHeight));
-    view_projection_ = projection * view;
-    // Once, as the runner does per (scene, resolution): frames restore it.
-    targets_->render_gbuffer(*gpu_, view_projection_);
-    // FrameInputs points at scene_: moving scene_.light moves the light the
-    // technique sees, as a light animated between frames would.
-    in_ = targets_->inputs(scene_, *gpu_, view, projection);
-    PlanarReceiver receiver;
-    in_.has_receiver_plane = find_planar_receiver(scene_, receiver);
-    in_.receiver_plane = receiver.plane;
     // The CPU data every technique's needs ask for (the caster edges of the
     // CPU silhouettes), as the planner derives it for a run.
     std::vector<const TechniqueInfo*> all;
@@ -120,6 +144,25 @@ class TimingContract : public ::testing::Test {
     derived_ = std::move(needs.data);
     // And their GPU stages (the silhouette edges' buffer), as the runner does.
     for (const NeedProvider* p : needs.uploads) p->upload(scene_, *gpu_, derived_);
+    look_through(scene_.camera);
+  }
+
+  // Puts the camera at `camera`: its G-buffer, rendered once as the runner
+  // does per (scene, resolution) (frames restore it), and the inputs that
+  // see it. FrameInputs points at scene_: moving scene_.light moves the light
+  // the technique sees, as a light animated between frames would.
+  void look_through(const Camera& camera) {
+    scene_.camera = camera;
+    const glm::mat4 view = camera.view();
+    const glm::mat4 projection = camera.projection(float(kWidth) / float(kHeight));
+    view_projection_ = projection * view;
+    gl::reset_state();
+    targets_->render_gbuffer(*gpu_, view_projection_);
+    gl::reset_state();
+    in_ = targets_->inputs(scene_, *gpu_, view, projection);
+    PlanarReceiver receiver;
+    in_.has_receiver_plane = find_planar_receiver(scene_, receiver);
+    in_.receiver_plane = receiver.plane;
     in_.derived = &derived_;
   }
 
@@ -140,6 +183,27 @@ class TimingContract : public ::testing::Test {
     return targets_->read_visibility();
   }
 
+  // Technique A, prepared after `to_first`, renders there and again after
+  // `to_second`; technique B, prepared after `to_second`, renders there.
+  struct Frames {
+    ImageF a_first, a_moved, b_moved;
+  };
+  Frames across_a_move(const std::function<std::unique_ptr<Technique>()>& create,
+                       const std::function<void()>& to_first,
+                       const std::function<void()>& to_second) {
+    Frames f;
+    to_first();
+    const std::unique_ptr<Technique> a = create();
+    a->prepare(in_);
+    f.a_first = render(*a);
+    to_second();
+    f.a_moved = render(*a);
+    const std::unique_ptr<Technique> b = create();
+    b->prepare(in_);
+    f.b_moved = render(*b);
+    return f;
+  }
+
   Registry plugins_;
   std::unique_ptr<gl::Context> context_;
   Scene scene_;
@@ -157,34 +221,59 @@ size_t differing_pixels(const ImageF& a, const ImageF& b) {
   return n;
 }
 
+// A's second frame equals B's; and moving made a difference, else that
+// proves nothing (`none` and the controls are V = 1 anywhere).
+void expect_prepare_kept_nothing_that_moved(const TechniqueVariant& tv, const ImageF& a_first,
+                                            const ImageF& a_moved, const ImageF& b_moved,
+                                            const std::string& what) {
+  ASSERT_TRUE(a_moved.same_shape(b_moved));
+  EXPECT_EQ(differing_pixels(a_moved, b_moved), 0u)
+      << "prepared under the first " << what << ", then rendered under the second, " << tv.name
+      << " differs from the same technique prepared under the second " << what;
+  if (tv.info->name != "none" && tv.info->family != "control") {
+    EXPECT_GT(differing_pixels(a_first, b_moved), size_t(kWidth * kHeight / 100))
+        << "moving the " << what << " hardly changed " << tv.name << "'s visibility";
+  }
+}
+
 TEST_F(TimingContract, AfterTheLightMovesAFrameEqualsOnePreparedUnderTheMovedLight) {
   const std::vector<TechniqueVariant> variants = variants_under_test(plugins_);
   ASSERT_GE(variants.size(), plugins_.all().size());
   const AreaLight second_light = moved(first_light_);
   for (const TechniqueVariant& tv : variants) {
     SCOPED_TRACE(tv.name);
-    scene_.light = first_light_;
-    const std::unique_ptr<Technique> a = tv.info->create(tv.params);
-    a->prepare(in_);
-    const ImageF at_first = render(*a);
-    scene_.light = second_light;
-    const ImageF a_moved = render(*a);
-
-    const std::unique_ptr<Technique> b = tv.info->create(tv.params);
-    b->prepare(in_);
-    const ImageF b_moved = render(*b);
-
-    ASSERT_TRUE(a_moved.same_shape(b_moved));
-    EXPECT_EQ(differing_pixels(a_moved, b_moved), 0u)
-        << "prepared under the first light, then rendered under the second, " << tv.name
-        << " differs from the same technique prepared under the second light";
-    // Otherwise the check above proves nothing. `none` and the controls are
-    // V = 1 under any light.
-    if (tv.info->name != "none" && tv.info->family != "control") {
-      EXPECT_GT(differing_pixels(at_first, b_moved), size_t(kWidth * kHeight / 100))
-          << "moving the light hardly changed " << tv.name << "'s visibility";
-    }
+    const Frames f =
+        across_a_move([&] { return tv.info->create(tv.params); },
+                      [&] { scene_.light = first_light_; }, [&] { scene_.light = second_light; });
+    expect_prepare_kept_nothing_that_moved(tv, f.a_first, f.a_moved, f.b_moved, "light");
   }
+}
+
+TEST_F(TimingContract, AfterTheCameraMovesAFrameEqualsOnePreparedUnderTheMovedCamera) {
+  const std::vector<TechniqueVariant> variants = variants_under_test(plugins_);
+  ASSERT_GE(variants.size(), plugins_.all().size());
+  const Camera first_camera = scene_.camera, second_camera = moved(first_camera);
+  for (const TechniqueVariant& tv : variants) {
+    SCOPED_TRACE(tv.name);
+    const Frames f =
+        across_a_move([&] { return tv.info->create(tv.params); },
+                      [&] { look_through(first_camera); }, [&] { look_through(second_camera); });
+    expect_prepare_kept_nothing_that_moved(tv, f.a_first, f.a_moved, f.b_moved, "camera");
+  }
+}
+
+// The check above catches a technique that keeps the camera from prepare():
+// shadow_volume, handed the first camera's matrices over the second camera's
+// G-buffer, draws its volumes where the first camera saw them.
+TEST_F(TimingContract, TheCameraCheckCatchesATechniqueThatKeepsTheCameraFromPrepare) {
+  const TechniqueInfo* volume = plugins_.find("shadow_volume");
+  ASSERT_NE(volume, nullptr);
+  const Params defaults = resolve_params(volume->params, nlohmann::json::object(), "", "");
+  const Camera first_camera = scene_.camera, second_camera = moved(first_camera);
+  const Frames f =
+      across_a_move([&] { return std::make_unique<StaleCamera>(volume->create(defaults)); },
+                    [&] { look_through(first_camera); }, [&] { look_through(second_camera); });
+  EXPECT_GT(differing_pixels(f.a_moved, f.b_moved), size_t(kWidth * kHeight / 100));
 }
 
 // The runner renders the G-buffer once per (scene, resolution) and restores
