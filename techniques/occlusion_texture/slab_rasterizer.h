@@ -26,8 +26,8 @@
 // (An earlier reading here marked the slab towards the light instead, so
 // that a point skipping its own slab would count an occluder just above
 // it; a lit surface then met its own copy in the slab it fades in. On the
-// sphere grid, four jeeps and two trees it lost to no fix at all, 16 and 4
-// slices alike (docs/occlusion_textures.md), and is gone.)
+// sphere grid, four jeeps and two trees it lost to no fix at all, or tied
+// (docs/occlusion_textures.md), and is gone.)
 #include <vector>
 
 #include "gl/gpu_scene.h"

@@ -262,16 +262,26 @@ ImageF visibility_where(const RunOutput& out, const std::string& param, const st
   throw std::runtime_error("no job with " + param + "=" + value);
 }
 
-// The slicing the technique fits to these plates (and `extra` casters).
-occlusion::Slicing plate_slicing(const std::vector<Plate>& plates, float light_size, int slices,
-                                 const std::vector<Mesh>& extra = {}) {
+// Runs occlusion_textures with `params` over the plates under a light of
+// side `size`, with a 4-spp reference (the tests that use it compare with
+// closed forms), writing the G-buffer.
+RunOutput run_on_plates(const std::vector<Plate>& plates, float size, const glm::vec3& eye,
+                        const json& params, int width, int height, const std::string& name) {
+  TempDir dir;
+  return run_config(
+      experiment(json::array({plate_scene(write_plates(dir.path, plates, eye), size)}),
+                 json::array({occlusion_textures(params)}), 4, width, height),
+      name, gl::Backend::OSMesa, true, /*write_gbuffer=*/true);
+}
+
+// The slicing the technique fits to these plates.
+occlusion::Slicing plate_slicing(const std::vector<Plate>& plates, float light_size, int slices) {
   Scene scene;
   scene.light = plate_light(light_size);
   for (const Plate& p : plates)
     scene.meshes.push_back(
         make_box("plate", {0.5f * (p.x0 + p.x1), p.h, 0.5f * (p.z0 + p.z1)},
                  {0.5f * (p.x1 - p.x0), p.half_thickness, 0.5f * (p.z1 - p.z0)}));
-  for (const Mesh& m : extra) scene.meshes.push_back(m);
   return occlusion::fit_slicing(scene, slices, occlusion::Projection::Central);
 }
 
@@ -283,19 +293,15 @@ occlusion::Slicing plate_slicing(const std::vector<Plate>& plates, float light_s
 // texels; read through the slice's middle, the plate is lifted by half a
 // slice and its penumbra widens.
 TEST(OcclusionTextures, TheFarPlaneLookupGivesTheExactPenumbraOfAPlateOnItsSlicesFarPlane) {
-  TempDir dir;
   const Plate high{1.2f, 1.5f, -1.5f, -1.2f, 2.2f, 1e-3f};
   const Plate low{-1.0f, 0.2f, -0.6f, 0.6f, 1.0f, 1e-3f};
   const float size = 1.0f;
-  const auto out = run_config(
-      experiment(
-          json::array({plate_scene(write_plates(dir.path, {high, low}, {0.0f, 4.0f, 3.0f}), size)}),
-          json::array({occlusion_textures({{"size", 1024},
-                                           {"slices", 4},
-                                           {"self_slab", "skip"},
-                                           {"lookup_plane", json::array({"far", "mid"})}})}),
-          4, 160, 120),
-      "occlusion_far_plane", gl::Backend::OSMesa, true, /*write_gbuffer=*/true);
+  const auto out = run_on_plates({high, low}, size, {0.0f, 4.0f, 3.0f},
+                                 {{"size", 1024},
+                                  {"slices", 4},
+                                  {"self_slab", "skip"},
+                                  {"lookup_plane", json::array({"far", "mid"})}},
+                                 160, 120, "occlusion_far_plane");
   ASSERT_EQ(out.summary.ok, 2) << out.records.at(0).value("reason", "");
   const occlusion::Slicing slicing = plate_slicing({high, low}, size, 4);
   const float low_top_depth = kLightHeight - (low.h + low.half_thickness);
@@ -335,17 +341,13 @@ TEST(OcclusionTextures, TheFarPlaneLookupGivesTheExactPenumbraOfAPlateOnItsSlice
 // receiver-aware rule reads the ground's own depth: V = 0. The camera looks
 // in under the plate.
 TEST(OcclusionTextures, TheSkipRuleFadesTheSliceInFrontOfAReceiverAsItDoesForACaster) {
-  TempDir dir;
   const Plate high{2.6f, 3.0f, -2.4f, -2.0f, 2.9f, 1e-3f};
   const Plate low{-1.0f, 0.2f, -0.6f, 0.6f, 0.4f, 1e-3f};
   const float size = 1.0f;
-  const auto out = run_config(
-      experiment(
-          json::array({plate_scene(write_plates(dir.path, {high, low}, {0.0f, 1.5f, 4.0f}), size)}),
-          json::array({occlusion_textures(
-              {{"slices", 4}, {"self_slab", json::array({"skip", "receiver_aware"})}})}),
-          4, 320, 240),
-      "occlusion_self_slab", gl::Backend::OSMesa, true, /*write_gbuffer=*/true);
+  const auto out =
+      run_on_plates({high, low}, size, {0.0f, 1.5f, 4.0f},
+                    {{"slices", 4}, {"self_slab", json::array({"skip", "receiver_aware"})}}, 320,
+                    240, "occlusion_self_slab");
   ASSERT_EQ(out.summary.ok, 2) << out.records.at(0).value("reason", "");
   const occlusion::Slicing slicing = plate_slicing({high, low}, size, 4);
   const double weight = (double(kLightHeight) - double(slicing.far_plane(3))) / slicing.thickness;
