@@ -7,17 +7,21 @@
 //              mipmap, N-buffers or a summed-area table);
 //   "lookup":  every G-buffer point p reads, from each slab between it and
 //              the light, the texture's mean over the light rectangle seen
-//              from p through the slab's plane (one box lookup per slab),
+//              from p through one plane of the slab (lookup_plane: its
+//              middle, or its far side as the paper has it; one box
+//              lookup per slab),
 //              and combines the slabs' occlusions α_k:
 //                probabilistic  V = Π (1 − α_k)   (independent slabs, eq. 5)
 //                sum            V = max(0, 1 − Σ α_k)
 //                max            V = 1 − max α_k
-// There is no caster/receiver separation: every caster is in the slabs and
-// every point is shaded from those in front of it. A caster's own point
-// skips self_shadow_offset slabs towards the light, fading the next one in
-// (slicing.h), which keeps lit surfaces from shadowing themselves; a point
-// on a mesh that casts nothing (the harness's one definition of V leaves it
-// out of every caster pass) reads up to its own depth.
+// Every caster is in the slabs and every point is shaded from those in
+// front of it. A point skips self_shadow_offset slabs towards the light,
+// fading the next one in (slicing.h), which keeps lit surfaces from
+// shadowing themselves. The paper does so for every point, with no
+// caster/receiver separation (self_slab=skip). The default,
+// self_slab=receiver_aware, lets a point on a mesh that casts nothing (the
+// harness's one definition of V leaves it out of every caster pass) read
+// up to its own depth instead: measured better (docs/occlusion_textures.md).
 //
 // Parameters, defaults and ranges: docs/parameters.md (generated from their
 // declarations by `shadowbench list --markdown`).
@@ -50,7 +54,9 @@ in vec2 uv;
 layout(binding = 0) uniform sampler2D position_tex;
 layout(binding = 2) uniform sampler2D normal_tex;
 uniform int size;
-uniform float caster_offset;  // slabs a caster's own point skips (self_shadow_offset)
+uniform float caster_offset;    // slabs a caster's own point skips (self_shadow_offset)
+uniform float receiver_offset;  // the same for a point that casts nothing (self_slab)
+uniform float plane_fraction;   // 1: the counted part's far side; 0.5: its middle
 out float visibility;
 )";
 
@@ -83,7 +89,7 @@ void main() {
   float horizon = dot(normal.xyz, light_center - pos.xyz) > 0.0 ? 1.0 : 0.0;
   vec3 l = to_light(pos.xyz);
   // A caster's own surface is in the slabs; a receiver that casts nothing is not.
-  float offset = normal.w > 0.5 ? caster_offset : 0.0;
+  float offset = normal.w > 0.5 ? caster_offset : receiver_offset;
   float lit = 1.0, total = 0.0, strongest = 0.0;
   for (int k = 0; k < SLABS; ++k) {
     // The part of slab k in front of l.z − offset (slicing.h). Slabs lie in
@@ -92,7 +98,7 @@ void main() {
     float top = min(near_side + thickness, l.z - offset * thickness);
     if (!(top > near_side)) break;
     float w = (top - near_side) / thickness;
-    float zk = 0.5 * (near_side + top);
+    float zk = near_side + plane_fraction * (top - near_side);
     float r = zk / l.z;
     vec2 centre = l.xy * r;
     vec2 half_size = light_half * (1.0 - r);
@@ -132,6 +138,8 @@ class OcclusionTextures final : public Technique {
         projection_(projection_from_string(p.get_string("projection"))),
         light_facing_only_(p.get_string("faces") == "light_facing"),
         thin_occluder_fix_(p.get_bool("thin_occluder_fix")),
+        self_slab_(self_slab_from_string(p.get_string("self_slab"))),
+        lookup_plane_(lookup_plane_from_string(p.get_string("lookup_plane"))),
         self_shadow_offset_(p.get_float("self_shadow_offset")) {}
 
   void prepare(const FrameInputs& /*in*/) override {
@@ -148,6 +156,9 @@ class OcclusionTextures final : public Technique {
         {gl::kFullscreenVertexShader, "", lookup_fragment(slabs_, textures, filter_, combine_)});
     lookup_.set("size", size_);
     lookup_.set("caster_offset", self_shadow_offset_);
+    lookup_.set("receiver_offset",
+                point_offset(self_slab_, /*casts_shadow=*/false, self_shadow_offset_));
+    lookup_.set("plane_fraction", plane_fraction(lookup_plane_));
     gl::throw_if_errors("occlusion_textures: prepare");
   }
 
@@ -185,6 +196,8 @@ class OcclusionTextures final : public Technique {
   Projection projection_;
   bool light_facing_only_;
   bool thin_occluder_fix_;
+  SelfSlab self_slab_;
+  LookupPlane lookup_plane_;
   float self_shadow_offset_;
   std::vector<std::unique_ptr<FilterPyramid>> pyramids_;
   SlabRasterizer rasterizer_;
@@ -233,11 +246,17 @@ TechniqueInfo occlusion_textures_info() {
        choice_param("faces", "light_facing", {"light_facing", "all"},
                     "faces of closed casters drawn into the slices (open ones draw all)"),
        float_param("self_shadow_offset", 1.0, 0.0, 4.0,
-                   "slices a caster's own surface point skips towards the light before the "
-                   "slices it reads (receivers that cast nothing skip none)"),
+                   "slices a point skips towards the light before the slices it reads (the slice "
+                   "holding it, and the fade of the one in front)"),
+       choice_param("self_slab", "receiver_aware", {"receiver_aware", "skip"},
+                    "who skips self_shadow_offset slices: every point (paper), or casters only, "
+                    "receivers that cast nothing reading their own slice up to their depth"),
+       choice_param("lookup_plane", "mid", {"mid", "far"},
+                    "plane each slice is read through: its middle, or its far side from the light "
+                    "(paper)"),
        bool_param("thin_occluder_fix", false,
-                  "also mark occluders in the next slice towards the light, so receivers less "
-                  "than a slice below them see them")},
+                  "also mark each slice's occluders in the next slice away from the light (the "
+                  "paper's fix for light leaking between slices)")},
       [](const Params& p) { return std::make_unique<OcclusionTextures>(p); }};
 }
 

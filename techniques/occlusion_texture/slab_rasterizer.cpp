@@ -60,7 +60,8 @@ void main() {
   vec4 outs[TEXTURES];
   for (int t = 0; t < TEXTURES; ++t) outs[t] = vec4(0.0);
   mark(slab, outs);
-  if (thin_occluder_fix && slab > 0) mark(slab - 1, outs);
+  // The paper's fix: the texture projected onto its successor, away from the light.
+  if (thin_occluder_fix && slab + 1 < SLABS) mark(slab + 1, outs);
   WRITE_OUTPUTS
 }
 )";

@@ -12,13 +12,22 @@
 // parabola (plates scene, 16 slices: penumbra RMSE 0.119). Open and
 // double-sided casters (leaves) keep every face.
 //
-// Thin-occluder fix: a caster's point skips its own slab and fades the one
-// in front of it in (slicing.h, self_shadow_offset), so an occluder less
-// than a slab above a caster's surface, such as a fender over a body panel,
-// is partly lost. With the fix every face also marks the next slab towards
-// the light, so such points count it in full; the price is that the copy
-// sits a slab too far from the receiver (too wide a penumbra), and that a
-// lit surface meets its own copy in the slab it fades in, and darkens.
+// Thin-occluder fix (Eisemann & Décoret 2008, §3.4, light leaks): each
+// texture is projected onto its successor, the next slab away from the
+// light. Both projections (slicing.h) map a point to the same texel
+// whichever slab's plane it is drawn on, so that projection is each
+// fragment marking the next slab as well. A surface that slopes across a
+// slab boundary then covers, in the farther slab, the gap that a slanted
+// shadow ray slips through between its two pieces; the copy lies behind
+// the surface it comes from, which never reads it. The price: a slab's
+// content counts twice for points beyond both, and the product of
+// (1 − α) darkens where it meets itself.
+//
+// (An earlier reading here marked the slab towards the light instead, so
+// that a point skipping its own slab would count an occluder just above
+// it; a lit surface then met its own copy in the slab it fades in. On the
+// sphere grid, four jeeps and two trees it lost to no fix at all, or tied
+// (docs/occlusion_textures.md), and is gone.)
 #include <vector>
 
 #include "gl/gpu_scene.h"

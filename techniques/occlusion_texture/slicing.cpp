@@ -16,6 +16,24 @@ Projection projection_from_string(const std::string& s) {
   throw std::logic_error("unknown occlusion-texture projection '" + s + "'");
 }
 
+LookupPlane lookup_plane_from_string(const std::string& s) {
+  if (s == "far") return LookupPlane::Far;
+  if (s == "mid") return LookupPlane::Mid;
+  throw std::logic_error("unknown occlusion-texture lookup plane '" + s + "'");
+}
+
+float plane_fraction(LookupPlane plane) { return plane == LookupPlane::Far ? 1.0f : 0.5f; }
+
+SelfSlab self_slab_from_string(const std::string& s) {
+  if (s == "skip") return SelfSlab::Skip;
+  if (s == "receiver_aware") return SelfSlab::ReceiverAware;
+  throw std::logic_error("unknown occlusion-texture self-slab rule '" + s + "'");
+}
+
+float point_offset(SelfSlab rule, bool casts_shadow, float caster_offset) {
+  return (casts_shadow || rule == SelfSlab::Skip) ? caster_offset : 0.0f;
+}
+
 glm::vec2 Slicing::texture_coords(const glm::vec3& local) const {
   return (glm::vec2(local) - origin) * scale / (a * local.z + b) + 0.5f;
 }
@@ -30,11 +48,11 @@ TextureBox Slicing::kernel(const glm::vec3& p, float plane) const {
           (centre + half - origin) * to_texture + 0.5f};
 }
 
-SlabShare Slicing::share(float z, int k, float offset) const {
+SlabShare Slicing::share(float z, int k, float offset, LookupPlane plane) const {
   const float near_side = z0 + float(k) * thickness;
   const float top = std::min(near_side + thickness, z - offset * thickness);
   if (!(top > near_side)) return {};
-  return {(top - near_side) / thickness, 0.5f * (near_side + top)};
+  return {(top - near_side) / thickness, near_side + plane_fraction(plane) * (top - near_side)};
 }
 
 Slicing fit_slicing(const Scene& scene, int slabs, Projection projection) {

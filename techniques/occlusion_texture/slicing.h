@@ -29,14 +29,17 @@
 // The part of slab k that counts for a point p is [z_k, min(z_{k+1},
 // p.z − β·t)]: all of the slab once p lies β slabs beyond it, part of it
 // while p is closer, none when the slab lies behind p − β·t. Its weight is
-// its length over t (the linear fade), and p sees the light through the
-// plane in its middle (the slab's mid-plane once the whole slab counts): in
-// the light rectangle projected from p, centre p.xy·z/p.z, half sizes
-// (hw, hh)·(1 − z/p.z). Its occlusion is that rectangle's box-filtered mean
-// of the texture. β, the self-shadow offset, keeps a caster's lit surface
-// from reading itself in its own slab (β = 1: the slab that holds p never
-// counts, the one in front of it fades in while p crosses its own); a
-// receiver that casts nothing is in no texture and takes β = 0.
+// its length over t (the linear fade). p sees the light through one plane
+// of that part (LookupPlane): its far side, the slice's far plane once the
+// whole slab counts (the paper's), or its middle. The kernel is the light
+// rectangle projected from p onto that plane, centre p.xy·z/p.z, half sizes
+// (hw, hh)·(1 − z/p.z); its occlusion is that rectangle's box-filtered
+// mean of the texture. β, the self-shadow offset, keeps a point from
+// reading its own surface in its own slab (β = 1: the slab that holds p
+// never counts, the one in front of it fades in while p crosses its own).
+// SelfSlab says who takes it: every point (the paper's rule, which needs
+// no caster/receiver split), or casters only, a receiver that casts
+// nothing (in no texture) reading its own slab up to its depth.
 #include <glm/glm.hpp>
 
 #include "common/light_frame.h"
@@ -46,6 +49,17 @@ namespace sb::occlusion {
 
 enum class Projection { Central, Orthographic };
 Projection projection_from_string(const std::string& s);  // "central" | "orthographic"
+
+enum class LookupPlane { Far, Mid };
+LookupPlane lookup_plane_from_string(const std::string& s);  // "far" | "mid"
+// Where the plane lies in the part that counts: 1 its far side, ½ its middle.
+float plane_fraction(LookupPlane plane);
+
+enum class SelfSlab { Skip, ReceiverAware };
+SelfSlab self_slab_from_string(const std::string& s);  // "skip" | "receiver_aware"
+// The offset β a point takes: `caster_offset` for a caster's point, and for
+// a receiver's the same (Skip) or none (ReceiverAware).
+float point_offset(SelfSlab rule, bool casts_shadow, float caster_offset);
 
 struct TextureBox {
   glm::vec2 lo{0.0f}, hi{0.0f};  // texture coordinates, [0, 1] over the texture
@@ -68,10 +82,12 @@ struct Slicing {
   float a = 0.0f, b = 1.0f;
 
   float mid_plane(int k) const { return z0 + (float(k) + 0.5f) * thickness; }
+  float far_plane(int k) const { return z0 + float(k + 1) * thickness; }
   // `local`: a point in the light's frame.
   glm::vec2 texture_coords(const glm::vec3& local) const;
-  // How much of slab k counts for a point at depth z, with offset β (slabs).
-  SlabShare share(float z, int k, float offset) const;
+  // How much of slab k counts for a point at depth z, with offset β (slabs),
+  // and the plane it is read through.
+  SlabShare share(float z, int k, float offset, LookupPlane plane) const;
   // Where p (light frame) sees the light through the plane at depth `plane`.
   TextureBox kernel(const glm::vec3& p, float plane) const;
 };

@@ -1,14 +1,17 @@
 // occlusion_textures (techniques/occlusion_texture/): the summed-area table
 // against the exact box filter of a plate's rasterised texture, the three
 // ways of combining slices where two occluders' penumbrae overlap, the
-// thin-occluder fix under a plate that lies less than a slice above the
-// ground, and finite visibility at extreme light sizes, with kernels larger
+// thin-occluder fix under a plate that slopes across slices, the far-plane
+// lookup and the self-slab rules against their closed forms, and finite
+// visibility at extreme light sizes, with kernels larger
 // than the texture and points on the slices' boundaries.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <glm/gtc/matrix_transform.hpp>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -60,7 +63,9 @@ TEST(OcclusionTextures, TheSummedAreaTableGivesTheExactBoxFilteredOcclusionOfAPl
   const auto out = run_config(
       experiment(
           json::array({plate_scene(write_plates(dir.path, {plate}, {0.0f, 4.0f, 3.0f}), size)}),
-          json::array({occlusion_textures({{"size", texels}, {"slices", 4}})}), 4, 160, 120),
+          json::array({occlusion_textures(
+              {{"size", texels}, {"slices", 4}, {"self_slab", "skip"}, {"lookup_plane", "far"}})}),
+          4, 160, 120),
       "occlusion_planar", gl::Backend::OSMesa, true, /*write_gbuffer=*/true);
   ASSERT_EQ(out.summary.ok, 1) << out.records.at(0).value("reason", "");
   // The same slicing on the CPU: one caster, the plate.
@@ -101,8 +106,11 @@ TEST(OcclusionTextures, TheSummedAreaTableGivesTheExactBoxFilteredOcclusionOfAPl
     double texel_over_kernel = 0.0;
     for (int k = 0; k < 4; ++k) {
       if (k != top_slab) continue;  // the bottom face is not light-facing: not drawn
-      // The ground casts nothing: it takes the offset 0.
-      const occlusion::SlabShare share = slicing.share(pl.z, k, 0.0f);
+      // The ground lies more than a slice below the plate: the skip rule's
+      // offset leaves it the whole slab, read through the slice's far plane.
+      const occlusion::SlabShare share =
+          slicing.share(pl.z, k, occlusion::point_offset(occlusion::SelfSlab::Skip, false, 1.0f),
+                        occlusion::LookupPlane::Far);
       const float w = share.weight;
       const occlusion::TextureBox box = slicing.kernel(pl, share.plane);
       const glm::vec2 lo = box.lo * float(texels), hi = box.hi * float(texels);
@@ -176,53 +184,197 @@ TEST(OcclusionTextures, ProbabilisticCombinationBeatsSumAndMaxWhereOccludersOver
   EXPECT_LT(mean_abs[0], mean_abs[2]);
 }
 
-// A thin plate lies 0.2 above a table (a closed box, so a caster whose own
-// surface is in the slices), and a pillar 2.9 tall stretches the four
-// slices to 0.725: the plate falls near the bottom of the third slice and
-// the table's top early in the fourth, where a caster's point (offset one
-// slice) counts only 0.17 of the third, so light leaks through the plate's
-// umbra on the table. The fix marks the plate in the second slice as well,
-// which the table's top counts in full. The copy stands for an occluder at
-// that slice's depth, farther from the table than the plate, so its
-// penumbra is wider and some light still reaches the umbra: the fix cuts
-// the leak, it does not remove it. The umbra reaches past the plate's edge,
-// where the camera sees it.
-TEST(OcclusionTextures, TheThinOccluderFixCutsLightLeakingThroughAPlateJustAboveACaster) {
+// A thin plate slopes down to +x across four slices (25°, 1.0 to 1.8
+// above the ground), under a light 1.5 wide. Each slice holds a strip of
+// it, read through one plane of the slice; a shadow ray that rises towards
+// +x crosses the plane of slice k + 1 beside the strip of slice k and the
+// plane of slice k beside the strip of slice k + 1, and slips through
+// between them, though the plate stops it. The paper's fix (§3.4, light
+// leaks) projects each slice's texture onto the next one farther from the
+// light, which then holds both strips and stops that ray: the leak in the
+// plate's shadow on the ground shrinks, against the ray-traced reference.
+// Its copy lies behind the surface it comes from, so the plate's lit face,
+// which reads only the slices in front of it, is not darkened by it.
+// Marking the slice towards the light instead (this project's earlier fix)
+// puts the plate's copy into the slice its lit face fades in: that face
+// darkens.
+TEST(OcclusionTextures, ThePapersThinOccluderFixStopsRaysSlippingBetweenSlicesAndSparesLitFaces) {
   TempDir dir;
-  const float table_top = 0.6f;
-  const Plate plate{1.0f, 2.2f, -0.6f, 0.6f, 0.8f, 5e-3f};
-  const double size = 0.5;
-  const Mesh pillar = make_box("pillar", {-1.5f, 1.45f, -1.0f}, {0.1f, 1.45f, 0.1f});
-  const Mesh table =
-      make_box("table", {1.5f, 0.5f * table_top, 0.0f}, {2.0f, 0.5f * table_top, 1.5f});
+  const double size = 1.5;
+  const glm::vec3 centre(-0.5f, 1.4f, 0.0f);
+  const float angle = glm::radians(-25.0f);
+  const glm::vec3 half(1.0f, 5e-3f, 0.6f);
+  Mesh slope = make_box("slope", glm::vec3(0.0f), half);
+  const glm::mat4 place =
+      glm::rotate(glm::translate(glm::mat4(1.0f), centre), angle, glm::vec3(0.0f, 0.0f, 1.0f));
+  transform_mesh(slope, place);
   const auto out = run_config(
-      experiment(json::array({plate_scene(
-                     write_plates(dir.path, {plate}, {2.0f, 4.0f, 3.0f}, {pillar, table}), size)}),
-                 json::array({occlusion_textures(
-                     {{"slices", 4}, {"thin_occluder_fix", json::array({false, true})}})}),
-                 4, 160, 120),
+      experiment(
+          json::array({plate_scene(write_plates(dir.path, {}, {1.5f, 4.0f, 3.0f}, {slope}), size)}),
+          json::array({occlusion_textures(
+              {{"slices", 4}, {"thin_occluder_fix", json::array({false, true})}})}),
+          64, 160, 120),
       "occlusion_thin", gl::Backend::OSMesa, true, /*write_gbuffer=*/true);
   ASSERT_EQ(out.summary.ok, 2) << out.records.at(0).value("reason", "");
   const ImageF positions = out.gbuffer_positions();
-  std::vector<double> umbra_mean;
+  const std::vector<bool> ground = ground_pixels(positions);
+  const ImageF ref = out.reference_visibility();
+  const glm::mat4 to_slope = glm::inverse(place);
+  std::vector<double> shadow_err, face_err;
   for (const std::string fix : {"false", "true"}) {
     const ImageF v = out.visibility("occlusion_textures/slices=4,thin_occluder_fix=" + fix);
-    double sum = 0.0;
-    size_t n = 0;
+    double shadow = 0.0, face = 0.0;
+    size_t n_shadow = 0, n_face = 0;
     for (size_t i = 0; i < v.data.size(); ++i) {
       const float* p = &positions.data[i * 4];
-      if (p[3] == 0.0f || std::abs(p[1] - table_top) > 1e-3f) continue;  // the table's top
-      if (exact_visibility(plate, p[0], p[2], size, table_top) > 0.0) continue;
-      sum += v.data[i];
+      if (p[3] == 0.0f) continue;
+      const double err = double(v.data[i]) - double(ref.data[i]);
+      if (ground[i] && ref.data[i] < 0.5f) {  // the plate's shadow on the ground
+        shadow += err;
+        ++n_shadow;
+      }
+      const glm::vec3 local = glm::vec3(to_slope * glm::vec4(p[0], p[1], p[2], 1.0f));
+      if (std::abs(local.y - half.y) < 1e-3f && std::abs(local.x) < 0.9f * half.x &&
+          std::abs(local.z) < 0.9f * half.z) {  // the plate's lit face
+        face += std::abs(err);
+        ++n_face;
+      }
+    }
+    ASSERT_GT(n_shadow, 300u);
+    ASSERT_GT(n_face, 300u);
+    shadow_err.push_back(shadow / double(n_shadow));
+    face_err.push_back(face / double(n_face));
+    std::printf(
+        "thin_occluder_fix=%s: %zu shadow px on the ground, mean V - reference %+.4f; %zu px on "
+        "the "
+        "lit face, mean |V - reference| %.4f\n",
+        fix.c_str(), n_shadow, shadow_err.back(), n_face, face_err.back());
+  }
+  EXPECT_GT(shadow_err[0], 0.1) << "no leak to stop: the scene does not provoke it";
+  EXPECT_LT(std::abs(shadow_err[1]), 0.5 * shadow_err[0]);
+  EXPECT_LT(face_err[1], 0.01) << "the fix darkens the plate's lit face";
+}
+
+// V of the job whose technique has `param` = `value`.
+ImageF visibility_where(const RunOutput& out, const std::string& param, const std::string& value) {
+  for (const json& r : out.records)
+    if (r["technique"]["params"].value(param, "") == value) return out.image(r, "visibility");
+  throw std::runtime_error("no job with " + param + "=" + value);
+}
+
+// Runs occlusion_textures with `params` over the plates under a light of
+// side `size`, with a 4-spp reference (the tests that use it compare with
+// closed forms), writing the G-buffer.
+RunOutput run_on_plates(const std::vector<Plate>& plates, float size, const glm::vec3& eye,
+                        const json& params, int width, int height, const std::string& name) {
+  TempDir dir;
+  return run_config(
+      experiment(json::array({plate_scene(write_plates(dir.path, plates, eye), size)}),
+                 json::array({occlusion_textures(params)}), 4, width, height),
+      name, gl::Backend::OSMesa, true, /*write_gbuffer=*/true);
+}
+
+// The slicing the technique fits to these plates.
+occlusion::Slicing plate_slicing(const std::vector<Plate>& plates, float light_size, int slices) {
+  Scene scene;
+  scene.light = plate_light(light_size);
+  for (const Plate& p : plates)
+    scene.meshes.push_back(
+        make_box("plate", {0.5f * (p.x0 + p.x1), p.h, 0.5f * (p.z0 + p.z1)},
+                 {0.5f * (p.x1 - p.x0), p.half_thickness, 0.5f * (p.z1 - p.z0)}));
+  return occlusion::fit_slicing(scene, slices, occlusion::Projection::Central);
+}
+
+// A high plate (off to the side, its shadow off the picture) and a low one
+// whose top face lies on the far plane of the last of four slices (the
+// slices end a hair below its bottom face). The paper reads each slice
+// through its far plane, which is where this plate is: its penumbra on the
+// ground (more than a slice below it) is then the exact one, up to the
+// texels; read through the slice's middle, the plate is lifted by half a
+// slice and its penumbra widens.
+TEST(OcclusionTextures, TheFarPlaneLookupGivesTheExactPenumbraOfAPlateOnItsSlicesFarPlane) {
+  const Plate high{1.2f, 1.5f, -1.5f, -1.2f, 2.2f, 1e-3f};
+  const Plate low{-1.0f, 0.2f, -0.6f, 0.6f, 1.0f, 1e-3f};
+  const float size = 1.0f;
+  const auto out = run_on_plates({high, low}, size, {0.0f, 4.0f, 3.0f},
+                                 {{"size", 1024},
+                                  {"slices", 4},
+                                  {"self_slab", "skip"},
+                                  {"lookup_plane", json::array({"far", "mid"})}},
+                                 160, 120, "occlusion_far_plane");
+  ASSERT_EQ(out.summary.ok, 2) << out.records.at(0).value("reason", "");
+  const occlusion::Slicing slicing = plate_slicing({high, low}, size, 4);
+  const float low_top_depth = kLightHeight - (low.h + low.half_thickness);
+  ASSERT_NEAR(slicing.far_plane(3), low_top_depth, 0.02f * slicing.thickness)
+      << "the low plate is not on the last slice's far plane";
+  const ImageF positions = out.gbuffer_positions();
+  const std::vector<bool> ground = ground_pixels(positions);
+  std::vector<double> mean_abs;
+  for (const std::string plane : {"far", "mid"}) {
+    const ImageF v = visibility_where(out, "lookup_plane", plane);
+    double sum = 0.0;
+    size_t n = 0;
+    for (size_t i = 0; i < ground.size(); ++i) {
+      if (!ground[i]) continue;
+      const double x = positions.data[i * 4], z = positions.data[i * 4 + 2];
+      if (exact_visibility(high, x, z, size) < 1.0) continue;
+      const double exact = exact_visibility(low, x, z, size);
+      if (!(exact > 0.0 && exact < 1.0)) continue;  // the low plate's penumbra
+      sum += std::abs(double(v.data[i]) - exact);
       ++n;
     }
-    ASSERT_GT(n, 300u);
-    umbra_mean.push_back(sum / double(n));
-    std::printf("thin_occluder_fix=%s: %zu umbra px on the table, mean V %.4f (exact 0)\n",
-                fix.c_str(), n, umbra_mean.back());
+    ASSERT_GT(n, 500u);
+    mean_abs.push_back(sum / double(n));
+    std::printf("lookup_plane=%s: %zu penumbra px, mean |V - exact| %.4f\n", plane.c_str(), n,
+                mean_abs.back());
   }
-  EXPECT_GT(umbra_mean[0], 0.5) << "no leak to fix: the scene does not provoke it";
-  EXPECT_LT(umbra_mean[1], 0.5 * umbra_mean[0]);
+  EXPECT_LT(mean_abs[0], 0.01);
+  EXPECT_GT(mean_abs[1], 3.0 * mean_abs[0]) << "the middle plane should be visibly off";
+}
+
+// The paper drops the slice that holds a point for every point, receivers
+// included (no caster/receiver split). A plate lies 0.4 above the ground, in
+// the last of four slices about 0.62 thick (a second plate near the light
+// stretches them): with the offset of one slice the ground under it counts
+// that slice only over the 0.4 it lies beyond it, so V in the plate's
+// umbra is 1 − 0.4 / t (the rule's closed form; the truth is 0). The
+// receiver-aware rule reads the ground's own depth: V = 0. The camera looks
+// in under the plate.
+TEST(OcclusionTextures, TheSkipRuleFadesTheSliceInFrontOfAReceiverAsItDoesForACaster) {
+  const Plate high{2.6f, 3.0f, -2.4f, -2.0f, 2.9f, 1e-3f};
+  const Plate low{-1.0f, 0.2f, -0.6f, 0.6f, 0.4f, 1e-3f};
+  const float size = 1.0f;
+  const auto out =
+      run_on_plates({high, low}, size, {0.0f, 1.5f, 4.0f},
+                    {{"slices", 4}, {"self_slab", json::array({"skip", "receiver_aware"})}}, 320,
+                    240, "occlusion_self_slab");
+  ASSERT_EQ(out.summary.ok, 2) << out.records.at(0).value("reason", "");
+  const occlusion::Slicing slicing = plate_slicing({high, low}, size, 4);
+  const double weight = (double(kLightHeight) - double(slicing.far_plane(3))) / slicing.thickness;
+  ASSERT_GT(weight, 0.1);
+  ASSERT_LT(weight, 0.9);
+  const ImageF positions = out.gbuffer_positions();
+  const std::vector<bool> ground = ground_pixels(positions);
+  for (const std::string rule : {"skip", "receiver_aware"}) {
+    const ImageF v = visibility_where(out, "self_slab", rule);
+    double sum = 0.0, worst = 0.0;
+    size_t n = 0;
+    const double expected = rule == "skip" ? 1.0 - weight : 0.0;
+    for (size_t i = 0; i < ground.size(); ++i) {
+      if (!ground[i]) continue;
+      const double x = positions.data[i * 4], z = positions.data[i * 4 + 2];
+      if (exact_visibility(high, x, z, size) < 1.0) continue;
+      // Deep in the umbra: the kernel lies inside the plate's texture.
+      if (x < low.x0 + 0.3 || x > low.x1 - 0.3 || z < low.z0 + 0.3 || z > low.z1 - 0.3) continue;
+      sum += v.data[i];
+      worst = std::max(worst, std::abs(double(v.data[i]) - expected));
+      ++n;
+    }
+    std::printf("self_slab=%s: %zu umbra px, mean V %.4f (closed form %.4f), max |V - it| %.2e\n",
+                rule.c_str(), n, sum / double(n), expected, worst);
+    ASSERT_GT(n, 300u);
+    EXPECT_LT(worst, 1e-3) << rule;
+  }
 }
 
 // Lights from 1e-4 to 20 times the sphere grid's extent (a kernel far

@@ -136,13 +136,14 @@ TEST(OcclusionSlicing, WithOffsetOneASlabCountsOnceThePointIsPastItAndFadesInAcr
   const float t = s.thickness;
   for (int k = 0; k < 8; ++k) {
     const float near_side = s.z0 + float(k) * t, far_side = near_side + t;
-    EXPECT_EQ(s.share(near_side + 0.5f * t, k, 1.0f).weight, 0.0f) << "its own slab";
-    EXPECT_NEAR(s.share(far_side, k, 1.0f).weight, 0.0f, 1e-5f);
-    const SlabShare fading = s.share(far_side + 0.25f * t, k, 1.0f);
+    EXPECT_EQ(s.share(near_side + 0.5f * t, k, 1.0f, LookupPlane::Mid).weight, 0.0f)
+        << "its own slab";
+    EXPECT_NEAR(s.share(far_side, k, 1.0f, LookupPlane::Mid).weight, 0.0f, 1e-5f);
+    const SlabShare fading = s.share(far_side + 0.25f * t, k, 1.0f, LookupPlane::Mid);
     EXPECT_NEAR(fading.weight, 0.25f, 1e-4f);
     EXPECT_NEAR(fading.plane, near_side + 0.125f * t, 1e-4f)
         << "the middle of the part that counts";
-    const SlabShare whole = s.share(far_side + 2.0f * t, k, 1.0f);
+    const SlabShare whole = s.share(far_side + 2.0f * t, k, 1.0f, LookupPlane::Mid);
     EXPECT_NEAR(whole.weight, 1.0f, 1e-5f);
     EXPECT_NEAR(whole.plane, s.mid_plane(k), 1e-5f);
   }
@@ -153,10 +154,38 @@ TEST(OcclusionSlicing, WithOffsetZeroAReceiversOwnSlabFadesInUpToItsDepth) {
   const Slicing s = fit_slicing(scene, 8, Projection::Central);
   const float t = s.thickness;
   const float near_side = s.z0 + 3.0f * t;
-  const SlabShare own = s.share(near_side + 0.6f * t, 3, 0.0f);
+  const SlabShare own = s.share(near_side + 0.6f * t, 3, 0.0f, LookupPlane::Mid);
   EXPECT_NEAR(own.weight, 0.6f, 1e-4f);
   EXPECT_NEAR(own.plane, near_side + 0.3f * t, 1e-4f);
   EXPECT_LT(own.plane, near_side + 0.6f * t) << "the plane lies in front of the point";
+}
+
+// The paper's lookup (§3): a slab that counts in full is read through the
+// slice's far plane, and a slab fading in through the far side of the part
+// that counts, which always lies in front of the point.
+TEST(OcclusionSlicing, TheFarPlaneLookupReadsTheFarSideOfThePartThatCounts) {
+  const Scene scene = scattered_casters(1.0f, 4.0f);
+  const Slicing s = fit_slicing(scene, 8, Projection::Central);
+  const float t = s.thickness;
+  for (int k = 0; k < 8; ++k) {
+    const float near_side = s.z0 + float(k) * t;
+    const SlabShare whole = s.share(near_side + 3.0f * t, k, 1.0f, LookupPlane::Far);
+    EXPECT_NEAR(whole.weight, 1.0f, 1e-5f);
+    EXPECT_NEAR(whole.plane, s.far_plane(k), 1e-5f);
+    const SlabShare fading = s.share(near_side + 1.4f * t, k, 1.0f, LookupPlane::Far);
+    EXPECT_NEAR(fading.weight, 0.4f, 1e-4f);
+    EXPECT_NEAR(fading.plane, near_side + 0.4f * t, 1e-4f);
+  }
+}
+
+// The paper drops the slice that contains the point for every point: it
+// has no caster/receiver split. The receiver-aware rule lets a point that
+// casts nothing read its own slab.
+TEST(OcclusionSlicing, TheSkipRuleGivesReceiversTheCastersOffsetAndReceiverAwareNone) {
+  EXPECT_EQ(point_offset(SelfSlab::Skip, /*casts_shadow=*/false, 1.0f), 1.0f);
+  EXPECT_EQ(point_offset(SelfSlab::Skip, /*casts_shadow=*/true, 1.0f), 1.0f);
+  EXPECT_EQ(point_offset(SelfSlab::ReceiverAware, /*casts_shadow=*/false, 1.0f), 0.0f);
+  EXPECT_EQ(point_offset(SelfSlab::ReceiverAware, /*casts_shadow=*/true, 1.0f), 1.0f);
 }
 
 // Sweeping p through three slabs moves every slab's weight and plane
@@ -165,21 +194,22 @@ TEST(OcclusionSlicing, SharesChangeContinuouslyWithDepth) {
   const Scene scene = scattered_casters(1.0f, 4.0f);
   const Slicing s = fit_slicing(scene, 8, Projection::Central);
   const float t = s.thickness;
-  for (const float offset : {0.0f, 0.5f, 1.0f}) {
-    for (int k = 0; k < 8; ++k) {
-      const float near_side = s.z0 + float(k) * t;
-      SlabShare last = s.share(near_side, k, offset);
-      for (int i = 1; i <= 300; ++i) {
-        const SlabShare now = s.share(near_side + 3.0f * t * float(i) / 300.0f, k, offset);
-        EXPECT_GE(now.weight, last.weight);
-        EXPECT_LE(now.weight - last.weight, 1.0f / 100.0f + 1e-4f) << "a jump";
-        if (last.weight > 0.0f) {
-          EXPECT_LE(std::fabs(now.plane - last.plane), t / 100.0f + 1e-4f);
+  for (const LookupPlane plane : {LookupPlane::Far, LookupPlane::Mid})
+    for (const float offset : {0.0f, 0.5f, 1.0f}) {
+      for (int k = 0; k < 8; ++k) {
+        const float near_side = s.z0 + float(k) * t;
+        SlabShare last = s.share(near_side, k, offset, plane);
+        for (int i = 1; i <= 300; ++i) {
+          const SlabShare now = s.share(near_side + 3.0f * t * float(i) / 300.0f, k, offset, plane);
+          EXPECT_GE(now.weight, last.weight);
+          EXPECT_LE(now.weight - last.weight, 1.0f / 100.0f + 1e-4f) << "a jump";
+          if (last.weight > 0.0f) {
+            EXPECT_LE(std::fabs(now.plane - last.plane), t / 100.0f + 1e-4f);
+          }
+          last = now;
         }
-        last = now;
       }
     }
-  }
 }
 
 TEST(OcclusionSlicing, ALightOfNoAreaProjectsFromItsCentreWithFiniteCoordinatesAndPointKernels) {
