@@ -12,8 +12,18 @@ namespace sb {
 ScenePlan plan_scene(const Experiment& e, const SceneVariant& sv, Derive derive) {
   ScenePlan p;
   p.variant = &sv;
+  // A variant whose needs depend on its parameters is planned as a copy of
+  // its technique with those needs added.
+  std::vector<TechniqueInfo> with_param_needs;
+  with_param_needs.reserve(e.techniques.size());
   std::vector<const TechniqueInfo*> infos;
-  for (const auto& tv : e.techniques) infos.push_back(tv.info);
+  for (const auto& tv : e.techniques) {
+    infos.push_back(tv.info);
+    if (tv.info->needs_of_params == nullptr) continue;
+    TechniqueInfo& copy = with_param_needs.emplace_back(*tv.info);
+    for (auto& n : tv.info->needs_of_params(tv.params).names) copy.needs.names.push_back(n);
+    infos.back() = &copy;
+  }
   try {
     p.scene = build_scene(sv, e.file);
     if (sv.infer_receivers) p.inferred_receivers = infer_receivers(p.scene);

@@ -33,6 +33,10 @@ struct TechniqueInfo {
   // resolution (1 when absent), for balancing shards (plan/shards.h), e.g.
   // accumulation's, which grows with its light samples.
   std::function<double(const Params&)> cost_weight = nullptr;
+  // Optional: needs only some parameter values have, checked after `needs`
+  // for each variant (two_map_bound's gradient shade needs opaque casters,
+  // its other shades do not).
+  std::function<Needs(const Params&)> needs_of_params = nullptr;
 };
 
 // A module load_plugins could not load: its path and the loader's own

@@ -30,6 +30,11 @@
 // pixel's own depth: V = min(1, g · z_o · z_r / (z_r − z_o)), Chan &
 // Durand's α' = α · b / (r − b) up to the units.
 //
+// Alpha masks: both papers take the silhouette from the meshes' edges, and a
+// mask's outline is no edge (every leaf quad's outline would cast a
+// penumbra where the leaf has none), so both need opaque casters and are
+// skipped on masked scenes (docs/design.md, "Alpha masks everywhere").
+//
 // Parameters, defaults and ranges: docs/parameters.md (generated from their
 // declarations by `shadowbench list --markdown`).
 #include <memory>
@@ -261,7 +266,8 @@ TechniqueInfo penumbra_maps_info() {
           "penumbra_map",
           "a hard shadow map plus a penumbra map drawn from the light centre's silhouette "
           "edges (cones and sheets): the outer penumbra only (Wyman & Hansen 2003)",
-          Needs{need::kRectangularLight, need::kCasterClosedness, need::kSilhouetteEdges},
+          Needs{need::kRectangularLight, need::kOpaqueCasters, need::kCasterClosedness,
+                need::kSilhouetteEdges},
           depth_map_params(1024),
           [](const Params& p) { return std::make_unique<OuterPenumbra>(p, Kind::PenumbraMap); }};
 }
@@ -275,7 +281,8 @@ TechniqueInfo smoothies_info() {
           "penumbra_map",
           "a hard shadow map plus fixed-width smoothies on the light centre's silhouette edges, "
           "rescaled by the receiver's depth: the outer penumbra only (Chan & Durand 2003)",
-          Needs{need::kRectangularLight, need::kCasterClosedness, need::kSilhouetteEdges},
+          Needs{need::kRectangularLight, need::kOpaqueCasters, need::kCasterClosedness,
+                need::kSilhouetteEdges},
           std::move(params),
           [](const Params& p) { return std::make_unique<OuterPenumbra>(p, Kind::Smoothie); }};
 }

@@ -11,12 +11,15 @@ namespace {
 const char* const kVertex = R"(#version 450 core
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
+layout(location = 2) in vec2 uv;
 uniform mat4 light_view_projection;
 out vec3 v_world;
 out vec3 v_normal;
+out vec2 v_uv;
 void main() {
   v_world = position;
   v_normal = normal;
+  v_uv = uv;
   gl_Position = light_view_projection * vec4(position, 1.0);
 }
 )";
@@ -43,7 +46,25 @@ float irradiance() {
 }
 )";
 
-std::string fragment(const char* body) { return std::string(kChannels) + body; }
+// Alpha-tested meshes: the texel the depth pass and the ray tracer test
+// (common/depth_pass.cpp). Opaque meshes get a mask() that keeps every
+// fragment, so that their early depth test survives.
+const char* const kMask = R"(
+in vec2 v_uv;
+layout(binding = 0) uniform sampler2D base_color;
+uniform float alpha_cutoff;
+void mask() { if (texture(base_color, v_uv).a < alpha_cutoff) discard; }
+)";
+const char* const kNoMask = R"(
+void mask() {}
+)";
+
+ExtendedLightMap::Programs programs(const std::string& name, const char* body) {
+  const std::string opaque = std::string(kChannels) + kNoMask + body;
+  const std::string masked = std::string(kChannels) + kMask + body;
+  return {gl::Program(name, {kVertex, "", opaque}),
+          gl::Program(name + "_masked", {kVertex, "", masked})};
+}
 
 GLenum depth_format(ShadowChannel s) {
   return s == ShadowChannel::Depth32f ? GL_DEPTH_COMPONENT32F : GL_DEPTH_COMPONENT24;
@@ -55,20 +76,24 @@ ExtendedLightMap::ExtendedLightMap(const ExtendedLightMapSettings& s) : settings
   color_ = gl::make_texture_2d(GL_RGBA8, s.size, s.size);
   depth_ = gl::make_depth_texture(depth_format(s.shadow), s.size, s.size, /*compare=*/false);
   framebuffer_ = gl::make_framebuffer({color_.get()}, depth_.get());
-  both_ = gl::Program("elm_both", {kVertex, "", fragment(R"(
-void main() { float e = irradiance(); color = vec4(e, e, e, depth01()); }
-)")});
-  shadow_only_ = gl::Program("elm_shadow_channel", {kVertex, "", fragment(R"(
-void main() { color = vec4(0.0, 0.0, 0.0, depth01()); }
-)")});
-  light_only_ = gl::Program("elm_light_channel", {kVertex, "", fragment(R"(
-void main() { float e = irradiance(); color = vec4(e, e, e, 0.0); }
-)")});
-  depth_only_ = gl::Program("elm_depth", {kVertex, "", ""});
+  both_ = programs("elm_both", R"(
+void main() { mask(); float e = irradiance(); color = vec4(e, e, e, depth01()); }
+)");
+  shadow_only_ = programs("elm_shadow_channel", R"(
+void main() { mask(); color = vec4(0.0, 0.0, 0.0, depth01()); }
+)");
+  light_only_ = programs("elm_light_channel", R"(
+void main() { mask(); float e = irradiance(); color = vec4(e, e, e, 0.0); }
+)");
+  // Opaque meshes need no fragment shader for depth alone.
+  depth_only_ = {gl::Program("elm_depth", {kVertex, "", ""}),
+                 gl::Program("elm_depth_masked", {kVertex, "", std::string(kChannels) + kMask + R"(
+void main() { mask(); }
+)"})};
   gl::throw_if_errors("creating an extended light map");
 }
 
-void ExtendedLightMap::draw(const GpuScene& gpu, const LightFrustum& f, const gl::Program& program,
+void ExtendedLightMap::draw(const GpuScene& gpu, const LightFrustum& f, const Programs& programs,
                             bool writes_depth) {
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
   glViewport(0, 0, settings_.size, settings_.size);
@@ -82,14 +107,27 @@ void ExtendedLightMap::draw(const GpuScene& gpu, const LightFrustum& f, const gl
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(settings_.bias.slope, settings_.bias.constant);
   }
-  program.set_if_active("light_view_projection", f.view_projection);
-  program.set_if_active("light_view", f.view);
-  program.set_if_active("light_point", f.eye);
-  program.set_if_active("light_depth_range", glm::vec2(f.near_plane, f.far_plane));
-  program.use();
-  // Alpha-tested casters are drawn whole: the 2000-era pass had no masks.
-  gpu.draw_casters_and_map_receivers(
-      [&](const DrawInfo& d) { set_depth_pass_cull(settings_.cull, d); });
+  for (const gl::Program* program : {&programs.opaque, &programs.masked}) {
+    program->set_if_active("light_view_projection", f.view_projection);
+    program->set_if_active("light_view", f.view);
+    program->set_if_active("light_point", f.eye);
+    program->set_if_active("light_depth_range", glm::vec2(f.near_plane, f.far_plane));
+  }
+  // Alpha-tested meshes go through their mask, as in every depth pass: a
+  // leaf quad's transparent texels cast no shadow.
+  const gl::Program* current = nullptr;
+  gpu.draw_casters_and_map_receivers([&](const DrawInfo& d) {
+    const gl::Program* wanted = d.alpha_tested ? &programs.masked : &programs.opaque;
+    if (wanted != current) {
+      wanted->use();
+      current = wanted;
+    }
+    if (d.alpha_tested) {
+      programs.masked.set("alpha_cutoff", d.alpha_cutoff);
+      glBindTextureUnit(0, d.texture);
+    }
+    set_depth_pass_cull(settings_.cull, d);
+  });
   glDisable(GL_POLYGON_OFFSET_FILL);
   glDisable(GL_CULL_FACE);
   glDepthFunc(GL_LESS);

@@ -16,6 +16,8 @@
 //
 // The light channel is written in the same pass as the shadow channel, in a
 // second pass over the scene (what the single pass saves), or not at all.
+// Alpha-tested meshes are drawn through their mask in every pass, as the
+// shadow-map kit's depth pass draws them (common/depth_pass.h).
 // Both ways write the same texels (tests/techniques/
 // test_extended_light_map.cpp). The harness shades every technique alike,
 // so nothing reads the light channel back: it is the published system's
@@ -51,14 +53,21 @@ class ExtendedLightMap {
   GLuint depth() const { return depth_.get(); }
   const ExtendedLightMapSettings& settings() const { return settings_; }
 
+  // One pass's programs: for opaque meshes, and for alpha-tested ones (a
+  // fragment shader that discards the mask's holes).
+  struct Programs {
+    gl::Program opaque;
+    gl::Program masked;
+  };
+
  private:
-  void draw(const GpuScene& gpu, const LightFrustum& f, const gl::Program& program,
+  void draw(const GpuScene& gpu, const LightFrustum& f, const Programs& programs,
             bool writes_depth);
 
   ExtendedLightMapSettings settings_;
   gl::Texture color_, depth_;
   gl::Framebuffer framebuffer_;
-  gl::Program both_, shadow_only_, light_only_, depth_only_;
+  Programs both_, shadow_only_, light_only_, depth_only_;
 };
 
 // GLSL for a lookup: `light_map` (RGBA8, unit 4) and

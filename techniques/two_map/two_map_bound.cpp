@@ -25,6 +25,11 @@
 //   "midpoint"  V = ½ on every penumbra pixel: the classification alone.
 // Back-projection of edges (option 1) is not built.
 //
+// Alpha masks: both maps are drawn through them (common/depth_pass.h), so
+// the classification and the search honour them. The gradient's bands come
+// from the meshes' edges, where a mask has no place: with `shade: gradient`
+// the technique needs opaque casters and is skipped on masked scenes.
+//
 // Without an umbra apex (a light at least as wide as the casters' extent on
 // an axis) there is no umbra map: nothing is umbra, every pixel hidden from
 // the penumbra apex is penumbra, and the search takes d_in as the search's
@@ -206,7 +211,8 @@ TechniqueInfo two_map_bound_info() {
   std::vector<ParamSpec> params = {
       choice_param("shade", "search", {"search", "gradient", "midpoint"},
                    "penumbra pixels: search: the texel search in both maps (Shypula's option 3); "
-                   "gradient: between the two apexes' silhouettes (option 2, a penumbra buffer); "
+                   "gradient: between the two apexes' silhouettes (option 2, a penumbra buffer; "
+                   "needs opaque casters); "
                    "midpoint: V = 1/2 (the classification alone)"),
       odd(int_param("search_taps", 7, 3, 31,
                     "search grid side (odd), spread over the widest penumbra at the receiver")),
@@ -214,13 +220,20 @@ TechniqueInfo two_map_bound_info() {
   // On by default: the search's taps reach far from the pixel (as PCSS's).
   params.back().default_value = true;
   for (auto& p : depth_map_params(2048)) params.push_back(std::move(p));
-  return {"two_map_bound", "two_map",
-          "Shypula's two-map penumbra bound: hard maps from the penumbra and umbra frusta's "
-          "apexes classify lit, umbra and penumbra; the penumbra is shaded by a texel search or a "
-          "silhouette gradient",
-          // The edges for the gradient's penumbra buffer.
-          Needs{need::kCasterClosedness, need::kSilhouetteEdges}, std::move(params),
-          [](const Params& p) { return std::make_unique<TwoMapBound>(p); }};
+  TechniqueInfo info{
+      "two_map_bound", "two_map",
+      "Shypula's two-map penumbra bound: hard maps from the penumbra and umbra frusta's "
+      "apexes classify lit, umbra and penumbra; the penumbra is shaded by a texel search or a "
+      "silhouette gradient",
+      // The edges for the gradient's penumbra buffer.
+      Needs{need::kCasterClosedness, need::kSilhouetteEdges}, std::move(params),
+      [](const Params& p) { return std::make_unique<TwoMapBound>(p); }};
+  // The gradient's edges are the meshes', and a mask's outline is none: on a
+  // masked scene every leaf quad's outline would bound a penumbra.
+  info.needs_of_params = [](const Params& p) {
+    return p.get_string("shade") == "gradient" ? Needs{need::kOpaqueCasters} : Needs{};
+  };
+  return info;
 }
 
 }  // namespace sb::shadow

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 
 #include "../config/cli_runner.h"
@@ -86,6 +87,38 @@ TEST(PlanStage, EveryVolumeTechniqueSkipsOpenAndAlphaTestedCastersWithAReason) {
     EXPECT_NE(reasons(scene(false, true))[i].find("cannot honour alpha masks: mesh 'box'"),
               std::string::npos)
         << reasons(scene(false, true))[i];
+  }
+}
+
+// On foliage (alpha-tested leaves) the techniques whose penumbra comes from
+// the meshes' edges are skipped with the reason, and only those:
+// two_map_bound only with its gradient shade, the one that reads edges.
+TEST(PlanStage, EdgeBandTechniquesSkipMaskedCastersWithTheReason) {
+  const nlohmann::json config = {
+      {"name", "masked"},
+      {"scenes", nlohmann::json::array({{{"type", "foliage"}, {"params", {{"trees", 1}}}}})},
+      {"techniques",
+       nlohmann::json::array(
+           {"penumbra_maps",
+            "smoothies",
+            "extended_light_maps",
+            {{"name", "two_map_bound"},
+             {"params", {{"shade", nlohmann::json::array({"search", "gradient", "midpoint"})}}}}})},
+      {"resolutions", nlohmann::json::array({nlohmann::json::array({32, 24})})}};
+  const Experiment e = parse_experiment(config, "masked.json", registry());
+  const Plan plan = make_plan(e);
+  std::map<std::string, const PlannedJob*> by_variant;
+  for (const auto& j : plan.jobs) by_variant[e.techniques[j.technique].name] = &j;
+  ASSERT_EQ(by_variant.size(), 6u);
+  for (const auto& [variant, j] : by_variant) {
+    const bool skipped = variant == "penumbra_maps" || variant == "smoothies" ||
+                         variant.find("gradient") != std::string::npos;
+    EXPECT_EQ(j->status, skipped ? PlannedJob::Status::Skip : PlannedJob::Status::Run) << variant;
+    if (skipped) {
+      EXPECT_NE(j->reason.find("cannot honour alpha masks: mesh 'leaves' is alpha-tested"),
+                std::string::npos)
+          << variant << ": " << j->reason;
+    }
   }
 }
 
