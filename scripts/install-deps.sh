@@ -17,6 +17,9 @@ if [[ "${1:-}" == "--test" ]]; then
   # Test oracles: scikit-image for SSIM; Google Benchmark's compare.py (and
   # the scipy it needs) reads our --benchmark-out JSON.
   packages+=(python3-skimage python3-numpy libbenchmark-tools python3-scipy)
+  # OpenImageIO's Python bindings: tools/recompute_metrics.py recomputes every
+  # record's errors from the run's files (tests/e2e/test_recomputable_metrics.cpp).
+  packages+=(python3-openimageio)
   # Headless Chromium opens the HTML report (tests/report).
   packages+=(chromium)
   # The Debian package's test (tests/install): CPack's DEB generator with

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <stdexcept>
 #include <system_error>
 #include <vector>
 
@@ -101,20 +102,49 @@ uint8_t png_byte(float v) {
   return static_cast<uint8_t>(static_cast<double>(c * 255.0f) + 0.5);
 }
 
-void write_png(const std::string& path, const ImageF& img) {
+namespace {
+
+// zlib level and PNG row filter: fast for the images (write_png), small for
+// the masks (write_mask_png).
+enum class PngPacking { Fast, Small };
+
+void write_png_packed(const std::string& path, const ImageF& img, PngPacking packing) {
   OIIO::ImageSpec spec = make_spec(path, img, OIIO::TypeDesc::UINT8);
   // Otherwise OIIO treats the pixels as premultiplied and divides by alpha.
   spec.attribute("oiio:UnassociatedAlpha", 1);
-  // zlib level 1, not libpng's default 6: a shaded.png is 24% larger, the
-  // write much faster (docs/performance.md). And no row filter, not libpng's
-  // choice among all five per row: half the time again, and smaller files
-  // on these images (a 640×480 job's shaded.png 162 → 167 KB, its error.png
-  // 95 → 52 KB).
-  spec.attribute("png:compressionLevel", 1);
-  spec.attribute("png:filter", 0x08);  // PNG_FILTER_NONE
+  if (packing == PngPacking::Fast) {
+    // zlib level 1, not libpng's default 6: a shaded.png is 24% larger, the
+    // write much faster (docs/performance.md). And no row filter, not libpng's
+    // choice among all five per row: half the time again, and smaller files
+    // on these images (a 640×480 job's shaded.png 162 → 167 KB, its error.png
+    // 95 → 52 KB).
+    spec.attribute("png:compressionLevel", 1);
+    spec.attribute("png:filter", 0x08);  // PNG_FILTER_NONE
+  } else {
+    // A mask is a few runs per row: level 9 with libpng's filters halves a
+    // 640×480 penumbra mask (11.8 → 6.4 KB) at no cost worth measuring.
+    spec.attribute("png:compressionLevel", 9);
+  }
   std::vector<uint8_t> bytes(img.data.size());
   for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = png_byte(img.data[i]);
   write_atomic(path, "png", spec, bytes.data());
+}
+
+}  // namespace
+
+void write_png(const std::string& path, const ImageF& img) {
+  write_png_packed(path, img, PngPacking::Fast);
+}
+
+void write_mask_png(const std::string& path, const std::vector<uint8_t>& mask, int width,
+                    int height) {
+  ImageF img(std::max(width, 0), std::max(height, 0), 1);
+  if (mask.size() != img.pixel_count())
+    throw std::invalid_argument(path + ": a mask of " + std::to_string(mask.size()) +
+                                " pixels for a " + std::to_string(width) + "x" +
+                                std::to_string(height) + " image");
+  for (size_t i = 0; i < mask.size(); ++i) img.data[i] = mask[i] != 0 ? 1.0f : 0.0f;
+  write_png_packed(path, img, PngPacking::Small);
 }
 
 ImageF read_image(const std::string& path) {

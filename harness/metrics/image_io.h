@@ -5,6 +5,7 @@
 // failures throw sb::JobError naming the path and OpenImageIO's message.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 
@@ -21,6 +22,12 @@ void write_png(const std::string& path, const ImageF& img);
 // The byte write_png stores for a value: [0, 1] scaled to 0..255 and
 // rounded half away from zero (std::lround), outside clamped, NaN 0.
 uint8_t png_byte(float v);
+
+// A pixel mask (one byte per pixel, row-major, nonzero = in) as a one-channel
+// 8-bit PNG: 255 in, 0 out. Throws std::invalid_argument when mask.size()
+// is not width * height.
+void write_mask_png(const std::string& path, const std::vector<uint8_t>& mask, int width,
+                    int height);
 
 // First subimage of any file OpenImageIO reads, converted to float (8-bit
 // values become v/255), every channel, alpha not premultiplied by OIIO.

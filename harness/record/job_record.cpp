@@ -58,13 +58,14 @@ const char* to_string(JobStatus s) {
 bool ImagesRecord::empty() const {
   for (const auto& k : kImageKeys)
     if ((this->*k.path).has_value()) return false;
-  return !error_heatmap_full_scale.has_value();
+  return masks.empty() && !error_heatmap_full_scale.has_value();
 }
 
 void ImagesRecord::add(const ImagesRecord& other) {
   for (const auto& k : kImageKeys)
     if ((other.*k.path).has_value()) this->*k.path = other.*k.path;
   if (other.error_heatmap_full_scale) error_heatmap_full_scale = other.error_heatmap_full_scale;
+  for (const auto& [region, path] : other.masks) masks[region] = path;
 }
 
 json JobRecord::to_json() const {
@@ -119,6 +120,7 @@ json JobRecord::to_json() const {
       if (const auto& path = images.*k.path) im[k.key] = *path;
     if (images.error_heatmap_full_scale)
       im["error_heatmap_full_scale"] = json_number(*images.error_heatmap_full_scale);
+    if (!images.masks.empty()) im["masks"] = images.masks;
   }
   return r;
 }
@@ -179,6 +181,9 @@ JobRecord JobRecord::from_json(const json& j) {
   if (const auto im = f.find_object("images")) {
     for (const auto& k : kImageKeys) r.images.*k.path = im->find<std::string>(k.key);
     r.images.error_heatmap_full_scale = im->find<double>("error_heatmap_full_scale");
+    if (const auto masks = im->find_object("masks"))
+      for (const std::string& region : masks->keys())
+        r.images.masks[region] = masks->get<std::string>(region);
   }
   return r;
 }

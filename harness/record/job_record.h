@@ -7,6 +7,7 @@
 // not null. from_json() reads it back or throws RecordError naming the JSON
 // pointer of what is wrong; a record of another schema_version is refused.
 #include <cstdint>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -46,6 +47,10 @@ struct ImagesRecord {
   std::optional<double> error_heatmap_full_scale;
   std::optional<std::string> reference_visibility, reference_std_error, reference_shaded;
   std::optional<std::string> gbuffer_positions, gbuffer_normals;  // run --gbuffer
+  // The pixels each metrics.visibility region measured, by region name (an
+  // 8-bit PNG, 255 = measured): what recomputes the record's errors from
+  // the files (docs/results.md "Recomputing the errors").
+  std::map<std::string, std::string> masks;
 
   bool empty() const;
   // Takes every image `other` names (a job's record, the reference's).

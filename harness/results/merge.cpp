@@ -46,6 +46,7 @@ std::vector<std::string> image_paths(const ImagesRecord& im) {
        {&im.visibility, &im.shaded, &im.error_heatmap, &im.reference_visibility,
         &im.reference_std_error, &im.reference_shaded, &im.gbuffer_positions, &im.gbuffer_normals})
     if (*path) out.push_back(**path);
+  for (const auto& [region, path] : im.masks) out.push_back(path);
   return out;
 }
 

@@ -12,6 +12,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <utility>
 
 #include "core/error.h"
 #include "gl/debug.h"
@@ -112,6 +113,13 @@ ImageF with_unmeasured_from(const ImageF& test, const ImageF& ref,
   return out;
 }
 
+// The `soft_union` region of one job: the soft pixels of its V or the
+// reference's, measured ones only.
+std::vector<uint8_t> soft_union_of(const ImageF& visibility, const ImageF& ref,
+                                   const std::vector<uint8_t>& measured) {
+  return mask_and(metrics::soft_union_mask(visibility, ref), measured);
+}
+
 // Undo whatever state a technique left behind.
 void reset_gl_state() { gl::reset_state(); }
 
@@ -197,7 +205,7 @@ ImageMetrics compare_images(const ImageF& test, const ImageF& ref, const Regions
 // The visibility buffer's and the shaded image's error against the reference's.
 MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const Baseline& b) {
   const std::vector<uint8_t> soft_union =
-      mask_and(metrics::soft_union_mask(visibility, b.ref.visibility), b.regions.measured);
+      soft_union_of(visibility, b.ref.visibility, b.regions.measured);
   std::vector<const std::vector<uint8_t>*> thirds;
   if (b.regions.distance_thirds)
     for (const auto& third : *b.regions.distance_thirds) thirds.push_back(&third);
@@ -218,7 +226,7 @@ MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const Base
 SecondReferenceRecord measure_second(const ImageF& visibility, const Baseline& b) {
   const reference::Result& second = *b.second;
   const std::vector<uint8_t> soft_union =
-      mask_and(metrics::soft_union_mask(visibility, second.visibility), b.regions.measured);
+      soft_union_of(visibility, second.visibility, b.regions.measured);
   return {*b.second_record, compare_images(visibility, second.visibility, b.regions, soft_union)};
 }
 
@@ -436,11 +444,12 @@ class JobExecutor::Impl {
     return r;
   }
 
-  // The reference's images (and with --gbuffer the G-buffer's), once per
-  // (scene, resolution); every job's record names them.
+  // The reference's images, the masks of the regions every job shares (and
+  // with --gbuffer the G-buffer's), once per (scene, resolution); every
+  // job's record names them.
   ImagesRecord write_reference_images(const std::string& rel, const reference::Result& ref,
-                                      const ImageF& ref_shaded, const ImageF& positions,
-                                      const ImageF& normals) const {
+                                      const ImageF& ref_shaded, const Regions& regions,
+                                      const ImageF& positions, const ImageF& normals) const {
     ImagesRecord images;
     if (!o_.write_images) return images;
     const fs::path dir = fs::path(o_.run_dir) / rel;
@@ -451,6 +460,21 @@ class JobExecutor::Impl {
     images.reference_visibility = rel + "/visibility.exr";
     images.reference_std_error = rel + "/std_error.exr";
     images.reference_shaded = rel + "/shaded.png";
+    // Named as the record's metrics.visibility regions; soft_union is each job's own.
+    std::vector<std::pair<std::string, const std::vector<uint8_t>*>> masks = {
+        {"all", &regions.measured},
+        {"geometry", &regions.geometry},
+        {"penumbra", &regions.penumbra}};
+    if (regions.any_receiver) masks.emplace_back("receivers", &regions.receivers);
+    if (regions.distance_thirds) {
+      const char* names[3] = {"near_third", "middle_third", "far_third"};
+      for (size_t i = 0; i < 3; ++i) masks.emplace_back(names[i], &(*regions.distance_thirds)[i]);
+    }
+    for (const auto& [region, mask] : masks) {
+      const std::string file = "mask_" + region + ".png";
+      io::write_mask_png((dir / file).string(), *mask, ref.visibility.width, ref.visibility.height);
+      images.masks[region] = (fs::path(rel) / file).generic_string();
+    }
     if (o_.write_gbuffer) {
       io::write_exr((dir / "positions.exr").string(), positions);
       io::write_exr((dir / "normals.exr").string(), normals);
@@ -547,7 +571,7 @@ class JobExecutor::Impl {
 
     const ImagesRecord ref_images =
         write_reference_images("reference/" + file_safe(sv.name) + "__" + res.label(), ref,
-                               ref_shaded, positions, normals);
+                               ref_shaded, regions, positions, normals);
     const ReferenceRecord ref_record = reference_record(ref, regions, regions.penumbra);
 
     FrameInputs in = targets.inputs(st.scene, gpu, view, projection);
@@ -832,9 +856,14 @@ class JobExecutor::Impl {
     const std::string rel = "jobs/" + id;
     const fs::path dir = fs::path(o_.run_dir) / rel;
     fs::create_directories(dir);
-    // Three files at once: no frame runs now, and one file's encoding keeps
+    // Four files at once: no frame runs now, and one file's encoding keeps
     // one core busy (zlib), so the job's images take about half the time.
     tbb::parallel_invoke(
+        [&] {
+          io::write_mask_png((dir / "mask_soft_union.png").string(),
+                             soft_union_of(visibility, b.ref.visibility, b.regions.measured),
+                             visibility.width, visibility.height);
+        },
         [&] { io::write_exr((dir / "visibility.exr").string(), visibility); },
         [&] { io::write_png((dir / "shaded.png").string(), shaded); },
         [&] {
@@ -848,6 +877,7 @@ class JobExecutor::Impl {
     images.shaded = rel + "/shaded.png";
     images.error_heatmap = rel + "/error.png";
     images.error_heatmap_full_scale = kHeatmapFullScale;
+    images.masks["soft_union"] = rel + "/mask_soft_union.png";
     return images;
   }
 

@@ -18,6 +18,7 @@
 #include "run/isolated_work.h"
 #include "run/job_executor.h"
 #include "run/job_identity.h"
+#include "run/job_line.h"
 #include "run/progress.h"
 
 namespace sb {
@@ -116,20 +117,7 @@ class StoreEvents final : public ParentEvents {
       progress_.finish_job();
     else
       progress_.add_done_without_running(1);
-    std::string line = "[" + std::to_string(done_) + "/" + std::to_string(total_) + "] " +
-                       record.scene_variant + " @ " + record.resolution + "  " +
-                       record.technique_variant + ": " + to_string(record.status);
-    if (record.status == JobStatus::Ok && record.timing && record.metrics) {
-      const double rmse = record.metrics->visibility.all.rmse;
-      char buf[128];
-      std::snprintf(buf, sizeof buf, "  frame %.2f ms, technique %.2f ms, RMSE %.5f",
-                    record.timing->frame.median_ms, record.timing->technique.median_ms,
-                    std::isfinite(rmse) ? rmse : 0.0);
-      line += buf;
-    } else if (record.status != JobStatus::Ok) {
-      line += " (" + record.reason.value_or("") + ")";
-    }
-    log(line);
+    log(job_line(record, done_, total_));
   }
   void child_stderr(const std::string& line) override {
     const ParentIoSpan io("stderr");

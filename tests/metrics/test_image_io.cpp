@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,21 @@ TEST(metrics_image_io, PngRoundTripClampsAndRounds) {
     EXPECT_EQ(in->spec().format, OIIO::TypeDesc::UINT8);
     EXPECT_EQ(in->spec().nchannels, c);
   }
+  EXPECT_TRUE(leftovers(dir.path()).empty());
+}
+
+TEST(metrics_image_io, MaskPngIsOneGreyChannelOf255WhereIncluded) {
+  test::TempDir dir("mask");
+  const std::vector<uint8_t> mask = {0, 1, 7, 0, 0, 1};  // any nonzero is "in"
+  const std::string path = dir.file("mask.png");
+  write_mask_png(path, mask, 3, 2);
+  const ImageF back = read_image(path);
+  ASSERT_EQ(back.width, 3);
+  ASSERT_EQ(back.height, 2);
+  ASSERT_EQ(back.channels, 1);
+  for (size_t i = 0; i < mask.size(); ++i)
+    EXPECT_EQ(back.data[i], mask[i] != 0 ? 1.0f : 0.0f) << i;  // 255 and 0 as bytes
+  EXPECT_THROW(write_mask_png(dir.file("short.png"), mask, 4, 2), std::invalid_argument);
   EXPECT_TRUE(leftovers(dir.path()).empty());
 }
 

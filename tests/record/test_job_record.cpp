@@ -96,6 +96,8 @@ JobRecord full_record() {
   r.images.reference_shaded = "reference/x/shaded.png";
   r.images.gbuffer_positions = "reference/x/positions.exr";
   r.images.gbuffer_normals = "reference/x/normals.exr";
+  r.images.masks = {{"all", "reference/x/mask_all.png"},
+                    {"soft_union", "jobs/x/mask_soft_union.png"}};
   return r;
 }
 
@@ -121,7 +123,9 @@ TEST(JobRecord, FullRecordRoundTrips) {
   EXPECT_EQ(j["reference"]["seed"], std::numeric_limits<std::uint64_t>::max());
   EXPECT_EQ(j["host"]["lp_num_threads"], "2");
   EXPECT_EQ(j["build"]["version"], "0.1.0");
-  EXPECT_EQ(j["images"].size(), 9u);  // eight paths and the full scale
+  EXPECT_EQ(j["images"].size(), 10u);  // eight paths, the full scale and the masks
+  EXPECT_EQ(j["images"]["masks"]["soft_union"], "jobs/x/mask_soft_union.png");
+  EXPECT_EQ(back.images.masks.size(), 2u);
   EXPECT_TRUE(std::isnan(back.metrics->shaded.penumbra.ssim));
   EXPECT_EQ(back.timing->fine->pass_order, (std::vector<std::string>{"depth", "lookup"}));
   EXPECT_DOUBLE_EQ(back.timing->frame.median_ms, 11.0);

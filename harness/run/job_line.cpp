@@ -1,0 +1,28 @@
+#include "run/job_line.h"
+
+#include <cstdio>
+
+#include "results/report_columns.h"
+
+namespace sb {
+
+std::string job_line(const JobRecord& record, size_t done, size_t total) {
+  std::string line = "[" + std::to_string(done) + "/" + std::to_string(total) + "] " +
+                     record.scene_variant + " @ " + record.resolution + "  " +
+                     record.technique_variant + ": " + to_string(record.status);
+  if (record.status == JobStatus::Ok && record.timing && record.metrics) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "  frame %.2f ms, technique %.2f ms",
+                  record.timing->frame.median_ms, record.timing->technique.median_ms);
+    line += buf;
+    // The very cell the tables show (empty for a NaN, or a record without
+    // the geometry region).
+    const std::string rmse = report_column("rmse").cell(record);
+    if (!rmse.empty()) line += ", geometry RMSE " + rmse;
+  } else if (record.status != JobStatus::Ok) {
+    line += " (" + record.reason.value_or("") + ")";
+  }
+  return line;
+}
+
+}  // namespace sb

@@ -1,0 +1,16 @@
+#pragma once
+// The console's line for a finished job, e.g.
+// "[3/20] sphere_grid @ 320x240  pcss: ok  frame 1.23 ms, technique 0.45 ms, geometry RMSE
+// 0.03727". Its error is the tables' headline: the `rmse` column of results.csv and summary.md (the
+// visibility over the `geometry` region, docs/results.md "Regions"), printed as the tables print
+// it.
+#include <cstddef>
+#include <string>
+
+#include "record/job_record.h"
+
+namespace sb {
+
+std::string job_line(const JobRecord& record, size_t done, size_t total);
+
+}  // namespace sb
