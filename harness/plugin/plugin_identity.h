@@ -12,7 +12,7 @@ namespace sb {
 // The plugin API's version: the contract of plugin/ (Technique, FrameInputs,
 // needs, TechniqueInfo, Registry) as compiled into a module. Bump it with
 // every change of that ABI.
-inline constexpr int kPluginApiVersion = 1;
+inline constexpr int kPluginApiVersion = 2;
 
 struct PluginIdentity {
   std::string file;       // relative to the plugin folder it was loaded from: "shadow_map.so"
