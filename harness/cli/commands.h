@@ -33,7 +33,8 @@ Registry load_registry(const Args& a);
 std::string one_config(const Args& a);
 
 // CONFIG loaded and checked against the plugins and --max-jobs, with a
-// warning on stderr for each parameter a technique declares but never reads.
+// warning on stderr for each parameter a technique declares but never reads
+// and for each technique whose shadow-map size differs from the others'.
 Experiment load_checked_experiment(const Args& a, const Registry& r);
 
 // "<name>-<UTC yyyymmdd-hhmmss>": a run folder's default name.

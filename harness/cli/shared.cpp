@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "cli/commands.h"
+#include "config/map_sizes.h"
 #include "config/unread_params.h"
 #include "core/error.h"
 #include "core/install_layout.h"
@@ -84,6 +85,8 @@ Experiment load_checked_experiment(const Args& a, const Registry& r) {
   limits.max_jobs = uint64_t(a.max_jobs);
   Experiment e = load_experiment(one_config(a), r, limits);
   for (const std::string& w : unread_parameter_warnings(e))
+    std::fprintf(stderr, "shadowbench: warning: %s\n", w.c_str());
+  for (const std::string& w : unequal_map_size_warnings(e))
     std::fprintf(stderr, "shadowbench: warning: %s\n", w.c_str());
   return e;
 }

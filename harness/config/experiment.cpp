@@ -352,8 +352,10 @@ std::vector<TechniqueVariant> technique_variants(const Reader& r, const Registry
   json entry = given_entry;
   if (entry.is_string()) entry = json{{"name", entry}};
   r.object(entry, p, "a technique (a name or an object)");
-  r.only_keys(entry, p, {"name", "params", "label"});
+  r.only_keys(entry, p, {"name", "params", "label", "own_map_size"});
   if (!entry.contains("name")) r.fail(p + "/name", "expected a technique name, found nothing");
+  const bool own_map_size =
+      entry.contains("own_map_size") && r.boolean(entry["own_map_size"], p + "/own_map_size");
   const std::string name = r.string(entry["name"], p + "/name");
   const TechniqueInfo* info = registry.find(name);
   const std::string label = entry.contains("label") ? r.label(entry["label"], p + "/label") : name;
@@ -376,6 +378,10 @@ std::vector<TechniqueVariant> technique_variants(const Reader& r, const Registry
       if (!problem.empty()) r.fail(p + "/params/" += param, problem);
     }
     v.name = variant_name(label, info->params, combo);
+    for (auto it = params.begin(); it != params.end(); ++it)
+      if (it.value().is_array()) v.swept[it.key()] = combo[it.key()];
+    v.given = combo;
+    v.own_map_size = own_map_size;
     out.push_back(std::move(v));
   }
   return out;

@@ -36,6 +36,11 @@ struct TechniqueVariant {
   std::string name;     // readable variant name: "pcf/k=5"
   std::string pointer;  // JSON pointer of its entry
   Params params;
+  nlohmann::json given = nlohmann::json::object();  // the parameters its entry set, sweeps fixed
+  nlohmann::json swept = nlohmann::json::object();  // the parameters this variant fixed by sweep
+  // "own_map_size": true: its map size differs from the others' on purpose
+  // (config/map_sizes.h leaves it out).
+  bool own_map_size = false;
   // Why it cannot run: a name no plugin registered while some plugin failed
   // to load (config/unknown_technique.h). Its jobs fail with this reason and
   // the others run; `info` is then a stand-in that needs nothing, declares

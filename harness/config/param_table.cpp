@@ -28,6 +28,7 @@ std::string accepted_values(const ParamSpec& p, bool markdown) {
       std::string range = number(p.min) + " … " + number(p.max);
       if (!p.rule_doc.empty()) range += ", " + p.rule_doc;
       if (p.sentinel) range += "; " + number(*p.sentinel) + " = chosen automatically";
+      if (p.map_size) range += "; a map size, equal across compared techniques (config.md)";
       return range;
     }
     case ParamType::Choice: {

@@ -74,6 +74,11 @@ ParamSpec with_sentinel(ParamSpec spec, double value) {
   return spec;
 }
 
+ParamSpec as_map_size(ParamSpec spec) {
+  spec.map_size = true;
+  return spec;
+}
+
 std::string to_string(ParamType t) {
   switch (t) {
     case ParamType::Int:

@@ -32,12 +32,19 @@ struct ParamSpec {
   // V is not a continuous function of the value: the stability suite takes
   // no finite difference there.
   std::optional<double> sentinel;
+  // The side of a shadow map the technique renders, in texels: techniques
+  // compared in one experiment should render maps of one size, or time and
+  // error compare unequal work (config/map_sizes.h warns). Declared once,
+  // where the parameter is (shadow::depth_map_params).
+  bool map_size = false;
 };
 
 // Adds the rule "odd integer" to an Int parameter.
 ParamSpec odd(ParamSpec spec);
 // Marks `value` of a Float parameter as a sentinel (ParamSpec::sentinel).
 ParamSpec with_sentinel(ParamSpec spec, double value);
+// Marks an Int parameter as a shadow map's side (ParamSpec::map_size).
+ParamSpec as_map_size(ParamSpec spec);
 
 ParamSpec int_param(std::string name, int def, int min, int max, std::string doc);
 ParamSpec float_param(std::string name, double def, double min, double max, std::string doc);

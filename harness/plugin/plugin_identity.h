@@ -12,7 +12,8 @@ namespace sb {
 // The plugin API's version: the contract of plugin/ (Technique, FrameInputs,
 // needs, TechniqueInfo, Registry) as compiled into a module. Bump it with
 // every change of that ABI.
-inline constexpr int kPluginApiVersion = 2;  // 2: TechniqueInfo::needs_of_params
+// 2: TechniqueInfo::needs_of_params; 3: ParamSpec::map_size
+inline constexpr int kPluginApiVersion = 3;
 
 struct PluginIdentity {
   std::string file;       // relative to the plugin folder it was loaded from: "shadow_map.so"

@@ -51,7 +51,7 @@ CullMode cull_mode_from_string(const std::string& s) {
 }
 
 std::vector<ParamSpec> depth_map_params(int default_size, const std::string& default_cull) {
-  return {int_param("size", default_size, 16, 16384, "shadow-map side in texels"),
+  return {as_map_size(int_param("size", default_size, 16, 16384, "shadow-map side in texels")),
           choice_param("depth_format", "32f", {"32f", "24", "16"},
                        "depth-map format: 32-bit float, 24- or 16-bit normalised"),
           float_param("constant_bias", 4.0, -1e6, 1e6, "glPolygonOffset units (depth pass)"),

@@ -68,16 +68,22 @@ float segment_param(vec2 p, vec2 a, vec2 b) {
   return len2 > 0.0 ? clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
 }
 float root_in_segment(float c0, float c1) { return c1 != 0.0 ? clamp(-c0 / c1, 0.0, 1.0) : 0.0; }
-// g(t) = max(|v·hu| / |hu|², |v·hv| / |hv|²) for v = p − a − t(b − a) is
+// The coordinates (α, β) of v = α·hu + β·hv: the light's axes, projected,
+// are orthogonal only when the light faces the plane they are projected on
+// or turns about no other axis (a tilted receiver or a rotated glTF light
+// gives a parallelogram), so they are solved for, not read off by dot
+// products.
+mat2 light_coordinates(vec2 hu, vec2 hv) { return inverse(mat2(hu, hv)); }
+// g(t) = max(|α(t)|, |β(t)|) for v = p − a − t(b − a) = α(t)·hu + β(t)·hv is
 // convex and piecewise linear in t, with its breaks where a term is zero or
 // the two terms are equal. On each linear piece g/s, s linear too, is
 // monotone, so the least g/s over [0, 1] is at a break or an end. (The least
 // g alone is not enough: g is flat over a range of t wherever the edge runs
 // along a light axis, and the first point of that range may have s = 0.)
 float light_ratio(vec2 p, vec2 a, vec2 b, vec2 hu, vec2 hv, float sa, float sb, out float t) {
-  vec2 ku = hu / dot(hu, hu), kv = hv / dot(hv, hv);
-  float u0 = dot(p - a, ku), u1 = dot(a - b, ku);
-  float v0 = dot(p - a, kv), v1 = dot(a - b, kv);
+  mat2 to_light = light_coordinates(hu, hv);
+  vec2 c0 = to_light * (p - a), c1 = to_light * (a - b);
+  float u0 = c0.x, u1 = c1.x, v0 = c0.y, v1 = c1.y;
   float candidates[6] = float[6](0.0, 1.0, root_in_segment(u0, u1), root_in_segment(v0, v1),
                                  root_in_segment(u0 - v0, u1 - v1),
                                  root_in_segment(u0 + v0, u1 + v1));
@@ -101,8 +107,8 @@ vec2 fragment_image() {
   return (2.0 * gl_FragCoord.xy / map_size - 1.0 + image_from_ndc.zw) / image_from_ndc.xy;
 }
 float light_distance_at(vec2 p, vec2 a, vec2 b, vec2 hu, vec2 hv, float t) {
-  vec2 v = p - mix(a, b, t);
-  return max(abs(dot(v, hu)) / dot(hu, hu), abs(dot(v, hv)) / dot(hv, hv));
+  vec2 c = light_coordinates(hu, hv) * (p - mix(a, b, t));
+  return max(abs(c.x), abs(c.y));
 }
 )";
 

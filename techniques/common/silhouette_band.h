@@ -45,13 +45,17 @@ extern const char* const kSilhouetteBandVertexGlsl;
 //                     float sa, float sb, out float t)
 //       the least g(t) / s(t) over the segment a–b, where g(t) is the
 //       light-shaped distance of p from the segment's point t: the smallest
-//       g with p in that point grown by g times the light's rectangle (half
-//       axes hu, hv, both non-zero); s(t) = mix(sa, sb, t); and t attains it.
-//       An occluder point at depth z_o casts the light's rectangle scaled by
+//       g with p in that point grown by g times the light's shape, the
+//       parallelogram of half axes hu, hv (not parallel, and not orthogonal
+//       in general: a tilted receiver or a rotated light projects the
+//       rectangle to a parallelogram); s(t) = mix(sa, sb, t); and t attains it.
+//       An occluder point at depth z_o casts the light's shape scaled by
 //       s = 1/z_o − 1/z_r (image plane) onto a receiver at depth z_r, so p
 //       is in the edge's penumbra iff the ratio is below 1, and 1 − ratio is
-//       the linear darkness: rectangles at the edge's ends ("cones"), the
+//       the linear darkness: parallelograms at the edge's ends ("cones"), the
 //       light's support function wide along it ("sheets"), as they must be.
+//   mat2 light_coordinates(vec2 hu, vec2 hv)
+//       the matrix taking v to its (α, β) with v = α·hu + β·hv
 //   float light_distance_at(vec2 p, vec2 a, vec2 b, vec2 hu, vec2 hv, float t)
 //       g(t) alone
 //   vec2 fragment_image()   the fragment's point in the map's image plane

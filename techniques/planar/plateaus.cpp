@@ -16,14 +16,28 @@
 // point p is in a's outer penumbra iff its light-shaped distance g from P is
 // at most ρ, and V = g / ρ there (linear across the penumbra, ρ interpolated
 // along the edge). This is exact in extent for a straight edge parallel to
-// a light parallel to the plane.
+// a light parallel to the plane. A light at a slant to the plane, turned
+// about its normal, projects to a parallelogram, not a rectangle: g is
+// max(|α|, |β|) for p − P = α·hu + β·hv, solved in the projected axes
+// (common/silhouette_band.h).
+//
+// The paper's footprint and ours: Haines's cones are round, the penumbra of
+// a disc whose radius grows with the occluder's height, whatever the
+// light's shape; here the footprint is the light's own, the projected
+// parallelogram (cones become parallelograms, sheets the light's support
+// function wide), since the harness's lights are rectangles and the
+// reference integrates over them. The round cone is not built.
 //
 // What it leaves out, on purpose: the inner half of the penumbra (the hard
 // shadow stays the umbra, so shadows are too large and too dark; the
 // "outer penumbra only" of docs/survey_techniques.md); any receiver but the
 // plane (other pixels get V = 1, as with `planar`); the parts of casters at
 // or above the light's height (their edges draw no band); a light seen
-// edge-on from the plane (its projection has no area: no bands).
+// edge-on from the plane (its projection has no area: no bands). The light
+// is projected along the plane's normal; the ray from an occluder point not
+// under the light's centre would shear it further, and the light's points
+// off the centre's height scale it unevenly (both first order in the
+// light's slant; neither is modelled).
 //
 // Parameters, defaults and ranges: docs/parameters.md (generated from their
 // declarations by `shadowbench list --markdown`).

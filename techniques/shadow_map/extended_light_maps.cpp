@@ -95,7 +95,7 @@ TechniqueInfo extended_light_maps_info() {
       "extended light maps: shadow and light channels in one pass from the light, depth in the "
       "8-bit alpha channel or a 24/32-bit depth buffer (Brabec & Seidel 2000)",
       Needs{need::kCasterClosedness},
-      {int_param("size", 1024, 16, 16384, "light-map side in texels"),
+      {as_map_size(int_param("size", 1024, 16, 16384, "light-map side in texels")),
        choice_param("shadow_channel", "alpha8", {"alpha8", "24", "32f"},
                     "where the depth is compared: 8-bit linear depth in the alpha channel (as "
                     "published), or a 24-bit or 32-bit float depth buffer"),
