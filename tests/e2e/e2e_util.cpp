@@ -1,10 +1,12 @@
 #include "e2e_util.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
+#include <string>
 
 #include "config/experiment.h"
 #include "metrics/image_io.h"
@@ -52,6 +54,10 @@ ImageF RunOutput::image(const nlohmann::json& record, const std::string& key) co
   return io::read_image((fs::path(dir) / record["images"][key].get<std::string>()).string());
 }
 
+std::string process_temp_path(const std::string& name) {
+  return (fs::temp_directory_path() / (name + "-" + std::to_string(::getpid()))).string();
+}
+
 RunOutput run_config(const nlohmann::json& config, const std::string& name, gl::Backend backend,
                      bool fresh, bool write_gbuffer) {
   return run_config_with(
@@ -66,7 +72,7 @@ RunOutput run_config(const nlohmann::json& config, const std::string& name, gl::
 RunOutput run_config_with(const nlohmann::json& config, const std::string& name,
                           const std::function<void(RunOptions&)>& adjust, bool fresh) {
   RunOutput out;
-  out.dir = (fs::temp_directory_path() / ("shadowbench_e2e_" + name)).string();
+  out.dir = process_temp_path("shadowbench_e2e_" + name);
   if (fresh) fs::remove_all(out.dir);
   const Experiment e = parse_experiment(config, name + ".json", registry());
   RunOptions o;
@@ -83,7 +89,7 @@ RunOutput run_config_with(const nlohmann::json& config, const std::string& name,
 RunOutput run_with_registry(const nlohmann::json& config, const Registry& registry,
                             const std::string& name) {
   RunOutput out;
-  out.dir = (fs::temp_directory_path() / ("shadowbench_e2e_" + name)).string();
+  out.dir = process_temp_path("shadowbench_e2e_" + name);
   fs::remove_all(out.dir);
   const Experiment e = parse_experiment(config, name + ".json", registry);
   RunOptions o;
@@ -98,11 +104,10 @@ RunOutput run_with_registry(const nlohmann::json& config, const Registry& regist
 }
 
 std::string fresh_test_folder(const std::string& prefix) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() /
-      (prefix + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const fs::path dir =
+      process_temp_path(prefix + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
   return dir.string();
 }
 

@@ -45,7 +45,12 @@ std::vector<bool> ground_pixels(const ImageF& positions);
 // A small sphere grid seen from close by, for fast runs.
 nlohmann::json small_scene(double light_size);
 
-// An empty folder named for the running test (ctest runs tests in parallel).
+// `name` in the temporary folder, suffixed with this process's id: ctest runs
+// the shards of one test executable at once, and a suite's SetUpTestSuite runs
+// in every shard that holds one of its tests (CI failed on a shared folder).
+std::string process_temp_path(const std::string& name);
+
+// An empty folder named for the running test and this process.
 std::string fresh_test_folder(const std::string& prefix);
 
 }  // namespace sb::test

@@ -162,7 +162,7 @@ TEST(Failures, AFailingJobLeavesTheOthersIntact) {
                                  {"reference", {{"spp", 4}}}};
   const Experiment e = parse_experiment(config, "failures.json", registry);
   RunOptions o;
-  o.run_dir = (std::filesystem::temp_directory_path() / "shadowbench_e2e_failures").string();
+  o.run_dir = process_temp_path("shadowbench_e2e_failures");
   std::filesystem::remove_all(o.run_dir);
   o.run_id = "failures";
   o.cache_dir = "";

@@ -114,8 +114,7 @@ TEST(GltfRoundTrip, SameRenderedVisibility) {
   const SceneType* st = find_scene_type("jeep");
   const nlohmann::json params = {{"count", 2}};
   const Scene s = st->build(resolve_params(st->params, params, "", ""));
-  const std::string glb =
-      (std::filesystem::temp_directory_path() / "shadowbench_roundtrip.glb").string();
+  const std::string glb = process_temp_path("shadowbench_roundtrip") + ".glb";
   export_glb(s, glb);
   const auto render = [](const json& scene, const std::string& name) {
     const json config = {{"name", name},
