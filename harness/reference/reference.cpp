@@ -8,7 +8,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -20,6 +19,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/hash.h"
 #include "reference/adaptive.h"
@@ -324,30 +324,6 @@ class KeyLock {
   int fd_;
 };
 
-void write_atomically(const std::filesystem::path& path, const std::string& bytes) {
-  static std::atomic<uint64_t> counter{0};
-  std::filesystem::path tmp = path;
-  tmp += ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    f.write(bytes.data(), std::streamsize(bytes.size()));
-    f.close();
-    if (!f) {
-      std::error_code ec;
-      std::filesystem::remove(tmp, ec);
-      throw JobError("reference cache: cannot write " + tmp.string());
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw JobError("reference cache: cannot rename " + tmp.string() + " to " + path.string() +
-                   ": " + ec.message());
-  }
-}
-
 void hash_image(Hasher& h, const ImageF& img) {
   h.add(int32_t(img.width)).add(int32_t(img.height)).add(int32_t(img.channels));
   h.add(uint64_t(img.data.size()));
@@ -553,7 +529,7 @@ Result get(const Scene& scene, const ImageF& positions, const ImageF& geometric_
   if (auto cached = from_cache()) return std::move(*cached);
   Result r = compute(scene, positions, geometric_normals, s);
   r.cache_key = key;
-  write_atomically(path, serialise(r));
+  write_file_atomically(path.string(), serialise(r), "reference cache: ");
   return r;
 }
 
