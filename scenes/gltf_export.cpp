@@ -5,14 +5,15 @@
 
 #include <cmath>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <glm/gtc/quaternion.hpp>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <stdexcept>
+#include <string_view>
 #include <tuple>
+
+#include "core/atomic_file.h"
 
 namespace sb {
 namespace {
@@ -288,18 +289,8 @@ std::vector<uint8_t> export_glb_bytes(const Scene& scene) { return GlbWriter(sce
 
 void export_glb(const Scene& scene, const std::string& path) {
   const std::vector<uint8_t> bytes = export_glb_bytes(scene);
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-    if (!out) throw std::runtime_error("cannot write " + tmp);
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw std::runtime_error("cannot write " + path + ": " + ec.message());
-  }
+  write_file_atomically(
+      path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 }  // namespace sb

@@ -12,8 +12,8 @@
 namespace sb {
 
 std::vector<uint8_t> export_glb_bytes(const Scene& scene);
-// Writes atomically (a temporary file renamed into place); throws
-// std::runtime_error when the file cannot be written.
+// Writes atomically (core/atomic_file.h); throws JobError (a
+// std::runtime_error) when the file cannot be written.
 void export_glb(const Scene& scene, const std::string& path);
 
 }  // namespace sb

@@ -1,17 +1,14 @@
 #include "metrics/image_io.h"
 
 #include <OpenImageIO/imageio.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
-#include <filesystem>
 #include <stdexcept>
-#include <system_error>
 #include <vector>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace sb::io {
@@ -47,38 +44,22 @@ OIIO::ImageSpec make_spec(const std::string& path, const ImageF& img, const OIIO
   return spec;
 }
 
-// Unique per process and call, so concurrent writers of one path never share
-// a temporary file.
-std::string temp_path(const std::string& path) {
-  static std::atomic<unsigned long> counter{0};
-  return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-}
-
 void write_atomic(const std::string& path, const char* format, const OIIO::ImageSpec& spec,
                   const void* pixels) {
-  const std::string tmp = temp_path(path);
+  AtomicFile file(path, path + ": ");
   // Create by format name: the temporary name has no usable extension.
   auto out = OIIO::ImageOutput::create(format);
   if (!out) {
     throw JobError(path + ": no " + format + " writer: " + OIIO::geterror());
   }
-  bool ok = out->open(tmp, spec) && out->write_image(spec.format, pixels);
+  bool ok = out->open(file.temp_path(), spec) && out->write_image(spec.format, pixels);
   std::string err = ok ? std::string() : out->geterror();
   if (!out->close() && ok) {
     ok = false;
     err = out->geterror();
   }
-  std::error_code ec;
-  if (!ok) {
-    std::filesystem::remove(tmp, ec);
-    throw JobError(path + ": writing " + format + " failed: " + err);
-  }
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw JobError(path + ": cannot rename " + tmp + " into place: " + ec.message());
-  }
+  if (!ok) throw JobError(path + ": writing " + format + " failed: " + err);
+  file.commit();
 }
 
 }  // namespace

@@ -57,6 +57,11 @@
 // there is no plane: the rays run along the line, and in each direction a
 // triangle crossing it hides everything beyond its nearest crossing. A point
 // light has no exact form here (Monte Carlo is exact for it).
+//
+// The parts: clipping.h (planes, polygons, segments, boxes), light_frame.h,
+// caster_bvh.h (the hierarchy), closed_parts.h (parts, their orientation and
+// the inside test); a rectangle's V in exact_rectangle.cpp, a segment's in
+// exact_segment.cpp, the adaptive reference's proofs in exact_proofs.cpp.
 #include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -65,6 +70,7 @@
 
 #include "core/image.h"
 #include "core/scene.h"
+#include "reference/caster_bvh.h"
 
 namespace sb::reference {
 
@@ -141,46 +147,14 @@ class ExactVisibility {
   ImageF image(const ImageF& positions, const ImageF& normals) const;
 
   // The casters' triangles it keeps (a closed caster's, all of them).
-  size_t triangle_count() const { return triangles_.size(); }
+  size_t triangle_count() const { return casters_.triangles().size(); }
 
  private:
-  struct Triangle {
-    glm::dvec3 a, b, c;
-    // A closed part's: +1 when its part winds outward (positive signed
-    // volume), -1 inward; 0 for any other caster's.
-    int outward = 0;
-    uint32_t mesh = 0;        // index into the scene's meshes
-    uint32_t part = kNoPart;  // its closed part (see above), or kNoPart
-    glm::dvec3 normal{0.0};   // (b - a) × (c - a)
-    // A closed caster's: the triangle across edge k (a-b, b-c, c-a), or
-    // kNoNeighbour where no single other triangle shares it.
-    std::array<uint32_t, 3> neighbour{kNoNeighbour, kNoNeighbour, kNoNeighbour};
-  };
-  static constexpr uint32_t kNoNeighbour = 0xffffffffu;
-  static constexpr uint32_t kNoPart = 0xffffffffu;
-  struct Node {
-    glm::dvec3 lo, hi;
-    uint32_t first = 0, count = 0;  // leaf: triangles [first, first + count)
-    uint32_t left = 0, right = 0;   // inner: children (count == 0)
-  };
-  uint32_t build(uint32_t first, uint32_t count);
-  // Fills the closed casters' Triangle::neighbour (after build() has put the
-  // triangles in their final order), matching edges by vertex positions.
-  void link_neighbours();
-  // Labels the closed casters' parts through those neighbours and orients
-  // each by its own signed volume; a part the light touches is left open.
-  void find_parts();
-  // Calls visit(triangle) for the triangles of every leaf whose box, and its
-  // ancestors', keep(lo, hi) accepts. A visit that returns bool stops the
-  // walk by returning false, and traverse() then returns false.
-  template <typename Keep, typename Visit>
-  bool traverse(const Keep& keep, const Visit& visit) const;
   // The offset viewpoint p + eps·n (see above).
   glm::dvec3 viewpoint(const glm::dvec3& surface, const glm::dvec3& n) const;
 
   AreaLight light_;
-  std::vector<Triangle> triangles_;
-  std::vector<Node> nodes_;
+  detail::CasterBvh casters_;
   std::string unsupported_;
 };
 

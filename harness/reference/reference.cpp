@@ -1,31 +1,26 @@
 #include "reference/reference.h"
 
-#include <fcntl.h>
-#include <sys/file.h>
 #include <tbb/blocked_range.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
-#include "core/hash.h"
 #include "reference/adaptive.h"
+#include "reference/cache_file.h"
 #include "reference/embree_isa.h"
 #include "reference/embree_scene.h"
 #include "reference/exact_visibility.h"
+#include "reference/key_lock.h"
+#include "reference/method.h"
 #include "reference/pixel_rays.h"
 #include "reference/stratify.h"
 #include "scenes/topology.h"
@@ -35,52 +30,10 @@ namespace sb::reference {
 namespace {
 
 using detail::Device;
+using detail::embree_config_of;
 using detail::FlatScene;
 using detail::FtzDazScope;
-
-constexpr const char* kMethod = "embree_stratified_packet16";
-// Bump whenever the estimate changes for the same inputs (sampling, offsets,
-// error estimate): it is part of every cache key.
-// 2: horizon test, viewer-facing normals; 3: alpha masks; 4: ray offsets from
-// the point and its own triangles, not the scene's radius (ray_offset.h);
-// 5: analytic shapes (Mesh::analytic) occlude instead of their meshes and
-// join the key; 6: the triangles a point lies on are those within the
-// offset's radius of their own bounds (ray_offset.h), not whatever Embree's
-// leaves visited, so that the exact reference applies the same test; and
-// Embree's robust mode (rays through shared edges no longer slip between the
-// triangles, embree_scene.h).
-constexpr uint32_t kMethodVersion = 6;
-// Bumped whenever the exact reference's answer may change. 2: a point inside
-// a closed caster is in its umbra; 3: the same by a segment test, closed
-// casters keeping their near side again; 4: the viewpoint offset by Monte
-// Carlo's rule (the triangles the point lies on), not by the casters'
-// largest coordinate; 5: each closed part (triangles connected through
-// shared edges) oriented by its own volume, and a point inside one when it
-// winds around the point more than around the light's centre, not by the
-// mesh's total volume and the first crossing.
-constexpr uint32_t kExactMethodVersion = 5;
-// Bumped whenever the adaptive reference's figures may change for the same
-// settings. 2: where the proofs apply, an agreeing pilot stops only when
-// proven to see the whole light or none of it (sample counts fall, and a
-// soft pixel the 5×5 window let through is now refined); 3: the proof of an
-// occluded pilot by kExactMethodVersion 5's inside test, and its silhouette
-// test over the part the centre's ray crosses, not the whole mesh; 4: the
-// pilot only decides, from a stream of its own, and the estimate is fresh
-// samples at the level decided (adaptive.h: unbiased), stops without proof
-// report the error such stops can hide, and samples count the pilot's; 5:
-// the proofs also with alpha-masked casters, each masked triangle whole.
-constexpr uint32_t kAdaptiveVersion = 5;
-constexpr char kMagic[8] = {'S', 'B', 'R', 'E', 'F', '\r', '\n', '\x1a'};
-constexpr uint32_t kFileVersion = 1;
-
-// The settings' device config, or the environment's when they leave it empty.
-std::string embree_config_of(const Settings& s) {
-  return s.embree_config.empty() ? default_embree_config() : s.embree_config;
-}
-
-const char* method_of(const Settings& s) {
-  return s.exact ? kExactMethod : s.adaptive ? kAdaptiveMethod : kMethod;
-}
+using detail::method_of;
 
 void check_inputs(const ImageF& positions, const ImageF& normals, const Settings& s) {
   if (s.spp < 1 || s.spp > (1 << 20))
@@ -187,174 +140,20 @@ void trace(const detail::RaySetup& setup, Result& r) {
                     });
 }
 
-// ---- cache file -----------------------------------------------------------
-
-template <typename T>
-void put(std::string& out, const T& v) {
-  out.append(reinterpret_cast<const char*>(&v), sizeof(T));
+// What the cache file of `key` must say to be the reference `s` asks for.
+detail::CacheFileExpectation cache_expectation(const std::string& key, const ImageF& positions,
+                                               const Settings& s) {
+  detail::CacheFileExpectation e;
+  e.key = key;
+  e.method = method_of(s);
+  e.width = positions.width;
+  e.height = positions.height;
+  e.spp = s.exact ? 0 : s.spp;
+  e.seed = s.seed;
+  if (s.adaptive && !s.exact)  // the pilot's samples come on top of the estimate's
+    e.max_samples = float(s.spp + s.pilot_spp);
+  return e;
 }
-
-class Reader {
- public:
-  explicit Reader(const std::string& bytes) : bytes_(bytes) {}
-  template <typename T>
-  bool get(T& v) {
-    if (bytes_.size() - pos_ < sizeof(T)) return false;
-    std::memcpy(&v, bytes_.data() + pos_, sizeof(T));
-    pos_ += sizeof(T);
-    return true;
-  }
-  bool get(std::string& s, uint32_t max_len) {
-    uint32_t n = 0;
-    if (!get(n) || n > max_len || bytes_.size() - pos_ < n) return false;
-    s.assign(bytes_.data() + pos_, n);
-    pos_ += n;
-    return true;
-  }
-  bool get(std::vector<float>& v, size_t n) {
-    if ((bytes_.size() - pos_) / sizeof(float) < n) return false;
-    v.resize(n);
-    std::memcpy(v.data(), bytes_.data() + pos_, n * sizeof(float));
-    pos_ += n * sizeof(float);
-    return true;
-  }
-  size_t pos() const { return pos_; }
-
- private:
-  const std::string& bytes_;
-  size_t pos_ = 0;
-};
-
-std::string serialise(const Result& r) {
-  std::string out(kMagic, sizeof(kMagic));
-  put(out, kFileVersion);
-  put(out, int32_t(r.visibility.width));
-  put(out, int32_t(r.visibility.height));
-  put(out, int32_t(r.spp));
-  put(out, r.seed);
-  put(out, uint32_t(r.method.size()));
-  out += r.method;
-  put(out, uint32_t(r.cache_key.size()));
-  out += r.cache_key;
-  out.append(reinterpret_cast<const char*>(r.visibility.data.data()),
-             r.visibility.data.size() * sizeof(float));
-  out.append(reinterpret_cast<const char*>(r.std_error.data.data()),
-             r.std_error.data.size() * sizeof(float));
-  if (r.method == kAdaptiveMethod)  // uniform files stay as they were
-    out.append(reinterpret_cast<const char*>(r.samples.data.data()),
-               r.samples.data.size() * sizeof(float));
-  put(out, fnv1a64(out));
-  return out;
-}
-
-// Returns false for anything that is not exactly the file get() would write.
-bool deserialise(const std::string& bytes, const std::string& key, const ImageF& positions,
-                 const Settings& s, Result& r) {
-  if (bytes.size() < sizeof(kMagic) + sizeof(uint64_t) ||
-      std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
-    return false;
-  uint64_t stored_sum = 0;
-  std::memcpy(&stored_sum, bytes.data() + bytes.size() - sizeof(stored_sum), sizeof(stored_sum));
-  if (stored_sum != fnv1a64(std::string_view(bytes.data(), bytes.size() - sizeof(stored_sum))))
-    return false;
-  Reader in(bytes);
-  char magic[sizeof(kMagic)];
-  uint32_t version = 0;
-  int32_t w = 0, h = 0, spp = 0;
-  uint64_t seed = 0;
-  std::string method, stored_key;
-  if (!in.get(magic) || !in.get(version) || version != kFileVersion || !in.get(w) || !in.get(h) ||
-      !in.get(spp) || !in.get(seed) || !in.get(method, 256) || !in.get(stored_key, 256))
-    return false;
-  if (w != positions.width || h != positions.height || spp != (s.exact ? 0 : s.spp) ||
-      seed != s.seed || method != method_of(s) || stored_key != key)
-    return false;
-  const size_t n = positions.pixel_count();
-  ImageF vis(w, h, 1), se(w, h, 1);
-  if (!in.get(vis.data, n) || !in.get(se.data, n)) return false;
-  ImageF samples(w, h, 1);
-  if (s.adaptive && !s.exact) {
-    if (!in.get(samples.data, n)) return false;
-    for (float v : samples.data)  // the pilot's samples come on top of the estimate's
-      if (!(v >= 0.0f && v <= float(s.spp + s.pilot_spp))) return false;
-  } else {
-    samples = uniform_samples(positions, s.exact ? 0 : s.spp);
-  }
-  if (in.pos() + sizeof(uint64_t) != bytes.size()) return false;
-  for (size_t i = 0; i < n; ++i)
-    if (!(vis.data[i] >= 0.0f && vis.data[i] <= 1.0f && se.data[i] >= 0.0f && se.data[i] <= 1.0f))
-      return false;
-  r.visibility = std::move(vis);
-  r.std_error = std::move(se);
-  r.samples = std::move(samples);
-  return true;
-}
-
-bool read_file(const std::filesystem::path& path, std::string& bytes) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) return false;
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  if (f.bad()) return false;
-  bytes = std::move(ss).str();
-  return true;
-}
-
-// An exclusive flock on a cache key's lock file, held while its reference is
-// computed; the kernel drops it when the process dies. The file stays (a
-// removed lock file could be locked by two processes at once).
-class KeyLock {
- public:
-  explicit KeyLock(const std::filesystem::path& file)
-      : fd_(::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644)) {
-    if (fd_ < 0)
-      throw JobError("reference cache: cannot open " + file.string() + ": " + std::strerror(errno));
-    while (::flock(fd_, LOCK_EX) != 0)
-      if (errno != EINTR) {
-        const int err = errno;
-        ::close(fd_);
-        throw JobError("reference cache: cannot lock " + file.string() + ": " + std::strerror(err));
-      }
-  }
-  ~KeyLock() { ::close(fd_); }
-  KeyLock(const KeyLock&) = delete;
-  KeyLock& operator=(const KeyLock&) = delete;
-
- private:
-  int fd_;
-};
-
-void write_atomically(const std::filesystem::path& path, const std::string& bytes) {
-  static std::atomic<uint64_t> counter{0};
-  std::filesystem::path tmp = path;
-  tmp += ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    f.write(bytes.data(), std::streamsize(bytes.size()));
-    f.close();
-    if (!f) {
-      std::error_code ec;
-      std::filesystem::remove(tmp, ec);
-      throw JobError("reference cache: cannot write " + tmp.string());
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw JobError("reference cache: cannot rename " + tmp.string() + " to " + path.string() +
-                   ": " + ec.message());
-  }
-}
-
-void hash_image(Hasher& h, const ImageF& img) {
-  h.add(int32_t(img.width)).add(int32_t(img.height)).add(int32_t(img.channels));
-  h.add(uint64_t(img.data.size()));
-  h.add(img.data.data(), img.data.size() * sizeof(float));
-}
-
-void hash_vec3(Hasher& h, const glm::vec3& v) { h.add(v.x).add(v.y).add(v.z); }
 
 // Per mesh, whether it is a closed caster (ExactVisibility's constructor).
 // An alpha-masked mesh never is: its mask cuts holes in it.
@@ -423,7 +222,7 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
   r.std_error = ImageF(positions.width, positions.height, 1, 0.0f);
   r.spp = s.spp;
   r.seed = s.seed;
-  r.method = kMethod;
+  r.method = kStratifiedMethod;
   r.isa = resolve_isa(embree_config_of(s));
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -456,62 +255,6 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
   return r;
 }
 
-std::string method_id(const Settings& s) {
-  std::string sampled =
-      std::string(s.adaptive ? kAdaptiveMethod : kMethod) + "/" + std::to_string(kMethodVersion);
-  if (s.adaptive) sampled += "." + std::to_string(kAdaptiveVersion);
-  sampled += std::string(" on Embree ") + RTC_VERSION_STRING;
-  if (!s.exact) return sampled;
-  return std::string(kExactMethod) + "/" + std::to_string(kExactMethodVersion) + ", else " +
-         sampled;
-}
-
-std::string cache_key(const Scene& scene, const ImageF& positions, const ImageF& geometric_normals,
-                      const Settings& s) {
-  Hasher h;
-  h.add("shadowbench.reference").add(method_of(s)).add(kMethodVersion);
-  if (s.exact) {
-    h.add(kExactMethodVersion);
-  } else {
-    h.add(RTC_VERSION_STRING).add(resolve_isa(embree_config_of(s)));
-    h.add(int32_t(s.spp)).add(s.seed);
-    if (s.adaptive) h.add(int32_t(s.pilot_spp)).add(s.target_std_error).add(kAdaptiveVersion);
-  }
-  hash_vec3(h, scene.light.center);
-  hash_vec3(h, scene.light.half_u);
-  hash_vec3(h, scene.light.half_v);
-  // Only a segment's key carries its layout, so that keys from before it was
-  // stratified along its axis (and from before the exact reference did
-  // segments) never match, while rectangles' and points' keys stay as they were.
-  if (scene.light.is_segment()) h.add("light_strata:segment_1d");
-  uint64_t casters = 0;
-  for (const Mesh& m : scene.meshes) {
-    if (!m.casts_shadow) continue;
-    ++casters;
-    h.add(uint64_t(m.positions.size()));
-    h.add(m.positions.data(), m.positions.size() * sizeof(glm::vec3));
-    h.add(uint64_t(m.indices.size()));
-    h.add(m.indices.data(), m.indices.size() * sizeof(uint32_t));
-    h.add(m.alpha_tested());
-    if (m.alpha_tested()) {  // the mask decides which rays pass
-      const TextureImage& t = scene.textures.at(size_t(m.base_color_texture));
-      h.add(m.alpha_cutoff).add(int32_t(t.width)).add(int32_t(t.height));
-      h.add(m.uvs.data(), m.uvs.size() * sizeof(glm::vec2));
-      h.add(t.rgba.data(), t.rgba.size());
-    }
-    // The shape the reference traces instead of the triangles, if any.
-    h.add(m.analytic.kind);
-    if (m.analytic.has()) {
-      hash_vec3(h, m.analytic.center);
-      h.add(m.analytic.radius);
-    }
-  }
-  h.add(casters);
-  hash_image(h, positions);
-  hash_image(h, geometric_normals);
-  return h.hex();
-}
-
 Result get(const Scene& scene, const ImageF& positions, const ImageF& geometric_normals,
            const Settings& s, const std::string& cache_dir) {
   check_inputs(positions, geometric_normals, s);
@@ -527,11 +270,14 @@ Result get(const Scene& scene, const ImageF& positions, const ImageF& geometric_
   }
   const std::string key = cache_key(scene, positions, geometric_normals, s);
   const std::filesystem::path path = std::filesystem::path(cache_dir) / (key + ".sbref");
+  const detail::CacheFileExpectation expected = cache_expectation(key, positions, s);
   const auto from_cache = [&]() -> std::optional<Result> {
     std::string bytes;
     Result cached;
-    if (!read_file(path, bytes) || !deserialise(bytes, key, positions, s, cached))
+    if (!detail::read_cache_file(path, bytes) ||
+        !detail::decode_cache_file(bytes, expected, cached))
       return std::nullopt;
+    if (!expected.max_samples) cached.samples = uniform_samples(positions, expected.spp);
     cached.spp = s.exact ? 0 : s.spp;
     cached.seed = s.seed;
     cached.method = method_of(s);
@@ -549,11 +295,11 @@ Result get(const Scene& scene, const ImageF& positions, const ImageF& geometric_
   // One computation per key across processes (the shards of a run sharing
   // --cache-dir): the first to take the key's lock computes, the others
   // wait and then read its file.
-  const KeyLock lock(std::filesystem::path(cache_dir) / (key + ".lock"));
+  const detail::KeyLock lock(std::filesystem::path(cache_dir) / (key + ".lock"));
   if (auto cached = from_cache()) return std::move(*cached);
   Result r = compute(scene, positions, geometric_normals, s);
   r.cache_key = key;
-  write_atomically(path, serialise(r));
+  write_file_atomically(path.string(), detail::encode_cache_file(r), "reference cache: ");
   return r;
 }
 

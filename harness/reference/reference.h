@@ -85,6 +85,10 @@ struct Settings {
   double target_std_error = 0.01;
 };
 
+// Result::method of the Monte Carlo reference with the same samples on
+// every pixel.
+inline constexpr const char* kStratifiedMethod = "embree_stratified_packet16";
+
 // Result::method of the adaptive Monte Carlo reference.
 inline constexpr const char* kAdaptiveMethod = "embree_stratified_adaptive";
 
@@ -122,7 +126,7 @@ struct Result {
   // can bias a pixel (0 when there is none).
   int64_t unproven_stops = 0;
   double stop_bias_bound = 0;
-  std::string method;          // "embree_stratified_packet16", kAdaptiveMethod or kExactMethod
+  std::string method;          // kStratifiedMethod, kAdaptiveMethod or kExactMethod
   std::string exact_fallback;  // why an exact reference asked for is Monte Carlo instead
   std::string isa;     // the Embree ISA that traced it ("avx2"), from Settings::embree_config
   double seconds = 0;  // wall time of BVH build + ray tracing (0 if loaded from cache)

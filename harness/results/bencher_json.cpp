@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/atomic_file.h"
 #include "results/compare.h"
 #include "results/store.h"
 

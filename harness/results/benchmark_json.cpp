@@ -9,6 +9,7 @@
 #include <fstream>
 #include <numeric>
 
+#include "core/atomic_file.h"
 #include "results/store.h"
 
 namespace sb {

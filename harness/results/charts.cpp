@@ -17,6 +17,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/install_layout.h"
 #include "core/names.h"

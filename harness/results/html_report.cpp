@@ -9,6 +9,7 @@
 #include <set>
 #include <tuple>
 
+#include "core/atomic_file.h"
 #include "core/format_number.h"
 #include "core/image.h"
 #include "metrics/image_io.h"

@@ -4,6 +4,7 @@
 #include <map>
 #include <string_view>
 
+#include "core/atomic_file.h"
 #include "results/mixed_hosts.h"
 #include "results/report_columns.h"
 #include "results/stability_table.h"

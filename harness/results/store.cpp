@@ -1,13 +1,12 @@
 #include "results/store.h"
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <set>
 
 #include "config/json_file.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace sb {
@@ -34,19 +33,6 @@ void for_each_line(const std::string& run_dir,
 
 }  // namespace
 
-void write_file_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) throw JobError("cannot write " + tmp);
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) throw JobError("cannot rename " + tmp + " to " + path + ": " + ec.message());
-}
-
 std::string json_text(const nlohmann::json& value, int indent) {
   return value.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
 }
@@ -56,7 +42,7 @@ ResultsStore::ResultsStore(std::string run_dir) : dir_(std::move(run_dir)) {
   // What a writer killed between its write and its rename leaves behind.
   for (const fs::path& folder : {fs::path(dir_), fs::path(dir_) / "records"})
     for (const auto& e : fs::directory_iterator(folder))
-      if (e.is_regular_file() && e.path().filename().string().find(".tmp-") != std::string::npos)
+      if (e.is_regular_file() && is_atomic_temp_name(e.path().filename().string()))
         fs::remove(e.path());
   for (const auto& e : fs::directory_iterator(fs::path(dir_) / "records")) {
     if (e.path().extension() != ".json") continue;

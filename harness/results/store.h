@@ -49,8 +49,6 @@ class ResultsStore {
   std::vector<std::string> untrusted_;
 };
 
-// Writes `text` to `path` through a temporary file and a rename.
-void write_file_atomically(const std::string& path, const std::string& text);
 // The records of a run directory's results.jsonl, for report, compare and
 // the CI outputs. Run folders are input like any other: a line that is not
 // JSON, or a record that does not follow the schema (record/job_record.h;

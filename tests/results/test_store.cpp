@@ -1,7 +1,8 @@
 // The results store (results/store.h): after every record it stores,
 // results.jsonl holds every record once, in plan order, each line the
 // record's own JSON; a record stored again replaces its line, and a store
-// reopened on the folder writes the same lines.
+// reopened on the folder writes the same lines. Opening a store removes
+// the temporary files of killed writers (core/atomic_file.h), and only those.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "../record/sample_records.h"
+#include "core/atomic_file.h"
 #include "results/store.h"
 
 namespace sb {
@@ -65,6 +67,23 @@ TEST(ResultsStore, ARecordStoredAgainReplacesItsLine) {
   EXPECT_EQ(jsonl_lines(dir), std::vector<std::string>({line_of(again), line_of(b)}));
   ASSERT_NE(store.finished(again.job_id), nullptr);
   EXPECT_EQ(store.finished(again.job_id)->warnings, again.warnings);
+}
+
+TEST(ResultsStore, OpeningRemovesWhatKilledWritersLeftAndNothingElse) {
+  const fs::path dir = fresh_run_dir();
+  fs::create_directories(dir / "records");
+  std::vector<fs::path> leftovers{dir / "results.jsonl.tmp-4242"};  // as earlier versions named
+  for (const fs::path& final_path : {dir / "results.jsonl", dir / "records" / "a.json"}) {
+    const AtomicFile killed(final_path.string());  // its name, as a writer would have used it
+    leftovers.push_back(killed.temp_path());
+  }
+  for (const fs::path& f : leftovers) std::ofstream(f) << "{";
+  const fs::path not_temporary = dir / "records" / "notes.tmp-draft";
+  std::ofstream(not_temporary) << "kept";
+  const ResultsStore store(dir.string());
+  for (const fs::path& f : leftovers) EXPECT_FALSE(fs::exists(f)) << f;
+  EXPECT_TRUE(fs::exists(not_temporary));
+  EXPECT_TRUE(store.untrusted().empty());
 }
 
 TEST(ResultsStore, AReopenedStoreWritesTheSameLinesWithEarlierRecordsAfterThePlan) {

@@ -1,0 +1,84 @@
+#pragma once
+// The exact reference's casters (exact_visibility.h): their triangles in
+// double precision, with what closed_parts.h finds about them, in a
+// bounding-volume hierarchy that queries walk by culling its boxes.
+#include <array>
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <type_traits>
+#include <vector>
+
+namespace sb::reference::detail {
+
+inline constexpr uint32_t kNoNeighbour = 0xffffffffu;
+inline constexpr uint32_t kNoPart = 0xffffffffu;
+
+struct CasterTriangle {
+  glm::dvec3 a, b, c;
+  // A closed part's: +1 when its part winds outward (positive signed
+  // volume), -1 inward; 0 for any other caster's.
+  int outward = 0;
+  uint32_t mesh = 0;        // index into the scene's meshes
+  uint32_t part = kNoPart;  // its closed part (closed_parts.h), or kNoPart
+  glm::dvec3 normal{0.0};   // (b - a) × (c - a)
+  // A closed caster's: the triangle across edge k (a-b, b-c, c-a), or
+  // kNoNeighbour where no single other triangle shares it.
+  std::array<uint32_t, 3> neighbour{kNoNeighbour, kNoNeighbour, kNoNeighbour};
+};
+
+class CasterBvh {
+ public:
+  CasterBvh() = default;
+  // Puts the triangles in the hierarchy's order (leaves of at most four,
+  // split at the median centroid along the box's longest axis).
+  explicit CasterBvh(std::vector<CasterTriangle> triangles);
+
+  bool empty() const { return nodes_.empty(); }
+  // In the hierarchy's order; their fields may change, not their order.
+  std::vector<CasterTriangle>& triangles() { return triangles_; }
+  const std::vector<CasterTriangle>& triangles() const { return triangles_; }
+
+  // Calls visit(triangle) for the triangles of every leaf whose box, and its
+  // ancestors', keep(lo, hi) accepts. A visit that returns bool stops the
+  // walk by returning false, and traverse() then returns false.
+  template <typename Keep, typename Visit>
+  bool traverse(const Keep& keep, const Visit& visit) const;
+
+ private:
+  struct Node {
+    glm::dvec3 lo, hi;
+    uint32_t first = 0, count = 0;  // leaf: triangles [first, first + count)
+    uint32_t left = 0, right = 0;   // inner: children (count == 0)
+  };
+  uint32_t build(uint32_t first, uint32_t count);
+
+  std::vector<CasterTriangle> triangles_;
+  std::vector<Node> nodes_;
+};
+
+template <typename Keep, typename Visit>
+bool CasterBvh::traverse(const Keep& keep, const Visit& visit) const {
+  if (nodes_.empty()) return true;
+  // One per thread, kept: a walk per pixel would otherwise allocate.
+  thread_local std::vector<uint32_t> stack;
+  stack.assign(1, 0);
+  while (!stack.empty()) {
+    const Node& node = nodes_[stack.back()];
+    stack.pop_back();
+    if (!keep(node.lo, node.hi)) continue;
+    if (node.count == 0) {
+      stack.push_back(node.left);
+      stack.push_back(node.right);
+      continue;
+    }
+    for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+      if constexpr (std::is_void_v<std::invoke_result_t<const Visit&, const CasterTriangle&>>)
+        visit(triangles_[i]);
+      else if (!visit(triangles_[i]))
+        return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace sb::reference::detail
