@@ -31,6 +31,11 @@ void meter_storage(StorageKind kind, GLuint id, std::int64_t bytes) {
   m.peak = std::max(m.peak, m.live);
 }
 
+void meter_restorage(StorageKind kind, GLuint id, std::int64_t bytes) {
+  Meter& m = meter();
+  if (m.bytes.count({kind, id}) != 0) meter_storage(kind, id, bytes);
+}
+
 void meter_release(StorageKind kind, GLuint id) {
   Meter& m = meter();
   const auto it = m.bytes.find({kind, id});

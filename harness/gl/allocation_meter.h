@@ -16,9 +16,12 @@ namespace sb::gl {
 // GL names are per kind of object: texture 3 and buffer 3 are two objects.
 enum class StorageKind { TextureName, BufferName, RenderbufferName };
 
-// Called by the makers: object `id` now has `bytes` of storage (replacing
-// what it had). Nothing when no window is open.
+// Called by the makers: new object `id` has `bytes` of storage. Nothing
+// when no window is open.
 void meter_storage(StorageKind kind, GLuint id, std::int64_t bytes);
+// Object `id`'s storage was replaced by `bytes`: counted only when the
+// object was made in the window (a control's stream, made before it, is not).
+void meter_restorage(StorageKind kind, GLuint id, std::int64_t bytes);
 // Called when an object is deleted: its bytes are no longer live.
 void meter_release(StorageKind kind, GLuint id);
 

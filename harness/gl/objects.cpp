@@ -143,12 +143,13 @@ Buffer make_buffer(GLsizeiptr bytes, const void* data, GLbitfield flags) {
 Buffer make_stream_buffer() {
   GLuint id = 0;
   glCreateBuffers(1, &id);
+  meter_storage(StorageKind::BufferName, id, 0);
   return Buffer(id);
 }
 
 void set_buffer_data(const Buffer& buffer, GLsizeiptr bytes, const void* data, GLenum usage) {
   glNamedBufferData(buffer.get(), bytes, data, usage);
-  meter_storage(StorageKind::BufferName, buffer.get(), bytes);
+  meter_restorage(StorageKind::BufferName, buffer.get(), bytes);
 }
 
 namespace {
