@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "gl/allocation_meter.h"
 #include "gl/debug.h"
 #include "gl/gl.h"
 #include "gl/gpu_scene.h"
@@ -644,6 +645,8 @@ class JobExecutor::Impl {
     Lap lap;
     gl::take_debug_errors();
     const std::string& who = tv.info->name;
+    // Counts what the technique allocates from here to its last frame.
+    gl::AllocationWindow allocations;
     std::unique_ptr<Technique> technique = in_technique_phase(who, "prepare", [&] {
       std::unique_ptr<Technique> t = tv.info->create(tv.params);
       t->prepare(frame.in);
@@ -659,6 +662,7 @@ class JobExecutor::Impl {
     lap.seconds();
 
     r.timing = time_frames(*technique, tv, frame, control);
+    r.technique.gpu_bytes = allocations.peak_bytes();
     phases.frames = lap.seconds();
     if (injected_delay_ && injected_delay_->applies_to(tv.name))
       r.warnings.push_back(injected_delay_->describe());
