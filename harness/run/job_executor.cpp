@@ -438,9 +438,12 @@ class JobExecutor::Impl {
     r.from_cache = ref.from_cache;
     r.seconds = ref.seconds;
     if (ref.method == reference::kAdaptiveMethod)
-      r.adaptive = AdaptiveReferenceRecord{e_.reference.pilot_spp, e_.reference.target_std_error,
-                                           ref.mean_spp,           ref.max_spp,
-                                           ref.unproven_stops,     ref.stop_bias_bound};
+      r.adaptive = AdaptiveReferenceRecord{e_.reference.settings.pilot_spp,
+                                           e_.reference.settings.target_std_error,
+                                           ref.mean_spp,
+                                           ref.max_spp,
+                                           ref.unproven_stops,
+                                           ref.stop_bias_bound};
     return r;
   }
 
@@ -498,14 +501,8 @@ class JobExecutor::Impl {
     const ImageF normals = targets.read_geometric_normals();
 
     // Reference at the G-buffer's very points.
-    reference::Settings rs;
-    rs.spp = e_.reference.spp;
-    rs.seed = e_.reference.seed;
-    rs.embree_config = embree_.config;
-    rs.exact = e_.reference.exact;
-    rs.adaptive = e_.reference.adaptive;
-    rs.pilot_spp = e_.reference.pilot_spp;
-    rs.target_std_error = e_.reference.target_std_error;
+    const reference::Settings rs =
+        reference_settings(e_.reference, embree_, e_.reference.settings.exact);
     const bool cache = e_.reference.cache && !o_.cache_dir.empty();
     events_.phase(sv.name, res.label(), "(reference)");
     const auto make_reference = [&](const reference::Settings& settings, const char* which) {
@@ -534,10 +531,9 @@ class JobExecutor::Impl {
     reference::Result ref = make_reference(rs, "reference");
     std::optional<reference::Result> second;
     if (e_.reference.second_exact) {
-      reference::Settings second_settings = rs;
-      second_settings.exact = *e_.reference.second_exact;
       events_.phase(sv.name, res.label(), "(second reference)");
-      second = make_reference(second_settings, "second reference");
+      second = make_reference(reference_settings(e_.reference, embree_, *e_.reference.second_exact),
+                              "second reference");
     }
     const auto horizon = metrics::classify_light_horizon(positions, normals, st.scene.light);
     Regions regions;

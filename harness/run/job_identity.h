@@ -8,6 +8,7 @@
 
 #include "config/experiment.h"
 #include "record/job_record.h"
+#include "reference/settings.h"
 #include "run/runner.h"
 
 namespace sb {
@@ -19,6 +20,12 @@ struct EmbreeChoice {
   std::string isa;     // what it resolves to on this CPU
 };
 EmbreeChoice choose_embree(const Experiment& e, const RunOptions& o);
+
+// A reference's settings as a run hands them to reference::get: the
+// config's, with the run's Embree device and the method asked for (the
+// first reference's or the second's).
+reference::Settings reference_settings(const ReferenceConfig& c, const EmbreeChoice& embree,
+                                       bool exact);
 
 // Everything that decides a job's numbers, as named fields (the record's
 // "spec", docs/results.md): the scene, resolution and technique; the frame
