@@ -21,8 +21,10 @@
 #include "metrics/distance_thirds.h"
 #include "metrics/geometry_region.h"
 #include "metrics/image_io.h"
+#include "metrics/job_metrics.h"
 #include "metrics/light_horizon.h"
 #include "metrics/metrics.h"
+#include "metrics/regions.h"
 #include "metrics/shadow_classes.h"
 #include "plan/plan.h"
 #include "record/job_record.h"
@@ -47,93 +49,8 @@ constexpr float kHeatmapFullScale = 0.25f;
 
 std::array<double, 3> vec3(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 
-RegionStats region_stats(const metrics::ErrorStats& s) {
-  RegionStats r;
-  r.pixel_count = static_cast<std::int64_t>(s.pixel_count);
-  r.rmse = s.rmse;
-  r.mae = s.mae;
-  r.max_error = s.max_error;
-  r.max_x = s.max_x;
-  r.max_y = s.max_y;
-  r.psnr = s.psnr;
-  r.ssim = s.ssim;
-  r.frac_over_001 = s.frac_over_001;
-  r.frac_over_005 = s.frac_over_005;
-  r.frac_over_01 = s.frac_over_01;
-  r.nonfinite_count = static_cast<std::int64_t>(s.nonfinite_count);
-  r.mean_signed = s.mean_signed;
-  return r;
-}
-
-std::vector<uint8_t> mask_and(std::vector<uint8_t> a, const std::vector<uint8_t>& b) {
-  for (size_t i = 0; i < a.size(); ++i) a[i] = a[i] && b[i] ? 1 : 0;
-  return a;
-}
-
-std::int64_t count_ones(const std::vector<uint8_t>& mask) {
-  return std::count(mask.begin(), mask.end(), uint8_t(1));
-}
-
-// A technique's visibility must be finite and in [0,1]; float rounding of
-// sums (accumulation, kernels) may overshoot by this much.
-constexpr float kVisibilityTolerance = 1e-5f;  // the failure message says 1e-5
-
-VisibilityCheckRecord check_visibility(const ImageF& v) {
-  VisibilityCheckRecord c;
-  c.tolerance = kVisibilityTolerance;
-  for (float x : v.data) {
-    if (!std::isfinite(x))
-      ++c.nonfinite;
-    else if (x < -kVisibilityTolerance)
-      ++c.below_0;
-    else if (x > 1.0f + kVisibilityTolerance)
-      ++c.above_1;
-  }
-  return c;
-}
-
-// Pixels whose surface faces away from every point of the light are in
-// attached shadow whatever any technique says: V = 0 there for every
-// technique and the reference alike, so the error measures cast shadows only.
-void apply_attached_shadow(const std::vector<uint8_t>& attached, ImageF& visibility) {
-  for (size_t i = 0; i < attached.size(); ++i)
-    if (attached[i]) visibility.data[i] = 0.0f;
-}
-
-// The unmeasured pixels (mask 0) take the reference's values: they show no
-// error in the heat map and in SSIM's windows.
-ImageF with_unmeasured_from(const ImageF& test, const ImageF& ref,
-                            const std::vector<uint8_t>& measured) {
-  ImageF out = test;
-  for (size_t i = 0; i < measured.size(); ++i)
-    if (!measured[i])
-      for (int c = 0; c < out.channels; ++c)
-        out.data[i * size_t(out.channels) + size_t(c)] =
-            ref.data[i * size_t(ref.channels) + size_t(c)];
-  return out;
-}
-
-// The `soft_union` region of one job: the soft pixels of its V or the
-// reference's, measured ones only.
-std::vector<uint8_t> soft_union_of(const ImageF& visibility, const ImageF& ref,
-                                   const std::vector<uint8_t>& measured) {
-  return mask_and(metrics::soft_union_mask(visibility, ref), measured);
-}
-
 // Undo whatever state a technique left behind.
 void reset_gl_state() { gl::reset_state(); }
-
-// Pixel sets shared by every job of one (scene, resolution).
-struct Regions {
-  std::vector<uint8_t> measured;   // all but the pixels whose tangent plane cuts the light
-  std::vector<uint8_t> penumbra;   // the reference's soft pixels, measured ones only
-  std::vector<uint8_t> attached;   // the light wholly below the tangent plane: V = 0
-  std::vector<uint8_t> receivers;  // measured pixels on meshes that cast no shadow
-  std::vector<uint8_t> geometry;   // measured surface outside attached shadow; record "classes"
-  bool any_receiver = false;
-  // metrics.distance_thirds: the measured pixels by distance from the camera.
-  std::optional<std::array<std::vector<uint8_t>, 3>> distance_thirds;
-};
 
 // What every job of one (scene, resolution) draws with.
 struct FrameSetup {
@@ -148,7 +65,7 @@ struct FrameSetup {
 struct Baseline {
   const reference::Result& ref;
   const ImageF& shaded;  // the reference's V, shaded
-  const Regions& regions;
+  const metrics::Regions& regions;
   // reference.second_method's reference, and its record part.
   const reference::Result* second = nullptr;
   const ReferenceRecord* second_record = nullptr;
@@ -160,86 +77,6 @@ ImageF shade(const FrameSetup& f, const ImageF& visibility) {
   f.targets.upload_visibility(visibility);
   f.targets.render_shading(f.scene);
   return f.targets.read_shaded();
-}
-
-// Regions, each only over the measured pixels (all but those whose tangent
-// plane cuts the light; see metrics/light_horizon.h): every pixel; the
-// reference's penumbra; the soft pixels of either the technique or the
-// reference (`soft_union`), which also sees light bleeding into a true umbra
-// and blur outside the true penumbra; and, when the view holds any, the
-// pixels on meshes that cast no shadow (`receivers`). `geometry`, the surface
-// outside attached shadow, is measured on its own (metrics/geometry_region.h):
-// its SSIM windows see the reference's values everywhere outside it.
-//
-// SSIM's windows reach past the mask, so the unmeasured pixels take the
-// reference's values first: they add no error to a neighbour either.
-//
-// `extra` masks are measured too, in the same pass of the SSIM window (the
-// window's cost does not depend on how many masks average it); their stats
-// come back in order.
-ImageMetrics compare_images(const ImageF& test, const ImageF& ref, const Regions& regions,
-                            const std::vector<uint8_t>& soft_union,
-                            const std::vector<const std::vector<uint8_t>*>& extra = {},
-                            std::vector<RegionStats>* extra_stats = nullptr) {
-  const ImageF t = with_unmeasured_from(test, ref, regions.measured);
-  std::vector<const std::vector<uint8_t>*> masks = {&regions.measured, &regions.penumbra,
-                                                    &soft_union};
-  if (regions.any_receiver) masks.push_back(&regions.receivers);
-  // Geometry shares the SSIM pass unless the technique wrote something other
-  // than the reference outside it (on the sky, say): then it needs its own.
-  const bool geometry_shares = metrics::matches_outside(t, ref, regions.geometry);
-  if (geometry_shares) masks.push_back(&regions.geometry);
-  const size_t first_extra = masks.size();
-  masks.insert(masks.end(), extra.begin(), extra.end());
-  const std::vector<metrics::ErrorStats> stats = metrics::compare(t, ref, masks);
-  ImageMetrics m{region_stats(stats[0]), region_stats(stats[1]), region_stats(stats[2])};
-  m.geometry = region_stats(geometry_shares ? stats[first_extra - 1]
-                                            : metrics::compare_within(t, ref, regions.geometry));
-  if (regions.any_receiver) m.receivers = region_stats(stats[3]);
-  if (extra_stats != nullptr)
-    for (size_t i = first_extra; i < stats.size(); ++i)
-      extra_stats->push_back(region_stats(stats[i]));
-  return m;
-}
-
-// The visibility buffer's and the shaded image's error against the reference's.
-MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const Baseline& b) {
-  const std::vector<uint8_t> soft_union =
-      soft_union_of(visibility, b.ref.visibility, b.regions.measured);
-  std::vector<const std::vector<uint8_t>*> thirds;
-  if (b.regions.distance_thirds)
-    for (const auto& third : *b.regions.distance_thirds) thirds.push_back(&third);
-  std::vector<RegionStats> third_stats;
-  MetricsRecord m{
-      compare_images(visibility, b.ref.visibility, b.regions, soft_union, thirds, &third_stats),
-      compare_images(shaded, b.shaded, b.regions, soft_union)};
-  if (b.regions.distance_thirds) {
-    m.visibility.near_third = third_stats[0];
-    m.visibility.middle_third = third_stats[1];
-    m.visibility.far_third = third_stats[2];
-  }
-  return m;
-}
-
-// The visibility's error against the second reference, over the same
-// regions as against the first: only the reference differs.
-SecondReferenceRecord measure_second(const ImageF& visibility, const Baseline& b) {
-  const reference::Result& second = *b.second;
-  const std::vector<uint8_t> soft_union =
-      soft_union_of(visibility, second.visibility, b.regions.measured);
-  return {*b.second_record, compare_images(visibility, second.visibility, b.regions, soft_union)};
-}
-
-// A reference whose noise is comparable to the error cannot rank techniques.
-std::optional<std::string> noise_warning(const MetricsRecord& m, const reference::Result& ref) {
-  const double pen_rmse =
-      std::isfinite(m.visibility.penumbra.rmse) ? m.visibility.penumbra.rmse : 0.0;
-  // RMS against RMS: the noise's sqrt(mean σ²), not its mean σ.
-  if (ref.penumbra_rms_std_error > 0.0 && pen_rmse > 0.0 &&
-      ref.penumbra_rms_std_error > 0.5 * pen_rmse)
-    return "reference noise (penumbra RMS std error " + std::to_string(ref.penumbra_rms_std_error) +
-           ") is over half the penumbra RMSE; raise reference.spp";
-  return std::nullopt;
 }
 
 // Seconds since it was made or since the last call (record/phases_record.h).
@@ -418,7 +255,7 @@ class JobExecutor::Impl {
 
   // The reference's part of every record of one (scene, resolution).
   // `penumbra`: the reference's own soft pixels.
-  ReferenceRecord reference_record(const reference::Result& ref, const Regions& regions,
+  ReferenceRecord reference_record(const reference::Result& ref, const metrics::Regions& regions,
                                    const std::vector<uint8_t>& penumbra) const {
     ReferenceRecord r;
     r.method = ref.method;
@@ -430,10 +267,10 @@ class JobExecutor::Impl {
     r.mean_std_error = ref.mean_std_error;
     r.penumbra_mean_std_error = ref.penumbra_mean_std_error;
     r.penumbra_rms_std_error = ref.penumbra_rms_std_error;
-    r.penumbra_pixels = count_ones(penumbra);
-    r.attached_shadow_pixels = count_ones(regions.attached);
+    r.penumbra_pixels = metrics::count_ones(penumbra);
+    r.attached_shadow_pixels = metrics::count_ones(regions.attached);
     r.horizon_cut_pixels =
-        static_cast<std::int64_t>(regions.measured.size()) - count_ones(regions.measured);
+        static_cast<std::int64_t>(regions.measured.size()) - metrics::count_ones(regions.measured);
     r.cache_key = ref.cache_key;
     r.from_cache = ref.from_cache;
     r.seconds = ref.seconds;
@@ -451,7 +288,7 @@ class JobExecutor::Impl {
   // with --gbuffer the G-buffer's), once per (scene, resolution); every
   // job's record names them.
   ImagesRecord write_reference_images(const std::string& rel, const reference::Result& ref,
-                                      const ImageF& ref_shaded, const Regions& regions,
+                                      const ImageF& ref_shaded, const metrics::Regions& regions,
                                       const ImageF& positions, const ImageF& normals) const {
     ImagesRecord images;
     if (!o_.write_images) return images;
@@ -536,21 +373,22 @@ class JobExecutor::Impl {
                               "second reference");
     }
     const auto horizon = metrics::classify_light_horizon(positions, normals, st.scene.light);
-    Regions regions;
+    metrics::Regions regions;
     regions.attached = metrics::horizon_mask(horizon, metrics::LightHorizon::Below);
     regions.measured = metrics::horizon_mask(horizon, metrics::LightHorizon::Cuts);
     for (auto& m : regions.measured) m = m ? 0 : 1;
-    apply_attached_shadow(regions.attached, ref.visibility);
-    regions.penumbra = mask_and(metrics::penumbra_mask(ref.visibility), regions.measured);
+    metrics::apply_attached_shadow(regions.attached, ref.visibility);
+    regions.penumbra = metrics::mask_and(metrics::penumbra_mask(ref.visibility), regions.measured);
     regions.geometry = metrics::geometry_mask(horizon);
     if (e_.distance_thirds)
       regions.distance_thirds =
           metrics::distance_thirds(positions, st.scene.camera.eye, regions.measured);
     std::optional<ReferenceRecord> second_record;
     if (second) {
-      apply_attached_shadow(regions.attached, second->visibility);
+      metrics::apply_attached_shadow(regions.attached, second->visibility);
       second_record = reference_record(
-          *second, regions, mask_and(metrics::penumbra_mask(second->visibility), regions.measured));
+          *second, regions,
+          metrics::mask_and(metrics::penumbra_mask(second->visibility), regions.measured));
     }
     {
       const ImageF receiver = targets.read_receiver_mask();
@@ -586,7 +424,7 @@ class JobExecutor::Impl {
         gl::PassTimer timer(timing_source_);
         run_frame(timer, t, "stability frame", gl::PassDetail::Coarse, f, nullptr);
         ImageF v = targets.read_visibility();
-        apply_attached_shadow(regions.attached, v);
+        metrics::apply_attached_shadow(regions.attached, v);
         reset_gl_state();
         return v;
       };
@@ -594,7 +432,7 @@ class JobExecutor::Impl {
         reference::Result out =
             cache ? reference::get(moved, positions, normals, settings, o_.cache_dir)
                   : reference::compute(moved, positions, normals, settings);
-        apply_attached_shadow(regions.attached, out.visibility);
+        metrics::apply_attached_shadow(regions.attached, out.visibility);
         return std::move(out.visibility);
       };
       stability.emplace(*e_.stability, sv.max_rmse.value_or(e_.stability->max_rmse), st.scene, in,
@@ -664,16 +502,21 @@ class JobExecutor::Impl {
       gl::throw_if_errors(tv.name + " read-back");
       return v;
     });
-    const VisibilityCheckRecord check = check_visibility(visibility);
+    const VisibilityCheckRecord check = metrics::check_visibility(visibility);
     r.visibility_check = check;
-    apply_attached_shadow(baseline.regions.attached, visibility);
+    metrics::apply_attached_shadow(baseline.regions.attached, visibility);
     // Shaded from the same V as the metrics, as the reference is: untimed.
     const ImageF shaded = shade(frame, visibility);
-    r.metrics = measure(visibility, shaded, baseline);
-    if (baseline.second) r.second_reference = measure_second(visibility, baseline);
+    r.metrics = metrics::measure(visibility, shaded, baseline.ref.visibility, baseline.shaded,
+                                 baseline.regions);
+    if (baseline.second)
+      r.second_reference = SecondReferenceRecord{
+          *baseline.second_record,
+          metrics::measure_visibility(visibility, baseline.second->visibility, baseline.regions)};
     r.classes = ClassesRecord{
         metrics::confusion_matrix(visibility, baseline.ref.visibility, baseline.regions.geometry)};
-    if (auto warning = noise_warning(*r.metrics, baseline.ref)) r.warnings.push_back(*warning);
+    if (auto warning = metrics::noise_warning(*r.metrics, baseline.ref.penumbra_rms_std_error))
+      r.warnings.push_back(*warning);
     phases.measure = lap.seconds();
     if (o_.write_images) r.images = write_job_images(r.job_id, visibility, shaded, baseline);
     phases.images = lap.seconds();
@@ -856,17 +699,19 @@ class JobExecutor::Impl {
     // one core busy (zlib), so the job's images take about half the time.
     tbb::parallel_invoke(
         [&] {
-          io::write_mask_png((dir / "mask_soft_union.png").string(),
-                             soft_union_of(visibility, b.ref.visibility, b.regions.measured),
-                             visibility.width, visibility.height);
+          io::write_mask_png(
+              (dir / "mask_soft_union.png").string(),
+              metrics::soft_union_of(visibility, b.ref.visibility, b.regions.measured),
+              visibility.width, visibility.height);
         },
         [&] { io::write_exr((dir / "visibility.exr").string(), visibility); },
         [&] { io::write_png((dir / "shaded.png").string(), shaded); },
         [&] {
-          io::write_png((dir / "error.png").string(),
-                        metrics::error_heatmap(
-                            with_unmeasured_from(visibility, b.ref.visibility, b.regions.measured),
-                            b.ref.visibility, kHeatmapFullScale));
+          io::write_png(
+              (dir / "error.png").string(),
+              metrics::error_heatmap(
+                  metrics::with_unmeasured_from(visibility, b.ref.visibility, b.regions.measured),
+                  b.ref.visibility, kHeatmapFullScale));
         });
     ImagesRecord images;
     images.visibility = rel + "/visibility.exr";
