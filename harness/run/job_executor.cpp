@@ -9,7 +9,6 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
-#include <map>
 #include <optional>
 #include <set>
 #include <utility>
@@ -30,11 +29,12 @@
 #include "record/job_record.h"
 #include "reference/reference.h"
 #include "results/store.h"
+#include "run/frame_schedule.h"
 #include "run/gbuffer.h"
 #include "run/injected_delay.h"
-#include "run/io_trace.h"
 #include "run/job_identity.h"
 #include "run/stability_probe.h"
+#include "run/technique_frames.h"
 #include "run/technique_phase.h"
 #include "scenes/need_providers.h"
 #include "scenes/receiver_inference.h"
@@ -52,15 +52,6 @@ std::array<double, 3> vec3(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 // Undo whatever state a technique left behind.
 void reset_gl_state() { gl::reset_state(); }
 
-// What every job of one (scene, resolution) draws with.
-struct FrameSetup {
-  FrameTargets& targets;
-  const GpuScene& gpu;
-  const Scene& scene;
-  const glm::mat4& view_projection;
-  const FrameInputs& in;
-};
-
 // What every job of one (scene, resolution) is measured against.
 struct Baseline {
   const reference::Result& ref;
@@ -71,13 +62,6 @@ struct Baseline {
   const ReferenceRecord* second_record = nullptr;
   StabilityProbe* stability = nullptr;  // the "stability" block
 };
-
-// A technique's V, shaded as the reference's is: untimed.
-ImageF shade(const FrameSetup& f, const ImageF& visibility) {
-  f.targets.upload_visibility(visibility);
-  f.targets.render_shading(f.scene);
-  return f.targets.read_shaded();
-}
 
 // Seconds since it was made or since the last call (record/phases_record.h).
 class Lap {
@@ -91,28 +75,6 @@ class Lap {
 
  private:
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-};
-
-// Per-frame times of a run of frames, by bracket.
-struct FrameSamples {
-  std::vector<double> frame, technique;
-  std::map<std::string, std::vector<double>> passes, shared;
-  std::vector<std::string> pass_order;
-
-  void add(const gl::PassTimer::Frame& f) {
-    frame.push_back(f.total_ms);
-    double tech = 0.0;
-    for (const auto& [name, ms] : f.passes) {
-      if (name.rfind("shared:", 0) == 0) {
-        shared[name.substr(7)].push_back(ms);
-        continue;
-      }
-      if (name != "technique" && !passes.count(name)) pass_order.push_back(name);
-      if (name != "technique") passes[name].push_back(ms);
-      tech += ms;
-    }
-    technique.push_back(tech);
-  }
 };
 
 // Per mesh: closed (depth passes may cull it; known when a technique in the
@@ -129,13 +91,6 @@ std::vector<MeshDrawFlags> draw_flags(const ScenePlan& st) {
   }
   return flags;
 }
-
-// The control job of one (scene, resolution), prepared once: its frames are
-// timed next to every job's.
-struct Control {
-  std::string name;
-  std::unique_ptr<Technique> technique;
-};
 
 }  // namespace
 
@@ -414,15 +369,15 @@ class JobExecutor::Impl {
       in.has_receiver_plane = true;
       in.receiver_plane = r->plane;
     }
-    const FrameSetup frame{targets, gpu, st.scene, view_projection, in};
+    const FrameSetup frame{targets, st.scene, in};
     std::optional<StabilityProbe> stability;
     if (e_.stability) {
       // Untimed frames under moved lights, measured against references of
       // the same lights at the same points.
-      auto render = [&, vp = view_projection](Technique& t, const FrameInputs& moved) {
-        const FrameSetup f{targets, gpu, *moved.scene, vp, moved};
+      auto render = [&](Technique& t, const FrameInputs& moved) {
+        const FrameSetup f{targets, *moved.scene, moved};
         gl::PassTimer timer(timing_source_);
-        run_frame(timer, t, "stability frame", gl::PassDetail::Coarse, f, nullptr);
+        render_frame(timer, t, "stability frame", gl::PassDetail::Coarse, f, nullptr);
         ImageF v = targets.read_visibility();
         metrics::apply_attached_shadow(regions.attached, v);
         reset_gl_state();
@@ -445,7 +400,7 @@ class JobExecutor::Impl {
                             second_record ? &*second_record : nullptr,
                             stability ? &*stability : nullptr};
     std::optional<Control> control;
-    if (e_.control) control = prepare_control(*e_.control, frame);
+    if (e_.control) control = prepare_control(*e_.control, frame, timing_source_);
     for (size_t i : pending) {
       const TechniqueVariant& tv = e_.techniques[i];
       JobRecord r = base_record(sv, &st, res, tv);
@@ -492,10 +447,20 @@ class JobExecutor::Impl {
     events_.await_listener();
     lap.seconds();
 
-    r.timing = time_frames(*technique, tv, frame, control);
+    const InjectedDelay* delay =
+        injected_delay_ && injected_delay_->applies_to(tv.name) ? &*injected_delay_ : nullptr;
+    TechniqueFrames frames(frame, *technique, who, control, delay, timing_source_,
+                           [&] { o_.take_turn(tv.name); });
+    FrameSchedule schedule;
+    schedule.job = tv.name;
+    schedule.warmup_frames = e_.warmup_frames;
+    schedule.timed_frames = e_.timed_frames;
+    if (control != nullptr) schedule.control = control->name;
+    schedule.pass_detail = o_.pass_detail;
+    schedule.turn_block_frames = o_.take_turn ? o_.turn_block_frames : 0;
+    r.timing = time_frames(frames, schedule);
     phases.frames = lap.seconds();
-    if (injected_delay_ && injected_delay_->applies_to(tv.name))
-      r.warnings.push_back(injected_delay_->describe());
+    if (delay != nullptr) r.warnings.push_back(delay->describe());
 
     ImageF visibility = in_technique_phase(who, "read-back", [&] {
       ImageF v = frame.targets.read_visibility();
@@ -531,162 +496,6 @@ class JobExecutor::Impl {
       gl::throw_if_errors(tv.name + " stability frames");
       phases.stability = lap.seconds();
     }
-  }
-
-  // The control, prepared and its shaders compiled before any job's frame.
-  // A control that fails fails the (scene, resolution)'s jobs: their times
-  // would have nothing to be relative to.
-  Control prepare_control(const TechniqueVariant& tv, const FrameSetup& f) const {
-    Control c{tv.name, tv.info->create(tv.params)};
-    gl::take_debug_errors();
-    c.technique->prepare(f.in);
-    gl::throw_if_errors("control " + tv.name + " prepare");
-    gl::PassTimer timer(timing_source_);
-    run_frame(timer, *c.technique, "control " + tv.name + " compile frame", gl::PassDetail::Coarse,
-              f, nullptr);
-    reset_gl_state();
-    return c;
-  }
-
-  // One frame: the G-buffer's restore, the technique and shading, each in one harness
-  // bracket. In fine detail the technique's own passes are the brackets
-  // instead, and the sum of their times is what it pays for them.
-  gl::PassTimer::Frame run_frame(gl::PassTimer& timer, Technique& technique,
-                                 const std::string& frame_name, gl::PassDetail detail,
-                                 const FrameSetup& f, const InjectedDelay* delay) const {
-    timer.set_detail(detail);
-    reset_gl_state();
-    const auto started = std::chrono::steady_clock::now();
-    timer.begin_frame();
-    {
-      // The G-buffer was rendered once for the (scene, resolution); the frame
-      // starts from its depth-stencil (run/gbuffer.h).
-      auto p = timer.bracket("shared:gbuffer");
-      f.targets.restore_gbuffer();
-    }
-    reset_gl_state();
-    if (detail == gl::PassDetail::Coarse) {
-      auto p = timer.bracket("technique");
-      technique.render(f.in, timer);
-    } else {
-      technique.render(f.in, timer);
-    }
-    gl::throw_if_errors(frame_name);
-    reset_gl_state();
-    {
-      auto p = timer.bracket("shared:shading");
-      f.targets.render_shading(f.scene);
-    }
-    if (delay != nullptr) {
-      // At the frame's end, so that a relative delay knows the frame's time;
-      // a bracket of the job's own, so it counts in its technique time too.
-      glFinish();
-      const double so_far =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
-              .count();
-      auto p = timer.bracket("injected delay");
-      delay->wait(so_far);
-    }
-    auto frame = timer.end_frame();
-    gl::throw_if_errors(frame_name);
-    return frame;
-  }
-
-  // The compile frame, the warm-up and the timed frames, each next to a
-  // control frame (in ABBA order: job-control, control-job, ...), and with
-  // --pass-timing fine as many frames again with each pass its own bracket.
-  TimingRecord time_frames(Technique& technique, const TechniqueVariant& tv, const FrameSetup& f,
-                           Control* control) const {
-    const std::string& name = tv.name;
-    gl::PassTimer timer(timing_source_);
-    const InjectedDelay* delay =
-        injected_delay_ && injected_delay_->applies_to(name) ? &*injected_delay_ : nullptr;
-    FrameSamples coarse, fine;
-    std::vector<double> control_ms;
-    const bool tracing = io_trace_enabled();
-    std::vector<TraceSpan> trace;  // SHADOWBENCH_IO_TRACE (run/io_trace.h)
-    const auto frame_name = [&](int i) {
-      return name + (i < 0 ? std::string(" compile frame") : " frame " + std::to_string(i));
-    };
-    // The job's own frames; a throw in one is the technique's, in "render".
-    const auto job_frame = [&](const std::string& what, gl::PassDetail detail) {
-      return in_technique_phase(tv.info->name, "render", [&] {
-        return run_frame(timer, technique, what, detail, f, delay);
-      });
-    };
-    const auto control_frame = [&](int i) {
-      return run_frame(timer, *control->technique,
-                       "control " + control->name + " next to " + frame_name(i),
-                       gl::PassDetail::Coarse, f, nullptr);
-    };
-    const int frames = e_.warmup_frames + e_.timed_frames;
-    // Frame -1 is never timed, whatever the warm-up count: shader compilation
-    // and the driver's first-use work must not land in a timed frame (with
-    // "warmup": 0 they would, and only for the techniques compiled last).
-    for (int i = -1; i < frames; ++i) {
-      const bool timed = i >= e_.warmup_frames;
-      // Interleaved A/B runs (compare-builds) take turns between blocks.
-      if (timed && o_.take_turn && (i - e_.warmup_frames) % o_.turn_block_frames == 0)
-        o_.take_turn(name);
-      const bool control_first = control != nullptr && i >= 0 && i % 2 == 1;
-      gl::PassTimer::Frame before{}, after{};
-      const std::int64_t began = tracing ? monotonic_ns() : 0;
-      if (control_first) before = control_frame(i);
-      const auto frame = job_frame(frame_name(i), gl::PassDetail::Coarse);
-      if (control != nullptr && i >= 0 && !control_first) after = control_frame(i);
-      if (!timed) continue;
-      if (tracing) trace.push_back({"timed", frame_name(i), began, monotonic_ns()});
-      coarse.add(frame);
-      if (control != nullptr) control_ms.push_back((control_first ? before : after).total_ms);
-    }
-    // The visibility that run_job reads must be the job's: when a control
-    // frame came last, one more untimed frame of the job.
-    if (control != nullptr && o_.pass_detail != gl::PassDetail::Fine && frames > 0 &&
-        (frames - 1) % 2 == 0)
-      job_frame(name + " readback frame", gl::PassDetail::Coarse);
-    // Per-pass detail in frames of its own, so its syncs never reach the
-    // technique's time above.
-    if (o_.pass_detail == gl::PassDetail::Fine)
-      for (int i = 0; i < e_.timed_frames; ++i) {
-        const std::int64_t began = tracing ? monotonic_ns() : 0;
-        const std::string fine_name = name + " fine frame " + std::to_string(i);
-        fine.add(job_frame(fine_name, gl::PassDetail::Fine));
-        if (tracing) trace.push_back({"timed", fine_name, began, monotonic_ns()});
-      }
-    // The test-only trace, written once the frames are done.
-    write_trace(trace);
-
-    // Statistics plus the raw per-frame samples, in frame order: comparisons
-    // between runs test the samples themselves (shadowbench compare).
-    TimingRecord t;
-    t.compile_frames = 1;
-    t.warmup_frames = e_.warmup_frames;
-    t.timed_frames = e_.timed_frames;
-    t.pass_timing = gl::to_string(o_.pass_detail);
-    t.frame = TimingSeries::of(coarse.frame);
-    t.technique = TimingSeries::of(coarse.technique);
-    for (const auto& [pass, v] : coarse.shared) t.shared[pass] = TimingSeries::of(v);
-    if (o_.pass_detail == gl::PassDetail::Fine) {
-      FineTiming detail;
-      detail.pass_order = fine.pass_order;
-      for (const auto& pass : fine.pass_order)
-        detail.passes[pass] = TimingSeries::of(fine.passes[pass]);
-      // The same frames' sums: what per-pass syncs cost, against "technique".
-      detail.frames = e_.timed_frames;
-      detail.technique = TimingSeries::of(fine.technique);
-      detail.frame = TimingSeries::of(fine.frame);
-      t.fine = std::move(detail);
-    }
-    if (control != nullptr) {
-      ControlTiming c;
-      c.technique = control->name;
-      c.frame = TimingSeries::of(control_ms);
-      std::vector<double> ratio(control_ms.size());
-      for (size_t k = 0; k < ratio.size(); ++k) ratio[k] = coarse.frame[k] / control_ms[k];
-      c.frame_ratio = RatioSeries::of(ratio);
-      t.control = std::move(c);
-    }
-    return t;
   }
 
   // The technique's V, its shaded image and its error heat map.
