@@ -1,11 +1,13 @@
 #include "run/job_identity.h"
 
+#include <array>
 #include <cstdlib>
 #include <ctime>
 
 #include "core/error.h"
 #include "core/hash.h"
 #include "core/names.h"
+#include "plugin/needs.h"
 #include "plugin/registry.h"
 #include "reference/embree_isa.h"
 #include "reference/reference.h"
@@ -36,6 +38,8 @@ EmbreeChoice choose_embree(const Experiment& e, const RunOptions& o) {
 }
 
 namespace {
+
+std::array<double, 3> vec3(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 
 // The module that registered the technique, when one did (a test's own
 // registrations have none).
@@ -178,6 +182,20 @@ JobRecord identity_record(const Experiment& e, const RunOptions& o, const Embree
   if (o.shard.count > 1)
     r.shard = std::to_string(o.shard.index) + "/" + std::to_string(o.shard.count);
   return r;
+}
+
+BuiltScene built_scene(const SceneVariant& sv, const ScenePlan& st) {
+  BuiltScene b;
+  b.triangles = static_cast<std::int64_t>(st.scene.triangle_count());
+  b.caster_triangles = static_cast<std::int64_t>(st.scene.caster_triangle_count());
+  b.analytic_casters = static_cast<std::int64_t>(st.scene.analytic_caster_count());
+  const auto& l = st.scene.light;
+  b.light = {vec3(l.center), vec3(l.target), {l.width(), l.height()}, l.intensity};
+  const auto& c = st.scene.camera;
+  b.camera = {vec3(c.eye), vec3(c.target), c.fov_y_degrees};
+  b.derived = {st.derived.has(need::kCasterClosedness), st.derived.has(need::kEdgeAdjacency),
+               sv.infer_receivers, st.inferred_receivers};
+  return b;
 }
 
 }  // namespace sb

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "config/experiment.h"
+#include "plan/plan.h"
 #include "record/job_record.h"
 #include "reference/settings.h"
 #include "run/runner.h"
@@ -49,6 +50,9 @@ std::string job_spec_hash(const nlohmann::json& spec);
 JobRecord identity_record(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
                           const SceneVariant& sv, const Resolution& res, const TechniqueVariant& tv,
                           const std::string& gl_renderer = "", const std::string& gl_version = "");
+
+// The record's scene.built: what planning `sv` built (`st`).
+BuiltScene built_scene(const SceneVariant& sv, const ScenePlan& st);
 
 // Now, UTC, as records write it: "2026-12-03T11:04:55Z".
 std::string now_iso8601();
