@@ -564,41 +564,44 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
         r.fail(pointer, "expected \"monte_carlo\" or \"exact\", found \"" + method + "\"");
       return method == "exact";
     };
-    if (ref.contains("method")) e.reference.exact = is_exact("method");
+    if (ref.contains("method")) e.reference.settings.exact = is_exact("method");
     if (ref.contains("second_method")) {
       e.reference.second_exact = is_exact("second_method");
-      if (*e.reference.second_exact == e.reference.exact)
+      if (*e.reference.second_exact == e.reference.settings.exact)
         r.fail("/reference/second_method",
                std::string("expected the other method than /reference/method (") +
-                   (e.reference.exact ? "exact" : "monte_carlo") + "), found the same");
+                   (e.reference.settings.exact ? "exact" : "monte_carlo") + "), found the same");
     }
-    if (ref.contains("spp")) e.reference.spp = r.integer(ref["spp"], "/reference/spp", 1, 1 << 20);
+    if (ref.contains("spp"))
+      e.reference.settings.spp = r.integer(ref["spp"], "/reference/spp", 1, 1 << 20);
     if (ref.contains("seed"))
-      e.reference.seed =
+      e.reference.settings.seed =
           static_cast<uint64_t>(r.integer(ref["seed"], "/reference/seed", 0, 2147483647));
     if (ref.contains("cache")) e.reference.cache = r.boolean(ref["cache"], "/reference/cache");
     if (ref.contains("adaptive"))
-      e.reference.adaptive = r.boolean(ref["adaptive"], "/reference/adaptive");
+      e.reference.settings.adaptive = r.boolean(ref["adaptive"], "/reference/adaptive");
     if (ref.contains("pilot_spp"))
-      e.reference.pilot_spp = r.integer(ref["pilot_spp"], "/reference/pilot_spp", 1, 1 << 20);
+      e.reference.settings.pilot_spp =
+          r.integer(ref["pilot_spp"], "/reference/pilot_spp", 1, 1 << 20);
     if (ref.contains("target_std_error"))
-      e.reference.target_std_error =
+      e.reference.settings.target_std_error =
           r.number(ref["target_std_error"], "/reference/target_std_error", 1e-6, 0.5);
-    if (e.reference.adaptive) {
+    if (e.reference.settings.adaptive) {
       // Whether the counts nest is the config's question, not the run's.
-      const int pilot = e.reference.pilot_spp;
+      const int pilot = e.reference.settings.pilot_spp;
       if (pilot != 4 && pilot != 16 && pilot != 64)
         r.fail(ref.contains("pilot_spp") ? "/reference/pilot_spp" : "/reference/adaptive",
-               reference::detail::adaptive_layout_problem(e.reference.spp, pilot));
+               reference::detail::adaptive_layout_problem(e.reference.settings.spp, pilot));
       else if (const std::string why =
-                   reference::detail::adaptive_layout_problem(e.reference.spp, pilot);
+                   reference::detail::adaptive_layout_problem(e.reference.settings.spp, pilot);
                !why.empty())
         r.fail("/reference/spp", "with /reference/adaptive: " + why);
     }
     if (ref.contains("embree_config")) {
-      e.reference.embree_config = r.string(ref["embree_config"], "/reference/embree_config");
+      e.reference.settings.embree_config =
+          r.string(ref["embree_config"], "/reference/embree_config");
       try {  // syntax only: whether this CPU has the ISA is the run's question
-        reference::check_embree_config(e.reference.embree_config);
+        reference::check_embree_config(e.reference.settings.embree_config);
       } catch (const std::invalid_argument& ex) {
         r.fail("/reference/embree_config", ex.what());
       }

@@ -12,6 +12,7 @@
 #include "core/params.h"
 #include "core/scene_types.h"
 #include "plugin/registry.h"
+#include "reference/settings.h"
 
 namespace sb {
 
@@ -57,19 +58,16 @@ struct Resolution {
 };
 
 struct ReferenceConfig {
-  bool exact = false;  // "method": "exact" (else "monte_carlo", the default)
+  // "method" ("exact" sets settings.exact; "monte_carlo", the default, does
+  // not), "spp", "seed", "adaptive", "pilot_spp", "target_std_error" and
+  // "embree_config" as given: "" (environment or best ISA), "isa=avx2",
+  // "max_isa=avx2". A run may choose another Embree config
+  // (run/job_identity.h).
+  reference::Settings settings;
   // "second_method": every job is also measured against a reference of the
   // other method (true: exact; false: Monte Carlo), record second_reference.
   std::optional<bool> second_exact;
-  int spp = 256;
-  uint64_t seed = 1;
   bool cache = true;
-  std::string embree_config;  // "" (environment or best ISA), "isa=avx2", "max_isa=avx2"
-  // "adaptive": the Monte Carlo reference takes a pilot_spp-sample pilot per
-  // pixel and more only where needed, up to spp (reference/adaptive.h).
-  bool adaptive = false;
-  int pilot_spp = 4;
-  double target_std_error = 0.01;
 };
 
 // The "stability" block (docs/stability.md): extra, untimed frames per job

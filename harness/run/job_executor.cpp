@@ -1,305 +1,32 @@
 #include "run/job_executor.h"
 
-#include <tbb/parallel_invoke.h>
-
-#include <algorithm>
-#include <array>
 #include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <ctime>
-#include <filesystem>
-#include <map>
 #include <optional>
 #include <set>
 #include <utility>
 
-#include "core/error.h"
-#include "gl/allocation_meter.h"
 #include "gl/debug.h"
-#include "gl/gl.h"
-#include "gl/gpu_scene.h"
-#include "metrics/distance_thirds.h"
-#include "metrics/geometry_region.h"
-#include "metrics/image_io.h"
-#include "metrics/light_horizon.h"
-#include "metrics/metrics.h"
-#include "metrics/shadow_classes.h"
+#include "gl/objects.h"
+#include "metrics/regions.h"
 #include "plan/plan.h"
+#include "plugin/need_data.h"
+#include "plugin/needs.h"
 #include "record/job_record.h"
-#include "reference/reference.h"
-#include "results/store.h"
+#include "run/baseline.h"
 #include "run/gbuffer.h"
 #include "run/injected_delay.h"
-#include "run/io_trace.h"
 #include "run/job_identity.h"
+#include "run/job_run.h"
+#include "run/scene_upload.h"
 #include "run/stability_probe.h"
-#include "run/technique_phase.h"
-#include "scenes/need_providers.h"
-#include "scenes/receiver_inference.h"
+#include "run/technique_frames.h"
 
 namespace sb {
-namespace fs = std::filesystem;
-using json = nlohmann::json;
 
 namespace {
 
-constexpr float kHeatmapFullScale = 0.25f;
-
-std::array<double, 3> vec3(const glm::vec3& v) { return {v.x, v.y, v.z}; }
-
-RegionStats region_stats(const metrics::ErrorStats& s) {
-  RegionStats r;
-  r.pixel_count = static_cast<std::int64_t>(s.pixel_count);
-  r.rmse = s.rmse;
-  r.mae = s.mae;
-  r.max_error = s.max_error;
-  r.max_x = s.max_x;
-  r.max_y = s.max_y;
-  r.psnr = s.psnr;
-  r.ssim = s.ssim;
-  r.frac_over_001 = s.frac_over_001;
-  r.frac_over_005 = s.frac_over_005;
-  r.frac_over_01 = s.frac_over_01;
-  r.nonfinite_count = static_cast<std::int64_t>(s.nonfinite_count);
-  r.mean_signed = s.mean_signed;
-  return r;
-}
-
-std::vector<uint8_t> mask_and(std::vector<uint8_t> a, const std::vector<uint8_t>& b) {
-  for (size_t i = 0; i < a.size(); ++i) a[i] = a[i] && b[i] ? 1 : 0;
-  return a;
-}
-
-std::int64_t count_ones(const std::vector<uint8_t>& mask) {
-  return std::count(mask.begin(), mask.end(), uint8_t(1));
-}
-
-// A technique's visibility must be finite and in [0,1]; float rounding of
-// sums (accumulation, kernels) may overshoot by this much.
-constexpr float kVisibilityTolerance = 1e-5f;  // the failure message says 1e-5
-
-VisibilityCheckRecord check_visibility(const ImageF& v) {
-  VisibilityCheckRecord c;
-  c.tolerance = kVisibilityTolerance;
-  for (float x : v.data) {
-    if (!std::isfinite(x))
-      ++c.nonfinite;
-    else if (x < -kVisibilityTolerance)
-      ++c.below_0;
-    else if (x > 1.0f + kVisibilityTolerance)
-      ++c.above_1;
-  }
-  return c;
-}
-
-// Pixels whose surface faces away from every point of the light are in
-// attached shadow whatever any technique says: V = 0 there for every
-// technique and the reference alike, so the error measures cast shadows only.
-void apply_attached_shadow(const std::vector<uint8_t>& attached, ImageF& visibility) {
-  for (size_t i = 0; i < attached.size(); ++i)
-    if (attached[i]) visibility.data[i] = 0.0f;
-}
-
-// The unmeasured pixels (mask 0) take the reference's values: they show no
-// error in the heat map and in SSIM's windows.
-ImageF with_unmeasured_from(const ImageF& test, const ImageF& ref,
-                            const std::vector<uint8_t>& measured) {
-  ImageF out = test;
-  for (size_t i = 0; i < measured.size(); ++i)
-    if (!measured[i])
-      for (int c = 0; c < out.channels; ++c)
-        out.data[i * size_t(out.channels) + size_t(c)] =
-            ref.data[i * size_t(ref.channels) + size_t(c)];
-  return out;
-}
-
-// The `soft_union` region of one job: the soft pixels of its V or the
-// reference's, measured ones only.
-std::vector<uint8_t> soft_union_of(const ImageF& visibility, const ImageF& ref,
-                                   const std::vector<uint8_t>& measured) {
-  return mask_and(metrics::soft_union_mask(visibility, ref), measured);
-}
-
 // Undo whatever state a technique left behind.
 void reset_gl_state() { gl::reset_state(); }
-
-// Pixel sets shared by every job of one (scene, resolution).
-struct Regions {
-  std::vector<uint8_t> measured;   // all but the pixels whose tangent plane cuts the light
-  std::vector<uint8_t> penumbra;   // the reference's soft pixels, measured ones only
-  std::vector<uint8_t> attached;   // the light wholly below the tangent plane: V = 0
-  std::vector<uint8_t> receivers;  // measured pixels on meshes that cast no shadow
-  std::vector<uint8_t> geometry;   // measured surface outside attached shadow; record "classes"
-  bool any_receiver = false;
-  // metrics.distance_thirds: the measured pixels by distance from the camera.
-  std::optional<std::array<std::vector<uint8_t>, 3>> distance_thirds;
-};
-
-// What every job of one (scene, resolution) draws with.
-struct FrameSetup {
-  FrameTargets& targets;
-  const GpuScene& gpu;
-  const Scene& scene;
-  const glm::mat4& view_projection;
-  const FrameInputs& in;
-};
-
-// What every job of one (scene, resolution) is measured against.
-struct Baseline {
-  const reference::Result& ref;
-  const ImageF& shaded;  // the reference's V, shaded
-  const Regions& regions;
-  // reference.second_method's reference, and its record part.
-  const reference::Result* second = nullptr;
-  const ReferenceRecord* second_record = nullptr;
-  StabilityProbe* stability = nullptr;  // the "stability" block
-};
-
-// A technique's V, shaded as the reference's is: untimed.
-ImageF shade(const FrameSetup& f, const ImageF& visibility) {
-  f.targets.upload_visibility(visibility);
-  f.targets.render_shading(f.scene);
-  return f.targets.read_shaded();
-}
-
-// Regions, each only over the measured pixels (all but those whose tangent
-// plane cuts the light; see metrics/light_horizon.h): every pixel; the
-// reference's penumbra; the soft pixels of either the technique or the
-// reference (`soft_union`), which also sees light bleeding into a true umbra
-// and blur outside the true penumbra; and, when the view holds any, the
-// pixels on meshes that cast no shadow (`receivers`). `geometry`, the surface
-// outside attached shadow, is measured on its own (metrics/geometry_region.h):
-// its SSIM windows see the reference's values everywhere outside it.
-//
-// SSIM's windows reach past the mask, so the unmeasured pixels take the
-// reference's values first: they add no error to a neighbour either.
-//
-// `extra` masks are measured too, in the same pass of the SSIM window (the
-// window's cost does not depend on how many masks average it); their stats
-// come back in order.
-ImageMetrics compare_images(const ImageF& test, const ImageF& ref, const Regions& regions,
-                            const std::vector<uint8_t>& soft_union,
-                            const std::vector<const std::vector<uint8_t>*>& extra = {},
-                            std::vector<RegionStats>* extra_stats = nullptr) {
-  const ImageF t = with_unmeasured_from(test, ref, regions.measured);
-  std::vector<const std::vector<uint8_t>*> masks = {&regions.measured, &regions.penumbra,
-                                                    &soft_union};
-  if (regions.any_receiver) masks.push_back(&regions.receivers);
-  // Geometry shares the SSIM pass unless the technique wrote something other
-  // than the reference outside it (on the sky, say): then it needs its own.
-  const bool geometry_shares = metrics::matches_outside(t, ref, regions.geometry);
-  if (geometry_shares) masks.push_back(&regions.geometry);
-  const size_t first_extra = masks.size();
-  masks.insert(masks.end(), extra.begin(), extra.end());
-  const std::vector<metrics::ErrorStats> stats = metrics::compare(t, ref, masks);
-  ImageMetrics m{region_stats(stats[0]), region_stats(stats[1]), region_stats(stats[2])};
-  m.geometry = region_stats(geometry_shares ? stats[first_extra - 1]
-                                            : metrics::compare_within(t, ref, regions.geometry));
-  if (regions.any_receiver) m.receivers = region_stats(stats[3]);
-  if (extra_stats != nullptr)
-    for (size_t i = first_extra; i < stats.size(); ++i)
-      extra_stats->push_back(region_stats(stats[i]));
-  return m;
-}
-
-// The visibility buffer's and the shaded image's error against the reference's.
-MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const Baseline& b) {
-  const std::vector<uint8_t> soft_union =
-      soft_union_of(visibility, b.ref.visibility, b.regions.measured);
-  std::vector<const std::vector<uint8_t>*> thirds;
-  if (b.regions.distance_thirds)
-    for (const auto& third : *b.regions.distance_thirds) thirds.push_back(&third);
-  std::vector<RegionStats> third_stats;
-  MetricsRecord m{
-      compare_images(visibility, b.ref.visibility, b.regions, soft_union, thirds, &third_stats),
-      compare_images(shaded, b.shaded, b.regions, soft_union)};
-  if (b.regions.distance_thirds) {
-    m.visibility.near_third = third_stats[0];
-    m.visibility.middle_third = third_stats[1];
-    m.visibility.far_third = third_stats[2];
-  }
-  return m;
-}
-
-// The visibility's error against the second reference, over the same
-// regions as against the first: only the reference differs.
-SecondReferenceRecord measure_second(const ImageF& visibility, const Baseline& b) {
-  const reference::Result& second = *b.second;
-  const std::vector<uint8_t> soft_union =
-      soft_union_of(visibility, second.visibility, b.regions.measured);
-  return {*b.second_record, compare_images(visibility, second.visibility, b.regions, soft_union)};
-}
-
-// A reference whose noise is comparable to the error cannot rank techniques.
-std::optional<std::string> noise_warning(const MetricsRecord& m, const reference::Result& ref) {
-  const double pen_rmse =
-      std::isfinite(m.visibility.penumbra.rmse) ? m.visibility.penumbra.rmse : 0.0;
-  // RMS against RMS: the noise's sqrt(mean σ²), not its mean σ.
-  if (ref.penumbra_rms_std_error > 0.0 && pen_rmse > 0.0 &&
-      ref.penumbra_rms_std_error > 0.5 * pen_rmse)
-    return "reference noise (penumbra RMS std error " + std::to_string(ref.penumbra_rms_std_error) +
-           ") is over half the penumbra RMSE; raise reference.spp";
-  return std::nullopt;
-}
-
-// Seconds since it was made or since the last call (record/phases_record.h).
-class Lap {
- public:
-  double seconds() {
-    const auto now = std::chrono::steady_clock::now();
-    const double out = std::chrono::duration<double>(now - last_).count();
-    last_ = now;
-    return out;
-  }
-
- private:
-  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-};
-
-// Per-frame times of a run of frames, by bracket.
-struct FrameSamples {
-  std::vector<double> frame, technique;
-  std::map<std::string, std::vector<double>> passes, shared;
-  std::vector<std::string> pass_order;
-
-  void add(const gl::PassTimer::Frame& f) {
-    frame.push_back(f.total_ms);
-    double tech = 0.0;
-    for (const auto& [name, ms] : f.passes) {
-      if (name.rfind("shared:", 0) == 0) {
-        shared[name.substr(7)].push_back(ms);
-        continue;
-      }
-      if (name != "technique" && !passes.count(name)) pass_order.push_back(name);
-      if (name != "technique") passes[name].push_back(ms);
-      tech += ms;
-    }
-    technique.push_back(tech);
-  }
-};
-
-// Per mesh: closed (depth passes may cull it; known when a technique in the
-// plan asked for closedness) and, for receivers, whether nothing lies behind
-// them from the light (filtered maps may draw them).
-std::vector<MeshDrawFlags> draw_flags(const ScenePlan& st) {
-  std::vector<MeshDrawFlags> flags(st.scene.meshes.size());
-  const auto* topology = st.derived.find<CasterTopology>(need::kCasterClosedness);
-  const ShadowNothingTest shadows_nothing(st.scene);
-  for (size_t i = 0; i < flags.size(); ++i) {
-    const Mesh& m = st.scene.meshes[i];
-    flags[i].closed = m.casts_shadow && topology != nullptr && (*topology)[i].closed();
-    flags[i].nothing_behind = !m.casts_shadow && shadows_nothing(i);
-  }
-  return flags;
-}
-
-// The control job of one (scene, resolution), prepared once: its frames are
-// timed next to every job's.
-struct Control {
-  std::string name;
-  std::unique_ptr<Technique> technique;
-};
 
 }  // namespace
 
@@ -325,8 +52,7 @@ class JobExecutor::Impl {
     const ScenePlan st = plan_scene(e_, sv, Derive::All);
     events_.scene_planned(sv.name, st.log, st.bad_input ? st.input_error : std::string());
 
-    std::unique_ptr<GpuScene> gpu;
-    DerivedData derived;  // the plan's, and the GPU stages' (freed before gpu)
+    UploadedScene uploaded;
     for (const ResolutionWork& w : work) {
       const Resolution& res = e_.resolutions[w.resolution];
       std::vector<size_t> pending;
@@ -348,18 +74,10 @@ class JobExecutor::Impl {
       }
       if (pending.empty()) continue;
       try {
-        if (!gpu) {
-          // Both or neither: a failed GPU stage is tried again at the next
-          // resolution, like a failed upload.
-          const auto* adjacency = st.derived.find<CasterAdjacency>(need::kEdgeAdjacency);
-          auto uploaded = std::make_unique<GpuScene>(
-              st.scene, adjacency ? *adjacency : CasterAdjacency{}, draw_flags(st));
-          DerivedData with_gpu = st.derived;
-          for (const NeedProvider* p : st.uploads) p->upload(st.scene, *uploaded, with_gpu);
-          gpu = std::move(uploaded);
-          derived = std::move(with_gpu);
-        }
-        run_resolution(sv, st, *gpu, derived, res, pending);
+        // Both or neither: a failed GPU stage is tried again at the next
+        // resolution, like a failed upload.
+        if (!uploaded.gpu) uploaded = upload_scene(st);
+        run_resolution(sv, st, *uploaded.gpu, uploaded.derived, res, pending);
       } catch (const std::exception& ex) {
         // Shared work (G-buffer, reference) failed: every job not yet
         // finished fails.
@@ -376,27 +94,13 @@ class JobExecutor::Impl {
   const Experiment& experiment() const { return e_; }
 
  private:
-  void log(const std::string& line) const { events_.log(line); }
-
   // What identifies a job and where it ran; `st` is null for a scene that
   // did not build.
   JobRecord base_record(const SceneVariant& sv, const ScenePlan* st, const Resolution& res,
                         const TechniqueVariant& tv) const {
     JobRecord r =
         identity_record(e_, o_, embree_, sv, res, tv, context_->renderer(), context_->version());
-    if (st != nullptr) {
-      BuiltScene b;
-      b.triangles = static_cast<std::int64_t>(st->scene.triangle_count());
-      b.caster_triangles = static_cast<std::int64_t>(st->scene.caster_triangle_count());
-      b.analytic_casters = static_cast<std::int64_t>(st->scene.analytic_caster_count());
-      const auto& l = st->scene.light;
-      b.light = {vec3(l.center), vec3(l.target), {l.width(), l.height()}, l.intensity};
-      const auto& c = st->scene.camera;
-      b.camera = {vec3(c.eye), vec3(c.target), c.fov_y_degrees};
-      b.derived = {st->derived.has(need::kCasterClosedness), st->derived.has(need::kEdgeAdjacency),
-                   sv.infer_receivers, st->inferred_receivers};
-      r.scene.built = std::move(b);
-    }
+    if (st != nullptr) r.scene.built = built_scene(sv, *st);
     r.gl_platform = context_->platform();
     r.timing_source = gl::to_string(timing_source_);
     return r;
@@ -417,74 +121,6 @@ class JobExecutor::Impl {
     finish(std::move(r));
   }
 
-  // The reference's part of every record of one (scene, resolution).
-  // `penumbra`: the reference's own soft pixels.
-  ReferenceRecord reference_record(const reference::Result& ref, const Regions& regions,
-                                   const std::vector<uint8_t>& penumbra) const {
-    ReferenceRecord r;
-    r.method = ref.method;
-    r.exact_fallback = ref.exact_fallback;
-    r.spp = ref.spp;
-    r.seed = ref.seed;
-    r.embree_isa = ref.isa;
-    r.embree_config = embree_.config;
-    r.mean_std_error = ref.mean_std_error;
-    r.penumbra_mean_std_error = ref.penumbra_mean_std_error;
-    r.penumbra_rms_std_error = ref.penumbra_rms_std_error;
-    r.penumbra_pixels = count_ones(penumbra);
-    r.attached_shadow_pixels = count_ones(regions.attached);
-    r.horizon_cut_pixels =
-        static_cast<std::int64_t>(regions.measured.size()) - count_ones(regions.measured);
-    r.cache_key = ref.cache_key;
-    r.from_cache = ref.from_cache;
-    r.seconds = ref.seconds;
-    if (ref.method == reference::kAdaptiveMethod)
-      r.adaptive = AdaptiveReferenceRecord{e_.reference.pilot_spp, e_.reference.target_std_error,
-                                           ref.mean_spp,           ref.max_spp,
-                                           ref.unproven_stops,     ref.stop_bias_bound};
-    return r;
-  }
-
-  // The reference's images, the masks of the regions every job shares (and
-  // with --gbuffer the G-buffer's), once per (scene, resolution); every
-  // job's record names them.
-  ImagesRecord write_reference_images(const std::string& rel, const reference::Result& ref,
-                                      const ImageF& ref_shaded, const Regions& regions,
-                                      const ImageF& positions, const ImageF& normals) const {
-    ImagesRecord images;
-    if (!o_.write_images) return images;
-    const fs::path dir = fs::path(o_.run_dir) / rel;
-    fs::create_directories(dir);
-    io::write_exr((dir / "visibility.exr").string(), ref.visibility);
-    io::write_exr((dir / "std_error.exr").string(), ref.std_error);
-    io::write_png((dir / "shaded.png").string(), ref_shaded);
-    images.reference_visibility = rel + "/visibility.exr";
-    images.reference_std_error = rel + "/std_error.exr";
-    images.reference_shaded = rel + "/shaded.png";
-    // Named as the record's metrics.visibility regions; soft_union is each job's own.
-    std::vector<std::pair<std::string, const std::vector<uint8_t>*>> masks = {
-        {"all", &regions.measured},
-        {"geometry", &regions.geometry},
-        {"penumbra", &regions.penumbra}};
-    if (regions.any_receiver) masks.emplace_back("receivers", &regions.receivers);
-    if (regions.distance_thirds) {
-      const char* names[3] = {"near_third", "middle_third", "far_third"};
-      for (size_t i = 0; i < 3; ++i) masks.emplace_back(names[i], &(*regions.distance_thirds)[i]);
-    }
-    for (const auto& [region, mask] : masks) {
-      const std::string file = "mask_" + region + ".png";
-      io::write_mask_png((dir / file).string(), *mask, ref.visibility.width, ref.visibility.height);
-      images.masks[region] = (fs::path(rel) / file).generic_string();
-    }
-    if (o_.write_gbuffer) {
-      io::write_exr((dir / "positions.exr").string(), positions);
-      io::write_exr((dir / "normals.exr").string(), normals);
-      images.gbuffer_positions = rel + "/positions.exr";
-      images.gbuffer_normals = rel + "/normals.exr";
-    }
-    return images;
-  }
-
   void run_resolution(const SceneVariant& sv, const ScenePlan& st, const GpuScene& gpu,
                       const DerivedData& derived, const Resolution& res,
                       const std::vector<size_t>& pending) {
@@ -493,87 +129,9 @@ class JobExecutor::Impl {
     const float aspect = float(res.width) / float(res.height);
     const glm::mat4 view = st.scene.camera.view();
     const glm::mat4 projection = st.scene.camera.projection(aspect);
-    const glm::mat4 view_projection = projection * view;
-    targets.render_gbuffer(gpu, view_projection);
-    const ImageF positions = targets.read_positions();
-    const ImageF normals = targets.read_geometric_normals();
-
-    // Reference at the G-buffer's very points.
-    reference::Settings rs;
-    rs.spp = e_.reference.spp;
-    rs.seed = e_.reference.seed;
-    rs.embree_config = embree_.config;
-    rs.exact = e_.reference.exact;
-    rs.adaptive = e_.reference.adaptive;
-    rs.pilot_spp = e_.reference.pilot_spp;
-    rs.target_std_error = e_.reference.target_std_error;
-    const bool cache = e_.reference.cache && !o_.cache_dir.empty();
-    events_.phase(sv.name, res.label(), "(reference)");
-    const auto make_reference = [&](const reference::Settings& settings, const char* which) {
-      reference::Result out =
-          cache ? reference::get(st.scene, positions, normals, settings, o_.cache_dir)
-                : reference::compute(st.scene, positions, normals, settings);
-      // The key names the reference in the record even when nothing is
-      // cached, so that `compare` can tell two references apart.
-      if (out.cache_key.empty()) {
-        reference::Settings keyed = settings;
-        if (!out.exact_fallback.empty()) keyed.exact = false;  // as reference::get keys it
-        out.cache_key = reference::cache_key(st.scene, positions, normals, keyed);
-      }
-      const std::string samples = out.method == reference::kExactMethod ? std::string("exact")
-                                  : out.method == reference::kAdaptiveMethod
-                                      ? "adaptive, mean " + std::to_string(out.mean_spp) + " of " +
-                                            std::to_string(out.spp) + " spp"
-                                      : std::to_string(out.spp) + " spp";
-      log(std::string(which) + " " + sv.name + " @ " + res.label() + ": " + samples + ", " +
-          (out.from_cache ? std::string("from cache") : std::to_string(out.seconds) + " s") +
-          ", mean std error " + std::to_string(out.mean_std_error));
-      if (!out.exact_fallback.empty())
-        log(std::string(which) + " " + sv.name + ": Monte Carlo, not exact: " + out.exact_fallback);
-      return out;
-    };
-    reference::Result ref = make_reference(rs, "reference");
-    std::optional<reference::Result> second;
-    if (e_.reference.second_exact) {
-      reference::Settings second_settings = rs;
-      second_settings.exact = *e_.reference.second_exact;
-      events_.phase(sv.name, res.label(), "(second reference)");
-      second = make_reference(second_settings, "second reference");
-    }
-    const auto horizon = metrics::classify_light_horizon(positions, normals, st.scene.light);
-    Regions regions;
-    regions.attached = metrics::horizon_mask(horizon, metrics::LightHorizon::Below);
-    regions.measured = metrics::horizon_mask(horizon, metrics::LightHorizon::Cuts);
-    for (auto& m : regions.measured) m = m ? 0 : 1;
-    apply_attached_shadow(regions.attached, ref.visibility);
-    regions.penumbra = mask_and(metrics::penumbra_mask(ref.visibility), regions.measured);
-    regions.geometry = metrics::geometry_mask(horizon);
-    if (e_.distance_thirds)
-      regions.distance_thirds =
-          metrics::distance_thirds(positions, st.scene.camera.eye, regions.measured);
-    std::optional<ReferenceRecord> second_record;
-    if (second) {
-      apply_attached_shadow(regions.attached, second->visibility);
-      second_record = reference_record(
-          *second, regions, mask_and(metrics::penumbra_mask(second->visibility), regions.measured));
-    }
-    {
-      const ImageF receiver = targets.read_receiver_mask();
-      regions.receivers.resize(receiver.data.size());
-      for (size_t i = 0; i < receiver.data.size(); ++i)
-        regions.receivers[i] = receiver.data[i] != 0.0f && regions.measured[i] ? 1 : 0;
-      regions.any_receiver = std::find(regions.receivers.begin(), regions.receivers.end(), 1) !=
-                             regions.receivers.end();
-    }
-
-    targets.upload_visibility(ref.visibility);
-    targets.render_shading(st.scene);
-    const ImageF ref_shaded = targets.read_shaded();
-
-    const ImagesRecord ref_images =
-        write_reference_images("reference/" + file_safe(sv.name) + "__" + res.label(), ref,
-                               ref_shaded, regions, positions, normals);
-    const ReferenceRecord ref_record = reference_record(ref, regions, regions.penumbra);
+    targets.render_gbuffer(gpu, projection * view);
+    const Baseline baseline =
+        make_baseline(e_, o_, embree_, events_, sv.name, st.scene, res, targets);
 
     FrameInputs in = targets.inputs(st.scene, gpu, view, projection);
     in.derived = &derived;
@@ -581,49 +139,50 @@ class JobExecutor::Impl {
       in.has_receiver_plane = true;
       in.receiver_plane = r->plane;
     }
-    const FrameSetup frame{targets, gpu, st.scene, view_projection, in};
+    const FrameSetup frame{targets, st.scene, in};
     std::optional<StabilityProbe> stability;
     if (e_.stability) {
       // Untimed frames under moved lights, measured against references of
       // the same lights at the same points.
-      auto render = [&, vp = view_projection](Technique& t, const FrameInputs& moved) {
-        const FrameSetup f{targets, gpu, *moved.scene, vp, moved};
+      auto render = [&](Technique& t, const FrameInputs& moved) {
+        const FrameSetup f{targets, *moved.scene, moved};
         gl::PassTimer timer(timing_source_);
-        run_frame(timer, t, "stability frame", gl::PassDetail::Coarse, f, nullptr);
+        render_frame(timer, t, "stability frame", gl::PassDetail::Coarse, f, nullptr);
         ImageF v = targets.read_visibility();
-        apply_attached_shadow(regions.attached, v);
+        metrics::apply_attached_shadow(baseline.regions.attached, v);
         reset_gl_state();
         return v;
       };
-      auto reference = [&, settings = rs](const Scene& moved) {
-        reference::Result out =
-            cache ? reference::get(moved, positions, normals, settings, o_.cache_dir)
-                  : reference::compute(moved, positions, normals, settings);
-        apply_attached_shadow(regions.attached, out.visibility);
+      auto reference = [&](const Scene& moved) {
+        reference::Result out = baseline.reference_of(moved);
+        metrics::apply_attached_shadow(baseline.regions.attached, out.visibility);
         return std::move(out.visibility);
       };
       stability.emplace(*e_.stability, sv.max_rmse.value_or(e_.stability->max_rmse), st.scene, in,
-                        regions.measured, render, reference);
+                        baseline.regions.measured, render, reference);
     }
-    const Baseline baseline{ref,
-                            ref_shaded,
-                            regions,
-                            second ? &*second : nullptr,
-                            second_record ? &*second_record : nullptr,
-                            stability ? &*stability : nullptr};
     std::optional<Control> control;
-    if (e_.control) control = prepare_control(*e_.control, frame);
+    if (e_.control) control = prepare_control(*e_.control, frame, timing_source_);
+    const JobSetting setting{e_,
+                             o_,
+                             events_,
+                             timing_source_,
+                             injected_delay_ ? &*injected_delay_ : nullptr,
+                             frame,
+                             baseline,
+                             control ? &*control : nullptr,
+                             stability ? &*stability : nullptr};
     for (size_t i : pending) {
       const TechniqueVariant& tv = e_.techniques[i];
       JobRecord r = base_record(sv, &st, res, tv);
       r.started_at = now_iso8601();
-      r.reference = ref_record;
+      r.reference = baseline.ref_record;
       events_.job_started(r);
       const auto t0 = std::chrono::steady_clock::now();
       PhasesRecord phases;
       try {
-        run_job(tv, frame, baseline, control ? &*control : nullptr, r, phases);
-        r.images.add(ref_images);
+        run_job(setting, tv, r, phases);
+        r.images.add(baseline.ref_images);
         r.status = JobStatus::Ok;
       } catch (const std::exception& ex) {
         r.status = JobStatus::Failed;
@@ -636,253 +195,6 @@ class JobExecutor::Impl {
       r.phases_s = phases;
       finish(std::move(r));
     }
-  }
-
-  // One job: prepare the technique, time it, check and measure its V, write
-  // its images. Whatever it got to stays in `r` when it throws.
-  void run_job(const TechniqueVariant& tv, const FrameSetup& frame, const Baseline& baseline,
-               Control* control, JobRecord& r, PhasesRecord& phases) {
-    Lap lap;
-    gl::take_debug_errors();
-    const std::string& who = tv.info->name;
-    // Counts what the technique allocates from here to its last frame.
-    gl::AllocationWindow allocations;
-    std::unique_ptr<Technique> technique = in_technique_phase(who, "prepare", [&] {
-      std::unique_ptr<Technique> t = tv.info->create(tv.params);
-      t->prepare(frame.in);
-      gl::throw_if_errors(tv.name + " prepare");
-      glFinish();  // prepare's GL work in prepare's time, not the first frame's
-      return t;
-    });
-    phases.prepare = lap.seconds();
-    // The parent stores the record before this one while prepare runs; no
-    // write of its overlaps a frame (docs/robustness.md). Its wait is
-    // overhead, in no phase.
-    events_.await_listener();
-    lap.seconds();
-
-    r.timing = time_frames(*technique, tv, frame, control);
-    r.technique.gpu_bytes = allocations.peak_bytes();
-    phases.frames = lap.seconds();
-    if (injected_delay_ && injected_delay_->applies_to(tv.name))
-      r.warnings.push_back(injected_delay_->describe());
-
-    ImageF visibility = in_technique_phase(who, "read-back", [&] {
-      ImageF v = frame.targets.read_visibility();
-      gl::throw_if_errors(tv.name + " read-back");
-      return v;
-    });
-    const VisibilityCheckRecord check = check_visibility(visibility);
-    r.visibility_check = check;
-    apply_attached_shadow(baseline.regions.attached, visibility);
-    // Shaded from the same V as the metrics, as the reference is: untimed.
-    const ImageF shaded = shade(frame, visibility);
-    r.metrics = measure(visibility, shaded, baseline);
-    if (baseline.second) r.second_reference = measure_second(visibility, baseline);
-    r.classes = ClassesRecord{
-        metrics::confusion_matrix(visibility, baseline.ref.visibility, baseline.regions.geometry)};
-    if (auto warning = noise_warning(*r.metrics, baseline.ref)) r.warnings.push_back(*warning);
-    phases.measure = lap.seconds();
-    if (o_.write_images) r.images = write_job_images(r.job_id, visibility, shaded, baseline);
-    phases.images = lap.seconds();
-    // Metrics and images are kept for inspection, but the job fails.
-    if (check.nonfinite + check.below_0 + check.above_1 > 0)
-      throw JobError("visibility outside [0,1]: " + std::to_string(check.nonfinite) + " NaN/Inf, " +
-                     std::to_string(check.below_0) + " below 0, " + std::to_string(check.above_1) +
-                     " above 1 (tolerance 1e-5)");
-    // A broken job has no stability figures: it is broken.
-    if (baseline.stability) {
-      r.stability = baseline.stability->measure(tv, *technique);
-      gl::throw_if_errors(tv.name + " stability frames");
-      phases.stability = lap.seconds();
-    }
-  }
-
-  // The control, prepared and its shaders compiled before any job's frame.
-  // A control that fails fails the (scene, resolution)'s jobs: their times
-  // would have nothing to be relative to.
-  Control prepare_control(const TechniqueVariant& tv, const FrameSetup& f) const {
-    Control c{tv.name, tv.info->create(tv.params)};
-    gl::take_debug_errors();
-    c.technique->prepare(f.in);
-    gl::throw_if_errors("control " + tv.name + " prepare");
-    gl::PassTimer timer(timing_source_);
-    run_frame(timer, *c.technique, "control " + tv.name + " compile frame", gl::PassDetail::Coarse,
-              f, nullptr);
-    reset_gl_state();
-    return c;
-  }
-
-  // One frame: the G-buffer's restore, the technique and shading, each in one harness
-  // bracket. In fine detail the technique's own passes are the brackets
-  // instead, and the sum of their times is what it pays for them.
-  gl::PassTimer::Frame run_frame(gl::PassTimer& timer, Technique& technique,
-                                 const std::string& frame_name, gl::PassDetail detail,
-                                 const FrameSetup& f, const InjectedDelay* delay) const {
-    timer.set_detail(detail);
-    reset_gl_state();
-    const auto started = std::chrono::steady_clock::now();
-    timer.begin_frame();
-    {
-      // The G-buffer was rendered once for the (scene, resolution); the frame
-      // starts from its depth-stencil (run/gbuffer.h).
-      auto p = timer.bracket("shared:gbuffer");
-      f.targets.restore_gbuffer();
-    }
-    reset_gl_state();
-    if (detail == gl::PassDetail::Coarse) {
-      auto p = timer.bracket("technique");
-      technique.render(f.in, timer);
-    } else {
-      technique.render(f.in, timer);
-    }
-    gl::throw_if_errors(frame_name);
-    reset_gl_state();
-    {
-      auto p = timer.bracket("shared:shading");
-      f.targets.render_shading(f.scene);
-    }
-    if (delay != nullptr) {
-      // At the frame's end, so that a relative delay knows the frame's time;
-      // a bracket of the job's own, so it counts in its technique time too.
-      glFinish();
-      const double so_far =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
-              .count();
-      auto p = timer.bracket("injected delay");
-      delay->wait(so_far);
-    }
-    auto frame = timer.end_frame();
-    gl::throw_if_errors(frame_name);
-    return frame;
-  }
-
-  // The compile frame, the warm-up and the timed frames, each next to a
-  // control frame (in ABBA order: job-control, control-job, ...), and with
-  // --pass-timing fine as many frames again with each pass its own bracket.
-  TimingRecord time_frames(Technique& technique, const TechniqueVariant& tv, const FrameSetup& f,
-                           Control* control) const {
-    const std::string& name = tv.name;
-    gl::PassTimer timer(timing_source_);
-    const InjectedDelay* delay =
-        injected_delay_ && injected_delay_->applies_to(name) ? &*injected_delay_ : nullptr;
-    FrameSamples coarse, fine;
-    std::vector<double> control_ms;
-    const bool tracing = io_trace_enabled();
-    std::vector<TraceSpan> trace;  // SHADOWBENCH_IO_TRACE (run/io_trace.h)
-    const auto frame_name = [&](int i) {
-      return name + (i < 0 ? std::string(" compile frame") : " frame " + std::to_string(i));
-    };
-    // The job's own frames; a throw in one is the technique's, in "render".
-    const auto job_frame = [&](const std::string& what, gl::PassDetail detail) {
-      return in_technique_phase(tv.info->name, "render", [&] {
-        return run_frame(timer, technique, what, detail, f, delay);
-      });
-    };
-    const auto control_frame = [&](int i) {
-      return run_frame(timer, *control->technique,
-                       "control " + control->name + " next to " + frame_name(i),
-                       gl::PassDetail::Coarse, f, nullptr);
-    };
-    const int frames = e_.warmup_frames + e_.timed_frames;
-    // Frame -1 is never timed, whatever the warm-up count: shader compilation
-    // and the driver's first-use work must not land in a timed frame (with
-    // "warmup": 0 they would, and only for the techniques compiled last).
-    for (int i = -1; i < frames; ++i) {
-      const bool timed = i >= e_.warmup_frames;
-      // Interleaved A/B runs (compare-builds) take turns between blocks.
-      if (timed && o_.take_turn && (i - e_.warmup_frames) % o_.turn_block_frames == 0)
-        o_.take_turn(name);
-      const bool control_first = control != nullptr && i >= 0 && i % 2 == 1;
-      gl::PassTimer::Frame before{}, after{};
-      const std::int64_t began = tracing ? monotonic_ns() : 0;
-      if (control_first) before = control_frame(i);
-      const auto frame = job_frame(frame_name(i), gl::PassDetail::Coarse);
-      if (control != nullptr && i >= 0 && !control_first) after = control_frame(i);
-      if (!timed) continue;
-      if (tracing) trace.push_back({"timed", frame_name(i), began, monotonic_ns()});
-      coarse.add(frame);
-      if (control != nullptr) control_ms.push_back((control_first ? before : after).total_ms);
-    }
-    // The visibility that run_job reads must be the job's: when a control
-    // frame came last, one more untimed frame of the job.
-    if (control != nullptr && o_.pass_detail != gl::PassDetail::Fine && frames > 0 &&
-        (frames - 1) % 2 == 0)
-      job_frame(name + " readback frame", gl::PassDetail::Coarse);
-    // Per-pass detail in frames of its own, so its syncs never reach the
-    // technique's time above.
-    if (o_.pass_detail == gl::PassDetail::Fine)
-      for (int i = 0; i < e_.timed_frames; ++i) {
-        const std::int64_t began = tracing ? monotonic_ns() : 0;
-        const std::string fine_name = name + " fine frame " + std::to_string(i);
-        fine.add(job_frame(fine_name, gl::PassDetail::Fine));
-        if (tracing) trace.push_back({"timed", fine_name, began, monotonic_ns()});
-      }
-    // The test-only trace, written once the frames are done.
-    write_trace(trace);
-
-    // Statistics plus the raw per-frame samples, in frame order: comparisons
-    // between runs test the samples themselves (shadowbench compare).
-    TimingRecord t;
-    t.compile_frames = 1;
-    t.warmup_frames = e_.warmup_frames;
-    t.timed_frames = e_.timed_frames;
-    t.pass_timing = gl::to_string(o_.pass_detail);
-    t.frame = TimingSeries::of(coarse.frame);
-    t.technique = TimingSeries::of(coarse.technique);
-    for (const auto& [pass, v] : coarse.shared) t.shared[pass] = TimingSeries::of(v);
-    if (o_.pass_detail == gl::PassDetail::Fine) {
-      FineTiming detail;
-      detail.pass_order = fine.pass_order;
-      for (const auto& pass : fine.pass_order)
-        detail.passes[pass] = TimingSeries::of(fine.passes[pass]);
-      // The same frames' sums: what per-pass syncs cost, against "technique".
-      detail.frames = e_.timed_frames;
-      detail.technique = TimingSeries::of(fine.technique);
-      detail.frame = TimingSeries::of(fine.frame);
-      t.fine = std::move(detail);
-    }
-    if (control != nullptr) {
-      ControlTiming c;
-      c.technique = control->name;
-      c.frame = TimingSeries::of(control_ms);
-      std::vector<double> ratio(control_ms.size());
-      for (size_t k = 0; k < ratio.size(); ++k) ratio[k] = coarse.frame[k] / control_ms[k];
-      c.frame_ratio = RatioSeries::of(ratio);
-      t.control = std::move(c);
-    }
-    return t;
-  }
-
-  // The technique's V, its shaded image and its error heat map.
-  ImagesRecord write_job_images(const std::string& id, const ImageF& visibility,
-                                const ImageF& shaded, const Baseline& b) const {
-    const std::string rel = "jobs/" + id;
-    const fs::path dir = fs::path(o_.run_dir) / rel;
-    fs::create_directories(dir);
-    // Four files at once: no frame runs now, and one file's encoding keeps
-    // one core busy (zlib), so the job's images take about half the time.
-    tbb::parallel_invoke(
-        [&] {
-          io::write_mask_png((dir / "mask_soft_union.png").string(),
-                             soft_union_of(visibility, b.ref.visibility, b.regions.measured),
-                             visibility.width, visibility.height);
-        },
-        [&] { io::write_exr((dir / "visibility.exr").string(), visibility); },
-        [&] { io::write_png((dir / "shaded.png").string(), shaded); },
-        [&] {
-          io::write_png((dir / "error.png").string(),
-                        metrics::error_heatmap(
-                            with_unmeasured_from(visibility, b.ref.visibility, b.regions.measured),
-                            b.ref.visibility, kHeatmapFullScale));
-        });
-    ImagesRecord images;
-    images.visibility = rel + "/visibility.exr";
-    images.shaded = rel + "/shaded.png";
-    images.error_heatmap = rel + "/error.png";
-    images.error_heatmap_full_scale = kHeatmapFullScale;
-    images.masks["soft_union"] = rel + "/mask_soft_union.png";
-    return images;
   }
 
   const Experiment& e_;

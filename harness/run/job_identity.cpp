@@ -1,11 +1,13 @@
 #include "run/job_identity.h"
 
+#include <array>
 #include <cstdlib>
 #include <ctime>
 
 #include "core/error.h"
 #include "core/hash.h"
 #include "core/names.h"
+#include "plugin/needs.h"
 #include "plugin/registry.h"
 #include "reference/embree_isa.h"
 #include "reference/reference.h"
@@ -28,25 +30,16 @@ std::string now_iso8601() {
 
 EmbreeChoice choose_embree(const Experiment& e, const RunOptions& o) {
   EmbreeChoice c;
-  c.config = !o.embree_config.empty()             ? o.embree_config
-             : !e.reference.embree_config.empty() ? e.reference.embree_config
-                                                  : reference::default_embree_config();
+  c.config = !o.embree_config.empty()                      ? o.embree_config
+             : !e.reference.settings.embree_config.empty() ? e.reference.settings.embree_config
+                                                           : reference::default_embree_config();
   c.isa = reference::resolve_isa(c.config);
   return c;
 }
 
 namespace {
 
-// A reference's settings as `run` hands them to reference::get.
-reference::Settings reference_settings(const ReferenceConfig& c, const EmbreeChoice& embree,
-                                       bool exact) {
-  reference::Settings s(c.spp, c.seed, embree.config);
-  s.exact = exact;
-  s.adaptive = c.adaptive;
-  s.pilot_spp = c.pilot_spp;
-  s.target_std_error = c.target_std_error;
-  return s;
-}
+std::array<double, 3> vec3(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 
 // The module that registered the technique, when one did (a test's own
 // registrations have none).
@@ -77,6 +70,14 @@ json injected_delay_spec(const TechniqueVariant& tv) {
 
 }  // namespace
 
+reference::Settings reference_settings(const ReferenceConfig& c, const EmbreeChoice& embree,
+                                       bool exact) {
+  reference::Settings s = c.settings;
+  s.embree_config = embree.config;
+  s.exact = exact;
+  return s;
+}
+
 json job_spec(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
               const SceneVariant& sv, const Resolution& res, const TechniqueVariant& tv) {
   const ReferenceConfig& ref = e.reference;
@@ -105,14 +106,14 @@ json job_spec(const Experiment& e, const RunOptions& o, const EmbreeChoice& embr
         // clocks on a software rasteriser, GL timestamps on a GPU).
         {"source", o.timing_source ? gl::to_string(*o.timing_source) : std::string("auto")}}},
       {"reference",
-       {{"method", ref.exact ? "exact" : "monte_carlo"},
-        {"method_id", reference::method_id(reference_settings(ref, embree, ref.exact))},
-        {"spp", ref.spp},
-        {"seed", ref.seed},
+       {{"method", ref.settings.exact ? "exact" : "monte_carlo"},
+        {"method_id", reference::method_id(reference_settings(ref, embree, ref.settings.exact))},
+        {"spp", ref.settings.spp},
+        {"seed", ref.settings.seed},
         {"embree_isa", embree.isa},
-        {"adaptive", ref.adaptive},
-        {"pilot_spp", ref.pilot_spp},
-        {"target_std_error", ref.target_std_error}}},
+        {"adaptive", ref.settings.adaptive},
+        {"pilot_spp", ref.settings.pilot_spp},
+        {"target_std_error", ref.settings.target_std_error}}},
       {"second_reference", nullptr},
       {"metrics", {{"distance_thirds", e.distance_thirds}}},
       {"stability", nullptr},
@@ -182,6 +183,20 @@ JobRecord identity_record(const Experiment& e, const RunOptions& o, const Embree
   if (o.shard.count > 1)
     r.shard = std::to_string(o.shard.index) + "/" + std::to_string(o.shard.count);
   return r;
+}
+
+BuiltScene built_scene(const SceneVariant& sv, const ScenePlan& st) {
+  BuiltScene b;
+  b.triangles = static_cast<std::int64_t>(st.scene.triangle_count());
+  b.caster_triangles = static_cast<std::int64_t>(st.scene.caster_triangle_count());
+  b.analytic_casters = static_cast<std::int64_t>(st.scene.analytic_caster_count());
+  const auto& l = st.scene.light;
+  b.light = {vec3(l.center), vec3(l.target), {l.width(), l.height()}, l.intensity};
+  const auto& c = st.scene.camera;
+  b.camera = {vec3(c.eye), vec3(c.target), c.fov_y_degrees};
+  b.derived = {st.derived.has(need::kCasterClosedness), st.derived.has(need::kEdgeAdjacency),
+               sv.infer_receivers, st.inferred_receivers};
+  return b;
 }
 
 }  // namespace sb

@@ -7,7 +7,9 @@
 #include <string>
 
 #include "config/experiment.h"
+#include "plan/plan.h"
 #include "record/job_record.h"
+#include "reference/settings.h"
 #include "run/runner.h"
 
 namespace sb {
@@ -19,6 +21,12 @@ struct EmbreeChoice {
   std::string isa;     // what it resolves to on this CPU
 };
 EmbreeChoice choose_embree(const Experiment& e, const RunOptions& o);
+
+// A reference's settings as a run hands them to reference::get: the
+// config's, with the run's Embree device and the method asked for (the
+// first reference's or the second's).
+reference::Settings reference_settings(const ReferenceConfig& c, const EmbreeChoice& embree,
+                                       bool exact);
 
 // Everything that decides a job's numbers, as named fields (the record's
 // "spec", docs/results.md): the scene, resolution and technique; the frame
@@ -42,6 +50,9 @@ std::string job_spec_hash(const nlohmann::json& spec);
 JobRecord identity_record(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
                           const SceneVariant& sv, const Resolution& res, const TechniqueVariant& tv,
                           const std::string& gl_renderer = "", const std::string& gl_version = "");
+
+// The record's scene.built: what planning `sv` built (`st`).
+BuiltScene built_scene(const SceneVariant& sv, const ScenePlan& st);
 
 // Now, UTC, as records write it: "2026-12-03T11:04:55Z".
 std::string now_iso8601();

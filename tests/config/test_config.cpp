@@ -52,9 +52,9 @@ TEST(Config, ValidConfigExpandsSweeps) {
   EXPECT_EQ(e.resolutions[1].width, 32);
   EXPECT_EQ(e.resolutions[1].height, 24);
   EXPECT_EQ(e.timed_frames, 2);
-  EXPECT_EQ(e.reference.spp, 16);
-  EXPECT_EQ(e.reference.seed, 3u);
-  EXPECT_FALSE(e.reference.exact);  // Monte Carlo unless the config says "exact"
+  EXPECT_EQ(e.reference.settings.spp, 16);
+  EXPECT_EQ(e.reference.settings.seed, 3u);
+  EXPECT_FALSE(e.reference.settings.exact);  // Monte Carlo unless the config says "exact"
   EXPECT_EQ(e.content_hash.size(), 16u);
 }
 
@@ -62,7 +62,7 @@ TEST(Config, ReferenceMethodExactIsRead) {
   std::string text = kValid;
   text.replace(text.find(R"("spp": 16)"), 9, R"("method": "exact", "spp": 16)");
   const Experiment e = load_experiment(write_temp("exact.json", text), registry());
-  EXPECT_TRUE(e.reference.exact);
+  EXPECT_TRUE(e.reference.settings.exact);
   EXPECT_FALSE(e.reference.second_exact.has_value());  // one reference unless asked
 }
 
@@ -71,7 +71,7 @@ TEST(Config, ASecondReferenceMethodIsRead) {
   text.replace(text.find(R"("spp": 16)"), 9,
                R"("method": "exact", "second_method": "monte_carlo", "spp": 16)");
   const Experiment e = load_experiment(write_temp("second.json", text), registry());
-  EXPECT_TRUE(e.reference.exact);
+  EXPECT_TRUE(e.reference.settings.exact);
   ASSERT_TRUE(e.reference.second_exact.has_value());
   EXPECT_FALSE(*e.reference.second_exact);
 }
@@ -81,11 +81,11 @@ TEST(Config, TheAdaptiveReferenceIsRead) {
   text.replace(text.find(R"("spp": 16)"), 9,
                R"("spp": 1024, "adaptive": true, "pilot_spp": 64, "target_std_error": 0.005)");
   const Experiment e = load_experiment(write_temp("adaptive.json", text), registry());
-  EXPECT_TRUE(e.reference.adaptive);
-  EXPECT_EQ(e.reference.pilot_spp, 64);
-  EXPECT_DOUBLE_EQ(e.reference.target_std_error, 0.005);
+  EXPECT_TRUE(e.reference.settings.adaptive);
+  EXPECT_EQ(e.reference.settings.pilot_spp, 64);
+  EXPECT_DOUBLE_EQ(e.reference.settings.target_std_error, 0.005);
   const Experiment plain = load_experiment(write_temp("plain.json", kValid), registry());
-  EXPECT_FALSE(plain.reference.adaptive);  // off unless asked for
+  EXPECT_FALSE(plain.reference.settings.adaptive);  // off unless asked for
 }
 
 TEST(Config, TheStabilityBlockAndACasesThresholdAreRead) {

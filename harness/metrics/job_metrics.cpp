@@ -1,0 +1,122 @@
+#include "metrics/job_metrics.h"
+
+#include <cmath>
+#include <vector>
+
+#include "metrics/geometry_region.h"
+#include "metrics/metrics.h"
+
+namespace sb::metrics {
+
+namespace {
+
+RegionStats region_stats(const ErrorStats& s) {
+  RegionStats r;
+  r.pixel_count = static_cast<std::int64_t>(s.pixel_count);
+  r.rmse = s.rmse;
+  r.mae = s.mae;
+  r.max_error = s.max_error;
+  r.max_x = s.max_x;
+  r.max_y = s.max_y;
+  r.psnr = s.psnr;
+  r.ssim = s.ssim;
+  r.frac_over_001 = s.frac_over_001;
+  r.frac_over_005 = s.frac_over_005;
+  r.frac_over_01 = s.frac_over_01;
+  r.nonfinite_count = static_cast<std::int64_t>(s.nonfinite_count);
+  r.mean_signed = s.mean_signed;
+  return r;
+}
+
+// Regions, each only over the measured pixels (all but those whose tangent
+// plane cuts the light; see metrics/light_horizon.h): every pixel; the
+// reference's penumbra; the soft pixels of either the technique or the
+// reference (`soft_union`), which also sees light bleeding into a true umbra
+// and blur outside the true penumbra; and, when the view holds any, the
+// pixels on meshes that cast no shadow (`receivers`). `geometry`, the surface
+// outside attached shadow, is measured on its own (metrics/geometry_region.h):
+// its SSIM windows see the reference's values everywhere outside it.
+//
+// SSIM's windows reach past the mask, so the unmeasured pixels take the
+// reference's values first: they add no error to a neighbour either.
+//
+// `extra` masks are measured too, in the same pass of the SSIM window (the
+// window's cost does not depend on how many masks average it); their stats
+// come back in order.
+ImageMetrics compare_images(const ImageF& test, const ImageF& ref, const Regions& regions,
+                            const std::vector<uint8_t>& soft_union,
+                            const std::vector<const std::vector<uint8_t>*>& extra = {},
+                            std::vector<RegionStats>* extra_stats = nullptr) {
+  const ImageF t = with_unmeasured_from(test, ref, regions.measured);
+  std::vector<const std::vector<uint8_t>*> masks = {&regions.measured, &regions.penumbra,
+                                                    &soft_union};
+  if (regions.any_receiver) masks.push_back(&regions.receivers);
+  // Geometry shares the SSIM pass unless the technique wrote something other
+  // than the reference outside it (on the sky, say): then it needs its own.
+  const bool geometry_shares = matches_outside(t, ref, regions.geometry);
+  if (geometry_shares) masks.push_back(&regions.geometry);
+  const size_t first_extra = masks.size();
+  masks.insert(masks.end(), extra.begin(), extra.end());
+  const std::vector<ErrorStats> stats = compare(t, ref, masks);
+  ImageMetrics m{region_stats(stats[0]), region_stats(stats[1]), region_stats(stats[2])};
+  m.geometry = region_stats(geometry_shares ? stats[first_extra - 1]
+                                            : compare_within(t, ref, regions.geometry));
+  if (regions.any_receiver) m.receivers = region_stats(stats[3]);
+  if (extra_stats != nullptr)
+    for (size_t i = first_extra; i < stats.size(); ++i)
+      extra_stats->push_back(region_stats(stats[i]));
+  return m;
+}
+
+}  // namespace
+
+VisibilityCheckRecord check_visibility(const ImageF& visibility) {
+  VisibilityCheckRecord c;
+  c.tolerance = kVisibilityTolerance;
+  for (float x : visibility.data) {
+    if (!std::isfinite(x))
+      ++c.nonfinite;
+    else if (x < -kVisibilityTolerance)
+      ++c.below_0;
+    else if (x > 1.0f + kVisibilityTolerance)
+      ++c.above_1;
+  }
+  return c;
+}
+
+MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const ImageF& ref_visibility,
+                      const ImageF& ref_shaded, const Regions& regions) {
+  const std::vector<uint8_t> soft_union =
+      soft_union_of(visibility, ref_visibility, regions.measured);
+  std::vector<const std::vector<uint8_t>*> thirds;
+  if (regions.distance_thirds)
+    for (const auto& third : *regions.distance_thirds) thirds.push_back(&third);
+  std::vector<RegionStats> third_stats;
+  MetricsRecord m{
+      compare_images(visibility, ref_visibility, regions, soft_union, thirds, &third_stats),
+      compare_images(shaded, ref_shaded, regions, soft_union)};
+  if (regions.distance_thirds) {
+    m.visibility.near_third = third_stats[0];
+    m.visibility.middle_third = third_stats[1];
+    m.visibility.far_third = third_stats[2];
+  }
+  return m;
+}
+
+ImageMetrics measure_visibility(const ImageF& visibility, const ImageF& ref_visibility,
+                                const Regions& regions) {
+  return compare_images(visibility, ref_visibility, regions,
+                        soft_union_of(visibility, ref_visibility, regions.measured));
+}
+
+std::optional<std::string> noise_warning(const MetricsRecord& m, double penumbra_rms_std_error) {
+  const double pen_rmse =
+      std::isfinite(m.visibility.penumbra.rmse) ? m.visibility.penumbra.rmse : 0.0;
+  // RMS against RMS: the noise's sqrt(mean σ²), not its mean σ.
+  if (penumbra_rms_std_error > 0.0 && pen_rmse > 0.0 && penumbra_rms_std_error > 0.5 * pen_rmse)
+    return "reference noise (penumbra RMS std error " + std::to_string(penumbra_rms_std_error) +
+           ") is over half the penumbra RMSE; raise reference.spp";
+  return std::nullopt;
+}
+
+}  // namespace sb::metrics

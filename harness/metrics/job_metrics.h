@@ -1,0 +1,37 @@
+#pragma once
+// A job's measured figures, as its record holds them: its visibility
+// buffer's and shaded image's error against the reference's over the
+// regions (record "metrics", "second_reference"), the range check of its V
+// ("visibility_check") and the warning when the reference's noise is too
+// large to rank it.
+#include <optional>
+#include <string>
+
+#include "core/image.h"
+#include "metrics/regions.h"
+#include "record/job_record.h"
+#include "record/metrics_record.h"
+
+namespace sb::metrics {
+
+// A technique's visibility must be finite and in [0,1]; float rounding of
+// sums (accumulation, kernels) may overshoot by this much.
+inline constexpr float kVisibilityTolerance = 1e-5f;  // the failure message says 1e-5
+
+VisibilityCheckRecord check_visibility(const ImageF& visibility);
+
+// The visibility buffer's and the shaded image's error against the
+// reference's (thirds included when the regions have them).
+MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const ImageF& ref_visibility,
+                      const ImageF& ref_shaded, const Regions& regions);
+
+// The visibility's error against another reference (the second one), over
+// the same regions: only the reference differs.
+ImageMetrics measure_visibility(const ImageF& visibility, const ImageF& ref_visibility,
+                                const Regions& regions);
+
+// A reference whose noise (`penumbra_rms_std_error`, reference::Result's)
+// is comparable to the error cannot rank techniques.
+std::optional<std::string> noise_warning(const MetricsRecord& m, double penumbra_rms_std_error);
+
+}  // namespace sb::metrics

@@ -1,0 +1,151 @@
+#include "run/baseline.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <utility>
+
+#include "core/names.h"
+#include "metrics/distance_thirds.h"
+#include "metrics/geometry_region.h"
+#include "metrics/light_horizon.h"
+#include "metrics/metrics.h"
+#include "run/run_images.h"
+
+namespace sb {
+
+namespace {
+
+// The reference's part of every record of one (scene, resolution).
+// `penumbra`: the reference's own soft pixels.
+ReferenceRecord reference_record(const reference::Result& ref, const ReferenceConfig& config,
+                                 const EmbreeChoice& embree, const metrics::Regions& regions,
+                                 const std::vector<uint8_t>& penumbra) {
+  ReferenceRecord r;
+  r.method = ref.method;
+  r.exact_fallback = ref.exact_fallback;
+  r.spp = ref.spp;
+  r.seed = ref.seed;
+  r.embree_isa = ref.isa;
+  r.embree_config = embree.config;
+  r.mean_std_error = ref.mean_std_error;
+  r.penumbra_mean_std_error = ref.penumbra_mean_std_error;
+  r.penumbra_rms_std_error = ref.penumbra_rms_std_error;
+  r.penumbra_pixels = metrics::count_ones(penumbra);
+  r.attached_shadow_pixels = metrics::count_ones(regions.attached);
+  r.horizon_cut_pixels =
+      static_cast<std::int64_t>(regions.measured.size()) - metrics::count_ones(regions.measured);
+  r.cache_key = ref.cache_key;
+  r.from_cache = ref.from_cache;
+  r.seconds = ref.seconds;
+  if (ref.method == reference::kAdaptiveMethod)
+    r.adaptive = AdaptiveReferenceRecord{config.settings.pilot_spp,
+                                         config.settings.target_std_error,
+                                         ref.mean_spp,
+                                         ref.max_spp,
+                                         ref.unproven_stops,
+                                         ref.stop_bias_bound};
+  return r;
+}
+
+// How a reference was made, for the log: "256 spp, 1.2 s, mean std error ...".
+std::string describe(const reference::Result& ref) {
+  const std::string samples = ref.method == reference::kExactMethod ? std::string("exact")
+                              : ref.method == reference::kAdaptiveMethod
+                                  ? "adaptive, mean " + std::to_string(ref.mean_spp) + " of " +
+                                        std::to_string(ref.spp) + " spp"
+                                  : std::to_string(ref.spp) + " spp";
+  return samples + ", " +
+         (ref.from_cache ? std::string("from cache") : std::to_string(ref.seconds) + " s") +
+         ", mean std error " + std::to_string(ref.mean_std_error);
+}
+
+// The pixels whose tangent plane cuts the light are left out of every
+// region; those wholly facing away from it are attached shadow.
+metrics::Regions regions_of(const Baseline& b, const Scene& scene, bool distance_thirds,
+                            FrameTargets& targets) {
+  const auto horizon = metrics::classify_light_horizon(b.positions, b.normals, scene.light);
+  metrics::Regions regions;
+  regions.attached = metrics::horizon_mask(horizon, metrics::LightHorizon::Below);
+  regions.measured = metrics::horizon_mask(horizon, metrics::LightHorizon::Cuts);
+  for (auto& m : regions.measured) m = m ? 0 : 1;
+  regions.geometry = metrics::geometry_mask(horizon);
+  if (distance_thirds)
+    regions.distance_thirds =
+        metrics::distance_thirds(b.positions, scene.camera.eye, regions.measured);
+  const ImageF receiver = targets.read_receiver_mask();
+  regions.receivers.resize(receiver.data.size());
+  for (size_t i = 0; i < receiver.data.size(); ++i)
+    regions.receivers[i] = receiver.data[i] != 0.0f && regions.measured[i] ? 1 : 0;
+  regions.any_receiver =
+      std::find(regions.receivers.begin(), regions.receivers.end(), 1) != regions.receivers.end();
+  return regions;
+}
+
+// The reference of `scene` at the G-buffer's points: from the cache when
+// there is one.
+reference::Result reference_at(const Baseline& b, const Scene& scene,
+                               const reference::Settings& settings) {
+  return b.cache_dir.empty() ? reference::compute(scene, b.positions, b.normals, settings)
+                             : reference::get(scene, b.positions, b.normals, settings, b.cache_dir);
+}
+
+}  // namespace
+
+reference::Result Baseline::reference_of(const Scene& scene) const {
+  return reference_at(*this, scene, settings);
+}
+
+Baseline make_baseline(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
+                       RunEvents& events, const std::string& scene_name, const Scene& scene,
+                       const Resolution& res, FrameTargets& targets) {
+  Baseline b;
+  b.positions = targets.read_positions();
+  b.normals = targets.read_geometric_normals();
+  // Reference at the G-buffer's very points.
+  b.settings = reference_settings(e.reference, embree, e.reference.settings.exact);
+  b.cache_dir = e.reference.cache ? o.cache_dir : std::string();
+  const auto make_reference = [&](const reference::Settings& settings, const char* which) {
+    reference::Result out = reference_at(b, scene, settings);
+    // The key names the reference in the record even when nothing is
+    // cached, so that `compare` can tell two references apart.
+    if (out.cache_key.empty()) {
+      reference::Settings keyed = settings;
+      if (!out.exact_fallback.empty()) keyed.exact = false;  // as reference::get keys it
+      out.cache_key = reference::cache_key(scene, b.positions, b.normals, keyed);
+    }
+    events.log(std::string(which) + " " + scene_name + " @ " + res.label() + ": " + describe(out));
+    if (!out.exact_fallback.empty())
+      events.log(std::string(which) + " " + scene_name +
+                 ": Monte Carlo, not exact: " + out.exact_fallback);
+    return out;
+  };
+  events.phase(scene_name, res.label(), "(reference)");
+  b.ref = make_reference(b.settings, "reference");
+  if (e.reference.second_exact) {
+    events.phase(scene_name, res.label(), "(second reference)");
+    b.second = make_reference(reference_settings(e.reference, embree, *e.reference.second_exact),
+                              "second reference");
+  }
+  b.regions = regions_of(b, scene, e.distance_thirds, targets);
+  metrics::Regions& regions = b.regions;
+  metrics::apply_attached_shadow(regions.attached, b.ref.visibility);
+  regions.penumbra = metrics::mask_and(metrics::penumbra_mask(b.ref.visibility), regions.measured);
+  if (b.second) {
+    metrics::apply_attached_shadow(regions.attached, b.second->visibility);
+    b.second_record = reference_record(
+        *b.second, e.reference, embree, regions,
+        metrics::mask_and(metrics::penumbra_mask(b.second->visibility), regions.measured));
+  }
+  b.ref_shaded = [&] {
+    targets.upload_visibility(b.ref.visibility);
+    targets.render_shading(scene);
+    return targets.read_shaded();
+  }();
+  b.ref_images =
+      write_reference_images(o, "reference/" + file_safe(scene_name) + "__" + res.label(), b.ref,
+                             b.ref_shaded, regions, b.positions, b.normals);
+  b.ref_record = reference_record(b.ref, e.reference, embree, regions, regions.penumbra);
+  return b;
+}
+
+}  // namespace sb

@@ -1,0 +1,114 @@
+#include "run/job_run.h"
+
+#include <chrono>
+#include <memory>
+
+#include "core/error.h"
+#include "gl/allocation_meter.h"
+#include "gl/debug.h"
+#include "gl/gl.h"
+#include "metrics/job_metrics.h"
+#include "metrics/shadow_classes.h"
+#include "run/frame_schedule.h"
+#include "run/run_images.h"
+#include "run/technique_phase.h"
+
+namespace sb {
+
+namespace {
+
+// Seconds since it was made or since the last call (record/phases_record.h).
+class Lap {
+ public:
+  double seconds() {
+    const auto now = std::chrono::steady_clock::now();
+    const double out = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return out;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+FrameSchedule schedule_of(const JobSetting& s, const TechniqueVariant& tv) {
+  FrameSchedule schedule;
+  schedule.job = tv.name;
+  schedule.warmup_frames = s.e.warmup_frames;
+  schedule.timed_frames = s.e.timed_frames;
+  if (s.control != nullptr) schedule.control = s.control->name;
+  schedule.pass_detail = s.o.pass_detail;
+  schedule.turn_block_frames = s.o.take_turn ? s.o.turn_block_frames : 0;
+  return schedule;
+}
+
+}  // namespace
+
+void run_job(const JobSetting& s, const TechniqueVariant& tv, JobRecord& r, PhasesRecord& phases) {
+  Lap lap;
+  gl::take_debug_errors();
+  const std::string& who = tv.info->name;
+  // Counts what the technique allocates from here to its last frame.
+  gl::AllocationWindow allocations;
+  std::unique_ptr<Technique> technique = in_technique_phase(who, "prepare", [&] {
+    std::unique_ptr<Technique> t = tv.info->create(tv.params);
+    t->prepare(s.frame.in);
+    gl::throw_if_errors(tv.name + " prepare");
+    glFinish();  // prepare's GL work in prepare's time, not the first frame's
+    return t;
+  });
+  phases.prepare = lap.seconds();
+  // The parent stores the record before this one while prepare runs; no
+  // write of its overlaps a frame (docs/robustness.md). Its wait is
+  // overhead, in no phase.
+  s.events.await_listener();
+  lap.seconds();
+
+  const InjectedDelay* delay = s.injected_delay != nullptr && s.injected_delay->applies_to(tv.name)
+                                   ? s.injected_delay
+                                   : nullptr;
+  TechniqueFrames frames(s.frame, *technique, who, s.control, delay, s.timing_source,
+                         [&] { s.o.take_turn(tv.name); });
+  r.timing = time_frames(frames, schedule_of(s, tv));
+  r.technique.gpu_bytes = allocations.peak_bytes();
+  phases.frames = lap.seconds();
+  if (delay != nullptr) r.warnings.push_back(delay->describe());
+
+  ImageF visibility = in_technique_phase(who, "read-back", [&] {
+    ImageF v = s.frame.targets.read_visibility();
+    gl::throw_if_errors(tv.name + " read-back");
+    return v;
+  });
+  const VisibilityCheckRecord check = metrics::check_visibility(visibility);
+  r.visibility_check = check;
+  const Baseline& b = s.baseline;
+  metrics::apply_attached_shadow(b.regions.attached, visibility);
+  // Shaded from the same V as the metrics, as the reference is: untimed.
+  const ImageF shaded = shade(s.frame, visibility);
+  r.metrics = metrics::measure(visibility, shaded, b.ref.visibility, b.ref_shaded, b.regions);
+  if (b.second)
+    r.second_reference = SecondReferenceRecord{
+        *b.second_record, metrics::measure_visibility(visibility, b.second->visibility, b.regions)};
+  r.classes =
+      ClassesRecord{metrics::confusion_matrix(visibility, b.ref.visibility, b.regions.geometry)};
+  if (auto warning = metrics::noise_warning(*r.metrics, b.ref.penumbra_rms_std_error))
+    r.warnings.push_back(*warning);
+  phases.measure = lap.seconds();
+  if (s.o.write_images)
+    r.images =
+        write_job_images(s.o.run_dir, r.job_id, visibility, shaded, b.ref.visibility, b.regions);
+  phases.images = lap.seconds();
+  // Metrics and images are kept for inspection, but the job fails.
+  if (check.nonfinite + check.below_0 + check.above_1 > 0)
+    throw JobError("visibility outside [0,1]: " + std::to_string(check.nonfinite) + " NaN/Inf, " +
+                   std::to_string(check.below_0) + " below 0, " + std::to_string(check.above_1) +
+                   " above 1 (tolerance 1e-5)");
+  // A broken job has no stability figures: it is broken.
+  if (s.stability != nullptr) {
+    r.stability = s.stability->measure(tv, *technique);
+    gl::throw_if_errors(tv.name + " stability frames");
+    phases.stability = lap.seconds();
+  }
+}
+
+}  // namespace sb

@@ -1,0 +1,37 @@
+#pragma once
+// One job on GL: prepare the technique, render and time its frame schedule
+// (run/frame_schedule.h) next to the control's, check and measure its V
+// against the baseline, write its images and, with the "stability" block,
+// its stability figures.
+#include <string>
+
+#include "config/experiment.h"
+#include "gl/pass_timer.h"
+#include "record/job_record.h"
+#include "record/phases_record.h"
+#include "run/baseline.h"
+#include "run/injected_delay.h"
+#include "run/run_events.h"
+#include "run/runner.h"
+#include "run/stability_probe.h"
+#include "run/technique_frames.h"
+
+namespace sb {
+
+// What every job of one (scene, resolution) runs with.
+struct JobSetting {
+  const Experiment& e;
+  const RunOptions& o;
+  RunEvents& events;
+  gl::TimingSource timing_source;
+  const InjectedDelay* injected_delay = nullptr;  // SHADOWBENCH_INJECT_DELAY, for any job
+  const FrameSetup& frame;
+  const Baseline& baseline;
+  Control* control = nullptr;
+  StabilityProbe* stability = nullptr;
+};
+
+// Whatever the job got to stays in `r` and `phases` when it throws.
+void run_job(const JobSetting& s, const TechniqueVariant& tv, JobRecord& r, PhasesRecord& phases);
+
+}  // namespace sb

@@ -1,0 +1,88 @@
+#include "run/run_images.h"
+
+#include <tbb/parallel_invoke.h>
+
+#include <filesystem>
+#include <utility>
+#include <vector>
+
+#include "metrics/image_io.h"
+#include "metrics/metrics.h"
+
+namespace sb {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr float kHeatmapFullScale = 0.25f;
+
+}  // namespace
+
+ImagesRecord write_reference_images(const RunOptions& o, const std::string& rel,
+                                    const reference::Result& ref, const ImageF& ref_shaded,
+                                    const metrics::Regions& regions, const ImageF& positions,
+                                    const ImageF& normals) {
+  ImagesRecord images;
+  if (!o.write_images) return images;
+  const fs::path dir = fs::path(o.run_dir) / rel;
+  fs::create_directories(dir);
+  io::write_exr((dir / "visibility.exr").string(), ref.visibility);
+  io::write_exr((dir / "std_error.exr").string(), ref.std_error);
+  io::write_png((dir / "shaded.png").string(), ref_shaded);
+  images.reference_visibility = rel + "/visibility.exr";
+  images.reference_std_error = rel + "/std_error.exr";
+  images.reference_shaded = rel + "/shaded.png";
+  // Named as the record's metrics.visibility regions; soft_union is each job's own.
+  std::vector<std::pair<std::string, const std::vector<uint8_t>*>> masks = {
+      {"all", &regions.measured}, {"geometry", &regions.geometry}, {"penumbra", &regions.penumbra}};
+  if (regions.any_receiver) masks.emplace_back("receivers", &regions.receivers);
+  if (regions.distance_thirds) {
+    const char* names[3] = {"near_third", "middle_third", "far_third"};
+    for (size_t i = 0; i < 3; ++i) masks.emplace_back(names[i], &(*regions.distance_thirds)[i]);
+  }
+  for (const auto& [region, mask] : masks) {
+    const std::string file = "mask_" + region + ".png";
+    io::write_mask_png((dir / file).string(), *mask, ref.visibility.width, ref.visibility.height);
+    images.masks[region] = (fs::path(rel) / file).generic_string();
+  }
+  if (o.write_gbuffer) {
+    io::write_exr((dir / "positions.exr").string(), positions);
+    io::write_exr((dir / "normals.exr").string(), normals);
+    images.gbuffer_positions = rel + "/positions.exr";
+    images.gbuffer_normals = rel + "/normals.exr";
+  }
+  return images;
+}
+
+ImagesRecord write_job_images(const std::string& run_dir, const std::string& job_id,
+                              const ImageF& visibility, const ImageF& shaded,
+                              const ImageF& ref_visibility, const metrics::Regions& regions) {
+  const std::string rel = "jobs/" + job_id;
+  const fs::path dir = fs::path(run_dir) / rel;
+  fs::create_directories(dir);
+  // Four files at once: no frame runs now, and one file's encoding keeps
+  // one core busy (zlib), so the job's images take about half the time.
+  tbb::parallel_invoke(
+      [&] {
+        io::write_mask_png((dir / "mask_soft_union.png").string(),
+                           metrics::soft_union_of(visibility, ref_visibility, regions.measured),
+                           visibility.width, visibility.height);
+      },
+      [&] { io::write_exr((dir / "visibility.exr").string(), visibility); },
+      [&] { io::write_png((dir / "shaded.png").string(), shaded); },
+      [&] {
+        io::write_png((dir / "error.png").string(),
+                      metrics::error_heatmap(metrics::with_unmeasured_from(
+                                                 visibility, ref_visibility, regions.measured),
+                                             ref_visibility, kHeatmapFullScale));
+      });
+  ImagesRecord images;
+  images.visibility = rel + "/visibility.exr";
+  images.shaded = rel + "/shaded.png";
+  images.error_heatmap = rel + "/error.png";
+  images.error_heatmap_full_scale = kHeatmapFullScale;
+  images.masks["soft_union"] = rel + "/mask_soft_union.png";
+  return images;
+}
+
+}  // namespace sb

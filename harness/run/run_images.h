@@ -1,0 +1,29 @@
+#pragma once
+// The images a run writes into its folder, as the records name them: the
+// reference's of one (scene, resolution), which every job's record names,
+// and each job's own.
+#include <string>
+
+#include "core/image.h"
+#include "metrics/regions.h"
+#include "record/job_record.h"
+#include "reference/reference.h"
+#include "run/runner.h"
+
+namespace sb {
+
+// The reference's V, standard error and shaded image, the masks of the
+// regions every job shares (and with --gbuffer the G-buffer's), under
+// <run_dir>/<rel>; nothing without o.write_images.
+ImagesRecord write_reference_images(const RunOptions& o, const std::string& rel,
+                                    const reference::Result& ref, const ImageF& ref_shaded,
+                                    const metrics::Regions& regions, const ImageF& positions,
+                                    const ImageF& normals);
+
+// The technique's V, its shaded image, its error heat map and its soft_union
+// mask, under <run_dir>/jobs/<job id>.
+ImagesRecord write_job_images(const std::string& run_dir, const std::string& job_id,
+                              const ImageF& visibility, const ImageF& shaded,
+                              const ImageF& ref_visibility, const metrics::Regions& regions);
+
+}  // namespace sb

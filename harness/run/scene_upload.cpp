@@ -1,0 +1,39 @@
+#include "run/scene_upload.h"
+
+#include <utility>
+#include <vector>
+
+#include "scenes/need_providers.h"
+#include "scenes/receiver_inference.h"
+
+namespace sb {
+
+namespace {
+
+// Per mesh: closed (depth passes may cull it; known when a technique in the
+// plan asked for closedness) and, for receivers, whether nothing lies behind
+// them from the light (filtered maps may draw them).
+std::vector<MeshDrawFlags> draw_flags(const ScenePlan& st) {
+  std::vector<MeshDrawFlags> flags(st.scene.meshes.size());
+  const auto* topology = st.derived.find<CasterTopology>(need::kCasterClosedness);
+  const ShadowNothingTest shadows_nothing(st.scene);
+  for (size_t i = 0; i < flags.size(); ++i) {
+    const Mesh& m = st.scene.meshes[i];
+    flags[i].closed = m.casts_shadow && topology != nullptr && (*topology)[i].closed();
+    flags[i].nothing_behind = !m.casts_shadow && shadows_nothing(i);
+  }
+  return flags;
+}
+
+}  // namespace
+
+UploadedScene upload_scene(const ScenePlan& st) {
+  const auto* adjacency = st.derived.find<CasterAdjacency>(need::kEdgeAdjacency);
+  auto uploaded = std::make_unique<GpuScene>(st.scene, adjacency ? *adjacency : CasterAdjacency{},
+                                             draw_flags(st));
+  DerivedData with_gpu = st.derived;
+  for (const NeedProvider* p : st.uploads) p->upload(st.scene, *uploaded, with_gpu);
+  return {std::move(uploaded), std::move(with_gpu)};
+}
+
+}  // namespace sb

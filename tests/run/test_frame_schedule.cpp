@@ -1,0 +1,137 @@
+// The frame schedule of one job (run/frame_schedule.h) over a fake target
+// that logs each call: the orders docs/design.md and docs/ci.md describe
+// (compile frame untimed and alone, ABBA control frames next to warm-up and
+// timed frames, the job's own frame last, fine frames after, turns before
+// each block of timed frames), and which frames' times the record keeps.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "run/frame_schedule.h"
+
+namespace sb {
+namespace {
+
+// Logs "job", "fine", "control" or "turn" per call. Each frame takes a time
+// of its own: job frames 1, 2, 3, ... ms in call order, control frames
+// 100, 200, 300, ... ms, so a sample tells which frame it came from.
+class LoggingTarget : public FrameTarget {
+ public:
+  std::vector<std::string> calls;
+
+  gl::PassTimer::Frame job_frame(const std::string&, gl::PassDetail detail) override {
+    calls.push_back(detail == gl::PassDetail::Fine ? "fine" : "job");
+    const double ms = ++job_frames_;
+    if (detail == gl::PassDetail::Fine)
+      return {{{"shared:gbuffer", 0.25}, {"depth", ms / 4}, {"blur", ms / 2}}, ms};
+    return {{{"shared:gbuffer", 0.25}, {"technique", ms / 2}, {"shared:shading", 0.25}}, ms};
+  }
+  gl::PassTimer::Frame control_frame(const std::string&) override {
+    calls.push_back("control");
+    return {{{"technique", 1.0}}, 100.0 * ++control_frames_};
+  }
+  void take_turn() override { calls.push_back("turn"); }
+
+ private:
+  int job_frames_ = 0, control_frames_ = 0;
+};
+
+using Calls = std::vector<std::string>;
+
+FrameSchedule schedule(int warmup, int timed) {
+  FrameSchedule s;
+  s.job = "pcf/k=5";
+  s.warmup_frames = warmup;
+  s.timed_frames = timed;
+  return s;
+}
+
+TEST(FrameSchedule, WithoutControlCompileWarmupThenTimedFrames) {
+  LoggingTarget target;
+  const TimingRecord t = time_frames(target, schedule(2, 3));
+  // compile, 2 warm-up, 3 timed.
+  EXPECT_EQ(target.calls, Calls(6, "job"));
+  EXPECT_EQ(t.compile_frames, 1);
+  EXPECT_EQ(t.warmup_frames, 2);
+  EXPECT_EQ(t.timed_frames, 3);
+  // Only the timed frames (the 4th to 6th call) are samples.
+  EXPECT_EQ(t.frame.samples_ms, (std::vector<double>{4, 5, 6}));
+  EXPECT_EQ(t.technique.samples_ms, (std::vector<double>{2, 2.5, 3}));
+  EXPECT_EQ(t.shared.at("gbuffer").samples_ms, (std::vector<double>{0.25, 0.25, 0.25}));
+  EXPECT_FALSE(t.control.has_value());
+  EXPECT_FALSE(t.fine.has_value());
+}
+
+TEST(FrameSchedule, ZeroWarmupStillHasAnUntimedCompileFrame) {
+  LoggingTarget target;
+  const TimingRecord t = time_frames(target, schedule(0, 2));
+  EXPECT_EQ(target.calls, Calls(3, "job"));
+  EXPECT_EQ(t.frame.samples_ms, (std::vector<double>{2, 3}));
+}
+
+TEST(FrameSchedule, ControlFramesInAbbaOrderAndTheJobsFrameLast) {
+  LoggingTarget target;
+  FrameSchedule s = schedule(1, 2);
+  s.control = "none";
+  const TimingRecord t = time_frames(target, s);
+  // The compile frame alone; warm-up 0 job-control, timed 1 control-job,
+  // timed 2 job-control; a control frame came last, so one more job frame.
+  EXPECT_EQ(target.calls,
+            (Calls{"job", "job", "control", "control", "job", "job", "control", "job"}));
+  // Job frames by call: compile 1, warm-up 2, timed 3 and 4 (the read-back
+  // frame, 5, is not timed); control frames: warm-up 100, timed 200, 300.
+  EXPECT_EQ(t.frame.samples_ms, (std::vector<double>{3, 4}));
+  ASSERT_TRUE(t.control.has_value());
+  EXPECT_EQ(t.control->technique, "none");
+  EXPECT_EQ(t.control->frame.samples_ms, (std::vector<double>{200, 300}));
+  EXPECT_EQ(t.control->frame_ratio.samples, (std::vector<double>{3.0 / 200, 4.0 / 300}));
+}
+
+TEST(FrameSchedule, NoExtraJobFrameWhenTheJobsFrameCameLast) {
+  LoggingTarget target;
+  FrameSchedule s = schedule(0, 2);
+  s.control = "none";
+  time_frames(target, s);
+  EXPECT_EQ(target.calls, (Calls{"job", "job", "control", "control", "job"}));
+}
+
+TEST(FrameSchedule, FineFramesFollowTheTimedOnes) {
+  LoggingTarget target;
+  FrameSchedule s = schedule(1, 2);
+  s.pass_detail = gl::PassDetail::Fine;
+  const TimingRecord t = time_frames(target, s);
+  EXPECT_EQ(target.calls, (Calls{"job", "job", "job", "job", "fine", "fine"}));
+  EXPECT_EQ(t.pass_timing, "fine");
+  EXPECT_EQ(t.frame.samples_ms, (std::vector<double>{3, 4}));
+  ASSERT_TRUE(t.fine.has_value());
+  EXPECT_EQ(t.fine->frames, 2);
+  EXPECT_EQ(t.fine->pass_order, (std::vector<std::string>{"depth", "blur"}));
+  EXPECT_EQ(t.fine->frame.samples_ms, (std::vector<double>{5, 6}));
+  EXPECT_EQ(t.fine->passes.at("depth").samples_ms, (std::vector<double>{1.25, 1.5}));
+  // The sum of the passes per fine frame.
+  EXPECT_EQ(t.fine->technique.samples_ms, (std::vector<double>{3.75, 4.5}));
+}
+
+TEST(FrameSchedule, FineFramesAreTheJobsOwnAfterAControlFrame) {
+  LoggingTarget target;
+  FrameSchedule s = schedule(0, 1);
+  s.control = "none";
+  s.pass_detail = gl::PassDetail::Fine;
+  time_frames(target, s);
+  // The fine frame is the job's: no read-back frame before it.
+  EXPECT_EQ(target.calls, (Calls{"job", "job", "control", "fine"}));
+}
+
+TEST(FrameSchedule, TurnsBeforeEachBlockOfTimedFrames) {
+  LoggingTarget target;
+  FrameSchedule s = schedule(1, 5);
+  s.turn_block_frames = 2;
+  time_frames(target, s);
+  // compile, warm-up, then blocks of two timed frames (the last one short).
+  EXPECT_EQ(target.calls,
+            (Calls{"job", "job", "turn", "job", "job", "turn", "job", "job", "turn", "job"}));
+}
+
+}  // namespace
+}  // namespace sb
