@@ -3,18 +3,79 @@
 #include <string>
 
 #include "core/error.h"
+#include "gl/allocation_meter.h"
+#include "gl/storage_bytes.h"
 
 namespace sb::gl {
 
-Texture make_texture_2d(GLenum internal_format, int width, int height) {
+void delete_texture(GLuint id) {
+  meter_release(StorageKind::TextureName, id);
+  glDeleteTextures(1, &id);
+}
+
+void delete_buffer(GLuint id) {
+  meter_release(StorageKind::BufferName, id);
+  glDeleteBuffers(1, &id);
+}
+
+void delete_renderbuffer(GLuint id) {
+  meter_release(StorageKind::RenderbufferName, id);
+  glDeleteRenderbuffers(1, &id);
+}
+
+namespace {
+
+// Immutable storage of `target` (2D, 2D array or 3D), nearest filtering,
+// clamped edges, metered.
+Texture make_texture(GLenum target, GLenum internal_format, const TextureExtent& e) {
+  // Sized first: an unknown format throws before any GL object exists.
+  const std::int64_t bytes = texture_storage_bytes(internal_format, e);
   GLuint id = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &id);
-  glTextureStorage2D(id, 1, internal_format, width, height);
+  glCreateTextures(target, 1, &id);
+  if (target == GL_TEXTURE_2D)
+    glTextureStorage2D(id, e.levels, internal_format, e.width, e.height);
+  else
+    glTextureStorage3D(id, e.levels, internal_format, e.width, e.height, e.depth);
   glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  if (target == GL_TEXTURE_3D) glTextureParameteri(id, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+  meter_storage(StorageKind::TextureName, id, bytes);
   return Texture(id);
+}
+
+}  // namespace
+
+Texture make_texture_2d(GLenum internal_format, int width, int height) {
+  return make_mipmapped_texture_2d(internal_format, width, height, 1);
+}
+
+Texture make_mipmapped_texture_2d(GLenum internal_format, int width, int height, int levels) {
+  return make_texture(GL_TEXTURE_2D, internal_format,
+                      {.width = width, .height = height, .levels = levels});
+}
+
+Texture make_texture_2d_array(GLenum internal_format, int width, int height, int layers,
+                              int levels) {
+  return make_texture(GL_TEXTURE_2D_ARRAY, internal_format,
+                      {.width = width, .height = height, .depth = layers, .levels = levels});
+}
+
+Texture make_texture_3d(GLenum internal_format, int width, int height, int depth, int levels) {
+  return make_texture(
+      GL_TEXTURE_3D, internal_format,
+      {.width = width, .height = height, .depth = depth, .levels = levels, .depth_halves = true});
+}
+
+Renderbuffer make_renderbuffer(GLenum internal_format, int width, int height, int samples) {
+  const std::int64_t bytes = texture_storage_bytes(
+      internal_format, {.width = width, .height = height, .samples = samples});
+  GLuint id = 0;
+  glCreateRenderbuffers(1, &id);
+  glNamedRenderbufferStorageMultisample(id, samples, internal_format, width, height);
+  meter_storage(StorageKind::RenderbufferName, id, bytes);
+  return Renderbuffer(id);
 }
 
 Texture make_depth_texture(GLenum internal_format, int width, int height, bool compare) {
@@ -75,7 +136,20 @@ Buffer make_buffer(GLsizeiptr bytes, const void* data, GLbitfield flags) {
   GLuint id = 0;
   glCreateBuffers(1, &id);
   glNamedBufferStorage(id, bytes, data, flags);
+  meter_storage(StorageKind::BufferName, id, bytes);
   return Buffer(id);
+}
+
+Buffer make_stream_buffer() {
+  GLuint id = 0;
+  glCreateBuffers(1, &id);
+  meter_storage(StorageKind::BufferName, id, 0);
+  return Buffer(id);
+}
+
+void set_buffer_data(const Buffer& buffer, GLsizeiptr bytes, const void* data, GLenum usage) {
+  glNamedBufferData(buffer.get(), bytes, data, usage);
+  meter_restorage(StorageKind::BufferName, buffer.get(), bytes);
 }
 
 namespace {

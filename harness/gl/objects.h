@@ -1,5 +1,8 @@
 #pragma once
-// Move-only owners of GL object names.
+// Move-only owners of GL object names, and the makers of textures,
+// renderbuffers and buffers: storage made through them is what a technique's
+// technique.gpu_bytes counts (gl/allocation_meter.h); storage a plugin makes
+// with raw GL calls is not counted.
 #include <utility>
 
 #include "gl/gl.h"
@@ -33,8 +36,10 @@ class Handle {
   GLuint id_ = 0;
 };
 
-inline void delete_texture(GLuint id) { glDeleteTextures(1, &id); }
-inline void delete_buffer(GLuint id) { glDeleteBuffers(1, &id); }
+// Deleting a texture, renderbuffer or buffer releases its metered bytes.
+void delete_texture(GLuint id);
+void delete_buffer(GLuint id);
+void delete_renderbuffer(GLuint id);
 inline void delete_framebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
 inline void delete_vertex_array(GLuint id) { glDeleteVertexArrays(1, &id); }
 inline void delete_sampler(GLuint id) { glDeleteSamplers(1, &id); }
@@ -45,9 +50,20 @@ using Buffer = Handle<delete_buffer>;
 using Framebuffer = Handle<delete_framebuffer>;
 using VertexArray = Handle<delete_vertex_array>;
 using Sampler = Handle<delete_sampler>;
+using Renderbuffer = Handle<delete_renderbuffer>;
 
 // A 2D texture with immutable storage, nearest filtering, clamped edges.
 Texture make_texture_2d(GLenum internal_format, int width, int height);
+// The same with `levels` mip levels (filtering as above: a caller that
+// samples the chain sets its own minification filter).
+Texture make_mipmapped_texture_2d(GLenum internal_format, int width, int height, int levels);
+// A 2D array texture of `layers` layers, filtering and edges as above.
+Texture make_texture_2d_array(GLenum internal_format, int width, int height, int layers,
+                              int levels = 1);
+// A 3D texture, filtering and edges as above; its depth halves with each level.
+Texture make_texture_3d(GLenum internal_format, int width, int height, int depth, int levels = 1);
+// A renderbuffer; `samples` 0 is single-sampled.
+Renderbuffer make_renderbuffer(GLenum internal_format, int width, int height, int samples = 0);
 // A depth texture usable as sampler2DShadow (compare mode on) or plain.
 Texture make_depth_texture(GLenum internal_format, int width, int height, bool compare);
 // A sampler object: lets one texture be read two ways (e.g. a depth map as
@@ -57,7 +73,14 @@ Sampler make_sampler(bool linear, bool compare, float border);
 // Framebuffer with the given colour attachments (0 = none) and depth(-stencil).
 Framebuffer make_framebuffer(std::initializer_list<GLuint> colors, GLuint depth,
                              GLenum depth_attachment = GL_DEPTH_ATTACHMENT);
+// A buffer with immutable storage of `bytes`.
 Buffer make_buffer(GLsizeiptr bytes, const void* data, GLbitfield flags = 0);
+// A buffer with mutable storage, empty until set_buffer_data(): a stream
+// whose size changes from frame to frame.
+Buffer make_stream_buffer();
+// Replaces the storage of a make_stream_buffer() buffer with `bytes` of
+// `data` (glNamedBufferData): the buffer counts its latest size.
+void set_buffer_data(const Buffer& buffer, GLsizeiptr bytes, const void* data, GLenum usage);
 
 // A vertex array with no attributes, for draws that build their vertices
 // from gl_VertexID (one per context).

@@ -94,6 +94,7 @@ PluginRecord PluginRecord::from_json(const Fields& f) {
 json TechniqueRecord::to_json() const {
   json t = {{"name", name}, {"family", family}, {"variant", variant}, {"params", params}};
   if (plugin) t["plugin"] = plugin->to_json();
+  if (gpu_bytes) t["gpu_bytes"] = *gpu_bytes;
   return t;
 }
 
@@ -104,6 +105,7 @@ TechniqueRecord TechniqueRecord::from_json(const Fields& f) {
   t.variant = f.get<std::string>("variant");
   t.params = f.get<json>("params");
   if (const auto p = f.find_object("plugin")) t.plugin = PluginRecord::from_json(*p);
+  t.gpu_bytes = f.find<std::int64_t>("gpu_bytes");
   return t;
 }
 

@@ -73,6 +73,11 @@ struct TechniqueRecord {
   // Absent in records from before plugin identities, and for a technique
   // no module registered (a test's own).
   std::optional<PluginRecord> plugin;
+  // The most bytes of GPU storage the technique held at once, from its
+  // prepare() to its last frame, as made through the gl::make_* helpers
+  // (gl/allocation_meter.h). Absent from older records and from jobs that
+  // did not get through their frames.
+  std::optional<std::int64_t> gpu_bytes;
 
   nlohmann::json to_json() const;
   static TechniqueRecord from_json(const Fields& f);

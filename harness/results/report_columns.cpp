@@ -38,6 +38,12 @@ std::optional<double> ratio_to_control(const JobRecord& r) {
   return r.timing->control->frame_ratio.median;
 }
 
+// The technique's peak GPU storage (technique.gpu_bytes), in MiB.
+std::optional<double> gpu_mib(const JobRecord& r) {
+  if (!r.technique.gpu_bytes) return std::nullopt;
+  return double(*r.technique.gpu_bytes) / (1024.0 * 1024.0);
+}
+
 // The visibility's figure against the second reference.
 template <RegionStats ImageMetrics::*Region, double RegionStats::*Value>
 std::optional<double> second(const JobRecord& r) {
@@ -115,6 +121,7 @@ std::vector<ReportColumn> make_columns() {
       number("frame_ms", median_ms<&TimingRecord::frame>, "%.3f"),
       number("technique_ms", median_ms<&TimingRecord::technique>, "%.3f"),
       number("x_control", ratio_to_control, "%.3f"),
+      optional(number("gpu_mib", gpu_mib, "%.2f")),
       number("rmse", geometry<&S::rmse>, "%.5f"),
       number("mae", geometry<&S::mae>, "%.5f"),
       number("max_error", geometry<&S::max_error>, "%.4f"),

@@ -159,7 +159,8 @@ JobRecord identity_record(const Experiment& e, const RunOptions& o, const Embree
   r.scene.variant = sv.name;
   r.scene.params = sv.params.json();
   r.technique_variant = tv.name;
-  r.technique = {tv.info->name, tv.info->family, tv.name, tv.params.json(), std::nullopt};
+  r.technique = {tv.info->name,    tv.info->family, tv.name,
+                 tv.params.json(), std::nullopt,    std::nullopt};
   if (const PluginIdentity* p = plugin_of(e, tv))
     r.technique.plugin = PluginRecord{p->file, p->size, p->sha256, p->api_version};
   r.resolution = res.label();

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "core/error.h"
+#include "gl/allocation_meter.h"
 #include "gl/debug.h"
 #include "gl/gl.h"
 #include "metrics/job_metrics.h"
@@ -47,6 +48,8 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv, JobRecord& r, Phas
   Lap lap;
   gl::take_debug_errors();
   const std::string& who = tv.info->name;
+  // Counts what the technique allocates from here to its last frame.
+  gl::AllocationWindow allocations;
   std::unique_ptr<Technique> technique = in_technique_phase(who, "prepare", [&] {
     std::unique_ptr<Technique> t = tv.info->create(tv.params);
     t->prepare(s.frame.in);
@@ -67,6 +70,7 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv, JobRecord& r, Phas
   TechniqueFrames frames(s.frame, *technique, who, s.control, delay, s.timing_source,
                          [&] { s.o.take_turn(tv.name); });
   r.timing = time_frames(frames, schedule_of(s, tv));
+  r.technique.gpu_bytes = allocations.peak_bytes();
   phases.frames = lap.seconds();
   if (delay != nullptr) r.warnings.push_back(delay->describe());
 

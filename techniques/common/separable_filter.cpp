@@ -43,14 +43,7 @@ void main() {
 }  // namespace
 
 gl::Texture make_array_texture(GLenum internal_format, int size, int layers) {
-  GLuint id = 0;
-  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
-  glTextureStorage3D(id, 1, internal_format, size, size, layers);
-  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  return gl::Texture(id);
+  return gl::make_texture_2d_array(internal_format, size, size, layers);
 }
 
 std::vector<gl::Framebuffer> layer_framebuffers(GLuint array_texture, int layers) {

@@ -74,18 +74,16 @@ int log2_exact(int size) {
   return k;
 }
 
-gl::Texture make_texture(GLenum target, int levels, GLenum format, int size, int layers) {
-  GLuint id = 0;
-  glCreateTextures(target, 1, &id);
-  if (target == GL_TEXTURE_2D_ARRAY)
-    glTextureStorage3D(id, levels, format, size, size, layers);
-  else
-    glTextureStorage2D(id, levels, format, size, size);
-  glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST);
-  glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, levels > 1 ? GL_LINEAR : GL_NEAREST);
-  return gl::Texture(id);
+// The source's mip chain is sampled with trilinear filtering (a chain of one
+// level, texel by texel, as the other textures are: the makers' nearest
+// filtering and clamped edges).
+gl::Texture make_mip_chain(GLenum format, int size, int levels) {
+  gl::Texture t = gl::make_mipmapped_texture_2d(format, size, size, levels);
+  if (levels > 1) {
+    glTextureParameteri(t.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(t.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  }
+  return t;
 }
 
 GLuint groups(int size) { return GLuint((size + kGroup - 1) / kGroup); }
@@ -94,9 +92,9 @@ GLuint groups(int size) { return GLuint((size + kGroup - 1) / kGroup); }
 
 FilterPyramid::FilterPyramid(Filter filter, int size, bool sat_half)
     : filter_(filter), size_(size), levels_(log2_exact(size) + 1) {
-  source_ = make_texture(GL_TEXTURE_2D, levels_, GL_RGBA8, size, 1);
+  source_ = make_mip_chain(GL_RGBA8, size, levels_);
   if (filter == Filter::NBuffers) {
-    nbuffers_ = make_texture(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA16F, size, levels_);
+    nbuffers_ = gl::make_texture_2d_array(GL_RGBA16F, size, size, levels_);
     nbuffer_program_ = gl::Program::compute("nbuffer_level", kNBufferLevel);
     nbuffer_copy_program_ = gl::Program::compute("nbuffer_copy", kNBufferCopy);
   } else if (filter == Filter::Sat) {
@@ -104,8 +102,8 @@ FilterPyramid::FilterPyramid(Filter filter, int size, bool sat_half)
     const std::string image_format = sat_half ? "rgba16f" : "rgba32f";
     std::string pass = kSatPass;
     pass.replace(pass.find("FORMAT"), 6, image_format);
-    sat_rows_ = make_texture(GL_TEXTURE_2D, 1, format, size, 1);
-    sat_ = make_texture(GL_TEXTURE_2D, 1, format, size, 1);
+    sat_rows_ = gl::make_texture_2d(format, size, size);
+    sat_ = gl::make_texture_2d(format, size, size);
     sat_rows_program_ = gl::Program::compute("sat_rows", pass);
     sat_columns_program_ = gl::Program::compute("sat_columns", pass);
     sat_format_ = format;

@@ -1,16 +1,13 @@
 #include "penumbra_wedge/wedge_stream.h"
 
-#include <array>
 #include <cstddef>
 
 namespace sb::wedge {
 
 void WedgeStream::create() {
-  std::array<GLuint, 3> buffers{};
-  glCreateBuffers(3, buffers.data());
-  vertices_ = gl::Buffer(buffers[0]);
-  indices_ = gl::Buffer(buffers[1]);
-  records_ = gl::Buffer(buffers[2]);
+  vertices_ = gl::make_stream_buffer();
+  indices_ = gl::make_stream_buffer();
+  records_ = gl::make_stream_buffer();
   GLuint vao = 0;
   glCreateVertexArrays(1, &vao);
   vao_ = gl::VertexArray(vao);
@@ -25,12 +22,12 @@ void WedgeStream::create() {
 }
 
 void WedgeStream::upload(const WedgeBatch& batch) {
-  glNamedBufferData(vertices_.get(), GLsizeiptr(batch.vertices.size() * sizeof(WedgeVertex)),
-                    batch.vertices.data(), GL_STREAM_DRAW);
-  glNamedBufferData(indices_.get(), GLsizeiptr(batch.indices.size() * sizeof(uint32_t)),
-                    batch.indices.data(), GL_STREAM_DRAW);
-  glNamedBufferData(records_.get(), GLsizeiptr(batch.wedges.size() * sizeof(WedgeRecord)),
-                    batch.wedges.data(), GL_STREAM_DRAW);
+  gl::set_buffer_data(vertices_, GLsizeiptr(batch.vertices.size() * sizeof(WedgeVertex)),
+                      batch.vertices.data(), GL_STREAM_DRAW);
+  gl::set_buffer_data(indices_, GLsizeiptr(batch.indices.size() * sizeof(uint32_t)),
+                      batch.indices.data(), GL_STREAM_DRAW);
+  gl::set_buffer_data(records_, GLsizeiptr(batch.wedges.size() * sizeof(WedgeRecord)),
+                      batch.wedges.data(), GL_STREAM_DRAW);
 }
 
 void WedgeStream::bind() const {

@@ -200,9 +200,9 @@ class HeidrichLinear final : public Technique {
       e.depths.assign(size_t(size) * size_t(size), 1.0f);
       e.visibility = gl::make_texture_2d(GL_R16F, size, size);
       e.visibility_framebuffer = gl::make_framebuffer({e.visibility.get()}, e.map.texture());
-      GLuint buffer = 0, vao = 0;
-      glCreateBuffers(1, &buffer);
-      e.skin_buffer = gl::Buffer(buffer);
+      e.skin_buffer = gl::make_stream_buffer();
+      const GLuint buffer = e.skin_buffer.get();
+      GLuint vao = 0;
       glCreateVertexArrays(1, &vao);
       e.skin_vao = gl::VertexArray(vao);
       glVertexArrayVertexBuffer(vao, 0, buffer, 0, sizeof(SkinVertex));
@@ -253,8 +253,8 @@ class HeidrichLinear final : public Technique {
     {
       auto pass = timer.scope("upload");
       for (End& e : ends_)
-        glNamedBufferData(e.skin_buffer.get(), GLsizeiptr(e.skin.size() * sizeof(SkinVertex)),
-                          e.skin.data(), GL_STREAM_DRAW);
+        gl::set_buffer_data(e.skin_buffer, GLsizeiptr(e.skin.size() * sizeof(SkinVertex)),
+                            e.skin.data(), GL_STREAM_DRAW);
     }
     {
       auto pass = timer.scope("visibility_maps");

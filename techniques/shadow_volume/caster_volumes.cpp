@@ -101,9 +101,9 @@ void resolve_stencil(const FrameInputs& in, const gl::Program& resolve) {
 }
 
 void make_vec4_stream(gl::Buffer& buffer, gl::VertexArray& vao) {
-  GLuint b = 0, v = 0;
-  glCreateBuffers(1, &b);
-  buffer = gl::Buffer(b);
+  buffer = gl::make_stream_buffer();
+  const GLuint b = buffer.get();
+  GLuint v = 0;
   glCreateVertexArrays(1, &v);
   vao = gl::VertexArray(v);
   glVertexArrayVertexBuffer(v, 0, b, 0, sizeof(glm::vec4));
@@ -153,8 +153,8 @@ void CasterVolumes::extrude(const glm::vec3& light) {
 
 void CasterVolumes::upload() {
   // Orphaned and refilled every frame, as a dynamic vertex stream.
-  glNamedBufferData(vertices_.get(), GLsizeiptr(mesh_.vertices.size() * sizeof(glm::vec4)),
-                    mesh_.vertices.data(), GL_STREAM_DRAW);
+  gl::set_buffer_data(vertices_, GLsizeiptr(mesh_.vertices.size() * sizeof(glm::vec4)),
+                      mesh_.vertices.data(), GL_STREAM_DRAW);
 }
 
 void CasterVolumes::draw(const FrameInputs& in, bool zfail) {

@@ -67,8 +67,8 @@ class HybridReconstruction final : public Technique {
     }
     {
       auto pass = timer.scope("upload");
-      glNamedBufferData(vertices_.get(), GLsizeiptr(cliffs_.size() * sizeof(glm::vec4)),
-                        cliffs_.data(), GL_STREAM_DRAW);
+      gl::set_buffer_data(vertices_, GLsizeiptr(cliffs_.size() * sizeof(glm::vec4)), cliffs_.data(),
+                          GL_STREAM_DRAW);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, in.visibility_framebuffer);
     glViewport(0, 0, in.width, in.height);

@@ -206,6 +206,25 @@ TEST(JobRecord, ThePluginAndTheCodeHashesRoundTripAndOlderRecordsLackThem) {
   }
 }
 
+TEST(JobRecord, GpuBytesRoundTripAndOlderRecordsLackThem) {
+  JobRecord r = full_record();
+  json j = r.to_json();  // a record from before the GPU memory meter
+  EXPECT_FALSE(j["technique"].contains("gpu_bytes"));
+  EXPECT_FALSE(JobRecord::from_json(j).technique.gpu_bytes.has_value());
+  r.technique.gpu_bytes = std::int64_t(5) << 32;  // past 32 bits: 20 GiB
+  j = r.to_json();
+  EXPECT_EQ(j["technique"]["gpu_bytes"], 21474836480);
+  const JobRecord back = JobRecord::from_json(json::parse(j.dump()));
+  EXPECT_EQ(back.technique.gpu_bytes, std::int64_t(21474836480));
+  j["technique"]["gpu_bytes"] = "4 MiB";
+  try {
+    (void)JobRecord::from_json(j);
+    FAIL() << "gpu_bytes as a string was read";
+  } catch (const RecordError& e) {
+    EXPECT_EQ(e.pointer(), "/technique/gpu_bytes") << e.what();
+  }
+}
+
 TEST(JobRecord, AnalyticCastersAreRecordedAndOlderRecordsReadAsNone) {
   json j = full_record().to_json();
   EXPECT_EQ(j["scene"]["analytic_casters"], 81);

@@ -3,6 +3,7 @@
 // the others show as the heading of each table), and the same cells.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -93,10 +94,10 @@ TEST(ReportColumns, SameHeadersInCsvMarkdownAndHtml) {
   const std::vector<std::string> all = headers(true), shown = headers(false);
   EXPECT_EQ(all.front(), "scene");
   EXPECT_EQ(all.back(), "reason");
-  // Scene and resolution head each table instead; the distance thirds', the
-  // classes' and the second reference's columns are there only when a
-  // record has them.
-  EXPECT_EQ(all.size(), shown.size() + 2 + 3 + 2 + 3);
+  // Scene and resolution head each table instead; the GPU memory's, the
+  // distance thirds', the classes' and the second reference's columns are
+  // there only when a record has them.
+  EXPECT_EQ(all.size(), shown.size() + 2 + 1 + 3 + 2 + 3);
 
   const std::string csv = make_csv(records());
   EXPECT_EQ(csv.substr(0, csv.find('\n')), join(all, ","));
@@ -126,7 +127,7 @@ TEST(ReportColumns, CellsAgreeAcrossTheTables) {
   // A skipped job has no figures: empty cells, and its reason in the last column.
   EXPECT_EQ(report_column("rmse").cell(rs[1]), "");
   EXPECT_EQ(report_column("reason").cell(rs[1]), "casters are not closed");
-  EXPECT_NE(csv.find(",skipped,,,,,,,,,,,,,,,,,,,casters are not closed\n"), std::string::npos)
+  EXPECT_NE(csv.find(",skipped,,,,,,,,,,,,,,,,,,,,casters are not closed\n"), std::string::npos)
       << csv;
   EXPECT_THROW(report_column("nonsense"), std::out_of_range);
 }
@@ -184,6 +185,19 @@ TEST(ReportColumns, SecondReferenceColumnsAppearOnlyWhenARecordHasOne) {
   const std::string html = html_report_of(rs, "report_second");
   EXPECT_EQ(first_table_headers(html), shown);
   EXPECT_NE(html.find("<td class=\"num\">0.360</td>"), std::string::npos);
+}
+
+TEST(ReportColumns, GpuMemoryIsInMibAndAppearsOnlyWhenARecordHasIt) {
+  auto rs = records();
+  EXPECT_EQ(report_column("gpu_mib").cell(rs[0]), "");
+  EXPECT_EQ(make_markdown(rs, "title").find("gpu_mib"), std::string::npos);
+  rs[0].technique.gpu_bytes = 20971520 + 524288;  // 20.5 MiB
+  EXPECT_EQ(report_column("gpu_mib").cell(rs[0]), "20.50");
+  std::vector<std::string> shown = headers(false);
+  shown.insert(std::find(shown.begin(), shown.end(), "x_control") + 1, "gpu_mib");
+  const std::string md = make_markdown(rs, "title");
+  EXPECT_NE(md.find("| " + join(shown, " | ") + " |\n"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 20.50 |"), std::string::npos) << md;
 }
 
 TEST(ReportColumns, DistanceThirdColumnsAreTheVisibilitysThirdsAndAppearOnlyWithThem) {
