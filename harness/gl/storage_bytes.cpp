@@ -20,7 +20,6 @@ int bits_per_texel(GLenum f) {
     case GL_R8UI:
     case GL_R3_G3_B2:
     case GL_STENCIL_INDEX8:
-      return 8;
     case GL_RGBA2:
       return 8;
     case GL_RGB4:
@@ -75,7 +74,6 @@ int bits_per_texel(GLenum f) {
     case GL_DEPTH32F_STENCIL8:
       return 40;
     case GL_RGBA12:
-      return 48;
     case GL_RGB16:
     case GL_RGB16_SNORM:
     case GL_RGB16F:
