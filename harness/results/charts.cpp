@@ -155,42 +155,56 @@ Chart scene_chart(const std::string& kind, const std::string& what, const JobRec
 
 constexpr const char* kTimeLabel = "median frame time (ms; bars p10–p90)";
 
-// Error against frame time per (scene variant, resolution).
-void error_time_charts(const std::vector<const JobRecord*>& ok, const std::string& metric,
-                       Palette& styles, const std::string& out_dir, std::vector<Chart>& out) {
+// A cost for the error charts' x axis: a value with an optional spread
+// (NaN: none), and NaN for a record without one.
+struct Cost {
+  double x = std::nan(""), lo = std::nan(""), hi = std::nan("");
+};
+
+// The error against a cost per (scene variant, resolution): one point per
+// technique variant and the Pareto front of (cost, error). No chart for a
+// (scene, resolution) where no record has the cost.
+void error_cost_charts(const std::vector<const JobRecord*>& ok, const std::string& metric,
+                       const std::string& kind, const std::string& cost_name,
+                       const std::string& xlabel,
+                       const std::function<Cost(const JobRecord&)>& cost_of, Palette& styles,
+                       const std::string& out_dir, std::vector<Chart>& out) {
   const MetricPath path = metric_path(metric);
   const bool higher = higher_is_better(path);
+  const std::string what = metric + " vs " + cost_name;
   for (const auto& [key, records] : by_scene_and_resolution(ok)) {
-    Chart c = scene_chart("error_time", metric + " vs frame time", *records[0], out_dir);
+    Chart c = scene_chart(kind, what, *records[0], out_dir);
     json points = json::array(), missing = json::array();
     std::vector<ParetoPoint> pp;
     std::vector<double> xs;
     for (const JobRecord* r : records) {
       const std::string label = r->technique_variant;
-      const Timing t = timing_of(*r, &TimingRecord::frame);
+      const Cost cost = cost_of(*r);
       const double e = metric_of(*r, path);
-      if (!std::isfinite(t.median) || !std::isfinite(e)) {
+      if (!std::isfinite(cost.x) || !std::isfinite(e)) {
         missing.push_back(label);
         continue;
       }
       c.file.series.push_back(label);
       points.push_back({{"label", label},
                         {"style", styles(label)},
-                        {"x", t.median},
-                        {"xlo", finite_or_null(t.p10)},
-                        {"xhi", finite_or_null(t.p90)},
+                        {"x", cost.x},
+                        {"xlo", finite_or_null(cost.lo)},
+                        {"xhi", finite_or_null(cost.hi)},
                         {"y", e}});
-      pp.push_back({t.median, higher ? -e : e, label});
-      xs.push_back(t.median);
+      pp.push_back({cost.x, higher ? -e : e, label});
+      xs.push_back(cost.x);
     }
     json front = json::array();
     for (const ParetoPoint& p : pareto_front(pp)) {
       c.file.pareto.push_back(p.label);
       front.push_back({{"label", p.label}, {"x", p.time}, {"y", higher ? -p.error : p.error}});
     }
-    c.data.update({{"xlabel", kTimeLabel},
+    // A log axis cannot show a cost of 0 (a technique that holds no memory).
+    const bool has_zero = std::any_of(xs.begin(), xs.end(), [](double x) { return x <= 0.0; });
+    c.data.update({{"xlabel", xlabel},
                    {"ylabel", metric + (higher ? " (higher is better)" : " (lower is better)")},
-                   {"xlog", spans_decade(xs)},
+                   {"xlog", spans_decade(xs) && !has_zero},
                    {"ylog", false},
                    {"higher_is_better", higher},
                    {"points", points},
@@ -198,6 +212,33 @@ void error_time_charts(const std::vector<const JobRecord*>& ok, const std::strin
                    {"missing", missing}});
     if (!points.empty()) out.push_back(std::move(c));
   }
+}
+
+// Error against frame time per (scene variant, resolution).
+void error_time_charts(const std::vector<const JobRecord*>& ok, const std::string& metric,
+                       Palette& styles, const std::string& out_dir, std::vector<Chart>& out) {
+  error_cost_charts(
+      ok, metric, "error_time", "frame time", kTimeLabel,
+      [](const JobRecord& r) {
+        const Timing t = timing_of(r, &TimingRecord::frame);
+        return Cost{t.median, t.p10, t.p90};
+      },
+      styles, out_dir, out);
+}
+
+// Error against the technique's GPU memory (technique.gpu_bytes) per
+// (scene variant, resolution), where the records have it.
+void error_memory_charts(const std::vector<const JobRecord*>& ok, const std::string& metric,
+                         Palette& styles, const std::string& out_dir, std::vector<Chart>& out) {
+  error_cost_charts(
+      ok, metric, "error_memory", "GPU memory", "technique's peak GPU memory (MiB)",
+      [](const JobRecord& r) {
+        Cost c;
+        if (r.technique.gpu_bytes)
+          c.x = static_cast<double>(*r.technique.gpu_bytes) / (1024.0 * 1024.0);
+        return c;
+      },
+      styles, out_dir, out);
 }
 
 // One series per technique variant of (x, y) points over `records`: y is a
@@ -449,6 +490,7 @@ std::vector<ChartFile> write_charts(const std::vector<JobRecord>& records,
   for (const JobRecord& r : records) styles(r.technique_variant);
   std::vector<Chart> charts;
   error_time_charts(ok, options.error_metric, styles, out_dir, charts);
+  error_memory_charts(ok, options.error_metric, styles, out_dir, charts);
   time_triangles_charts(ok, styles, out_dir, charts);
   error_triangles_charts(ok, options.error_metric, styles, out_dir, charts);
   time_resolution_charts(ok, styles, out_dir, charts);

@@ -4,8 +4,8 @@
 usage: plot_charts.py DATA.json...
 
 Each DATA.json is one chart prepared by harness/results/charts.cpp (kinds
-error_time, time_triangles, error_triangles, time_resolution, passes); it names its own
-output files. Exit codes: 0 all drawn, 1 some chart failed (tracebacks on
+error_time, error_memory, time_triangles, error_triangles, time_resolution,
+passes); it names its own output files. Exit codes: 0 all drawn, 1 some chart failed (tracebacks on
 stderr, the other charts are still drawn), 2 usage, 3 matplotlib missing.
 No network is used; text stays text in the SVG (svg.fonttype none).
 """
@@ -128,7 +128,7 @@ def place_labels(fig, ax, front, all_xy):
         placed.append(best[2])
 
 
-def error_time(fig, ax, d):
+def error_cost(fig, ax, d):
     for p in d["points"]:
         colour, marker = style(p["style"])
         xerr = None
@@ -213,11 +213,11 @@ def draw(data_path):
     if kind == "passes":
         width = max(5.5, 2.5 + 0.45 * len(d["bars"]))
     height = 4.2
-    if kind == "error_time":  # room for the labels of a long front
+    if kind in ("error_time", "error_memory"):  # room for the labels of a long front
         height += 0.12 * max(0, len(d["front"]) - 6)
     fig, ax = plt.subplots(figsize=(width, height))
     try:
-        {"error_time": error_time, "time_triangles": time_lines, "error_triangles": time_lines, "time_resolution": time_lines,
+        {"error_time": error_cost, "error_memory": error_cost, "time_triangles": time_lines, "error_triangles": time_lines, "time_resolution": time_lines,
          "passes": passes}[kind](fig, ax, d)
         ax.set_title(d["title"])
         if "xlabel" in d:

@@ -26,15 +26,18 @@ struct Technique {
   double ms;    // technique time at 320x240 with 10k triangles
   double rmse;  // visibility.geometry.rmse (and every other region's)
   std::vector<std::string> passes;
+  std::int64_t gpu_bytes;  // technique.gpu_bytes
 };
 
 // Four technique variants: none, shadow_map and accumulation are on the
-// error-time front; pcf_box is slower than shadow_map and worse.
+// error-time front; pcf_box is slower than shadow_map and worse. In memory,
+// accumulation's one 512² map (1 MiB) beats both 1024² maps (4 MiB): the
+// error-memory front is none and accumulation.
 const std::vector<Technique> kTechniques = {
-    {"none", 0.1, 0.30, {"clear"}},
-    {"shadow_map/size=1024", 5.0, 0.10, {"shadow_map", "lookup"}},
-    {"pcf_box/k=3,size=1024", 10.0, 0.12, {"shadow_map", "lookup"}},
-    {"accumulation/samples=16", 190.0, 0.01, {"accumulate", "shadow_maps"}},
+    {"none", 0.1, 0.30, {"clear"}, 0},
+    {"shadow_map/size=1024", 5.0, 0.10, {"shadow_map", "lookup"}, 4 << 20},
+    {"pcf_box/k=3,size=1024", 10.0, 0.12, {"shadow_map", "lookup"}, 4 << 20},
+    {"accumulation/samples=16", 190.0, 0.01, {"accumulate", "shadow_maps"}, 1 << 20},
 };
 
 JobRecord record(const std::string& scene, int triangles, int w, int h, const Technique& t) {
@@ -44,6 +47,7 @@ JobRecord record(const std::string& scene, int triangles, int w, int h, const Te
   JobRecord r = test::identity_record(scene, res, t.variant);
   r.scene.built = BuiltScene{};
   r.scene.built->triangles = triangles;
+  r.technique.gpu_bytes = t.gpu_bytes;
   TimingRecord timing_record;
   timing_record.frame = timing(gbuffer + shading + tech);
   timing_record.technique = timing(tech);
@@ -105,6 +109,7 @@ TEST(Charts, EveryChartIsWrittenWithItsSeries) {
   std::map<std::string, int> kinds;
   for (const auto& c : charts) ++kinds[c.kind];
   EXPECT_EQ(kinds["error_time"], 4);       // 2 scenes × 2 resolutions
+  EXPECT_EQ(kinds["error_memory"], 4);     // likewise
   EXPECT_EQ(kinds["time_triangles"], 2);   // jeep at 2 resolutions
   EXPECT_EQ(kinds["error_triangles"], 2);  // likewise
   EXPECT_EQ(kinds["time_resolution"], 2);  // per scene
@@ -153,6 +158,21 @@ TEST(Charts, EveryChartIsWrittenWithItsSeries) {
       EXPECT_EQ(text_count(svg, "pcf_box/k=3,size=1024"), 1);
       EXPECT_EQ(text_count(svg, "Pareto front"), 1);
     }
+    if (c.kind == "error_memory") {
+      EXPECT_NE(svg.find("peak GPU memory (MiB)"), std::string::npos) << "axis names the cost";
+      EXPECT_EQ(c.pareto, (std::vector<std::string>{"none", "accumulation/samples=16"}));
+      // Each point at its technique's MiB, as its record holds it.
+      const auto data = nlohmann::json::parse(
+          read(std::filesystem::path(c.svg).replace_extension(".json").string()));
+      for (const auto& p : data["points"]) {
+        const auto t = std::find_if(kTechniques.begin(), kTechniques.end(),
+                                    [&](const Technique& k) { return k.variant == p["label"]; });
+        ASSERT_NE(t, kTechniques.end());
+        EXPECT_EQ(p["x"].get<double>(), static_cast<double>(t->gpu_bytes) / (1 << 20));
+        EXPECT_EQ(p["y"].get<double>(), t->rmse);
+      }
+      EXPECT_FALSE(data["xlog"].get<bool>()) << "a log axis cannot show none's 0 MiB";
+    }
     if (c.kind == "passes") {
       for (const char* pass : {"gbuffer (shared)", "shading (shared)", "shadow_map", "lookup",
                                "accumulate", "shadow_maps", "clear"})
@@ -161,6 +181,22 @@ TEST(Charts, EveryChartIsWrittenWithItsSeries) {
   }
   // Stable, file-system-safe names.
   EXPECT_EQ(charts.front().svg, dir.file("charts") + "/error_time__jeep--count=1__320x240.svg");
+}
+
+TEST(Charts, RecordsWithoutGpuMemoryGetNoMemoryChart) {
+  SKIP_WITHOUT_MATPLOTLIB();
+  test::TempDir dir("charts_no_memory");
+  std::vector<JobRecord> records;  // as written before technique.gpu_bytes
+  for (JobRecord r : synthetic_records())
+    if (r.scene_variant == "jeep/count=1" && r.resolution == "320x240") {
+      r.technique.gpu_bytes.reset();
+      records.push_back(r);
+    }
+  const auto charts = write_charts(records, dir.path().string(), {});
+  std::vector<std::string> kinds(charts.size());
+  std::transform(charts.begin(), charts.end(), kinds.begin(),
+                 [](const ChartFile& c) { return c.kind; });
+  EXPECT_EQ(kinds, (std::vector<std::string>{"error_time", "passes"}));
 }
 
 TEST(Charts, HigherIsBetterMetricsFlipTheFront) {
@@ -172,7 +208,7 @@ TEST(Charts, HigherIsBetterMetricsFlipTheFront) {
   for (const JobRecord& r : synthetic_records())
     if (r.scene_variant == "jeep/count=1" && r.resolution == "320x240") records.push_back(r);
   const auto charts = write_charts(records, dir.path().string(), o);
-  ASSERT_EQ(charts.size(), 2u);  // error_time and passes
+  ASSERT_EQ(charts.size(), 3u);  // error_time, error_memory and passes
   EXPECT_EQ(charts.front().kind, "error_time");
   EXPECT_EQ(charts.front().pareto,
             (std::vector<std::string>{"none", "shadow_map/size=1024", "accumulation/samples=16"}));
@@ -192,7 +228,7 @@ TEST(Charts, CoarseRunsShowTheTechniqueAsOneSegment) {
       records.push_back(r);
     }
   const auto charts = write_charts(records, dir.path().string(), ChartOptions{});
-  ASSERT_EQ(charts.size(), 2u);
+  ASSERT_EQ(charts.size(), 3u);  // error_time, error_memory and passes
   const std::string svg = read(charts.back().svg);
   EXPECT_EQ(charts.back().kind, "passes");
   EXPECT_EQ(text_count(svg, "technique (all passes)"), 1);
