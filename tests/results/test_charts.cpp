@@ -40,6 +40,13 @@ const std::vector<Technique> kTechniques = {
     {"accumulation/samples=16", 190.0, 0.01, {"accumulate", "shadow_maps"}, 1 << 20},
 };
 
+// The technique a chart's label names, or nullptr.
+const Technique* technique_named(const nlohmann::json& label) {
+  const auto t = std::find_if(kTechniques.begin(), kTechniques.end(),
+                              [&](const Technique& k) { return k.variant == label; });
+  return t == kTechniques.end() ? nullptr : &*t;
+}
+
 JobRecord record(const std::string& scene, int triangles, int w, int h, const Technique& t) {
   const double scale = (triangles / 10000.0) * (w * h / 76800.0);
   const double gbuffer = 9.0 * scale, shading = 1.0 * scale, tech = t.ms * scale;
@@ -89,6 +96,12 @@ std::string read(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// A chart's data file (written beside its SVG).
+nlohmann::json chart_data(const ChartFile& c) {
+  return nlohmann::json::parse(
+      read(std::filesystem::path(c.svg).replace_extension(".json").string()));
+}
+
 // How often `text` is an SVG <text> element's whole content.
 int text_count(const std::string& svg, const std::string& text) {
   int n = 0;
@@ -136,12 +149,10 @@ TEST(Charts, EveryChartIsWrittenWithItsSeries) {
     EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(c.svg).replace_extension(".json")));
     if (c.kind == "error_triangles") {
       // Each technique's error at each triangle count, as its records hold it.
-      const auto data = nlohmann::json::parse(
-          read(std::filesystem::path(c.svg).replace_extension(".json").string()));
+      const auto data = chart_data(c);
       for (const auto& s : data["series"]) {
-        const auto t = std::find_if(kTechniques.begin(), kTechniques.end(),
-                                    [&](const Technique& k) { return k.variant == s["label"]; });
-        ASSERT_NE(t, kTechniques.end());
+        const Technique* t = technique_named(s["label"]);
+        ASSERT_NE(t, nullptr);
         ASSERT_EQ(s["points"].size(), 2u);
         EXPECT_EQ(s["points"][0]["x"], 10000.0);
         EXPECT_EQ(s["points"][1]["x"], 40000.0);
@@ -162,12 +173,10 @@ TEST(Charts, EveryChartIsWrittenWithItsSeries) {
       EXPECT_NE(svg.find("peak GPU memory (MiB)"), std::string::npos) << "axis names the cost";
       EXPECT_EQ(c.pareto, (std::vector<std::string>{"none", "accumulation/samples=16"}));
       // Each point at its technique's MiB, as its record holds it.
-      const auto data = nlohmann::json::parse(
-          read(std::filesystem::path(c.svg).replace_extension(".json").string()));
+      const auto data = chart_data(c);
       for (const auto& p : data["points"]) {
-        const auto t = std::find_if(kTechniques.begin(), kTechniques.end(),
-                                    [&](const Technique& k) { return k.variant == p["label"]; });
-        ASSERT_NE(t, kTechniques.end());
+        const Technique* t = technique_named(p["label"]);
+        ASSERT_NE(t, nullptr);
         EXPECT_EQ(p["x"].get<double>(), static_cast<double>(t->gpu_bytes) / (1 << 20));
         EXPECT_EQ(p["y"].get<double>(), t->rmse);
       }
