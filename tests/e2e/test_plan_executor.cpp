@@ -65,17 +65,18 @@ TEST(PlanExecutor, AJobWhosePlannedOutcomeTheBuiltSceneContradictsFailsNamingBot
 
   ASSERT_EQ(events.records.size(), 3u);
   const JobRecord& none = events.records.at(plan.jobs[0].id);
-  EXPECT_EQ(none.status, JobStatus::Ok) << none.reason;
+  EXPECT_EQ(none.status, JobStatus::Ok) << none.reason.value_or("");
   const JobRecord& skip = events.records.at(plan.jobs[1].id);
   EXPECT_EQ(skip.status, JobStatus::Failed);
-  EXPECT_EQ(skip.reason,
+  EXPECT_EQ(skip.reason.value_or(""),
             "internal error: the plan says skip (altered to skip), but the scene built to run it "
             "says run; the job was not run either way");
   EXPECT_FALSE(skip.duration_s.has_value());  // never rendered
   const JobRecord& fail = events.records.at(plan.jobs[2].id);
   EXPECT_EQ(fail.status, JobStatus::Failed);
-  EXPECT_NE(fail.reason.find("the plan says fail (altered to fail)"), std::string::npos)
-      << fail.reason;
+  EXPECT_NE(fail.reason.value_or("").find("the plan says fail (altered to fail)"),
+            std::string::npos)
+      << fail.reason.value_or("");
   EXPECT_FALSE(fail.duration_s.has_value());
 }
 
