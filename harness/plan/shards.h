@@ -1,8 +1,8 @@
 #pragma once
 // Splitting a run over N machines (`plan --shards N`, `run --shard K/N`,
 // docs/scale_out.md): each PlannedJob's cost and shard. Decided from the
-// config alone (never from what building a scene found),
-// so that every shard computes the same split on its own: each job costs
+// config alone, never from what building a scene found, so that every
+// shard computes the same split on its own: each job costs
 //   weight × (1 + 4.5 × megapixels)
 // where weight is the technique's (TechniqueInfo::cost_weight, 1 unless its
 // plugin says) and 1 stands for what a job pays whatever its resolution
