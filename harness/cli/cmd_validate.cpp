@@ -1,23 +1,29 @@
 // `shadowbench validate` and `shadowbench plan`: every job planned on the
 // CPU, no GL, so a bad scene file is found now, and the counts say which
-// jobs will be skipped and why.
+// jobs will be skipped and why. `plan --json` prints the plan whole, bad
+// scenes included (their jobs fail in it), before the exit code says so.
 #include <cstdio>
 
 #include "cli/commands.h"
 #include "config/experiment.h"
 #include "core/error.h"
 #include "plan/plan.h"
+#include "plan/plan_json.h"
 #include "plan/shards.h"
+#include "results/store.h"
 
 namespace sb::cli {
 
 int cmd_validate(const Args& a, bool show_plan) {
   const Registry r = load_registry(a);
   const Experiment e = load_checked_experiment(a, r);
-  const Plan plan = make_plan(e);
-  if (show_plan) std::printf("%s", describe_plan(e, plan).c_str());
-  if (show_plan && a.shards > 1)
-    std::printf("\n%s", describe_shards(assign_shards(e, a.shards), a.shards).c_str());
+  const Plan plan = make_plan(e, a.shards);
+  if (show_plan && a.plan_json) {
+    std::printf("%s\n", json_text(plan_to_json(e, plan), 2).c_str());
+  } else if (show_plan) {
+    std::printf("%s", describe_plan(e, plan).c_str());
+    if (a.shards > 1) std::printf("\n%s", describe_shards(plan).c_str());
+  }
   for (size_t s = 0; s < plan.scenes.size(); ++s) {
     const ScenePlan& sp = plan.scenes[s];
     if (sp.error.empty()) continue;

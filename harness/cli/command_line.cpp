@@ -336,6 +336,10 @@ std::unique_ptr<CLI::App> make_command_line(Args& a) {
                       "runs them one by one")
           ->type_name("N")
           ->check(whole_check(1, 10000, "expected a whole number of shards in [1, 10000]"));
+    if (plan)
+      sub->add_flag("--json", a.plan_json,
+                    "print the plan as JSON instead (every job's outcome, cost and shard; the "
+                    "plan.json `run` writes, docs/results.md)");
   }
 
   CLI::App* merge = add_command(

@@ -41,6 +41,7 @@ struct Args {
   std::string isolation = "group";      // run: job, group or none
   std::string shard;                    // run: K/N
   int shards = 1;                       // plan: N
+  bool plan_json = false;               // plan: the plan as JSON (plan/plan_json.h)
   std::vector<std::string> merge_dirs;  // merge: the run folders
   bool allow_mixed_hosts = false;       // merge
   std::optional<double> job_timeout;    // run: seconds, over limits.job_seconds

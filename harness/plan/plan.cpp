@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/names.h"
+#include "plan/shards.h"
 #include "scenes/receiver_inference.h"
 
 namespace sb {
@@ -55,13 +56,53 @@ ScenePlan plan_scene(const Experiment& e, const SceneVariant& sv, Derive derive)
   return p;
 }
 
+const char* to_string(JobOutcome::Status status) {
+  switch (status) {
+    case JobOutcome::Status::Run:
+      return "run";
+    case JobOutcome::Status::Skip:
+      return "skip";
+    case JobOutcome::Status::Fail:
+      return "fail";
+  }
+  return "?";
+}
+
+JobOutcome decide_job(const Experiment& e, const ScenePlan& scene, size_t technique) {
+  JobOutcome o;
+  if (!e.techniques[technique].unavailable.empty()) {  // its plugin failed to load
+    o.status = JobOutcome::Status::Fail;
+    o.reason = e.techniques[technique].unavailable;
+  } else if (!scene.error.empty()) {
+    o.status = JobOutcome::Status::Fail;
+    o.reason = scene.error;
+    o.bad_input = scene.bad_input;
+    o.input_error = scene.input_error;
+  } else if (!scene.skip_reason[technique].empty()) {
+    o.status = JobOutcome::Status::Skip;
+    o.reason = scene.skip_reason[technique];
+  }
+  return o;
+}
+
+std::string outcome_mismatch(const JobOutcome& planned, const JobOutcome& decided) {
+  if (planned == decided) return "";
+  const auto say = [](const JobOutcome& o) {
+    std::string s = to_string(o.status);
+    if (!o.reason.empty()) s += " (" + o.reason + ")";
+    return s;
+  };
+  return "internal error: the plan says " + say(planned) + ", but the scene built to run it says " +
+         say(decided) + "; the job was not run either way";
+}
+
 size_t Plan::count(PlannedJob::Status s) const {
   size_t n = 0;
-  for (const auto& j : jobs) n += j.status == s ? 1 : 0;
+  for (const auto& j : jobs) n += j.outcome.status == s ? 1 : 0;
   return n;
 }
 
-Plan make_plan(const Experiment& e) {
+Plan make_plan(const Experiment& e, int shard_count) {
   Plan plan;
   for (size_t s = 0; s < e.scenes.size(); ++s) {
     ScenePlan sp = plan_scene(e, e.scenes[s], Derive::Decide);
@@ -69,25 +110,19 @@ Plan make_plan(const Experiment& e) {
       for (size_t t = 0; t < e.techniques.size(); ++t) {
         PlannedJob j;
         j.id = job_id(e.scenes[s].name, e.resolutions[r].label(), e.techniques[t].name);
+        j.index = plan.jobs.size();
         j.scene = s;
         j.resolution = r;
         j.technique = t;
-        if (!e.techniques[t].unavailable.empty()) {
-          j.status = PlannedJob::Status::Fail;
-          j.reason = e.techniques[t].unavailable;
-        } else if (!sp.error.empty()) {
-          j.status = PlannedJob::Status::Fail;
-          j.reason = sp.error;
-        } else if (!sp.skip_reason[t].empty()) {
-          j.status = PlannedJob::Status::Skip;
-          j.reason = sp.skip_reason[t];
-        }
+        j.cost = job_cost(e, r, t);
+        j.outcome = decide_job(e, sp, t);
         plan.jobs.push_back(std::move(j));
       }
     sp.scene = Scene{};  // a sweep of big scenes must not stay in memory
     sp.derived = DerivedData{};
     plan.scenes.push_back(std::move(sp));
   }
+  assign_shards(plan, shard_count);
   return plan;
 }
 
@@ -103,12 +138,11 @@ std::string describe_plan(const Experiment& e, const Plan& plan) {
     for (const auto& l : sp.log) out += "  " + l + "\n";
     for (const auto& j : plan.jobs) {
       if (j.scene != s) continue;
-      out += "  " +
-             std::string(j.status == PlannedJob::Status::Run    ? "run  "
-                         : j.status == PlannedJob::Status::Skip ? "skip "
-                                                                : "fail ") +
-             e.resolutions[j.resolution].label() + "  " + e.techniques[j.technique].name;
-      if (!j.reason.empty()) out += "  (" + j.reason + ")";
+      std::string status = to_string(j.outcome.status);
+      status.resize(5, ' ');
+      out += "  " + status + e.resolutions[j.resolution].label() + "  " +
+             e.techniques[j.technique].name;
+      if (!j.outcome.reason.empty()) out += "  (" + j.outcome.reason + ")";
       out += "\n";
     }
   }

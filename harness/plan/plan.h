@@ -4,7 +4,9 @@
 // exists: which scenes build, which (scene, technique) pairs are skipped and
 // why, and which derived data each scene needs (the union of the needs of
 // the techniques that will run on it). `shadowbench plan` and `validate`
-// print it; the runner executes it.
+// print it (`plan --json` writes it, plan/plan_json.h); `run` writes it to
+// the run folder as plan.json and executes its jobs, and the executor checks
+// that the scene it builds leads to the same decisions (outcome_mismatch).
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -33,21 +35,46 @@ struct ScenePlan {
 // it is recorded in `error` and `bad_input`.
 ScenePlan plan_scene(const Experiment& e, const SceneVariant& sv, Derive derive);
 
-struct PlannedJob {
-  std::string id;  // job_id(scene variant, resolution, technique variant)
-  size_t scene = 0, resolution = 0, technique = 0;  // indices into the experiment
+// What is decided for one job before it runs.
+struct JobOutcome {
   enum class Status { Run, Skip, Fail } status = Status::Run;
-  std::string reason;  // for Skip and Fail
+  std::string reason;       // for Skip and Fail
+  bool bad_input = false;   // Fail because the scene's input (a glTF file, say) is bad:
+  std::string input_error;  // then the InputError's message (file and place)
+  bool operator==(const JobOutcome&) const = default;
+};
+const char* to_string(JobOutcome::Status status);  // "run", "skip", "fail"
+
+// The decision for technique variant `technique` on a planned scene: fail
+// when its plugin did not load or the scene did not build, skip with the
+// needs' reason, else run. The one rule both the plan and the executor apply.
+JobOutcome decide_job(const Experiment& e, const ScenePlan& scene, size_t technique);
+
+// "" when `decided` (the executor's decision, from the scene it built)
+// equals the plan's outcome; else an internal-error reason naming both, for
+// the job's failed record: a job never runs other than as planned.
+std::string outcome_mismatch(const JobOutcome& planned, const JobOutcome& decided);
+
+struct PlannedJob {
+  using Status = JobOutcome::Status;
+  std::string id;    // job_id(scene variant, resolution, technique variant)
+  size_t index = 0;  // its place in Plan::jobs (a record's job_index)
+  size_t scene = 0, resolution = 0, technique = 0;  // indices into the experiment
+  double cost = 0;                                  // estimated (plan/shards.h)
+  int shard = 1;                                    // 1-based, of Plan::shard_count
+  JobOutcome outcome;
 };
 
 struct Plan {
   std::vector<ScenePlan> scenes;  // scene data dropped (Derive::Decide plans)
   std::vector<PlannedJob> jobs;   // scene-major, then resolution, then technique
+  int shard_count = 1;
   size_t count(PlannedJob::Status s) const;
 };
 
-// The whole experiment's plan, without GL and without keeping scene data.
-Plan make_plan(const Experiment& e);
+// The whole experiment's plan, without GL and without keeping scene data,
+// its jobs laid out in `shard_count` shards (plan/shards.h).
+Plan make_plan(const Experiment& e, int shard_count = 1);
 
 // Human-readable: per scene, what it derives and infers; per job, run, skip
 // or fail with the reason.

@@ -5,8 +5,6 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "core/names.h"
-
 namespace sb {
 
 namespace {
@@ -46,20 +44,19 @@ ShardSpec parse_shard(const std::string& text) {
   return s;
 }
 
-std::vector<ShardedJob> assign_shards(const Experiment& e, int shard_count) {
+double job_cost(const Experiment& e, size_t resolution, size_t technique) {
+  const TechniqueVariant& tv = e.techniques[technique];
+  const Resolution& res = e.resolutions[resolution];
+  const double megapixels = double(res.width) * double(res.height) / 1e6;
+  const double weight = tv.info->cost_weight ? tv.info->cost_weight(tv.params) : 1.0;
+  return weight * (kFixedCost + kCostPerMegapixel * megapixels);
+}
+
+void assign_shards(Plan& plan, int shard_count) {
   if (shard_count < 1 || shard_count > kMaxShards)
     throw std::invalid_argument("shard count out of [1, 10000]");
-  std::vector<ShardedJob> jobs;
-  for (size_t s = 0; s < e.scenes.size(); ++s)
-    for (size_t r = 0; r < e.resolutions.size(); ++r)
-      for (size_t t = 0; t < e.techniques.size(); ++t) {
-        const TechniqueVariant& tv = e.techniques[t];
-        const double megapixels =
-            double(e.resolutions[r].width) * double(e.resolutions[r].height) / 1e6;
-        const double weight = tv.info->cost_weight ? tv.info->cost_weight(tv.params) : 1.0;
-        jobs.push_back({job_id(e.scenes[s].name, e.resolutions[r].label(), tv.name), s, r, t,
-                        weight * (kFixedCost + kCostPerMegapixel * megapixels), 1});
-      }
+  std::vector<PlannedJob>& jobs = plan.jobs;
+  plan.shard_count = shard_count;
   std::vector<size_t> order(jobs.size());
   std::iota(order.begin(), order.end(), size_t(0));
   std::stable_sort(order.begin(), order.end(),
@@ -74,10 +71,11 @@ std::vector<ShardedJob> assign_shards(const Experiment& e, int shard_count) {
     ++count[best];
     jobs[j].shard = int(best) + 1;
   }
-  return jobs;
 }
 
-std::string describe_shards(const std::vector<ShardedJob>& jobs, int shard_count) {
+std::string describe_shards(const Plan& plan) {
+  const std::vector<PlannedJob>& jobs = plan.jobs;
+  const int shard_count = plan.shard_count;
   double total = 0;
   for (const auto& j : jobs) total += j.cost;
   std::string out;

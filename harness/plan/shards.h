@@ -1,7 +1,8 @@
 #pragma once
 // Splitting a run over N machines (`plan --shards N`, `run --shard K/N`,
-// docs/scale_out.md). Decided from the config alone, with no scene built,
-// so that every shard computes the same split on its own: each job costs
+// docs/scale_out.md): each PlannedJob's cost and shard. Decided from the
+// config alone, never from what building a scene found, so that every
+// shard computes the same split on its own: each job costs
 //   weight × (1 + 4.5 × megapixels)
 // where weight is the technique's (TechniqueInfo::cost_weight, 1 unless its
 // plugin says) and 1 stands for what a job pays whatever its resolution
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "config/experiment.h"
+#include "plan/plan.h"
 
 namespace sb {
 
@@ -26,18 +28,14 @@ struct ShardSpec {
 // was expected.
 ShardSpec parse_shard(const std::string& text);
 
-struct ShardedJob {
-  std::string id;
-  size_t scene = 0, resolution = 0, technique = 0;
-  double cost = 0;
-  int shard = 1;  // 1-based
-};
+// The estimated cost of job (resolution, technique variant) of `e`.
+double job_cost(const Experiment& e, size_t resolution, size_t technique);
 
-// Every job of `e` in plan order (scene, resolution, technique), each with
-// its cost and shard.
-std::vector<ShardedJob> assign_shards(const Experiment& e, int shard_count);
+// Sets every job's shard, of `shard_count`, from the jobs' costs (make_plan
+// calls it); throws std::invalid_argument outside [1, 10000].
+void assign_shards(Plan& plan, int shard_count);
 
 // The layout: per shard its job count, cost and share, then its jobs.
-std::string describe_shards(const std::vector<ShardedJob>& jobs, int shard_count);
+std::string describe_shards(const Plan& plan);
 
 }  // namespace sb

@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
+#include <optional>
 #include <set>
 #include <string_view>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "record/job_record.h"
 #include "results/mixed_hosts.h"
@@ -18,6 +22,22 @@ namespace sb {
 namespace fs = std::filesystem;
 
 namespace {
+
+// The shards of one config ran one plan and each kept it as plan.json: the
+// merged folder keeps it too when every folder holds the same bytes (not
+// when the shards named the config by different paths, nor for folders
+// written before runs kept their plan).
+void keep_the_shards_plan(const std::vector<std::string>& dirs, const std::string& out) {
+  std::optional<std::string> plan;
+  for (const std::string& dir : dirs) {
+    std::ifstream in(fs::path(dir) / "plan.json", std::ios::binary);
+    if (!in) return;
+    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (plan && *plan != text) return;
+    plan = std::move(text);
+  }
+  if (plan) write_file_atomically((fs::path(out) / "plan.json").string(), *plan, "merge: ");
+}
 
 // An image path a record names, inside its run folder: relative, without
 // "..". Records are input; a crafted one must not make merge copy from or
@@ -133,6 +153,7 @@ MergeSummary merge_runs(const std::string& out, const std::vector<std::string>& 
       ++summary.images;
     }
   }
+  keep_the_shards_plan(dirs, out);
   store.put_all(records);
   summary.records = records.size();
   write_reports(out, store.records(),

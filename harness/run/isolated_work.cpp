@@ -153,7 +153,7 @@ IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const Emb
                              ParentEvents& events) {
   const SceneVariant& sv = e.scenes.at(scene);
   const Resolution& res = e.resolutions.at(work.resolution);
-  std::vector<size_t> remaining = work.techniques;
+  std::vector<const PlannedJob*> remaining = work.jobs;
   std::optional<GlIdentity> gl;
   IsolatedOutcome outcome;
 
@@ -267,9 +267,7 @@ IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const Emb
     }
     done_rendering();
     const int status = child.wait();
-    std::erase_if(remaining, [&](size_t i) {
-      return c.finished.count(job_id(sv.name, res.label(), e.techniques[i].name)) > 0;
-    });
+    std::erase_if(remaining, [&](const PlannedJob* j) { return c.finished.count(j->id) > 0; });
     if (WIFEXITED(status) && WEXITSTATUS(status) == kExitContextFailed && !c.fatal.empty())
       throw std::runtime_error(c.fatal);
 
@@ -288,9 +286,7 @@ IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const Emb
                     : "crashed: " + how;
       const std::string id = r.job_id;
       fail(std::move(r), reason, c, timed_out);
-      std::erase_if(remaining, [&](size_t i) {
-        return job_id(sv.name, res.label(), e.techniques[i].name) == id;
-      });
+      std::erase_if(remaining, [&](const PlannedJob* j) { return j->id == id; });
       continue;  // the jobs it did not reach, in a fresh child
     }
     if (remaining.empty()) break;
@@ -304,9 +300,9 @@ IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const Emb
                    : (WIFEXITED(status) && WEXITSTATUS(status) == 0 ? "ended without a record: "
                                                                     : "failed: ") +
                          how);
-    for (size_t i : remaining) {
-      JobRecord r = identity_record(e, o, embree, sv, res, e.techniques[i], gl ? gl->renderer : "",
-                                    gl ? gl->version : "");
+    for (const PlannedJob* j : remaining) {
+      JobRecord r = identity_record(e, o, embree, sv, res, e.techniques[j->technique],
+                                    gl ? gl->renderer : "", gl ? gl->version : "");
       if (gl) {
         r.gl_platform = gl->platform;
         r.timing_source = gl->timing_source;

@@ -42,7 +42,8 @@ struct IsolatedOutcome {
 };
 
 // Runs `work`'s jobs of scene variant `scene`, one child after another, each
-// job ending in one job_finished event. Throws std::runtime_error when a
+// job ending in one job_finished event. The children are forked: they read
+// the parent's PlannedJobs that `work` points to. Throws std::runtime_error when a
 // child cannot make its GL context (as the run would fail in-process).
 IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
                              size_t scene, const ResolutionWork& work, const TimeLimits& limits,

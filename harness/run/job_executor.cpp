@@ -48,7 +48,9 @@ class JobExecutor::Impl {
   }
 
   void run_scene(const SceneVariant& sv, const std::vector<ResolutionWork>& work) {
-    // Every decision is the plan's (plan/plan.h); the executor only executes.
+    // The plan (made in the parent, before any GL context) decided every
+    // job; the scene is built again for its data, with the Run needs
+    // derived, and must lead to the same decisions.
     const ScenePlan st = plan_scene(e_, sv, Derive::All);
     events_.scene_planned(sv.name, st.log, st.bad_input ? st.input_error : std::string());
 
@@ -56,21 +58,19 @@ class JobExecutor::Impl {
     for (const ResolutionWork& w : work) {
       const Resolution& res = e_.resolutions[w.resolution];
       std::vector<size_t> pending;
-      for (size_t i : w.techniques) {
-        if (!e_.techniques[i].unavailable.empty()) {  // its plugin failed to load
-          finish_unrun(sv, st.error.empty() ? &st : nullptr, res, e_.techniques[i],
-                       JobStatus::Failed, e_.techniques[i].unavailable);
-          continue;
-        }
-        if (!st.error.empty()) {
-          finish_unrun(sv, nullptr, res, e_.techniques[i], JobStatus::Failed, st.error);
-          continue;
-        }
-        if (!st.skip_reason[i].empty()) {
-          finish_unrun(sv, &st, res, e_.techniques[i], JobStatus::Skipped, st.skip_reason[i]);
-          continue;
-        }
-        pending.push_back(i);
+      for (const PlannedJob* job : w.jobs) {
+        const TechniqueVariant& tv = e_.techniques[job->technique];
+        const ScenePlan* built = st.error.empty() ? &st : nullptr;
+        const JobOutcome decided = decide_job(e_, st, job->technique);
+        const std::string mismatch = outcome_mismatch(job->outcome, decided);
+        if (!mismatch.empty())
+          finish_unrun(sv, built, res, tv, JobStatus::Failed, mismatch);
+        else if (decided.status == JobOutcome::Status::Fail)
+          finish_unrun(sv, built, res, tv, JobStatus::Failed, decided.reason);
+        else if (decided.status == JobOutcome::Status::Skip)
+          finish_unrun(sv, built, res, tv, JobStatus::Skipped, decided.reason);
+        else
+          pending.push_back(job->technique);
       }
       if (pending.empty()) continue;
       try {

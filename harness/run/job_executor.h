@@ -1,6 +1,7 @@
 #pragma once
 // Runs jobs in this process, on a GL context of its own. For one scene
-// variant: plans and builds it, uploads it once, and per resolution renders
+// variant: builds it (with its derived data) and checks that it leads to the
+// plan's decisions, uploads it once, and per resolution renders
 // the G-buffer and the reference once, then prepares, times and measures
 // each technique variant asked for, telling `events` as it goes. Which jobs
 // to run (resumed ones are not) and in which process is the caller's choice
@@ -10,16 +11,18 @@
 #include <vector>
 
 #include "config/experiment.h"
+#include "plan/plan.h"
 #include "run/job_identity.h"
 #include "run/run_events.h"
 #include "run/runner.h"
 
 namespace sb {
 
-// One (scene, resolution)'s jobs: indices into the experiment.
+// One (scene, resolution)'s jobs, in plan order: the run's Plan's (made once
+// in the parent; forked children share it).
 struct ResolutionWork {
   size_t resolution = 0;
-  std::vector<size_t> techniques;
+  std::vector<const PlannedJob*> jobs;
 };
 
 class JobExecutor {
@@ -32,7 +35,8 @@ class JobExecutor {
 
   // Every job of `work` ends in one job_finished event: ok, skipped (the
   // plan's reason) or failed (the error), so one failing job never stops the
-  // others. Throws only for what breaks the process itself.
+  // others. A job whose planned outcome the built scene contradicts fails
+  // with both (outcome_mismatch). Throws only for what breaks the process.
   void run_scene(size_t scene, const std::vector<ResolutionWork>& work);
 
  private:

@@ -5,11 +5,14 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <filesystem>
 #include <set>
 #include <stdexcept>
 
+#include "core/atomic_file.h"
 #include "core/names.h"
-#include "plan/shards.h"
+#include "plan/plan.h"
+#include "plan/plan_json.h"
 #include "record/spec_changes.h"
 #include "results/report.h"
 #include "results/run_lock.h"
@@ -152,11 +155,23 @@ class Runner {
         progress_(stderr, !o.quiet && isatty(fileno(stderr)), 0) {}
 
   RunSummary run() {
+    // The one plan, made before any GL context and kept beside the records:
+    // every job's outcome, cost and shard. Children are forked, so they read
+    // the same PlannedJobs.
+    plan_ = make_plan(e_, o_.shard.count);
+    {
+      const ParentIoSpan io("plan");
+      write_file_atomically((std::filesystem::path(store_.dir()) / "plan.json").string(),
+                            json_text(plan_to_json(e_, plan_), 2) + "\n", "plan.json: ");
+    }
     // This shard's jobs (all of them unless --shard), in plan order.
-    const std::vector<ShardedJob> jobs = assign_shards(e_, o_.shard.count);
+    std::vector<const PlannedJob*> jobs;
     std::vector<std::string> order;
-    for (const ShardedJob& j : jobs)
-      if (j.shard == o_.shard.index) order.push_back(j.id);
+    for (const PlannedJob& j : plan_.jobs)
+      if (j.shard == o_.shard.index) {
+        jobs.push_back(&j);
+        order.push_back(j.id);
+      }
     store_.set_order(order);
     progress_ = Progress(stderr, !o_.quiet && isatty(fileno(stderr)), order.size());
     StoreEvents events(store_, progress_, summary_, o_.quiet, order.size());
@@ -172,21 +187,22 @@ class Runner {
     limits_.job_seconds = o_.job_seconds.value_or(e_.limits.job_seconds);
     limits_.setup_seconds = o_.setup_seconds.value_or(e_.limits.setup_seconds);
 
-    size_t next = 0;  // into jobs, in the same order as the loops
-    for (size_t s = 0; s < e_.scenes.size(); ++s) {
+    // Plan order is scene-major, then resolution: a scene's jobs are
+    // consecutive, and so are a (scene, resolution)'s.
+    for (size_t next = 0; next < jobs.size();) {
+      const size_t scene = jobs[next]->scene;
       std::vector<ResolutionWork> work;
-      for (size_t r = 0; r < e_.resolutions.size(); ++r) {
-        ResolutionWork w{r, {}};
-        for (size_t t = 0; t < e_.techniques.size(); ++t) {
-          if (jobs[next++].shard != o_.shard.index) continue;
-          if (resumable(s, r, t, events))
-            events.resumed();
-          else
-            w.techniques.push_back(t);
+      for (; next < jobs.size() && jobs[next]->scene == scene; ++next) {
+        const PlannedJob& j = *jobs[next];
+        if (resumable(j, events)) {
+          events.resumed();
+          continue;
         }
-        if (!w.techniques.empty()) work.push_back(std::move(w));
+        if (work.empty() || work.back().resolution != j.resolution)
+          work.push_back({j.resolution, {}});
+        work.back().jobs.push_back(&j);
       }
-      if (!work.empty()) run_scene(s, work, events);
+      if (!work.empty()) run_scene(scene, work, events);
     }
     progress_.clear();
     {
@@ -209,7 +225,7 @@ class Runner {
       if (o_.isolation == Isolation::Group)
         pieces.push_back(w);
       else
-        for (size_t t : w.techniques) pieces.push_back({w.resolution, {t}});
+        for (const PlannedJob* j : w.jobs) pieces.push_back({w.resolution, {j}});
       for (const ResolutionWork& piece : pieces) {
         const IsolatedOutcome out = run_isolated(e_, o_, embree_, scene, piece, limits_, events);
         summary_.crashed += out.crashed;
@@ -218,12 +234,12 @@ class Runner {
     }
   }
 
-  bool resumable(size_t s, size_t r, size_t t, StoreEvents& events) {
-    const std::string id =
-        job_id(e_.scenes[s].name, e_.resolutions[r].label(), e_.techniques[t].name);
+  bool resumable(const PlannedJob& j, StoreEvents& events) {
+    const std::string& id = j.id;
     const JobRecord* done = store_.finished(id);
     if (done == nullptr) return false;
-    const json spec = job_spec(e_, o_, embree_, e_.scenes[s], e_.resolutions[r], e_.techniques[t]);
+    const json spec = job_spec(e_, o_, embree_, e_.scenes[j.scene], e_.resolutions[j.resolution],
+                               e_.techniques[j.technique]);
     const std::string why = rerun_reason(*done, spec, job_spec_hash(spec));
     if (why.empty()) return true;
     ++summary_.respecified;
@@ -250,6 +266,7 @@ class Runner {
   EmbreeChoice embree_;
   TimeLimits limits_;
   RunSummary summary_;
+  Plan plan_;                              // what ResolutionWork points into
   std::unique_ptr<JobExecutor> executor_;  // isolation none
 };
 

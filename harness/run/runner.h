@@ -1,5 +1,6 @@
 #pragma once
-// Runs an experiment: scene variants × resolutions × technique variants.
+// Runs an experiment: its plan (plan/plan.h, made once and written to the
+// run folder as plan.json), job by job in plan order.
 // Each job's record is stored as soon as it finishes; a failing job is
 // recorded as "failed" and the run goes on. With isolation, jobs render in
 // child processes, so that a crash, a hang or an out-of-memory kill fails

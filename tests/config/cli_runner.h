@@ -10,11 +10,13 @@ namespace sb::test {
 
 struct CliResult {
   int exit_code;
-  std::string output;  // stdout and stderr
+  std::string output;  // stdout and stderr (or stdout alone)
 };
 
-inline CliResult run_cli(const std::string& args) {
-  const std::string cmd = std::string(SHADOWBENCH_EXE) + " " + args + " 2>&1";
+// Without `with_stderr`, stderr is dropped: for output that is parsed (`plan --json`).
+inline CliResult run_cli(const std::string& args, bool with_stderr = true) {
+  const std::string cmd =
+      std::string(SHADOWBENCH_EXE) + " " + args + (with_stderr ? " 2>&1" : " 2>/dev/null");
   FILE* pipe = popen(cmd.c_str(), "r");
   std::string out;
   std::array<char, 512> buf{};

@@ -35,10 +35,10 @@ TEST(PlanStage, ListsTheFoliageShadowVolumeSkipBeforeAnyGlContext) {
   const Plan plan = make_plan(e);
   EXPECT_EQ(gl::contexts_created(), 0u);
   const PlannedJob& skipped = job(e, plan, "foliage", "shadow_volume");
-  EXPECT_EQ(skipped.status, PlannedJob::Status::Skip);
-  EXPECT_NE(skipped.reason.find("needs closed casters: mesh 'leaves'"), std::string::npos)
-      << skipped.reason;
-  EXPECT_EQ(job(e, plan, "sphere_grid", "shadow_volume").status, PlannedJob::Status::Run);
+  EXPECT_EQ(skipped.outcome.status, PlannedJob::Status::Skip);
+  EXPECT_NE(skipped.outcome.reason.find("needs closed casters: mesh 'leaves'"), std::string::npos)
+      << skipped.outcome.reason;
+  EXPECT_EQ(job(e, plan, "sphere_grid", "shadow_volume").outcome.status, PlannedJob::Status::Run);
   EXPECT_EQ(plan.jobs.size(), 24u);  // 4 scenes × 6 techniques
   EXPECT_EQ(plan.count(PlannedJob::Status::Skip), 1u);
   // Derived data follow the techniques that will run: adjacency for the
@@ -113,11 +113,12 @@ TEST(PlanStage, EdgeBandTechniquesSkipMaskedCastersWithTheReason) {
   for (const auto& [variant, j] : by_variant) {
     const bool skipped = variant == "penumbra_maps" || variant == "smoothies" ||
                          variant.find("gradient") != std::string::npos;
-    EXPECT_EQ(j->status, skipped ? PlannedJob::Status::Skip : PlannedJob::Status::Run) << variant;
+    EXPECT_EQ(j->outcome.status, skipped ? PlannedJob::Status::Skip : PlannedJob::Status::Run)
+        << variant;
     if (skipped) {
-      EXPECT_NE(j->reason.find("cannot honour alpha masks: mesh 'leaves' is alpha-tested"),
+      EXPECT_NE(j->outcome.reason.find("cannot honour alpha masks: mesh 'leaves' is alpha-tested"),
                 std::string::npos)
-          << variant << ": " << j->reason;
+          << variant << ": " << j->outcome.reason;
     }
   }
 }
@@ -141,6 +142,19 @@ TEST(PlanStage, ABadSceneFailsItsJobsAndTheRestArePlanned) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("run  32x24  shadow_volume"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("missing.glb"), std::string::npos) << r.output;
+  // `plan --json` writes the whole plan too, the bad scene's jobs failing as bad input.
+  const auto as_json = run_cli("plan " + config + " --json", false);
+  EXPECT_EQ(as_json.exit_code, 2);
+  const nlohmann::json j = nlohmann::json::parse(as_json.output, nullptr, false);
+  ASSERT_EQ(j["jobs"].size(), 4u) << as_json.output;
+  EXPECT_EQ(j["scenes"][1]["bad_input"], true);
+  EXPECT_NE(j["scenes"][1]["input_error"].get<std::string>().find("missing.glb"),
+            std::string::npos);
+  for (size_t i = 0; i < 4; ++i) {
+    const bool bad = i >= 2;
+    EXPECT_EQ(j["jobs"][i]["outcome"], bad ? "fail" : "run") << i;
+    EXPECT_EQ(j["jobs"][i]["bad_input"], bad) << i;
+  }
 }
 
 TEST(PlanStage, ValidateAndPlanCountTheSkips) {

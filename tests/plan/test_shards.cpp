@@ -1,5 +1,5 @@
-// Shards (plan/shards.h): every job in exactly one shard, the same split on
-// every call, balanced by estimated cost, and "K/N" checked.
+// Shards (plan/shards.h): every job of the plan in exactly one shard, the
+// same split on every call, balanced by estimated cost, and "K/N" checked.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +9,7 @@
 
 #include "../config/cli_runner.h"
 #include "config/experiment.h"
+#include "plan/plan.h"
 #include "plan/shards.h"
 #include "plugin/registry.h"
 #include "test_registry.h"
@@ -28,7 +29,7 @@ Experiment sweep() {
 
 TEST(Shards, EveryJobIsInExactlyOneShardInPlanOrder) {
   const Experiment e = sweep();
-  const auto jobs = assign_shards(e, 5);
+  const auto jobs = make_plan(e, 5).jobs;
   ASSERT_EQ(jobs.size(), 2u * 3u * 8u);
   std::set<std::string> ids;
   for (size_t i = 0; i < jobs.size(); ++i) {
@@ -37,19 +38,20 @@ TEST(Shards, EveryJobIsInExactlyOneShardInPlanOrder) {
     EXPECT_LE(jobs[i].shard, 5);
     // Plan order: scene-major, then resolution, then technique.
     EXPECT_EQ(i, (jobs[i].scene * 3 + jobs[i].resolution) * 8 + jobs[i].technique);
+    EXPECT_EQ(jobs[i].index, i);
   }
 }
 
 TEST(Shards, TheSplitIsTheSameOnEveryCall) {
   const Experiment e = sweep();
-  const auto a = assign_shards(e, 4), b = assign_shards(sweep(), 4);
+  const auto a = make_plan(e, 4).jobs, b = make_plan(sweep(), 4).jobs;
   for (size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i].shard, b[i].shard) << a[i].id;
 }
 
 TEST(Shards, ShardsAreBalancedWithinTheCostliestJob) {
   const Experiment e = sweep();
   for (int n : {2, 3, 4, 7}) {
-    const auto jobs = assign_shards(e, n);
+    const auto jobs = make_plan(e, n).jobs;
     std::map<int, double> load;
     double costliest = 0;
     for (const auto& j : jobs) {
@@ -69,7 +71,7 @@ TEST(Shards, ShardsAreBalancedWithinTheCostliestJob) {
 
 TEST(Shards, CostGrowsWithPixelsAndTheTechniquesWeight) {
   const Experiment e = sweep();
-  const auto jobs = assign_shards(e, 1);
+  const auto jobs = make_plan(e, 1).jobs;
   const auto cost = [&](const std::string& res, const std::string& technique) {
     for (const auto& j : jobs)
       if (j.scene == 0 && e.resolutions[j.resolution].label() == res &&

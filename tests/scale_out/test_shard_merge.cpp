@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 
 #include "scale_out_util.h"
 
@@ -54,6 +55,13 @@ TEST(ShardMerge, TheMergedShardsOfQuickEqualOneRunTimingsAside) {
       }
   }
   EXPECT_TRUE(fs::exists(dir / "merged" / "summary.md"));
+  // The shards ran one plan: the merged folder keeps it, byte for byte.
+  const auto text = [](const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::string{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  };
+  EXPECT_FALSE(text(dir / "shard-1" / "plan.json").empty());
+  EXPECT_EQ(text(dir / "merged" / "plan.json"), text(dir / "shard-1" / "plan.json"));
 }
 
 // Two shards of a three-job config, for the refusals.
