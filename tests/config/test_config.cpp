@@ -7,27 +7,17 @@
 
 #include "cli_runner.h"
 #include "config/experiment.h"
+#include "config_fixtures.h"
 #include "core/error.h"
 #include "plugin/registry.h"
 
 namespace sb {
 namespace {
 
-const Registry& registry() {
-  static Registry r = [] {
-    Registry reg;
-    reg.load_plugins(SHADOWBENCH_PLUGIN_DIR);
-    return reg;
-  }();
-  return r;
-}
+const Registry& registry() { return test::registry(); }
 
 std::string write_temp(const std::string& name, const std::string& text) {
-  const auto dir = std::filesystem::temp_directory_path() / "shadowbench_test_config";
-  std::filesystem::create_directories(dir);
-  const auto path = dir / name;
-  std::ofstream(path) << text;
-  return path.string();
+  return test::write_temp("shadowbench_test_config", name, text);
 }
 
 const char* const kValid = R"({
@@ -310,6 +300,8 @@ const BadCase
 
 class BadConfig : public ::testing::TestWithParam<BadCase> {};
 
+std::string place(const BadCase& c) { return std::string("at ") + c.pointer + ":"; }
+
 TEST_P(BadConfig, NamesFilePointerAndExpectation) {
   const BadCase& c = GetParam();
   const std::string path = write_temp(std::string(c.name) + ".json", c.json);
@@ -320,14 +312,13 @@ TEST_P(BadConfig, NamesFilePointerAndExpectation) {
     const std::string what = e.what();
     EXPECT_EQ(e.file(), path);
     EXPECT_NE(what.find(path), std::string::npos) << what;
-    EXPECT_NE(what.find(std::string("at ") + c.pointer + ":"), std::string::npos)
-        << c.name << ": " << what;
+    EXPECT_NE(what.find(place(c)), std::string::npos) << c.name << ": " << what;
     EXPECT_NE(what.find(c.expected), std::string::npos) << c.name << ": " << what;
   }
   // The driver says the same and exits with 2.
   const auto cli = test::run_cli("validate " + path);
   EXPECT_EQ(cli.exit_code, 2) << cli.output;
-  EXPECT_NE(cli.output.find(std::string("at ") + c.pointer + ":"), std::string::npos) << cli.output;
+  EXPECT_NE(cli.output.find(place(c)), std::string::npos) << cli.output;
 }
 
 INSTANTIATE_TEST_SUITE_P(Config, BadConfig, ::testing::ValuesIn(kBadCases),
