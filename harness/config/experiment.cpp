@@ -204,7 +204,16 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
 Experiment load_experiment(const std::string& path, const Registry& registry,
                            const ExperimentLimits& limits) {
   const std::string text = read_input_file(path, JsonLimits{}.max_bytes, "config file");
-  Experiment e = parse_experiment(parse_json_text(text, path), path, registry, limits);
+  auto positions = std::make_shared<JsonPositions>();
+  const json doc = parse_json_text(text, path, {}, 0, positions.get());
+  Experiment e;
+  try {
+    e = parse_experiment(doc, path, registry, limits);
+  } catch (const InputError& ex) {
+    throw located(ex, path, *positions);
+  }
+  for (SceneVariant& v : e.scenes) v.position = positions->find(v.pointer);
+  e.positions = std::move(positions);
   Hasher h;
   h.add(text);
   e.content_hash = h.hex();
@@ -217,7 +226,7 @@ Scene build_scene(const SceneVariant& v, const std::string& config_file) {
   scene.name = v.name;
   const std::string problem = scene_setup_problem(scene);
   if (!problem.empty())
-    throw InputError(config_file, v.pointer, "scene " + v.name + ": " + problem);
+    throw InputError(config_file, v.pointer, "scene " + v.name + ": " + problem, v.position);
   return scene;
 }
 

@@ -108,7 +108,9 @@ TEST(Config, SweepIsACrossProduct) {
 struct BadCase {
   const char* name;
   const char* json;
-  const char* pointer;   // the place the message must name
+  // The place the message must name: a JSON pointer, or a fragment of the
+  // message (":1:14: ") where there is none.
+  const char* pointer;
   const char* expected;  // a fragment of what was expected/found
 };
 
@@ -116,7 +118,7 @@ struct BadCase {
 const BadCase
     kBadCases[] =
         {
-            {"not_json", "{\"name\": \"x\",, }", "line 1, column 14", "invalid JSON"},
+            {"not_json", "{\"name\": \"x\",, }", ":1:14: ", "invalid JSON"},
             {"top_not_object", "[1, 2]", "/", "expected an experiment (an object), found array"},
             {"unknown_top_key",
              R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "frame": {}})",
@@ -256,7 +258,7 @@ const BadCase
              "/reference/spp", "the key \"spp\" appears twice"},
             {"number_overflow",
              R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "reference": {"seed": 1e400}})",
-             "line 1, column 114 (/reference/seed)", "number overflow parsing '1e400'"},
+             ":1:114 (/reference/seed): ", "number overflow parsing '1e400'"},
             {"float_overflow",
              R"({"scenes": [{"type": "sphere_grid", "light": {"intensity": 1e300}}], "techniques": ["none"], "resolutions": [[8, 8]]})",
              "/scenes/0/light/intensity", "expected a number within float range"},
@@ -300,7 +302,11 @@ const BadCase
 
 class BadConfig : public ::testing::TestWithParam<BadCase> {};
 
-std::string place(const BadCase& c) { return std::string("at ") + c.pointer + ":"; }
+// "file:LINE:COL (/pointer): ": the line and column are checked in
+// test_config_positions.cpp.
+std::string place(const BadCase& c) {
+  return c.pointer[0] == '/' ? "(" + std::string(c.pointer) + "): " : c.pointer;
+}
 
 TEST_P(BadConfig, NamesFilePointerAndExpectation) {
   const BadCase& c = GetParam();
