@@ -2,6 +2,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -136,6 +137,28 @@ class CheckedSax {
 // Walks a text nlohmann has already accepted and records where each value
 // starts. The grammar is JSON's own, so the walk is short; the nesting is
 // already capped (JsonLimits::max_depth), so it may recurse.
+// How deep arrays and objects nest in `text`, counted without recursion.
+size_t deepest_nesting(const std::string& text) {
+  size_t depth = 0, deepest = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
 class PositionScan {
  public:
   PositionScan(const std::string& text, JsonPositions& out) : t_(text), out_(out) {
@@ -210,9 +233,12 @@ json parse_json_text(const std::string& text, const std::string& file, const Jso
   try {
     json::sax_parse(text, &sax);
   } catch (const InputError& e) {
-    // A key twice: the text is JSON and not deep, so it can be walked for the
-    // second key's place (the walk keeps the last of equal pointers).
-    if (e.position().known() || e.problem().find("appears twice") == std::string::npos) throw;
+    // A key twice: the walk finds the second key's place (it keeps the last
+    // of equal pointers), if the rest of the text is JSON and not too deep
+    // for it: it trusts the grammar and recurses.
+    if (e.position().known() || e.problem().find("appears twice") == std::string::npos ||
+        !json::accept(text) || deepest_nesting(text) > size_t(limits.max_depth))
+      throw;
     JsonPositions where(text, line_offset);
     PositionScan(text, where).value("");
     throw located(e, file, where);

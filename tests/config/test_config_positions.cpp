@@ -115,5 +115,19 @@ TEST(ConfigPositions, TheLoadedExperimentKnowsWhereItsEntriesAre) {
             line_col(text, text.find(R"({"warmup")")));
 }
 
+// The key's place is found by walking the text, which trusts the grammar and
+// recurses: after a key twice, text too deep for it is not walked.
+TEST(ConfigPositions, AKeyTwiceBeforeDeepNestingIsPlacedByPointerAlone) {
+  const std::string text = R"({"name": "a", "name": "b", "x": )" + std::string(200000, '[') +
+                           std::string(200000, ']') + "}";
+  try {
+    load_experiment(write_temp("twice_deep.json", text), registry());
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "/name");
+    EXPECT_NE(std::string(e.what()).find("appears twice"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace sb
