@@ -30,7 +30,8 @@ int cmd_validate(const Args& a, bool show_plan) {
     const std::string what =
         sp.bad_input
             ? sp.input_error
-            : InputError(e.file, e.scenes[s].pointer, "scene " + e.scenes[s].name + ": " + sp.error)
+            : InputError(e.file, e.scenes[s].pointer, "scene " + e.scenes[s].name + ": " + sp.error,
+                         e.scenes[s].position)
                   .what();
     std::fprintf(stderr, "shadowbench: error: %s\n", what.c_str());
     return kExitBadInput;
@@ -40,7 +41,7 @@ int cmd_validate(const Args& a, bool show_plan) {
   for (const TechniqueVariant& tv : e.techniques) {
     if (tv.unavailable.empty()) continue;
     std::fprintf(stderr, "shadowbench: error: %s\n",
-                 InputError(e.file, tv.pointer, tv.unavailable).what());
+                 InputError(e.file, tv.pointer, tv.unavailable, e.position(tv.pointer)).what());
     return kExitInternal;
   }
   if (!show_plan)

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
+#include "core/json_positions.h"
 #include "core/params.h"
 #include "core/scene_types.h"
 #include "plugin/registry.h"
@@ -20,6 +22,9 @@ struct SceneVariant {
   std::string type;     // "sphere_grid"
   std::string name;     // readable variant name: "sphere_grid/light_size=4"
   std::string pointer;  // JSON pointer of its entry, for messages
+  // Where its entry is in the config file (load_experiment), for messages
+  // about the built scene.
+  TextPosition position;
   Params params;
   nlohmann::json swept = nlohmann::json::object();  // the parameters this variant fixed by sweep
   nlohmann::json light = nlohmann::json::object();  // overrides (validated)
@@ -127,6 +132,12 @@ struct Experiment {
   // The registry the techniques came from: the planner finds the providers
   // of plugins' own needs in it (plugin/needs.h).
   const Registry* registry = nullptr;
+  // Where each value is in the file (load_experiment; empty when parsed from
+  // JSON alone), so that a problem found later names its line and column.
+  std::shared_ptr<const JsonPositions> positions;
+  TextPosition position(const std::string& pointer) const {
+    return positions ? positions->find(pointer) : TextPosition{};
+  }
 };
 
 // Caps checked before anything is expanded or built (docs/config.md).
@@ -136,8 +147,8 @@ struct ExperimentLimits {
   uint64_t max_jobs = 10000;
 };
 
-// Throws InputError naming the file, the JSON pointer, what was expected and
-// what was found.
+// Throws InputError naming the file, the line and column, the JSON pointer,
+// what was expected and what was found (parse_experiment: no line and column).
 Experiment load_experiment(const std::string& path, const Registry& registry,
                            const ExperimentLimits& limits = {});
 Experiment parse_experiment(const nlohmann::json& doc, const std::string& file,

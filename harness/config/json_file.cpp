@@ -2,9 +2,11 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 #include "core/error.h"
@@ -68,9 +70,7 @@ class CheckedSax {
         break;
       }
     }
-    const std::string at = pointer();
-    throw InputError(file_, location(position) + (at.empty() ? "" : " (" + at + ")"),
-                     "invalid JSON: " + what);
+    throw InputError(file_, pointer(), "invalid JSON: " + what, location(position));
   }
 
  private:
@@ -113,7 +113,7 @@ class CheckedSax {
     return p;
   }
 
-  std::string location(size_t byte) const {
+  TextPosition location(size_t byte) const {
     size_t line = 1, col = 1;
     for (size_t i = 0; i + 1 < byte && i < text_.size(); ++i) {
       if (text_[i] == '\n') {
@@ -123,7 +123,7 @@ class CheckedSax {
         ++col;
       }
     }
-    return "line " + std::to_string(line + line_offset_) + ", column " + std::to_string(col);
+    return {line + line_offset_, col};
   }
 
   nlohmann::detail::json_sax_dom_parser<json> dom_;
@@ -134,15 +134,119 @@ class CheckedSax {
   std::vector<Frame> frames_;
 };
 
+// Walks a text nlohmann has already accepted and records where each value
+// starts. The grammar is JSON's own, so the walk is short; the nesting is
+// already capped (JsonLimits::max_depth), so it may recurse.
+// How deep arrays and objects nest in `text`, counted without recursion.
+size_t deepest_nesting(const std::string& text) {
+  size_t depth = 0, deepest = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+class PositionScan {
+ public:
+  PositionScan(const std::string& text, JsonPositions& out) : t_(text), out_(out) {
+    if (t_.compare(0, 3, "\xEF\xBB\xBF") == 0) i_ = 3;  // a byte order mark, as nlohmann skips it
+  }
+  void value(const std::string& pointer) {
+    space();
+    out_.add(pointer, i_);
+    if (t_[i_] == '{') {
+      ++i_;
+      space();
+      while (t_[i_] != '}') {
+        const size_t start = i_;
+        skip_string();
+        const auto key =
+            json::parse(t_.begin() + std::ptrdiff_t(start), t_.begin() + std::ptrdiff_t(i_))
+                .get<std::string>();
+        space();
+        ++i_;  // ':'
+        value(pointer + "/" + escape(key));
+        space();
+        if (t_[i_] == ',') ++i_;
+        space();
+      }
+      ++i_;
+    } else if (t_[i_] == '[') {
+      ++i_;
+      space();
+      for (size_t n = 0; t_[i_] != ']'; ++n) {
+        value(pointer + "/" + std::to_string(n));
+        space();
+        if (t_[i_] == ',') ++i_;
+        space();
+      }
+      ++i_;
+    } else if (t_[i_] == '"') {
+      skip_string();
+    } else {  // a number, true, false or null
+      while (i_ < t_.size() && std::string_view(",]} \t\r\n").find(t_[i_]) == std::string::npos)
+        ++i_;
+    }
+  }
+
+ private:
+  void space() {
+    while (i_ < t_.size() && (t_[i_] == ' ' || t_[i_] == '\t' || t_[i_] == '\n' || t_[i_] == '\r'))
+      ++i_;
+  }
+  void skip_string() {
+    for (++i_; t_[i_] != '"'; ++i_)
+      if (t_[i_] == '\\') ++i_;
+    ++i_;
+  }
+  static std::string escape(const std::string& key) {
+    std::string p;
+    for (char c : key) p += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
+    return p;
+  }
+  const std::string& t_;
+  JsonPositions& out_;
+  size_t i_ = 0;
+};
+
 }  // namespace
 
 json parse_json_text(const std::string& text, const std::string& file, const JsonLimits& limits,
-                     size_t line_offset) {
+                     size_t line_offset, JsonPositions* positions) {
   if (text.size() > limits.max_bytes)
     throw InputError(file, "", "larger than " + std::to_string(limits.max_bytes) + " bytes");
   json root;
   CheckedSax sax(root, file, text, limits, line_offset);
-  json::sax_parse(text, &sax);
+  try {
+    json::sax_parse(text, &sax);
+  } catch (const InputError& e) {
+    // A key twice: the walk finds the second key's place (it keeps the last
+    // of equal pointers), if the rest of the text is JSON and not too deep
+    // for it: it trusts the grammar and recurses.
+    if (e.position().known() || e.problem().find("appears twice") == std::string::npos ||
+        !json::accept(text) || deepest_nesting(text) > size_t(limits.max_depth))
+      throw;
+    JsonPositions where(text, line_offset);
+    PositionScan(text, where).value("");
+    throw located(e, file, where);
+  }
+  if (positions != nullptr) {
+    *positions = JsonPositions(text, line_offset);
+    PositionScan(text, *positions).value("");
+  }
   return root;
 }
 

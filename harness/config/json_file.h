@@ -12,6 +12,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/json_positions.h"
+
 namespace sb {
 
 struct JsonLimits {
@@ -20,9 +22,11 @@ struct JsonLimits {
 };
 
 // Parses `text`; `file` names it in messages, `line_offset` is added to line
-// numbers (for one line of a JSON Lines file).
+// numbers (for one line of a JSON Lines file). With `positions`, records
+// where each value starts, for messages about values found wrong later.
 nlohmann::json parse_json_text(const std::string& text, const std::string& file,
-                               const JsonLimits& limits = {}, size_t line_offset = 0);
+                               const JsonLimits& limits = {}, size_t line_offset = 0,
+                               JsonPositions* positions = nullptr);
 
 // Reads and parses a regular file of at most limits.max_bytes.
 nlohmann::json read_json_file(const std::string& path, const JsonLimits& limits = {});

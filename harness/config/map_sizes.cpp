@@ -65,7 +65,7 @@ std::vector<std::string> unequal_map_size_warnings(const Experiment& e) {
     message += " to ";
     message += common_size;
     message += ", or mark the entry \"own_map_size\": true to keep it knowingly";
-    out.push_back(InputError(e.file, s.pointer, message).what());
+    out.push_back(InputError(e.file, s.pointer, message, e.position(s.pointer)).what());
   }
   return out;
 }

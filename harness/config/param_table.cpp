@@ -11,14 +11,14 @@ std::string number(double v) {
   return buf;
 }
 
+}  // namespace
+
 // Pipes would end a Markdown table cell.
-std::string cell(const std::string& text) {
+std::string markdown_cell(const std::string& text) {
   std::string out;
   for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
   return out;
 }
-
-}  // namespace
 
 std::string accepted_values(const ParamSpec& p, bool markdown) {
   const std::string quote = markdown ? "`" : "";
@@ -55,8 +55,9 @@ std::string markdown_param_table(const std::vector<ParamSpec>& specs) {
   if (specs.empty()) return "No parameters.\n";
   std::string out = "| parameter | type | default | accepted | meaning |\n|---|---|---|---|---|\n";
   for (const auto& p : specs)
-    out += "| `" + p.name + "` | " + to_string(p.type) + " | `" + cell(p.default_value.dump()) +
-           "` | " + cell(accepted_values(p, true)) + " | " + cell(p.doc) + " |\n";
+    out += "| `" + p.name + "` | " + to_string(p.type) + " | `" +
+           markdown_cell(p.default_value.dump()) + "` | " +
+           markdown_cell(accepted_values(p, true)) + " | " + markdown_cell(p.doc) + " |\n";
   return out;
 }
 

@@ -13,6 +13,9 @@ namespace sb {
 // relative to the config, required"; with `markdown`, choices in backticks.
 std::string accepted_values(const ParamSpec& spec, bool markdown);
 
+// `text` as a Markdown table cell: pipes escaped.
+std::string markdown_cell(const std::string& text);
+
 // | parameter | type | default | accepted | meaning |, one row per spec.
 std::string markdown_param_table(const std::vector<ParamSpec>& specs);
 

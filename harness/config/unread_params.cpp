@@ -28,7 +28,8 @@ std::vector<std::string> unread_parameter_warnings(const Experiment& e) {
       out.push_back(InputError(e.file, tv.pointer,
                                "technique " + tv.name + ": parameter '" + name + "' of " +
                                    tv.info->name +
-                                   " is declared but never read by its factory or constructor")
+                                   " is declared but never read by its factory or constructor",
+                               e.position(tv.pointer))
                         .what());
   return out;
 }

@@ -1,5 +1,6 @@
 #pragma once
 // Errors that reach the user, and the exit codes that tell them apart.
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -12,26 +13,46 @@ enum ExitCode : int {
   kExitInternal = 3,    // an environment or internal problem (no GL context...)
 };
 
+// A place in a text file: 1-based line and column (in bytes); line 0 when
+// unknown.
+struct TextPosition {
+  size_t line = 0;
+  size_t column = 0;
+  bool known() const { return line != 0; }
+};
+
 // Bad user input. The message names the file and the place in it (a JSON
-// pointer, a glTF accessor, a technique parameter) so it can be fixed blind.
+// pointer, a glTF accessor, a technique parameter) so it can be fixed blind;
+// with a position, as compilers and pbrt do: "file:LINE:COL (/pointer): what".
 class InputError : public std::runtime_error {
  public:
-  InputError(std::string file, std::string where, const std::string& what)
-      : std::runtime_error(format(file, where, what)),
+  InputError(std::string file, std::string where, const std::string& what, TextPosition at = {})
+      : std::runtime_error(format(file, where, what, at)),
         file_(std::move(file)),
-        where_(std::move(where)) {}
+        where_(std::move(where)),
+        problem_(what),
+        position_(at) {}
   const std::string& file() const { return file_; }
   const std::string& where() const { return where_; }
+  const std::string& problem() const { return problem_; }  // the message without the place
+  const TextPosition& position() const { return position_; }
 
  private:
   static std::string format(const std::string& file, const std::string& where,
-                            const std::string& what) {
+                            const std::string& what, const TextPosition& at) {
     std::string m = file.empty() ? std::string("<input>") : file;
-    if (!where.empty()) m += ": at " + where;
+    if (at.known()) {
+      m += ":" + std::to_string(at.line) + ":" + std::to_string(at.column);
+      if (!where.empty()) m += " (" + where + ")";
+    } else if (!where.empty()) {
+      m += ": at " + where;
+    }
     return m + ": " + what;
   }
   std::string file_;
   std::string where_;
+  std::string problem_;
+  TextPosition position_;
 };
 
 // A GL, Embree or I/O failure while running one job: that job fails, the run goes on.

@@ -20,18 +20,20 @@ std::string write_temp(const std::string& name, const std::string& text) {
 }
 
 TEST(Cli, BadConfigExitsWithTwo) {
-  const std::string path = write_temp(
-      "bad.json",
-      R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "pcf_box", "params": {"k": 4}}], "resolutions": [[8, 8]]})");
+  const std::string config =
+      R"({"scenes": [{"type": "sphere_grid"}], "techniques": [{"name": "pcf_box", "params": {"k": 4}}], "resolutions": [[8, 8]]})";
+  const std::string path = write_temp("bad.json", config);
   for (const char* command : {"validate", "run"}) {
     // validate takes no --out; run must not create it for a bad config.
     const std::string out = std::string(command) == "run" ? " --out " + path + ".out" : "";
     const auto r = run_cli(std::string(command) + " " + path + out);
     EXPECT_EQ(r.exit_code, 2) << r.output;
-    EXPECT_NE(
-        r.output.find(
-            path + ": at /techniques/0/params/k: parameter 'k': expected an odd integer, found 4"),
-        std::string::npos)
+    const std::string at = R"({"k": 4})";
+    const std::string line_col = ":1:" + std::to_string(config.find(at) + at.find('4') + 1);
+    EXPECT_NE(r.output.find(path + line_col +
+                            " (/techniques/0/params/k): parameter 'k': expected an odd "
+                            "integer, found 4"),
+              std::string::npos)
         << r.output;
   }
   EXPECT_FALSE(std::filesystem::exists(path + ".out")) << "nothing may be written for a bad config";

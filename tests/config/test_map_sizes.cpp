@@ -90,13 +90,16 @@ TEST(MapSizes, ValidateAndPlanShowTheWarning) {
   const fs::path dir = fs::temp_directory_path() / "sb_map_sizes_cli";
   fs::create_directories(dir);
   const fs::path config = dir / "sizes.json";
-  std::ofstream(config) << config_with({{{"name", "shadow_map"}, {"params", {{"size", 2048}}}},
+  const std::string text = config_with({{{"name", "shadow_map"}, {"params", {{"size", 2048}}}},
                                         {{"name", "penumbra_maps"}, {"params", {{"size", 1024}}}}})
                                .dump();
+  std::ofstream(config) << text;
+  // The value 1024, on the file's one line.
+  const std::string column = std::to_string(text.find("1024") + 1);
   for (const char* command : {"validate", "plan"}) {
     const CliResult r = run_cli(std::string(command) + " " + config.string());
-    EXPECT_TRUE(has(r.output, "shadowbench: warning: " + config.string() +
-                                  ": at /techniques/1/params/size: technique "
+    EXPECT_TRUE(has(r.output, "shadowbench: warning: " + config.string() + ":1:" + column +
+                                  " (/techniques/1/params/size): technique "
                                   "penumbra_maps/size=1024 renders a 1024-texel map"))
         << command << ": " << r.output;
   }

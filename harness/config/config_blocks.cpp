@@ -1,0 +1,268 @@
+#include "config/config_blocks.h"
+
+#include <stdexcept>
+
+#include "config/param_table.h"
+#include "reference/adaptive.h"
+#include "reference/embree_isa.h"
+
+namespace sb {
+namespace {
+
+using json = nlohmann::json;
+
+// A key's value, checked against its spec; integers must be written as
+// integers (2.0 is refused, unlike a technique parameter's).
+json checked(const ConfigReader& r, const ParamSpec& s, const json& v, const std::string& p) {
+  json out;
+  switch (s.type) {
+    case ParamType::Int:
+      out = r.integer(v, p, static_cast<long long>(s.min), static_cast<long long>(s.max));
+      break;
+    case ParamType::Float:
+      out = r.number(v, p, s.min, s.max);
+      break;
+    case ParamType::Bool:
+      out = r.boolean(v, p);
+      break;
+    case ParamType::String:
+      out = r.string(v, p);
+      break;
+    case ParamType::Choice: {
+      out = r.string(v, p);
+      std::string list;
+      for (size_t i = 0; i < s.choices.size(); ++i) {
+        if (i > 0) list += i + 1 == s.choices.size() ? " or " : ", ";
+        list += "\"" + s.choices[i] + "\"";
+      }
+      bool known = false;
+      for (const auto& c : s.choices) known = known || c == out.get<std::string>();
+      if (!known) r.fail(p, "expected " + list + ", found " + v.dump());
+      break;
+    }
+  }
+  if (s.rule) {
+    const std::string expected = s.rule(out);
+    if (!expected.empty()) r.fail(p, "expected " + expected + ", found " + v.dump());
+  }
+  return out;
+}
+
+ConfigBlock frames_block() {
+  ConfigBlock b{"frames", "frame counts", {}, nullptr, nullptr};
+  b.keys = {
+      {int_param("warmup", 2, 0, 100000,
+                 "frames rendered and thrown away before the timed ones; one more untimed frame "
+                 "always comes first, so shader compilation never lands in a timed frame, even "
+                 "with 0"),
+       [](Experiment& e, const json& v) { e.warmup_frames = v.get<int>(); },
+       [](const Experiment& e) { return json(e.warmup_frames); }},
+      {int_param("timed", 10, 1, 100000, "frames timed per job"),
+       [](Experiment& e, const json& v) { e.timed_frames = v.get<int>(); },
+       [](const Experiment& e) { return json(e.timed_frames); }},
+      {string_param("control", kDefaultControl,
+                    "a technique entry (a name, or `{\"name\", \"params\"}` without a sweep) "
+                    "whose frames are timed next to every job's, in ABBA order, so that each "
+                    "record also holds its time as a ratio to the control's (`timing.control`); "
+                    "`null` turns it off and halves the frames rendered"),
+       nullptr,
+       [](const Experiment& e) { return e.control ? json(e.control->name) : json(nullptr); },
+       "technique or null"},
+  };
+  return b;
+}
+
+// true for "exact".
+bool exact(const json& method) { return method.get<std::string>() == "exact"; }
+
+void check_reference(Experiment& e, const json& ref, const ConfigReader& r) {
+  const reference::Settings& s = e.reference.settings;
+  if (e.reference.second_exact && *e.reference.second_exact == s.exact)
+    r.fail("/reference/second_method",
+           std::string("expected the other method than /reference/method (") +
+               (s.exact ? "exact" : "monte_carlo") + "), found the same");
+  if (s.adaptive) {
+    // Whether the counts nest is the config's question, not the run's.
+    const std::string why = reference::detail::adaptive_layout_problem(s.spp, s.pilot_spp);
+    if (s.pilot_spp != 4 && s.pilot_spp != 16 && s.pilot_spp != 64)
+      r.fail(ref.contains("pilot_spp") ? "/reference/pilot_spp" : "/reference/adaptive", why);
+    if (!why.empty()) r.fail("/reference/spp", "with /reference/adaptive: " + why);
+  }
+  try {  // syntax only: whether this CPU has the ISA is the run's question
+    reference::check_embree_config(s.embree_config);
+  } catch (const std::invalid_argument& ex) {
+    r.fail("/reference/embree_config", ex.what());
+  }
+}
+
+ConfigBlock reference_block() {
+  ConfigBlock b{"reference", "reference settings", {}, nullptr, check_reference};
+  const std::vector<std::string> methods{"monte_carlo", "exact"};
+  ParamSpec second = choice_param(
+      "second_method", "", methods,
+      "also measures every job against a reference of the other method (record "
+      "`second_reference`; docs/results.md, \"Two references\"); absent: one reference");
+  second.default_value = nullptr;
+  b.keys = {
+      {choice_param("method", "monte_carlo", methods,
+                    "ray traced and stratified, or exact (docs/results.md, \"The exact "
+                    "reference\": no samples, no noise; scenes it cannot do fall back to Monte "
+                    "Carlo with the reason)"),
+       [](Experiment& e, const json& v) { e.reference.settings.exact = exact(v); },
+       [](const Experiment& e) {
+         return json(e.reference.settings.exact ? "exact" : "monte_carlo");
+       }},
+      {second, [](Experiment& e, const json& v) { e.reference.second_exact = exact(v); },
+       [](const Experiment& e) {
+         if (!e.reference.second_exact) return json(nullptr);
+         return json(*e.reference.second_exact ? "exact" : "monte_carlo");
+       }},
+      {int_param("spp", 256, 1, 1 << 20,
+                 "samples per pixel of the Monte Carlo reference; with 1 the standard error is "
+                 "unknown and reported as 0.5; adaptive: at most, and then `pilot_spp` × 4^K"),
+       [](Experiment& e, const json& v) { e.reference.settings.spp = v.get<int>(); },
+       [](const Experiment& e) { return json(e.reference.settings.spp); }},
+      {int_param("seed", 1, 0, 2147483647, "the Monte Carlo reference's seed"),
+       [](Experiment& e, const json& v) { e.reference.settings.seed = v.get<uint64_t>(); },
+       [](const Experiment& e) { return json(e.reference.settings.seed); }},
+      {bool_param("cache", true, "keep references in the on-disk cache, either method"),
+       [](Experiment& e, const json& v) { e.reference.cache = v.get<bool>(); },
+       [](const Experiment& e) { return json(e.reference.cache); }},
+      {bool_param("adaptive", false,
+                  "a `pilot_spp`-sample pilot per pixel, and more samples only where needed "
+                  "(below, \"The adaptive reference\")"),
+       [](Experiment& e, const json& v) { e.reference.settings.adaptive = v.get<bool>(); },
+       [](const Experiment& e) { return json(e.reference.settings.adaptive); }},
+      {int_param("pilot_spp", 4, 1, 1 << 20, "the adaptive reference's pilot: 4, 16 or 64"),
+       [](Experiment& e, const json& v) { e.reference.settings.pilot_spp = v.get<int>(); },
+       [](const Experiment& e) { return json(e.reference.settings.pilot_spp); }},
+      {float_param("target_std_error", 0.01, 1e-6, 0.5,
+                   "the standard error the adaptive reference plans each pixel's level for"),
+       [](Experiment& e, const json& v) {
+         e.reference.settings.target_std_error = v.get<double>();
+       },
+       [](const Experiment& e) { return json(e.reference.settings.target_std_error); }},
+      {string_param("embree_config", "",
+                    "Embree's ISA: `\"\"` (the environment's, or the best), `\"isa=avx2\"`, "
+                    "`\"max_isa=avx2\"` (below)"),
+       [](Experiment& e, const json& v) {
+         e.reference.settings.embree_config = v.get<std::string>();
+       },
+       [](const Experiment& e) { return json(e.reference.settings.embree_config); }},
+  };
+  return b;
+}
+
+ConfigBlock stability_block() {
+  ConfigBlock b{"stability", "stability settings", {}, nullptr, nullptr};
+  b.present = [](Experiment& e) { e.stability.emplace(); };
+  ParamSpec frames = int_param("flicker_frames", 8, 0, 64,
+                               "untimed frames per job under a moving light (0: none)");
+  frames.rule = [](const json& v) {
+    return v.get<int>() == 1 ? std::string("0 (off) or at least 2 frames") : std::string();
+  };
+  frames.rule_doc = "not 1";
+  b.keys = {
+      {frames, [](Experiment& e, const json& v) { e.stability->flicker_frames = v.get<int>(); },
+       [](const Experiment& e) { return json(e.stability->flicker_frames); }},
+      {float_param("flicker_step", 1.0 / 4096.0, 0, 0.1,
+                   "the light's move per frame, × the casters' bounding-box diagonal (0 keeps it "
+                   "still)"),
+       [](Experiment& e, const json& v) { e.stability->flicker_step = v.get<double>(); },
+       [](const Experiment& e) { return json(e.stability->flicker_step); }},
+      {float_param("flicker_factor", 2, 1, 1e6,
+                   "degraded when the mean flicker is over this × the reference's own"),
+       [](Experiment& e, const json& v) { e.stability->flicker_factor = v.get<double>(); },
+       [](const Experiment& e) { return json(e.stability->flicker_factor); }},
+      {bool_param("sensitivity", true,
+                  "a variant at p ± `sensitivity_step`·\\|p\\| for every continuous parameter "
+                  "and for the light's size"),
+       [](Experiment& e, const json& v) { e.stability->sensitivity = v.get<bool>(); },
+       [](const Experiment& e) { return json(e.stability->sensitivity); }},
+      {float_param("sensitivity_step", 0.01, 1e-6, 0.5, "the relative step of `sensitivity`"),
+       [](Experiment& e, const json& v) { e.stability->sensitivity_step = v.get<double>(); },
+       [](const Experiment& e) { return json(e.stability->sensitivity_step); }},
+      {float_param("stiff_threshold", 0.5, 0, 1e6,
+                   "degraded when a parameter's relative sensitivity is over it"),
+       [](Experiment& e, const json& v) { e.stability->stiff_threshold = v.get<double>(); },
+       [](const Experiment& e) { return json(e.stability->stiff_threshold); }},
+      {float_param("max_rmse", 0.1, 0, 1,
+                   "degraded when the RMSE is over it (a scene entry may set its own)"),
+       [](Experiment& e, const json& v) { e.stability->max_rmse = v.get<double>(); },
+       [](const Experiment& e) { return json(e.stability->max_rmse); }},
+  };
+  return b;
+}
+
+ConfigBlock metrics_block() {
+  ConfigBlock b{"metrics", "metric settings", {}, nullptr, nullptr};
+  b.keys = {
+      {bool_param("distance_thirds", false,
+                  "also measure the visibility's error over the near, middle and far third of "
+                  "the camera's distances (record regions `near_third`, `middle_third`, "
+                  "`far_third`), for perspective aliasing; part of the jobs' spec"),
+       [](Experiment& e, const json& v) { e.distance_thirds = v.get<bool>(); },
+       [](const Experiment& e) { return json(e.distance_thirds); }},
+  };
+  return b;
+}
+
+ConfigBlock limits_block() {
+  // Below a second a busy machine kills healthy jobs; a week is no limit.
+  ConfigBlock b{"limits", "time limits", {}, nullptr, nullptr};
+  b.keys = {
+      {float_param("job_seconds", 1800, 1, 604800,
+                   "seconds one job (prepare, frames, metrics, images) may take; `run "
+                   "--job-timeout` overrides it"),
+       [](Experiment& e, const json& v) { e.limits.job_seconds = v.get<double>(); },
+       [](const Experiment& e) { return json(e.limits.job_seconds); }},
+      {float_param("setup_seconds", 3600, 1, 604800,
+                   "seconds a (scene, resolution)'s set-up (scene, G-buffer, reference) may take"),
+       [](Experiment& e, const json& v) { e.limits.setup_seconds = v.get<double>(); },
+       [](const Experiment& e) { return json(e.limits.setup_seconds); }},
+  };
+  return b;
+}
+
+}  // namespace
+
+const std::vector<ConfigBlock>& config_blocks() {
+  static const std::vector<ConfigBlock> blocks{frames_block(), reference_block(), stability_block(),
+                                               metrics_block(), limits_block()};
+  return blocks;
+}
+
+void read_config_blocks(const ConfigReader& r, const json& doc, Experiment& e) {
+  for (const ConfigBlock& b : config_blocks()) {
+    if (!doc.contains(b.name)) continue;
+    const json& given = r.object(doc[b.name], b.pointer(), b.what);
+    std::vector<std::string> names;
+    for (const BlockKey& k : b.keys) names.push_back(k.spec.name);
+    r.only_keys(given, b.pointer(), names);
+    if (b.present) b.present(e);
+    for (const BlockKey& k : b.keys)
+      if (k.store && given.contains(k.spec.name))
+        k.store(e, checked(r, k.spec, given[k.spec.name], b.pointer() + "/" + k.spec.name));
+    if (b.finish) b.finish(e, given, r);
+  }
+}
+
+std::string markdown_config_blocks() {
+  std::string out;
+  for (const ConfigBlock& b : config_blocks()) {
+    out += "### `" + b.name + "`\n\n";
+    out += "| key | type | default | accepted | meaning |\n|---|---|---|---|---|\n";
+    for (const BlockKey& k : b.keys) {
+      const ParamSpec& s = k.spec;
+      const bool technique = !k.type_doc.empty();
+      out += "| `" + s.name + "` | " + (technique ? k.type_doc : to_string(s.type)) + " | `" +
+             markdown_cell(s.default_value.is_null() ? "absent" : s.default_value.dump()) + "` | " +
+             markdown_cell(technique ? "a technique entry" : accepted_values(s, true)) + " | " +
+             markdown_cell(s.doc) + " |\n";
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace sb
