@@ -80,10 +80,17 @@ struct Numbers<std::array<double, N>> : std::true_type {
 
 }  // namespace describe_detail
 
-// A struct with a description (and the name its schema table has).
+// A described struct's name and what it is, for its schema table.
+struct RecordDoc {
+  const char* name;
+  const char* doc;
+};
+
+// A struct with a description: `static constexpr RecordDoc kSchema` and
+// describe().
 template <class T>
 concept Described = requires {
-  T::kSchemaName;
+  T::kSchema;
 };
 
 // The presence a member of type M has under `p`.

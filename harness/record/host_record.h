@@ -24,8 +24,7 @@ namespace sb {
 
 // host.cpu
 struct CpuRecord {
-  static constexpr const char* kSchemaName = "CpuRecord";
-  static constexpr const char* kSchemaDoc = "the CPU";
+  static constexpr RecordDoc kSchema{"CpuRecord", "the CPU"};
 
   std::string model;               // /proc/cpuinfo "model name"; "" when unknown
   std::vector<std::string> isa;    // of kCpuIsaFeatures, those the CPU has, in that order
@@ -59,10 +58,10 @@ inline constexpr const char* kTimingEnvironment[] = {"LP_NUM_THREADS", "LP_NATIV
 // host.gl_stack: what the GL strings say about the rendering stack. Each is
 // absent when the strings do not say it (a GPU driver has no vector width).
 struct GlStack {
-  static constexpr const char* kSchemaName = "GlStack";
-  static constexpr const char* kSchemaDoc =
+  static constexpr RecordDoc kSchema{
+      "GlStack",
       "what the GL strings say about the rendering stack; each member absent when they do not "
-      "say it (a GPU driver's)";
+      "say it (a GPU driver's)"};
 
   std::optional<std::string> mesa_version;  // "22.3.6", from gl_version's "Mesa 22.3.6"
   std::optional<std::string> llvm_version;  // "15.0.6", from gl_renderer's "LLVM 15.0.6"
@@ -85,10 +84,10 @@ struct GlStack {
 GlStack parse_gl_stack(const std::string& gl_renderer, const std::string& gl_version);
 
 struct HostRecord {
-  static constexpr const char* kSchemaName = "HostRecord";
-  static constexpr const char* kSchemaDoc =
+  static constexpr RecordDoc kSchema{
+      "HostRecord",
       "the machine that timed the job (\"`host` and its fingerprint\" below); the members "
-      "below `name` are absent from records older than the fingerprint";
+      "below `name` are absent from records older than the fingerprint"};
 
   std::int64_t hardware_threads = 0;
   std::optional<std::string> lp_num_threads;  // LP_NUM_THREADS, when set
@@ -134,8 +133,7 @@ struct HostRecord {
 
 // record["build"]
 struct BuildRecord {
-  static constexpr const char* kSchemaName = "BuildRecord";
-  static constexpr const char* kSchemaDoc = "the build that ran the job";
+  static constexpr RecordDoc kSchema{"BuildRecord", "the build that ran the job"};
 
   std::string version;
   std::optional<std::string> compiler;     // "GNU 12.2.0"

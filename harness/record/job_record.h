@@ -38,11 +38,11 @@ JobStatus status_from(const Fields& f);
 // Pixels of the technique's visibility (before the attached-shadow mask)
 // that are not finite or outside [0, 1] by more than the tolerance.
 struct VisibilityCheckRecord {
-  static constexpr const char* kSchemaName = "VisibilityCheckRecord";
-  static constexpr const char* kSchemaDoc =
+  static constexpr RecordDoc kSchema{
+      "VisibilityCheckRecord",
       "pixels of the technique's visibility (before the attached-shadow mask) that are NaN/Inf "
       "or outside [0, 1] by more than `tolerance`: any of them fails the job, whose timing, "
-      "metrics and images are still recorded for inspection";
+      "metrics and images are still recorded for inspection"};
 
   std::int64_t nonfinite = 0;
   std::int64_t below_0 = 0;
@@ -61,9 +61,9 @@ struct VisibilityCheckRecord {
 
 // Paths relative to the run directory; each present only when written.
 struct ImagesRecord {
-  static constexpr const char* kSchemaName = "ImagesRecord";
-  static constexpr const char* kSchemaDoc =
-      "the images written (not with `--no-images`): paths relative to the run directory";
+  static constexpr RecordDoc kSchema{
+      "ImagesRecord",
+      "the images written (not with `--no-images`): paths relative to the run directory"};
 
   std::optional<std::string> visibility, shaded, error_heatmap;
   std::optional<double> error_heatmap_full_scale;
@@ -100,8 +100,7 @@ struct ImagesRecord {
 };
 
 struct JobRecord {
-  static constexpr const char* kSchemaName = "JobRecord";
-  static constexpr const char* kSchemaDoc = "the whole record";
+  static constexpr RecordDoc kSchema{"JobRecord", "the whole record"};
 
   int schema_version = kRecordSchemaVersion;
   std::string run_id, experiment;

@@ -13,9 +13,8 @@ namespace sb {
 
 // One image over one region of pixels (as metrics::ErrorStats).
 struct RegionStats {
-  static constexpr const char* kSchemaName = "RegionStats";
-  static constexpr const char* kSchemaDoc =
-      "one image's error against the reference's over one region of pixels";
+  static constexpr RecordDoc kSchema{
+      "RegionStats", "one image's error against the reference's over one region of pixels"};
 
   std::int64_t pixel_count = 0;
   double rmse = 0, mae = 0, max_error = 0;
@@ -64,8 +63,8 @@ struct RegionStats {
 // by distance from the camera (metrics/distance_thirds.h): near_third,
 // middle_third, far_third.
 struct ImageMetrics {
-  static constexpr const char* kSchemaName = "ImageMetrics";
-  static constexpr const char* kSchemaDoc = "one image's errors, per region (\"Regions\" above)";
+  static constexpr RecordDoc kSchema{"ImageMetrics",
+                                     "one image's errors, per region (\"Regions\" above)"};
 
   RegionStats all, penumbra, soft_union;
   std::optional<RegionStats> geometry = std::nullopt;
@@ -97,9 +96,8 @@ struct ImageMetrics {
 };
 
 struct MetricsRecord {
-  static constexpr const char* kSchemaName = "MetricsRecord";
-  static constexpr const char* kSchemaDoc =
-      "the error of the technique's images against the reference's";
+  static constexpr RecordDoc kSchema{"MetricsRecord",
+                                     "the error of the technique's images against the reference's"};
 
   ImageMetrics visibility, shaded;
 

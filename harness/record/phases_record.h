@@ -22,8 +22,7 @@
 namespace sb {
 
 struct PhasesRecord {
-  static constexpr const char* kSchemaName = "PhasesRecord";
-  static constexpr const char* kSchemaDoc = "where a rendered job's `duration_s` went";
+  static constexpr RecordDoc kSchema{"PhasesRecord", "where a rendered job's `duration_s` went"};
 
   double prepare = 0, frames = 0, measure = 0, images = 0, stability = 0;
 

@@ -38,9 +38,9 @@ std::string type_name() {
   if constexpr (Optional<T>::value) {
     return type_name<typename Optional<T>::type>();
   } else if constexpr (Described<T>) {
-    std::string anchor = T::kSchemaName;
+    std::string anchor = T::kSchema.name;
     for (char& c : anchor) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return std::string("[`") + T::kSchemaName + "`](#" + anchor + ")";
+    return std::string("[`") + T::kSchema.name + "`](#" + anchor + ")";
   } else if constexpr (NameMap<T>::value) {
     return "name → " + type_name<typename NameMap<T>::type>();
   } else if constexpr (Numbers<T>::value) {
@@ -86,13 +86,13 @@ class Walker;
 template <class T>
 void walk_struct(Schema& schema, const std::string& pointer, const std::string& suffix) {
   Table* table = nullptr;
-  const auto it = schema.index.find(T::kSchemaName);
+  const auto it = schema.index.find(T::kSchema.name);
   if (it == schema.index.end()) {
-    schema.index[T::kSchemaName] = schema.tables.size();
-    schema.tables.push_back({T::kSchemaName, T::kSchemaDoc, {}, {}});
+    schema.index[T::kSchema.name] = schema.tables.size();
+    schema.tables.push_back({T::kSchema.name, T::kSchema.doc, {}, {}});
     table = &schema.tables.back();
   }
-  schema.tables[schema.index[T::kSchemaName]].at.push_back(pointer.empty() ? "/" : pointer);
+  schema.tables[schema.index[T::kSchema.name]].at.push_back(pointer.empty() ? "/" : pointer);
   Walker<T> w(schema, table, pointer, suffix, "", "");
   T::describe(w);
 }

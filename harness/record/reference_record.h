@@ -16,10 +16,10 @@ namespace sb {
 // covered pixel (the pilot's included), and the pixels it stopped at their
 // pilot without a proof with the most such a stop can bias a pixel.
 struct AdaptiveReferenceRecord {
-  static constexpr const char* kSchemaName = "AdaptiveReferenceRecord";
-  static constexpr const char* kSchemaDoc =
+  static constexpr RecordDoc kSchema{
+      "AdaptiveReferenceRecord",
       "the adaptive reference's settings and what it did (config `reference.adaptive`, "
-      "docs/config.md \"The adaptive reference\")";
+      "docs/config.md \"The adaptive reference\")"};
 
   int pilot_spp = 0;
   double target_std_error = 0;
@@ -51,8 +51,8 @@ struct AdaptiveReferenceRecord {
 };
 
 struct ReferenceRecord {
-  static constexpr const char* kSchemaName = "ReferenceRecord";
-  static constexpr const char* kSchemaDoc = "the ray-traced reference the job was measured against";
+  static constexpr RecordDoc kSchema{"ReferenceRecord",
+                                     "the ray-traced reference the job was measured against"};
 
   // "embree_stratified_packet16", "embree_stratified_adaptive" or "exact_clipper"
   std::string method;

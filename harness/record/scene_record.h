@@ -13,8 +13,7 @@
 namespace sb {
 
 struct LightRecord {
-  static constexpr const char* kSchemaName = "LightRecord";
-  static constexpr const char* kSchemaDoc = "the scene's rectangular light";
+  static constexpr RecordDoc kSchema{"LightRecord", "the scene's rectangular light"};
 
   std::array<double, 3> center{}, target{};
   std::array<double, 2> size{};  // width, height of the rectangle
@@ -30,8 +29,7 @@ struct LightRecord {
 };
 
 struct CameraRecord {
-  static constexpr const char* kSchemaName = "CameraRecord";
-  static constexpr const char* kSchemaDoc = "the scene's camera";
+  static constexpr RecordDoc kSchema{"CameraRecord", "the scene's camera"};
 
   std::array<double, 3> eye{}, target{};
   double fov_y = 45;  // degrees
@@ -46,8 +44,8 @@ struct CameraRecord {
 
 // Derived data the plan computed for the scene, and its receiver inference.
 struct DerivedRecord {
-  static constexpr const char* kSchemaName = "DerivedRecord";
-  static constexpr const char* kSchemaDoc = "derived data the plan computed for the scene";
+  static constexpr RecordDoc kSchema{"DerivedRecord",
+                                     "derived data the plan computed for the scene"};
 
   bool closedness_checked = false;
   bool adjacency_built = false;
@@ -71,8 +69,7 @@ struct DerivedRecord {
 // What is known of a scene once it was built: absent from the records of a
 // scene that failed to build.
 struct BuiltScene {
-  static constexpr const char* kSchemaName = "BuiltScene";
-  static constexpr const char* kSchemaDoc = "";
+  static constexpr RecordDoc kSchema{"BuiltScene", ""};
 
   std::int64_t triangles = 0;
   std::int64_t caster_triangles = 0;
@@ -99,8 +96,7 @@ struct BuiltScene {
 };
 
 struct SceneRecord {
-  static constexpr const char* kSchemaName = "SceneRecord";
-  static constexpr const char* kSchemaDoc = "the scene that ran";
+  static constexpr RecordDoc kSchema{"SceneRecord", "the scene that ran"};
 
   std::string type;
   std::string variant;
@@ -121,9 +117,8 @@ struct SceneRecord {
 
 // technique.plugin: the module the technique came from (plugin/plugin_identity.h).
 struct PluginRecord {
-  static constexpr const char* kSchemaName = "PluginRecord";
-  static constexpr const char* kSchemaDoc =
-      "the module that registered the technique (built-in families too)";
+  static constexpr RecordDoc kSchema{
+      "PluginRecord", "the module that registered the technique (built-in families too)"};
 
   std::string file;  // relative to its plugin folder: "shadow_map.so"
   std::int64_t size = 0;
@@ -145,8 +140,7 @@ struct PluginRecord {
 };
 
 struct TechniqueRecord {
-  static constexpr const char* kSchemaName = "TechniqueRecord";
-  static constexpr const char* kSchemaDoc = "the technique that ran";
+  static constexpr RecordDoc kSchema{"TechniqueRecord", "the technique that ran"};
 
   std::string name;
   std::string family;

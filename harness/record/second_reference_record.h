@@ -13,10 +13,10 @@
 namespace sb {
 
 struct SecondReferenceRecord {
-  static constexpr const char* kSchemaName = "SecondReferenceRecord";
-  static constexpr const char* kSchemaDoc =
+  static constexpr RecordDoc kSchema{
+      "SecondReferenceRecord",
       "the job's visibility measured against a reference of the other method "
-      "(config `reference.second_method`, \"Two references\" above)";
+      "(config `reference.second_method`, \"Two references\" above)"};
 
   ReferenceRecord reference;
   ImageMetrics visibility;

@@ -19,10 +19,10 @@ inline constexpr double kFlickerFloor = 1e-4;
 // |ΔV| between consecutive frames while the light moves by `step` (world
 // units) per frame, beside the reference's own change for the same motion.
 struct FlickerRecord {
-  static constexpr const char* kSchemaName = "FlickerRecord";
-  static constexpr const char* kSchemaDoc =
+  static constexpr RecordDoc kSchema{
+      "FlickerRecord",
       "the per-pixel |ΔV| between consecutive frames over the measured pixels while the light "
-      "moves";
+      "moves"};
 
   int frames = 0;
   double step = 0;
@@ -52,8 +52,8 @@ struct FlickerRecord {
 
 // One parameter's central difference at its configured value.
 struct SensitivityRecord {
-  static constexpr const char* kSchemaName = "SensitivityRecord";
-  static constexpr const char* kSchemaDoc = "one parameter's central difference at its value";
+  static constexpr RecordDoc kSchema{"SensitivityRecord",
+                                     "one parameter's central difference at its value"};
 
   double value = 0;
   double step = 0;      // h
@@ -81,10 +81,10 @@ struct SensitivityRecord {
 };
 
 struct StabilityRecord {
-  static constexpr const char* kSchemaName = "StabilityRecord";
-  static constexpr const char* kSchemaDoc =
+  static constexpr RecordDoc kSchema{
+      "StabilityRecord",
       "the job's stability figures and the thresholds its verdict uses "
-      "([stability.md](stability.md))";
+      "([stability.md](stability.md))"};
 
   double max_rmse = 0, flicker_factor = 0, stiff_threshold = 0;
   std::optional<FlickerRecord> flicker;

@@ -18,10 +18,10 @@ namespace sb {
 // "_ms" ({count, median_ms, ..., samples_ms}); a ratio series (a job's frame
 // over the control's next to it, unitless) without ({count, median, ...}).
 struct Series {
-  static constexpr const char* kSchemaName = "Series";
-  static constexpr const char* kSchemaDoc =
+  static constexpr RecordDoc kSchema{
+      "Series",
       "one series of per-frame figures; keys marked † take the series' unit as a suffix "
-      "(`median_ms` in a timing series, `median` in a ratio series)";
+      "(`median_ms` in a timing series, `median` in a ratio series)"};
 
   std::int64_t count = 0;
   double median = 0, p10 = 0, p90 = 0, mean = 0, min = 0, max = 0;
@@ -49,8 +49,7 @@ struct Series {
 // Per-pass detail, from frames of their own (`run --pass-timing fine`):
 // written as timing.passes, timing.pass_order and timing.fine.
 struct FineTiming {
-  static constexpr const char* kSchemaName = "FineTiming";
-  static constexpr const char* kSchemaDoc = "";
+  static constexpr RecordDoc kSchema{"FineTiming", ""};
 
   std::vector<std::string> pass_order;   // as the technique first named them
   std::map<std::string, Series> passes;  // by name
@@ -85,10 +84,10 @@ struct FineTiming {
 // (its CPU, llvmpipe's vector width and threads), so ratios compare across
 // machines where absolute times cannot (docs/ci.md).
 struct ControlTiming {
-  static constexpr const char* kSchemaName = "ControlTiming";
-  static constexpr const char* kSchemaDoc =
+  static constexpr RecordDoc kSchema{
+      "ControlTiming",
       "the control job's frames, each timed next to one of the job's, in ABBA order "
-      "(config `frames.control`): what `compare --normalize control` tests";
+      "(config `frames.control`): what `compare --normalize control` tests"};
 
   std::string technique;  // the control's technique variant, "none" by default
   Series frame;           // its frames, samples[i] timed next to the job's frame i
@@ -108,8 +107,8 @@ struct ControlTiming {
 };
 
 struct TimingRecord {
-  static constexpr const char* kSchemaName = "TimingRecord";
-  static constexpr const char* kSchemaDoc = "how the job's frames were timed, and what they took";
+  static constexpr RecordDoc kSchema{"TimingRecord",
+                                     "how the job's frames were timed, and what they took"};
 
   int compile_frames = 1;  // untimed: shader compilation and first use
   int warmup_frames = 0;
