@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/nearest_names.h"
 #include "core/scene_types.h"
+#include "record/record_schema.h"
 #include "scenes/need_providers.h"
 
 namespace sb::cli {
@@ -50,6 +51,12 @@ void print_params(const std::vector<ParamSpec>& params) {
 }  // namespace
 
 int cmd_list(const Args& a) {
+  if (a.record_schema) {
+    if (!a.names.empty())
+      throw InputError("", "list", "--record-schema prints the whole schema; it takes no NAME");
+    std::fputs(record_schema_markdown().c_str(), stdout);
+    return kExitOk;
+  }
   const Registry r = load_registry(a);
   if (a.markdown) {
     if (!a.names.empty())

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "record/record_json.h"
+
 namespace sb {
 namespace {
 constexpr int kPenumbra = 1;
@@ -23,31 +25,29 @@ std::optional<double> ClassesRecord::penumbra_invented() const {
   return double(all - counts[kPenumbra][kPenumbra]) / double(all);
 }
 
-nlohmann::json ClassesRecord::to_json() const {
+nlohmann::json ClassesRecord::counts_json() const {
   nlohmann::json rows = nlohmann::json::object();
   for (size_t i = 0; i < 3; ++i) rows[kOrder[i]] = counts[i];
-  nlohmann::json j = {{"counts", rows}};
-  if (const auto missed = penumbra_missed()) j["penumbra_missed"] = *missed;
-  if (const auto invented = penumbra_invented()) j["penumbra_invented"] = *invented;
-  return j;
+  return rows;
 }
 
-ClassesRecord ClassesRecord::from_json(const Fields& f) {
+void ClassesRecord::read_counts(const Fields& f) {
   const Fields rows = f.object("counts");
-  ClassesRecord r;
   for (size_t i = 0; i < 3; ++i) {
     const auto row = rows.get<std::vector<double>>(kOrder[i]);
     bool fine = row.size() == 3;
     for (size_t j = 0; fine && j < 3; ++j) {
       fine = row[j] >= 0.0 && row[j] == std::floor(row[j]) && row[j] < 9.2e18;
-      if (fine) r.counts[i][j] = static_cast<std::int64_t>(row[j]);
+      if (fine) counts[i][j] = static_cast<std::int64_t>(row[j]);
     }
     if (!fine)
       rows.fail(
           kOrder[i],
           "expected 3 non-negative integers (the technique's lit, penumbra and umbra pixels)");
   }
-  return r;
 }
+
+nlohmann::json ClassesRecord::to_json() const { return write_record(*this); }
+ClassesRecord ClassesRecord::from_json(const Fields& f) { return read_record<ClassesRecord>(f); }
 
 }  // namespace sb

@@ -18,16 +18,54 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "record/describe.h"
 #include "record/fields.h"
 
 namespace sb {
 
 struct ClassesRecord {
+  static constexpr RecordDoc kSchema{
+      "ClassesRecord",
+      "the job's lit / penumbra / umbra classes against the reference's, over the measured "
+      "geometry pixels outside attached shadow (V ≤ 1e-6 umbra, V ≥ 1 − 1e-6 lit, the rest "
+      "penumbra); for `two_map_bound` its classification's confusion matrix"};
+
   std::array<std::array<std::int64_t, 3>, 3>
       counts{};  // [reference][technique]: lit, penumbra, umbra
 
   std::optional<double> penumbra_missed() const;
   std::optional<double> penumbra_invented() const;
+
+  template <class V>
+  static void describe(V& v) {
+    using C = ClassesRecord;
+    v.custom(
+        "counts", "object of class → [integer × 3]",
+        {"px",
+         "`lit`, `penumbra`, `umbra`, keyed by the reference's class: each "
+         "`[lit, penumbra, umbra]`, the job's own classes of those pixels"},
+        [](const C& c) { return std::optional(c.counts_json()); },
+        [](C& c, const Fields& f) { c.read_counts(f); });
+    v.custom(
+        "penumbra_missed", "number",
+        {"",
+         "the reference's penumbra pixels the job calls lit or umbra, over all of them "
+         "(a hard shadow misses all); absent when there are none",
+         Presence::WhenSet},
+        [](const C& c) { return as_json(c.penumbra_missed()); }, [](C&, const Fields&) {});
+    v.custom(
+        "penumbra_invented", "number",
+        {"",
+         "the job's penumbra pixels the reference calls lit or umbra, over all of them; "
+         "absent when there are none",
+         Presence::WhenSet},
+        [](const C& c) { return as_json(c.penumbra_invented()); }, [](C&, const Fields&) {});
+  }
+  nlohmann::json counts_json() const;
+  void read_counts(const Fields& f);
+  static std::optional<nlohmann::json> as_json(std::optional<double> v) {
+    return v ? std::optional<nlohmann::json>(*v) : std::nullopt;
+  }
 
   nlohmann::json to_json() const;
   static ClassesRecord from_json(const Fields& f);

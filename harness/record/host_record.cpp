@@ -4,6 +4,7 @@
 #include <string_view>
 
 #include "core/hash.h"
+#include "record/record_json.h"
 
 namespace sb {
 
@@ -42,48 +43,6 @@ std::optional<int> vector_bits(std::string_view renderer) {
   return std::stoi(std::string(renderer.substr(start, at - start)));
 }
 
-// The optional string members of a record type, by key, in one list for
-// both directions.
-template <class R>
-struct OptionalString {
-  const char* key;
-  std::optional<std::string> R::*member;
-};
-
-const OptionalString<HostRecord> kHostStrings[] = {
-    {"lp_num_threads", &HostRecord::lp_num_threads},
-    {"name", &HostRecord::name},
-    {"os", &HostRecord::os},
-    {"kernel", &HostRecord::kernel},
-    {"cpu_governor", &HostRecord::cpu_governor},
-    {"embree_isa", &HostRecord::embree_isa},
-    {"fingerprint", &HostRecord::fingerprint},
-};
-const OptionalString<BuildRecord> kBuildStrings[] = {
-    {"compiler", &BuildRecord::compiler},
-    {"build_type", &BuildRecord::build_type},
-    {"cxx_flags", &BuildRecord::cxx_flags},
-    {"fingerprint", &BuildRecord::fingerprint},
-    {"driver_sha256", &BuildRecord::driver_sha256},
-    {"core_sha256", &BuildRecord::core_sha256},
-    {"plugin_api_sha256", &BuildRecord::plugin_api_sha256},
-};
-const OptionalString<GlStack> kGlStackStrings[] = {
-    {"mesa_version", &GlStack::mesa_version},
-    {"llvm_version", &GlStack::llvm_version},
-};
-
-template <class R, size_t N>
-void put_strings(json& j, const R& r, const OptionalString<R> (&members)[N]) {
-  for (const auto& m : members)
-    if (const auto& v = r.*m.member) j[m.key] = *v;
-}
-
-template <class R, size_t N>
-void read_strings(const Fields& f, R& r, const OptionalString<R> (&members)[N]) {
-  for (const auto& m : members) r.*m.member = f.find<std::string>(m.key);
-}
-
 std::string fingerprint_of(std::string_view what,
                            const std::vector<std::pair<std::string, std::string>>& fields) {
   Hasher h;
@@ -107,55 +66,10 @@ GlStack parse_gl_stack(const std::string& gl_renderer, const std::string& gl_ver
   return s;
 }
 
-json HostRecord::to_json() const {
-  json h = {{"hardware_threads", hardware_threads}};
-  put_strings(h, *this, kHostStrings);
-  if (cpu)
-    h["cpu"] = {{"model", cpu->model}, {"isa", cpu->isa}, {"logical_cores", cpu->logical_cores}};
-  if (gl_stack) {
-    json g = json::object();
-    put_strings(g, *gl_stack, kGlStackStrings);
-    if (gl_stack->vector_bits) g["vector_bits"] = *gl_stack->vector_bits;
-    h["gl_stack"] = g;
-  }
-  h["env"] = env;  // {} when none is set
-  return h;
-}
-
-HostRecord HostRecord::from_json(const Fields& f) {
-  HostRecord h;
-  h.hardware_threads = f.get<std::int64_t>("hardware_threads");
-  read_strings(f, h, kHostStrings);
-  if (const auto c = f.find_object("cpu")) {
-    CpuRecord cpu;
-    cpu.model = c->get<std::string>("model");
-    cpu.isa = c->get<std::vector<std::string>>("isa");
-    cpu.logical_cores = c->get<std::int64_t>("logical_cores");
-    h.cpu = std::move(cpu);
-  }
-  if (const auto g = f.find_object("gl_stack")) {
-    GlStack s;
-    read_strings(*g, s, kGlStackStrings);
-    s.vector_bits = g->find<int>("vector_bits");
-    h.gl_stack = s;
-  }
-  if (const auto e = f.find_object("env"))
-    for (const auto& key : e->keys()) h.env[key] = e->get<std::string>(key);
-  return h;
-}
-
-json BuildRecord::to_json() const {
-  json b = {{"version", version}};
-  put_strings(b, *this, kBuildStrings);
-  return b;
-}
-
-BuildRecord BuildRecord::from_json(const Fields& f) {
-  BuildRecord b;
-  b.version = f.get<std::string>("version");
-  read_strings(f, b, kBuildStrings);
-  return b;
-}
+json HostRecord::to_json() const { return write_record(*this); }
+HostRecord HostRecord::from_json(const Fields& f) { return read_record<HostRecord>(f); }
+json BuildRecord::to_json() const { return write_record(*this); }
+BuildRecord BuildRecord::from_json(const Fields& f) { return read_record<BuildRecord>(f); }
 
 std::vector<std::pair<std::string, std::string>> host_fingerprint_fields(
     const HostRecord& host, const std::string& gl_renderer, const std::string& gl_version) {

@@ -17,15 +17,34 @@
 #include <utility>
 #include <vector>
 
+#include "record/describe.h"
 #include "record/fields.h"
 
 namespace sb {
 
 // host.cpu
 struct CpuRecord {
+  static constexpr RecordDoc kSchema{"CpuRecord", "the CPU"};
+
   std::string model;               // /proc/cpuinfo "model name"; "" when unknown
   std::vector<std::string> isa;    // of kCpuIsaFeatures, those the CPU has, in that order
   std::int64_t logical_cores = 0;  // CPUs this process may run on
+
+  template <class V>
+  static void describe(V& v) {
+    v.field("model", &CpuRecord::model,
+            {"",
+             "`/proc/cpuinfo` \"model name\"; `\"\"` where there is none, as on most ARM "
+             "kernels"});
+    v.field("isa", &CpuRecord::isa,
+            {"",
+             "those of `sse4.2`, `avx`, `avx2`, `fma`, `avx512f`, `avx512bw`, `avx512dq`, "
+             "`avx512vl` that the CPU and OS support; empty off x86"});
+    v.field("logical_cores", &CpuRecord::logical_cores,
+            {"",
+             "the CPUs this process may run on: its affinity mask, which a container's "
+             "cpuset or `taskset` narrows"});
+  }
 };
 
 // The ISA features a CPU record names (x86; none elsewhere).
@@ -39,9 +58,23 @@ inline constexpr const char* kTimingEnvironment[] = {"LP_NUM_THREADS", "LP_NATIV
 // host.gl_stack: what the GL strings say about the rendering stack. Each is
 // absent when the strings do not say it (a GPU driver has no vector width).
 struct GlStack {
+  static constexpr RecordDoc kSchema{
+      "GlStack",
+      "what the GL strings say about the rendering stack; each member absent when they do not "
+      "say it (a GPU driver's)"};
+
   std::optional<std::string> mesa_version;  // "22.3.6", from gl_version's "Mesa 22.3.6"
   std::optional<std::string> llvm_version;  // "15.0.6", from gl_renderer's "LLVM 15.0.6"
   std::optional<int> vector_bits;           // 256, from llvmpipe's "(LLVM 15.0.6, 256 bits)"
+
+  template <class V>
+  static void describe(V& v) {
+    v.field("mesa_version", &GlStack::mesa_version,
+            {"", "`22.3.6` from `gl_version` \"4.5 (Core Profile) Mesa 22.3.6\""});
+    v.field("llvm_version", &GlStack::llvm_version,
+            {"", "`15.0.6` from `gl_renderer` \"llvmpipe (LLVM 15.0.6, 256 bits)\""});
+    v.field("vector_bits", &GlStack::vector_bits, {"bits", "llvmpipe's vector width"});
+  }
 
   bool operator==(const GlStack&) const = default;
 };
@@ -51,6 +84,11 @@ struct GlStack {
 GlStack parse_gl_stack(const std::string& gl_renderer, const std::string& gl_version);
 
 struct HostRecord {
+  static constexpr RecordDoc kSchema{
+      "HostRecord",
+      "the machine that timed the job (\"`host` and its fingerprint\" below); the members "
+      "below `name` are absent from records older than the fingerprint"};
+
   std::int64_t hardware_threads = 0;
   std::optional<std::string> lp_num_threads;  // LP_NUM_THREADS, when set
   std::optional<std::string> name;
@@ -65,12 +103,38 @@ struct HostRecord {
   std::optional<std::string> embree_isa;    // the reference's Embree ISA, when known
   std::optional<std::string> fingerprint;   // host_fingerprint(): 16 hex digits
 
+  template <class V>
+  static void describe(V& v) {
+    using H = HostRecord;
+    v.field("hardware_threads", &H::hardware_threads, {"", "std::thread::hardware_concurrency"});
+    v.field("lp_num_threads", &H::lp_num_threads, {"", "`LP_NUM_THREADS`, when set"});
+    v.field("name", &H::name, {"", "the host name"});
+    v.field("cpu", &H::cpu, {"", "the CPU"});
+    v.field("gl_stack", &H::gl_stack, {"", "what the GL strings say"});
+    v.field("env", &H::env,
+            {"",
+             "the set ones of `LP_NUM_THREADS`, `LP_NATIVE_VECTOR_WIDTH`, `GALLIUM_DRIVER`, "
+             "`LP_PERF` (name → value; `{}` when none is)",
+             Presence::OlderLack});
+    v.field("os", &H::os, {"", "`/etc/os-release` `PRETTY_NAME`"});
+    v.field("kernel", &H::kernel, {"", "`uname -r`"});
+    v.field("cpu_governor", &H::cpu_governor,
+            {"",
+             "`/sys/devices/system/cpu/cpu0/cpufreq/scaling_governor`, when the machine has "
+             "one (VMs often do not)"});
+    v.field("embree_isa", &H::embree_isa,
+            {"", "the Embree ISA the run's references use (also `reference.embree_isa`)"});
+    v.field("fingerprint", &H::fingerprint, {"", "16 hex digits (below)"});
+  }
+
   nlohmann::json to_json() const;
   static HostRecord from_json(const Fields& f);
 };
 
 // record["build"]
 struct BuildRecord {
+  static constexpr RecordDoc kSchema{"BuildRecord", "the build that ran the job"};
+
   std::string version;
   std::optional<std::string> compiler;     // "GNU 12.2.0"
   std::optional<std::string> build_type;   // "Release"
@@ -81,6 +145,25 @@ struct BuildRecord {
   // the fingerprint, which names the toolchain; the job's spec holds them,
   // so that a rebuilt harness reruns. Absent in older records.
   std::optional<std::string> driver_sha256, core_sha256, plugin_api_sha256;
+
+  template <class V>
+  static void describe(V& v) {
+    using B = BuildRecord;
+    v.field("version", &B::version, {"", "shadowbench's version"});
+    v.field("compiler", &B::compiler, {"", "CMake's compiler id and version, `GNU 12.2.0`"});
+    v.field("build_type", &B::build_type, {"", "`Release`"});
+    v.field("cxx_flags", &B::cxx_flags, {"", "`CMAKE_CXX_FLAGS` and those of the build type"});
+    v.field("fingerprint", &B::fingerprint,
+            {"",
+             "16 hex digits over those four: `compare` shows a different one and never "
+             "refuses it"});
+    v.field("driver_sha256", &B::driver_sha256,
+            {"", "SHA-256 of the driver executable (`/proc/self/exe`); not in the fingerprint"});
+    v.field("core_sha256", &B::core_sha256,
+            {"", "SHA-256 of `shadowbench_core` as loaded; in the spec"});
+    v.field("plugin_api_sha256", &B::plugin_api_sha256,
+            {"", "SHA-256 of `shadowbench_plugin_api` as loaded; in the spec"});
+  }
 
   nlohmann::json to_json() const;
   static BuildRecord from_json(const Fields& f);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "record/classes_record.h"
+#include "record/describe.h"
 #include "record/fields.h"
 #include "record/host_record.h"
 #include "record/metrics_record.h"
@@ -31,18 +32,39 @@ inline constexpr int kRecordSchemaVersion = 1;
 
 enum class JobStatus { Ok, Skipped, Failed };
 const char* to_string(JobStatus s);  // "ok", "skipped", "failed"
+// The record's "status": throws RecordError for any other string.
+JobStatus status_from(const Fields& f);
 
 // Pixels of the technique's visibility (before the attached-shadow mask)
 // that are not finite or outside [0, 1] by more than the tolerance.
 struct VisibilityCheckRecord {
+  static constexpr RecordDoc kSchema{
+      "VisibilityCheckRecord",
+      "pixels of the technique's visibility (before the attached-shadow mask) that are NaN/Inf "
+      "or outside [0, 1] by more than `tolerance`: any of them fails the job, whose timing, "
+      "metrics and images are still recorded for inspection"};
+
   std::int64_t nonfinite = 0;
   std::int64_t below_0 = 0;
   std::int64_t above_1 = 0;
   double tolerance = 0;
+
+  template <class V>
+  static void describe(V& v) {
+    using C = VisibilityCheckRecord;
+    v.field("nonfinite", &C::nonfinite, {"px", "NaN or infinite"});
+    v.field("below_0", &C::below_0, {"px", "below 0 by more than the tolerance"});
+    v.field("above_1", &C::above_1, {"px", "above 1 by more than the tolerance"});
+    v.field("tolerance", &C::tolerance, {"", "1e-5"});
+  }
 };
 
 // Paths relative to the run directory; each present only when written.
 struct ImagesRecord {
+  static constexpr RecordDoc kSchema{
+      "ImagesRecord",
+      "the images written (not with `--no-images`): paths relative to the run directory"};
+
   std::optional<std::string> visibility, shaded, error_heatmap;
   std::optional<double> error_heatmap_full_scale;
   std::optional<std::string> reference_visibility, reference_std_error, reference_shaded;
@@ -52,12 +74,34 @@ struct ImagesRecord {
   // the files (docs/results.md "Recomputing the errors").
   std::map<std::string, std::string> masks;
 
+  template <class V>
+  static void describe(V& v) {
+    using I = ImagesRecord;
+    v.field("visibility", &I::visibility, {"", "the technique's V (EXR)"});
+    v.field("shaded", &I::shaded, {"", "the shaded image (PNG)"});
+    v.field("error_heatmap", &I::error_heatmap, {"", "|V − reference| as colours (PNG)"});
+    v.field("error_heatmap_full_scale", &I::error_heatmap_full_scale,
+            {"", "the error shown as the brightest colour"});
+    v.field("reference_visibility", &I::reference_visibility, {"", "the reference's V"});
+    v.field("reference_std_error", &I::reference_std_error, {"", "its standard error"});
+    v.field("reference_shaded", &I::reference_shaded, {"", "shaded from it"});
+    v.field("gbuffer_positions", &I::gbuffer_positions, {"", "with `run --gbuffer`"});
+    v.field("gbuffer_normals", &I::gbuffer_normals, {"", "with `run --gbuffer`"});
+    v.field("masks", &I::masks,
+            {"",
+             "by region of `metrics.visibility`: an 8-bit PNG, 255 where the region "
+             "measured (\"Recomputing the errors\"); absent from older records",
+             Presence::UnlessEmpty});
+  }
+
   bool empty() const;
   // Takes every image `other` names (a job's record, the reference's).
   void add(const ImagesRecord& other);
 };
 
 struct JobRecord {
+  static constexpr RecordDoc kSchema{"JobRecord", "the whole record"};
+
   int schema_version = kRecordSchemaVersion;
   std::string run_id, experiment;
   std::string config, config_hash;  // the config path as given; FNV-1a 64 of its bytes
@@ -102,6 +146,9 @@ struct JobRecord {
   std::vector<std::string> child_stderr;
   ImagesRecord images;  // written only when some image was
 
+  template <class V>
+  static void describe(V& v);
+
   nlohmann::json to_json() const;
   // Throws RecordError: at /schema_version for another version, else at the
   // first member that is missing or of the wrong type.
@@ -110,5 +157,79 @@ struct JobRecord {
   // The named metric ("visibility.all.rmse"), when the record has metrics.
   std::optional<double> metric(const MetricPath& path) const;
 };
+
+template <class V>
+void JobRecord::describe(V& v) {
+  using J = JobRecord;
+  v.field("schema_version", &J::schema_version,
+          {"", "1; a reader refuses any other, naming the file and the version"});
+  v.field("run_id", &J::run_id, {"", "the run"});
+  v.field("experiment", &J::experiment, {"", "the experiment's name"});
+  v.field("config", &J::config, {"", "the config path as given"});
+  v.field("config_hash", &J::config_hash, {"", "FNV-1a 64 of its bytes"});
+  v.field("job_id", &J::job_id,
+          {"", "`<scene variant>__<WxH>__<technique variant>`, file-name safe"});
+  v.field("spec_hash", &J::spec_hash, {"", "the hash of `spec` that resuming compares"});
+  v.field("spec", &J::spec,
+          {"",
+           "the job's settings as named fields (above); absent from older records, which "
+           "rerun"});
+  v.field("scene_variant", &J::scene_variant, {"", "what ran"});
+  v.field("technique_variant", &J::technique_variant, {"", "what ran"});
+  v.field("resolution", &J::resolution, {"", "`<W>x<H>`"});
+  v.field("width", &J::width, {"px", ""});
+  v.field("height", &J::height, {"px", ""});
+  v.field("scene", &J::scene, {"", "the scene"});
+  v.field("technique", &J::technique, {"", "the technique"});
+  v.field("backend", &J::backend, {"", "`osmesa` or `egl`"});
+  v.field("gl_platform", &J::gl_platform, {"", "`osmesa`, `egl-device` or `egl-surfaceless`"});
+  v.field("gl_renderer", &J::gl_renderer, {"", "the driver's string"});
+  v.field("gl_version", &J::gl_version, {"", "the driver's string"});
+  v.field("timing_source", &J::timing_source,
+          {"",
+           "how every bracket in `timing` was timed: `cpu_glfinish`, `gl_timestamp_query` "
+           "or (older GPU records) `gl_timer_query` (below)"});
+  v.field("job_index", &J::job_index,
+          {"",
+           "the job's place in its config's plan (scene variants, then resolutions, then "
+           "technique variants, from 0); absent from older records"});
+  v.field("shard", &J::shard, {"", "`\"K/N\"` when the job ran under `run --shard K/N`"});
+  v.field("host", &J::host, {"", "the machine that timed the job"});
+  v.field("build", &J::build, {"", "the build"});
+  v.custom(
+      "status", "string", {"", "`ok`, `skipped` or `failed`"},
+      [](const J& r) { return std::optional<nlohmann::json>(to_string(r.status)); },
+      [](J& r, const Fields& f) { r.status = status_from(f); });
+  v.field("reason", &J::reason,
+          {"", "why skipped (the scene does not fit the technique) or failed (the error)"});
+  v.field("started_at", &J::started_at, {"", "UTC ISO 8601"});
+  v.field("finished_at", &J::finished_at, {"", "UTC ISO 8601"});
+  v.field("duration_s", &J::duration_s,
+          {"s",
+           "wall time of a job that rendered (warm-up, timed frames, read-back, metrics, "
+           "images)"});
+  v.field("phases_s", &J::phases_s, {"s", "where `duration_s` went"});
+  v.field("overhead_s", &J::overhead_s,
+          {"s",
+           "`duration_s` − `phases_s.frames` − `phases_s.stability`: what the harness "
+           "spent besides the frames and measurements asked for"});
+  v.field("reference", &J::reference, {"", "the reference"});
+  v.field("timing", &J::timing, {"", "the frames' times"});
+  v.field("visibility_check", &J::visibility_check, {"", "V's range"});
+  v.field("metrics", &J::metrics, {"", "the errors"});
+  v.field("second_reference", &J::second_reference, {"", "with config `reference.second_method`"});
+  v.field("stability", &J::stability,
+          {"", "with a config `stability` block, for a job that was not broken"});
+  v.field("classes", &J::classes, {"", "every measured job; absent from older records"});
+  v.field("warnings", &J::warnings,
+          {"",
+           "e.g. a reference whose penumbra noise is over half the technique's penumbra "
+           "RMSE",
+           Presence::UnlessEmpty});
+  v.field("child_stderr", &J::child_stderr,
+          {"", "when the job's process died under it: the last 20 lines it wrote to stderr",
+           Presence::UnlessEmpty});
+  v.field("images", &J::images, {"", "the images written", Presence::UnlessEmpty});
+}
 
 }  // namespace sb

@@ -1,7 +1,10 @@
 #include "record/metrics_record.h"
 
 #include <limits>
+#include <type_traits>
 #include <vector>
+
+#include "record/record_json.h"
 
 namespace sb {
 
@@ -9,96 +12,47 @@ using json = nlohmann::json;
 
 namespace {
 
-// The numbers of RegionStats by their record keys (max_pixel is a pair).
-struct NumberKey {
-  const char* key;
-  double (*get)(const RegionStats&);
+// A number of RegionStats by its record key: the description's members
+// that are numbers.
+class NumberOf {
+ public:
+  NumberOf(const RegionStats& s, const std::string& key) : s_(s), key_(key) {}
+  std::optional<double> value;
+
+  template <class M>
+  void field(const char* key, M RegionStats::*member, const FieldInfo& /*info*/ = {}) {
+    if constexpr (std::is_arithmetic_v<M>)
+      if (key_ == key) value = static_cast<double>(s_.*member);
+  }
+  template <class W, class R>
+  void custom(const char*, const char*, const FieldInfo&, W&&, R&&) {}
+
+ private:
+  const RegionStats& s_;
+  const std::string& key_;
 };
 
-const NumberKey kNumberKeys[] = {
-    {"pixel_count", [](const RegionStats& s) { return static_cast<double>(s.pixel_count); }},
-    {"rmse", [](const RegionStats& s) { return s.rmse; }},
-    {"mae", [](const RegionStats& s) { return s.mae; }},
-    {"max_error", [](const RegionStats& s) { return s.max_error; }},
-    {"psnr", [](const RegionStats& s) { return s.psnr; }},
-    {"ssim", [](const RegionStats& s) { return s.ssim; }},
-    {"frac_over_0.01", [](const RegionStats& s) { return s.frac_over_001; }},
-    {"frac_over_0.05", [](const RegionStats& s) { return s.frac_over_005; }},
-    {"frac_over_0.1", [](const RegionStats& s) { return s.frac_over_01; }},
-    {"nonfinite_count",
-     [](const RegionStats& s) { return static_cast<double>(s.nonfinite_count); }},
-    {"mean_signed", [](const RegionStats& s) { return s.mean_signed; }},
-};
+std::optional<double> number_of(const RegionStats& s, const std::string& key) {
+  NumberOf n(s, key);
+  RegionStats::describe(n);
+  return n.value;
+}
 
 }  // namespace
 
-json RegionStats::to_json() const {
-  return {{"pixel_count", pixel_count},
-          {"rmse", json_number(rmse)},
-          {"mae", json_number(mae)},
-          {"max_error", json_number(max_error)},
-          {"max_pixel", json::array({max_x, max_y})},
-          {"psnr", json_number(psnr)},
-          {"ssim", json_number(ssim)},
-          {"frac_over_0.01", json_number(frac_over_001)},
-          {"frac_over_0.05", json_number(frac_over_005)},
-          {"frac_over_0.1", json_number(frac_over_01)},
-          {"nonfinite_count", nonfinite_count},
-          {"mean_signed", json_number(mean_signed)}};
-}
-
-RegionStats RegionStats::from_json(const Fields& f) {
-  RegionStats s;
-  s.pixel_count = f.get<std::int64_t>("pixel_count");
-  s.rmse = f.get<double>("rmse");
-  s.mae = f.get<double>("mae");
-  s.max_error = f.get<double>("max_error");
+void RegionStats::read_max_pixel(RegionStats& s, const Fields& f) {
   const std::vector<int> max_pixel = f.get<std::vector<int>>("max_pixel");
   if (max_pixel.size() != 2) f.fail("max_pixel", "expected [x, y]");
   s.max_x = max_pixel[0];
   s.max_y = max_pixel[1];
-  s.psnr = f.get<double>("psnr");
-  s.ssim = f.get<double>("ssim");
-  s.frac_over_001 = f.get<double>("frac_over_0.01");
-  s.frac_over_005 = f.get<double>("frac_over_0.05");
-  s.frac_over_01 = f.get<double>("frac_over_0.1");
-  s.nonfinite_count = f.get<std::int64_t>("nonfinite_count");
-  s.mean_signed = f.get<double>("mean_signed");
-  return s;
 }
 
-json ImageMetrics::to_json() const {
-  json j = {{"all", all.to_json()},
-            {"penumbra", penumbra.to_json()},
-            {"soft_union", soft_union.to_json()}};
-  if (geometry) j["geometry"] = geometry->to_json();
-  if (receivers) j["receivers"] = receivers->to_json();
-  if (near_third) j["near_third"] = near_third->to_json();
-  if (middle_third) j["middle_third"] = middle_third->to_json();
-  if (far_third) j["far_third"] = far_third->to_json();
-  return j;
-}
-
-ImageMetrics ImageMetrics::from_json(const Fields& f) {
-  ImageMetrics m{RegionStats::from_json(f.object("all")),
-                 RegionStats::from_json(f.object("penumbra")),
-                 RegionStats::from_json(f.object("soft_union"))};
-  if (f.has("geometry")) m.geometry = RegionStats::from_json(f.object("geometry"));
-  if (f.has("receivers")) m.receivers = RegionStats::from_json(f.object("receivers"));
-  if (f.has("near_third")) m.near_third = RegionStats::from_json(f.object("near_third"));
-  if (f.has("middle_third")) m.middle_third = RegionStats::from_json(f.object("middle_third"));
-  if (f.has("far_third")) m.far_third = RegionStats::from_json(f.object("far_third"));
-  return m;
-}
-
-json MetricsRecord::to_json() const {
-  return {{"visibility", visibility.to_json()}, {"shaded", shaded.to_json()}};
-}
-
-MetricsRecord MetricsRecord::from_json(const Fields& f) {
-  return {ImageMetrics::from_json(f.object("visibility")),
-          ImageMetrics::from_json(f.object("shaded"))};
-}
+json RegionStats::to_json() const { return write_record(*this); }
+RegionStats RegionStats::from_json(const Fields& f) { return read_record<RegionStats>(f); }
+json ImageMetrics::to_json() const { return write_record(*this); }
+ImageMetrics ImageMetrics::from_json(const Fields& f) { return read_record<ImageMetrics>(f); }
+json MetricsRecord::to_json() const { return write_record(*this); }
+MetricsRecord MetricsRecord::from_json(const Fields& f) { return read_record<MetricsRecord>(f); }
 
 std::optional<MetricPath> MetricPath::parse(const std::string& dotted) {
   const size_t first = dotted.find('.');
@@ -129,8 +83,7 @@ std::optional<MetricPath> MetricPath::parse(const std::string& dotted) {
     p.region_ = [](const ImageMetrics& m) { return m.middle_third ? &*m.middle_third : nullptr; };
   else if (region == "far_third")
     p.region_ = [](const ImageMetrics& m) { return m.far_third ? &*m.far_third : nullptr; };
-  bool known = false;
-  for (const auto& k : kNumberKeys) known = known || p.key_ == k.key;
+  const bool known = number_of(RegionStats{}, p.key_).has_value();
   if (p.image_ == nullptr || p.region_ == nullptr || !known) return std::nullopt;
   return p;
 }
@@ -138,9 +91,7 @@ std::optional<MetricPath> MetricPath::parse(const std::string& dotted) {
 double MetricPath::of(const MetricsRecord& m) const {
   const RegionStats* s = region_(m.*image_);
   if (s == nullptr) return std::numeric_limits<double>::quiet_NaN();
-  for (const auto& k : kNumberKeys)
-    if (key_ == k.key) return k.get(*s);
-  return 0.0;  // parse() admits known keys only
+  return number_of(*s, key_).value_or(0.0);  // parse() admits known keys only
 }
 
 }  // namespace sb

@@ -6,12 +6,16 @@
 #include <optional>
 #include <string>
 
+#include "record/describe.h"
 #include "record/fields.h"
 
 namespace sb {
 
 // One image over one region of pixels (as metrics::ErrorStats).
 struct RegionStats {
+  static constexpr RecordDoc kSchema{
+      "RegionStats", "one image's error against the reference's over one region of pixels"};
+
   std::int64_t pixel_count = 0;
   double rmse = 0, mae = 0, max_error = 0;
   int max_x = -1, max_y = -1;  // "max_pixel": [x, y]
@@ -19,6 +23,29 @@ struct RegionStats {
   double frac_over_001 = 0, frac_over_005 = 0, frac_over_01 = 0;  // "frac_over_0.01" ...
   std::int64_t nonfinite_count = 0;
   double mean_signed = 0;
+
+  template <class V>
+  static void describe(V& v) {
+    using R = RegionStats;
+    v.field("pixel_count", &R::pixel_count, {"px", "pixels in the region"});
+    v.field("rmse", &R::rmse, {"", "root mean square error"});
+    v.field("mae", &R::mae, {"", "mean absolute error"});
+    v.field("max_error", &R::max_error, {"", "largest absolute error"});
+    v.custom(
+        "max_pixel", "[integer, integer]", {"px", "[x, y] of the largest error"},
+        [](const R& s) {
+          return std::optional(nlohmann::json::array({s.max_x, s.max_y}));
+        },
+        [](R& s, const Fields& f) { read_max_pixel(s, f); });
+    v.field("psnr", &R::psnr, {"dB", "peak signal-to-noise ratio"});
+    v.field("ssim", &R::ssim, {"", "structural similarity"});
+    v.field("frac_over_0.01", &R::frac_over_001, {"", "share of pixels with error over 0.01"});
+    v.field("frac_over_0.05", &R::frac_over_005, {"", "share of pixels with error over 0.05"});
+    v.field("frac_over_0.1", &R::frac_over_01, {"", "share of pixels with error over 0.1"});
+    v.field("nonfinite_count", &R::nonfinite_count, {"px", "NaN or infinite pixels"});
+    v.field("mean_signed", &R::mean_signed, {"", "mean of technique − reference"});
+  }
+  static void read_max_pixel(RegionStats& s, const Fields& f);
 
   nlohmann::json to_json() const;
   static RegionStats from_json(const Fields& f);
@@ -36,6 +63,9 @@ struct RegionStats {
 // by distance from the camera (metrics/distance_thirds.h): near_third,
 // middle_third, far_third.
 struct ImageMetrics {
+  static constexpr RecordDoc kSchema{"ImageMetrics",
+                                     "one image's errors, per region (\"Regions\" above)"};
+
   RegionStats all, penumbra, soft_union;
   std::optional<RegionStats> geometry = std::nullopt;
   std::optional<RegionStats> receivers = std::nullopt;
@@ -43,12 +73,40 @@ struct ImageMetrics {
   std::optional<RegionStats> middle_third = std::nullopt;
   std::optional<RegionStats> far_third = std::nullopt;
 
+  template <class V>
+  static void describe(V& v) {
+    using M = ImageMetrics;
+    v.field("all", &M::all, {"", "all measured pixels, sky and attached shadow included"});
+    v.field("geometry", &M::geometry,
+            {"",
+             "the measured surface pixels outside attached shadow; absent from records "
+             "written before it existed"});
+    v.field("penumbra", &M::penumbra, {"", "the reference's penumbra"});
+    v.field("soft_union", &M::soft_union, {"", "the soft pixels of either image"});
+    v.field("receivers", &M::receivers,
+            {"", "the measured pixels on meshes that cast no shadow; absent when there are none"});
+    v.field("near_third", &M::near_third,
+            {"", "with `metrics.distance_thirds`: the nearest third of the measured pixels"});
+    v.field("middle_third", &M::middle_third, {"", "with `metrics.distance_thirds`"});
+    v.field("far_third", &M::far_third, {"", "with `metrics.distance_thirds`"});
+  }
+
   nlohmann::json to_json() const;
   static ImageMetrics from_json(const Fields& f);
 };
 
 struct MetricsRecord {
+  static constexpr RecordDoc kSchema{"MetricsRecord",
+                                     "the error of the technique's images against the reference's"};
+
   ImageMetrics visibility, shaded;
+
+  template <class V>
+  static void describe(V& v) {
+    v.field("visibility", &MetricsRecord::visibility, {"", "the visibility buffer V"});
+    v.field("shaded", &MetricsRecord::shaded,
+            {"", "the image shaded from the same V, after the attached-shadow rule"});
+  }
 
   nlohmann::json to_json() const;
   static MetricsRecord from_json(const Fields& f);

@@ -16,12 +16,29 @@
 //   on a job besides the frames it was asked to render and measure.
 #include <nlohmann/json.hpp>
 
+#include "record/describe.h"
 #include "record/fields.h"
 
 namespace sb {
 
 struct PhasesRecord {
+  static constexpr RecordDoc kSchema{"PhasesRecord", "where a rendered job's `duration_s` went"};
+
   double prepare = 0, frames = 0, measure = 0, images = 0, stability = 0;
+
+  template <class V>
+  static void describe(V& v) {
+    v.field("prepare", &PhasesRecord::prepare, {"s", "create and prepare the technique"});
+    v.field("frames", &PhasesRecord::frames,
+            {"s",
+             "every frame it rendered: the compile frame, warm-up and timed frames, the "
+             "control frames next to them, `--pass-timing fine`'s"});
+    v.field("measure", &PhasesRecord::measure,
+            {"s", "read-back, checks, shading, metrics, classes"});
+    v.field("images", &PhasesRecord::images, {"s", "writing the images"});
+    v.field("stability", &PhasesRecord::stability,
+            {"s", "the stability block's frames and references"});
+  }
 
   // prepare + measure + images, plus whatever of `duration` no phase
   // covers (GL state resets, record keeping).

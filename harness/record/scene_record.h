@@ -7,32 +7,70 @@
 #include <string>
 #include <vector>
 
+#include "record/describe.h"
 #include "record/fields.h"
 
 namespace sb {
 
 struct LightRecord {
+  static constexpr RecordDoc kSchema{"LightRecord", "the scene's rectangular light"};
+
   std::array<double, 3> center{}, target{};
   std::array<double, 2> size{};  // width, height of the rectangle
   double intensity = 1;
+
+  template <class V>
+  static void describe(V& v) {
+    v.field("center", &LightRecord::center, {"", "[x, y, z]"});
+    v.field("target", &LightRecord::target, {"", "[x, y, z] it faces"});
+    v.field("size", &LightRecord::size, {"", "[width, height] of the rectangle"});
+    v.field("intensity", &LightRecord::intensity, {"", ""});
+  }
 };
 
 struct CameraRecord {
+  static constexpr RecordDoc kSchema{"CameraRecord", "the scene's camera"};
+
   std::array<double, 3> eye{}, target{};
   double fov_y = 45;  // degrees
+
+  template <class V>
+  static void describe(V& v) {
+    v.field("eye", &CameraRecord::eye, {"", "[x, y, z]"});
+    v.field("target", &CameraRecord::target, {"", "[x, y, z] it looks at"});
+    v.field("fov_y", &CameraRecord::fov_y, {"degrees", "vertical field of view"});
+  }
 };
 
 // Derived data the plan computed for the scene, and its receiver inference.
 struct DerivedRecord {
+  static constexpr RecordDoc kSchema{"DerivedRecord",
+                                     "derived data the plan computed for the scene"};
+
   bool closedness_checked = false;
   bool adjacency_built = false;
   bool receiver_inference = true;               // off with "infer_receivers": false
   std::vector<std::string> inferred_receivers;  // meshes made receivers
+
+  template <class V>
+  static void describe(V& v) {
+    using D = DerivedRecord;
+    v.field("closedness_checked", &D::closedness_checked, {"", ""});
+    v.field("adjacency_built", &D::adjacency_built, {"", ""});
+    v.field("receiver_inference", &D::receiver_inference,
+            {"", "on unless the scene entry says `\"infer_receivers\": false`"});
+    v.field("inferred_receivers", &D::inferred_receivers,
+            {"",
+             "planar meshes made non-casters because they can shadow nothing "
+             "(docs/design.md)"});
+  }
 };
 
 // What is known of a scene once it was built: absent from the records of a
 // scene that failed to build.
 struct BuiltScene {
+  static constexpr RecordDoc kSchema{"BuiltScene", ""};
+
   std::int64_t triangles = 0;
   std::int64_t caster_triangles = 0;
   // Casters the reference traces as their analytic shape instead of their
@@ -41,13 +79,37 @@ struct BuiltScene {
   LightRecord light;
   CameraRecord camera;
   DerivedRecord derived;
+
+  template <class V>
+  static void describe(V& v) {
+    v.field("triangles", &BuiltScene::triangles, {"", "the scene's triangles"});
+    v.field("caster_triangles", &BuiltScene::caster_triangles, {"", "those that cast"});
+    v.field("analytic_casters", &BuiltScene::analytic_casters,
+            {"",
+             "casters the reference traces as their smooth shape (a sphere grid's "
+             "`\"analytic\": true`); absent from older records, read as 0",
+             Presence::OlderLack});
+    v.field("light", &BuiltScene::light, {"", "the light"});
+    v.field("camera", &BuiltScene::camera, {"", "the camera"});
+    v.field("derived", &BuiltScene::derived, {"", "what the plan derived"});
+  }
 };
 
 struct SceneRecord {
+  static constexpr RecordDoc kSchema{"SceneRecord", "the scene that ran"};
+
   std::string type;
   std::string variant;
   nlohmann::json params = nlohmann::json::object();  // all, defaults filled in
   std::optional<BuiltScene> built;
+
+  template <class V>
+  static void describe(V& v) {
+    v.field("type", &SceneRecord::type, {"", "the scene type"});
+    v.field("variant", &SceneRecord::variant, {"", "the scene variant"});
+    v.field("params", &SceneRecord::params, {"", "all its parameters, defaults filled in"});
+    v.flatten(&SceneRecord::built, {"", "when the scene was built"});
+  }
 
   nlohmann::json to_json() const;
   static SceneRecord from_json(const Fields& f);
@@ -55,10 +117,22 @@ struct SceneRecord {
 
 // technique.plugin: the module the technique came from (plugin/plugin_identity.h).
 struct PluginRecord {
+  static constexpr RecordDoc kSchema{
+      "PluginRecord", "the module that registered the technique (built-in families too)"};
+
   std::string file;  // relative to its plugin folder: "shadow_map.so"
   std::int64_t size = 0;
   std::string sha256;  // of the module's bytes
   int api_version = 0;
+
+  template <class V>
+  static void describe(V& v) {
+    v.field("file", &PluginRecord::file, {"", "the module's name in its plugin folder"});
+    v.field("size", &PluginRecord::size, {"bytes", ""});
+    v.field("sha256", &PluginRecord::sha256, {"", "of its bytes, read once when it is loaded"});
+    v.field("api_version", &PluginRecord::api_version,
+            {"", "`kPluginApiVersion` (harness/plugin/plugin_identity.h): the plugin ABI's"});
+  }
 
   bool operator==(const PluginRecord&) const = default;
   nlohmann::json to_json() const;
@@ -66,6 +140,8 @@ struct PluginRecord {
 };
 
 struct TechniqueRecord {
+  static constexpr RecordDoc kSchema{"TechniqueRecord", "the technique that ran"};
+
   std::string name;
   std::string family;
   std::string variant;
@@ -78,6 +154,22 @@ struct TechniqueRecord {
   // (gl/allocation_meter.h). Absent from older records and from jobs that
   // did not get through their frames.
   std::optional<std::int64_t> gpu_bytes;
+
+  template <class V>
+  static void describe(V& v) {
+    using T = TechniqueRecord;
+    v.field("name", &T::name, {"", "the technique"});
+    v.field("family", &T::family, {"", "its family"});
+    v.field("variant", &T::variant, {"", "the technique variant"});
+    v.field("params", &T::params, {"", "all its parameters, defaults filled in"});
+    v.field("plugin", &T::plugin,
+            {"", "absent from older records and for a technique no module registered"});
+    v.field("gpu_bytes", &T::gpu_bytes,
+            {"bytes",
+             "the most GPU storage the technique held at once from its `prepare()` "
+             "to its last frame, made through the `gl::make_*` helpers (below); "
+             "absent from older records and from jobs that failed before"});
+  }
 
   nlohmann::json to_json() const;
   static TechniqueRecord from_json(const Fields& f);

@@ -1,14 +1,12 @@
 #include "record/second_reference_record.h"
 
+#include "record/record_json.h"
+
 namespace sb {
 
-nlohmann::json SecondReferenceRecord::to_json() const {
-  return {{"reference", reference.to_json()}, {"visibility", visibility.to_json()}};
-}
-
+nlohmann::json SecondReferenceRecord::to_json() const { return write_record(*this); }
 SecondReferenceRecord SecondReferenceRecord::from_json(const Fields& f) {
-  return {ReferenceRecord::from_json(f.object("reference")),
-          ImageMetrics::from_json(f.object("visibility"))};
+  return read_record<SecondReferenceRecord>(f);
 }
 
 }  // namespace sb

@@ -13,8 +13,21 @@
 namespace sb {
 
 struct SecondReferenceRecord {
+  static constexpr RecordDoc kSchema{
+      "SecondReferenceRecord",
+      "the job's visibility measured against a reference of the other method "
+      "(config `reference.second_method`, \"Two references\" above)"};
+
   ReferenceRecord reference;
   ImageMetrics visibility;
+
+  template <class V>
+  static void describe(V& v) {
+    v.field("reference", &SecondReferenceRecord::reference,
+            {"", "the second reference; its `penumbra_pixels` are its own soft pixels"});
+    v.field("visibility", &SecondReferenceRecord::visibility,
+            {"", "the visibility buffer's error against it, over the first reference's regions"});
+  }
 
   nlohmann::json to_json() const;
   static SecondReferenceRecord from_json(const Fields& f);

@@ -1,7 +1,7 @@
 #pragma once
 // Summary statistics of per-frame times: robust (median, p10, p90) plus the
 // coefficient of variation, so noisy machines show how noisy they were.
-// A record keeps them with the samples (record/timing_record.h, TimingSeries).
+// A record keeps them with the samples (record/timing_record.h, Series).
 #include <cstddef>
 #include <vector>
 

@@ -14,12 +14,12 @@ json make_bencher_json(const std::vector<JobRecord>& records) {
   for (const auto& r : records) {
     if (r.status != JobStatus::Ok) continue;
     json b = json::object();
-    if (r.timing && std::isfinite(r.timing->frame.median_ms)) {
+    if (r.timing && std::isfinite(r.timing->frame.median)) {
       constexpr double kNsPerMs = 1e6;
-      const TimingSeries& f = r.timing->frame;
-      json latency = {{"value", f.median_ms * kNsPerMs}};
-      if (std::isfinite(f.p10_ms)) latency["lower_value"] = f.p10_ms * kNsPerMs;
-      if (std::isfinite(f.p90_ms)) latency["upper_value"] = f.p90_ms * kNsPerMs;
+      const Series& f = r.timing->frame;
+      json latency = {{"value", f.median * kNsPerMs}};
+      if (std::isfinite(f.p10)) latency["lower_value"] = f.p10 * kNsPerMs;
+      if (std::isfinite(f.p90)) latency["upper_value"] = f.p90 * kNsPerMs;
       b["latency"] = std::move(latency);
     }
     const std::pair<const char*, const char*> errors[] = {

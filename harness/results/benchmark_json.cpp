@@ -133,12 +133,12 @@ json make_benchmark_json(const std::vector<JobRecord>& records, const json& cont
   int family = 0;
   for (const auto& r : records) {
     if (r.status != JobStatus::Ok || !r.timing) continue;
-    add_benchmark(benchmarks, r.job_id + "/frame", family++, r.timing->frame.samples_ms);
+    add_benchmark(benchmarks, r.job_id + "/frame", family++, r.timing->frame.samples);
     if (!r.timing->fine) continue;
     // In pass order (which names every pass).
     for (const auto& name : r.timing->fine->pass_order)
       add_benchmark(benchmarks, r.job_id + "/pass:" + name, family++,
-                    r.timing->fine->passes.at(name).samples_ms);
+                    r.timing->fine->passes.at(name).samples);
   }
   out["benchmarks"] = std::move(benchmarks);
   return out;

@@ -65,17 +65,17 @@ struct Timing {
   double median = std::nan(""), p10 = std::nan(""), p90 = std::nan("");
 };
 
-Timing timing_of(const TimingSeries* t) {
+Timing timing_of(const Series* t) {
   if (t == nullptr) return {};
-  return {t->median_ms, t->p10_ms, t->p90_ms};
+  return {t->median, t->p10, t->p90};
 }
 
 // The frame's timing, or the technique's.
-Timing timing_of(const JobRecord& r, TimingSeries TimingRecord::*series) {
+Timing timing_of(const JobRecord& r, Series TimingRecord::*series) {
   return r.timing ? timing_of(&(*r.timing.*series)) : Timing{};
 }
 
-const TimingSeries* shared_pass(const JobRecord& r, const std::string& name) {
+const Series* shared_pass(const JobRecord& r, const std::string& name) {
   if (!r.timing) return nullptr;
   const auto it = r.timing->shared.find(name);
   return it == r.timing->shared.end() ? nullptr : &it->second;
@@ -387,7 +387,7 @@ void passes_charts(const std::vector<const JobRecord*>& ok, Palette& pass_colour
     json bars = json::array();
     for (const JobRecord* r : records) {
       json segments = json::array();
-      auto add = [&](const std::string& name, const TimingSeries* series, bool shared) {
+      auto add = [&](const std::string& name, const Series* series, bool shared) {
         const double ms = timing_of(series).median;
         if (!std::isfinite(ms)) return;
         segments.push_back({{"name", shared ? name + " (shared)" : name},

@@ -20,8 +20,8 @@ namespace {
 std::vector<double> time_samples(const JobRecord& record, const std::string& key) {
   std::vector<double> out;
   if (!record.timing) return out;
-  const TimingSeries& series = key == "technique" ? record.timing->technique : record.timing->frame;
-  for (const double d : series.samples_ms)
+  const Series& series = key == "technique" ? record.timing->technique : record.timing->frame;
+  for (const double d : series.samples)
     if (std::isfinite(d)) out.push_back(d);
   return out;
 }
@@ -34,8 +34,8 @@ std::optional<std::vector<double>> ratio_samples(const JobRecord& record, const 
   const ControlTiming& control = *record.timing->control;
   std::vector<double> out;
   if (key == "technique") {
-    const auto& job = record.timing->technique.samples_ms;
-    const auto& ctl = control.frame.samples_ms;
+    const auto& job = record.timing->technique.samples;
+    const auto& ctl = control.frame.samples;
     for (size_t i = 0; i < job.size() && i < ctl.size(); ++i)
       if (ctl[i] > 0 && std::isfinite(job[i] / ctl[i])) out.push_back(job[i] / ctl[i]);
   } else {

@@ -2,7 +2,7 @@
 // `shadowbench compare BASE_DIR NEW_DIR`: did a change make a job slower or
 // less accurate? Jobs are matched by job_id. Per job:
 //   - time: a two-sided Mann–Whitney U test on the per-frame times
-//     (timing.frame.samples_ms, or timing.technique.samples_ms with
+//     (timing.frame.samples, or timing.technique.samples with
 //     --timing technique) and the relative change of the medians;
 //     a regression is p < alpha AND the new median slower by more than
 //     time_threshold (an improvement likewise, faster). Absolute times are

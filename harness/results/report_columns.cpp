@@ -26,10 +26,10 @@ std::optional<double> geometry(const JobRecord& r) {
   return *r.metrics->visibility.geometry.*Value;
 }
 
-template <TimingSeries TimingRecord::*Series>
+template <Series TimingRecord::*Member>
 std::optional<double> median_ms(const JobRecord& r) {
   if (!r.timing) return std::nullopt;
-  return (*r.timing.*Series).median_ms;
+  return (*r.timing.*Member).median;
 }
 
 // The median of the job's frame time over the control's next to it.

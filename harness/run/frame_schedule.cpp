@@ -91,27 +91,26 @@ TimingRecord time_frames(FrameTarget& target, const FrameSchedule& s) {
   t.warmup_frames = s.warmup_frames;
   t.timed_frames = s.timed_frames;
   t.pass_timing = gl::to_string(s.pass_detail);
-  t.frame = TimingSeries::of(coarse.frame);
-  t.technique = TimingSeries::of(coarse.technique);
-  for (const auto& [pass, v] : coarse.shared) t.shared[pass] = TimingSeries::of(v);
+  t.frame = Series::of(coarse.frame);
+  t.technique = Series::of(coarse.technique);
+  for (const auto& [pass, v] : coarse.shared) t.shared[pass] = Series::of(v);
   if (fine_detail) {
     FineTiming detail;
     detail.pass_order = fine.pass_order;
-    for (const auto& pass : fine.pass_order)
-      detail.passes[pass] = TimingSeries::of(fine.passes[pass]);
+    for (const auto& pass : fine.pass_order) detail.passes[pass] = Series::of(fine.passes[pass]);
     // The same frames' sums: what per-pass syncs cost, against "technique".
     detail.frames = s.timed_frames;
-    detail.technique = TimingSeries::of(fine.technique);
-    detail.frame = TimingSeries::of(fine.frame);
+    detail.technique = Series::of(fine.technique);
+    detail.frame = Series::of(fine.frame);
     t.fine = std::move(detail);
   }
   if (control) {
     ControlTiming c;
     c.technique = *s.control;
-    c.frame = TimingSeries::of(control_ms);
+    c.frame = Series::of(control_ms);
     std::vector<double> ratio(control_ms.size());
     for (size_t k = 0; k < ratio.size(); ++k) ratio[k] = coarse.frame[k] / control_ms[k];
-    c.frame_ratio = RatioSeries::of(ratio);
+    c.frame_ratio = Series::of(ratio);
     t.control = std::move(c);
   }
   return t;

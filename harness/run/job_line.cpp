@@ -13,7 +13,7 @@ std::string job_line(const JobRecord& record, size_t done, size_t total) {
   if (record.status == JobStatus::Ok && record.timing && record.metrics) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "  frame %.2f ms, technique %.2f ms",
-                  record.timing->frame.median_ms, record.timing->technique.median_ms);
+                  record.timing->frame.median, record.timing->technique.median);
     line += buf;
     // The very cell the tables show (empty for a NaN, or a record without
     // the geometry region).

@@ -83,11 +83,11 @@ inline JobRecord make_controlled_record(const std::string& job_id,
     ratios[i] = frame[i] / control_ms[i];
   }
   JobRecord r = make_record(job_id, frame, rmse, 2 * rmse);
-  r.timing->technique = TimingSeries::of(technique);
+  r.timing->technique = Series::of(technique);
   ControlTiming c;
   c.technique = control;
-  c.frame = TimingSeries::of(control_frame);
-  c.frame_ratio = RatioSeries::of(ratios);
+  c.frame = Series::of(control_frame);
+  c.frame_ratio = Series::of(ratios);
   r.timing->control = std::move(c);
   return r;
 }

@@ -57,7 +57,7 @@ TEST(BenchmarkJson, OneBenchmarkPerJobAndPassWithRepetitions) {
   const std::string frame = "grid__320x240__shadow_map--size=1024/frame";
   const auto reps = named(doc, frame);
   ASSERT_EQ(reps.size(), 15u);
-  const auto& samples = records[0].timing->frame.samples_ms;
+  const auto& samples = records[0].timing->frame.samples;
   for (size_t i = 0; i < reps.size(); ++i) {
     const json& e = *reps[i];
     EXPECT_EQ(e["run_name"], frame);
@@ -75,7 +75,7 @@ TEST(BenchmarkJson, OneBenchmarkPerJobAndPassWithRepetitions) {
   EXPECT_EQ((*median[0])["run_type"], "aggregate");
   EXPECT_EQ((*median[0])["aggregate_name"], "median");
   EXPECT_EQ((*median[0])["run_name"], frame);
-  EXPECT_DOUBLE_EQ((*median[0])["real_time"].get<double>(), records[0].timing->frame.median_ms);
+  EXPECT_DOUBLE_EQ((*median[0])["real_time"].get<double>(), records[0].timing->frame.median);
   EXPECT_EQ((*named(doc, frame + "_cv")[0])["aggregate_unit"], "percentage");
   EXPECT_EQ(named(doc, "grid__320x240__shadow_map--size=1024/pass:depth").size(), 15u);
   EXPECT_EQ(named(doc, "grid__320x240__pcf_box--k=3+size=1024/pass:lookup").size(), 15u);
@@ -141,11 +141,11 @@ TEST(BencherJson, FollowsTheMetricFormat) {
   const json doc = sb::make_bencher_json(records);
   ASSERT_EQ(doc.size(), 2u);  // the skipped job has no measures
   const json& b = doc["grid__320x240__shadow_map--size=1024"];
-  const sb::TimingSeries& frame = records[0].timing->frame;
+  const sb::Series& frame = records[0].timing->frame;
   // Bencher's built-in latency measure is in nanoseconds.
-  EXPECT_DOUBLE_EQ(b["latency"]["value"].get<double>(), frame.median_ms * 1e6);
-  EXPECT_DOUBLE_EQ(b["latency"]["lower_value"].get<double>(), frame.p10_ms * 1e6);
-  EXPECT_DOUBLE_EQ(b["latency"]["upper_value"].get<double>(), frame.p90_ms * 1e6);
+  EXPECT_DOUBLE_EQ(b["latency"]["value"].get<double>(), frame.median * 1e6);
+  EXPECT_DOUBLE_EQ(b["latency"]["lower_value"].get<double>(), frame.p10 * 1e6);
+  EXPECT_DOUBLE_EQ(b["latency"]["upper_value"].get<double>(), frame.p90 * 1e6);
   EXPECT_DOUBLE_EQ(b["rmse"]["value"].get<double>(), 0.10);
   EXPECT_DOUBLE_EQ(b["penumbra-rmse"]["value"].get<double>(), 0.27);
   // The BMF schema: every measure an object with a numeric "value" and at

@@ -95,7 +95,7 @@ TEST(Compare, TechniqueTimingIsolatesTheTechnique) {
     frame.reserve(t.size());
     for (double v : t) frame.push_back(v + 20.0);  // G-buffer + shading
     JobRecord r = make_record("j", frame, 0.05, 0.1);
-    r.timing->technique = sb::TimingSeries::of(t);
+    r.timing->technique = sb::Series::of(t);
     return std::vector<JobRecord>{r};
   };
   const auto base = with_technique(5.0, 1), slower = with_technique(6.5, 2);
@@ -202,7 +202,7 @@ TEST(Compare, AJobThatNowFailsIsARegression) {
 
 TEST(Compare, RecordsWithoutSamplesAreNotTimed) {
   auto old = one_job(20.0, 1);
-  old[0].timing->frame.samples_ms.clear();
+  old[0].timing->frame.samples.clear();
   const auto r = compare_runs(old, one_job(26.0, 2), CompareOptions{});
   EXPECT_EQ(r.jobs[0].time, Verdict::kNotCompared);
   EXPECT_FALSE(r.jobs[0].p.has_value());

@@ -53,7 +53,7 @@ TEST(CompareBuilds, BothBuildsTakeTurnsAndTheirRunsAreComplete) {
     EXPECT_EQ(base[i].job_id, fresh[i].job_id);
     EXPECT_EQ(base[i].status, JobStatus::Ok);
     ASSERT_TRUE(base[i].timing && fresh[i].timing);
-    EXPECT_EQ(base[i].timing->frame.samples_ms.size(), 6u);
+    EXPECT_EQ(base[i].timing->frame.samples.size(), 6u);
     EXPECT_EQ(base[i].metrics->to_json(), fresh[i].metrics->to_json());
   }
 }

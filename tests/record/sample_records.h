@@ -56,15 +56,15 @@ inline TimingRecord coarse_timing(const std::vector<double>& frame,
   TimingRecord t;
   t.warmup_frames = 1;
   t.timed_frames = static_cast<int>(frame.size());
-  t.frame = TimingSeries::of(frame);
-  t.technique = TimingSeries::of(technique);
+  t.frame = Series::of(frame);
+  t.technique = Series::of(technique);
   std::vector<double> gbuffer, shading;
   for (size_t i = 0; i < frame.size() && i < technique.size(); ++i) {
     gbuffer.push_back(0.75 * (frame[i] - technique[i]));
     shading.push_back(0.25 * (frame[i] - technique[i]));
   }
-  t.shared["gbuffer"] = TimingSeries::of(gbuffer);
-  t.shared["shading"] = TimingSeries::of(shading);
+  t.shared["gbuffer"] = Series::of(gbuffer);
+  t.shared["shading"] = Series::of(shading);
   return t;
 }
 
@@ -76,16 +76,16 @@ inline void add_fine_timing(
   std::vector<double> sum;
   for (const auto& [name, samples] : passes) {
     fine.pass_order.push_back(name);
-    fine.passes[name] = TimingSeries::of(samples);
+    fine.passes[name] = Series::of(samples);
     sum.resize(std::max(sum.size(), samples.size()));
     for (size_t i = 0; i < samples.size(); ++i) sum[i] += samples[i];
   }
   fine.frames = static_cast<int>(sum.size());
-  fine.technique = TimingSeries::of(sum);
+  fine.technique = Series::of(sum);
   std::vector<double> frame = sum;
-  for (size_t i = 0; i < frame.size() && i < t.frame.samples_ms.size(); ++i)
-    frame[i] += t.frame.samples_ms[i] - t.technique.samples_ms[i];
-  fine.frame = TimingSeries::of(frame);
+  for (size_t i = 0; i < frame.size() && i < t.frame.samples.size(); ++i)
+    frame[i] += t.frame.samples[i] - t.technique.samples[i];
+  fine.frame = Series::of(frame);
   t.pass_timing = "fine";
   t.fine = std::move(fine);
 }

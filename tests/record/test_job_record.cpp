@@ -11,6 +11,7 @@
 
 #include "../metrics/test_util.h"
 #include "core/error.h"
+#include "full_record.h"
 #include "record/job_record.h"
 #include "results/store.h"
 #include "sample_records.h"
@@ -20,86 +21,8 @@ namespace {
 
 using json = nlohmann::json;
 
-RegionStats region(double rmse) {
-  RegionStats s;
-  s.pixel_count = 1200;
-  s.rmse = rmse;
-  s.mae = rmse / 2;
-  s.max_error = 1.0;
-  s.max_x = 17;
-  s.max_y = 3;
-  s.psnr = -20 * std::log10(rmse);
-  s.ssim = 0.75;
-  s.frac_over_001 = 0.5;
-  s.frac_over_005 = 0.25;
-  s.frac_over_01 = 0.125;
-  s.nonfinite_count = 2;
-  s.mean_signed = -0.01;
-  return s;
-}
-
-// An ok job with every optional member: fine pass timing, G-buffer images,
-// a warning, LP_NUM_THREADS, and non-finite numbers.
-JobRecord full_record() {
-  JobRecord r = test::identity_record("sphere_grid/light_size=2.0", "64x48", "pcf_box/k=3");
-  r.scene.params = {{"grid", 9}, {"light_size", 2.0}};
-  r.technique.family = "shadow_map";
-  r.technique.params = {{"k", 3}, {"size", 1024}};
-  BuiltScene b;
-  b.triangles = 61562;
-  b.caster_triangles = 61560;
-  b.analytic_casters = 81;
-  b.light = {{0, 10, 0}, {0, 0, 0}, {2, 2}, 1.5};
-  b.camera = {{0, 12.125, 14.5}, {0, 0, 1.875}, 50};
-  b.derived = {true, false, true, {"ground"}};
-  r.scene.built = b;
-  r.host.lp_num_threads = "2";
-  r.host.name = "vm";
-  r.started_at = "2026-12-01T00:00:00Z";
-  r.duration_s = 0.5;
-  PhasesRecord phases;
-  phases.prepare = 0.01;
-  phases.frames = 0.4;
-  phases.measure = 0.05;
-  phases.images = 0.03;
-  r.phases_s = phases;
-  r.overhead_s = phases.overhead(0.5);
-  ReferenceRecord ref;
-  ref.method = "embree_stratified_packet16";
-  ref.spp = 256;
-  ref.seed = std::numeric_limits<std::uint64_t>::max();
-  ref.embree_isa = "avx2";
-  ref.mean_std_error = 0.003;
-  ref.penumbra_pixels = 800;
-  ref.attached_shadow_pixels = 90;
-  ref.horizon_cut_pixels = 40;
-  ref.cache_key = "abc";
-  ref.seconds = 1.25;
-  r.reference = ref;
-  r.timing = test::coarse_timing({10, 12, 11}, {4, 5, 4.5});
-  test::add_fine_timing(*r.timing, {{"depth", {2, 2.5, 2.25}}, {"lookup", {2.5, 3, 2.75}}});
-  r.visibility_check = VisibilityCheckRecord{0, 1, 2, double(1e-5f)};
-  MetricsRecord m;
-  m.visibility = {region(0.1), region(0.3), region(0.2)};
-  m.shaded = {region(0.05), region(0.15), region(0.1)};
-  m.shaded.all.psnr = std::numeric_limits<double>::infinity();
-  m.shaded.penumbra.ssim = std::numeric_limits<double>::quiet_NaN();
-  m.shaded.soft_union.mean_signed = -std::numeric_limits<double>::infinity();
-  r.metrics = m;
-  r.warnings = {"reference noise is over half the penumbra RMSE"};
-  r.images.visibility = "jobs/x/visibility.exr";
-  r.images.shaded = "jobs/x/shaded.png";
-  r.images.error_heatmap = "jobs/x/error.png";
-  r.images.error_heatmap_full_scale = 0.25;
-  r.images.reference_visibility = "reference/x/visibility.exr";
-  r.images.reference_std_error = "reference/x/std_error.exr";
-  r.images.reference_shaded = "reference/x/shaded.png";
-  r.images.gbuffer_positions = "reference/x/positions.exr";
-  r.images.gbuffer_normals = "reference/x/normals.exr";
-  r.images.masks = {{"all", "reference/x/mask_all.png"},
-                    {"soft_union", "jobs/x/mask_soft_union.png"}};
-  return r;
-}
+using test::full_record;
+using test::region;
 
 TEST(JobRecord, FullRecordRoundTrips) {
   const json j = full_record().to_json();
@@ -128,7 +51,7 @@ TEST(JobRecord, FullRecordRoundTrips) {
   EXPECT_EQ(back.images.masks.size(), 2u);
   EXPECT_TRUE(std::isnan(back.metrics->shaded.penumbra.ssim));
   EXPECT_EQ(back.timing->fine->pass_order, (std::vector<std::string>{"depth", "lookup"}));
-  EXPECT_DOUBLE_EQ(back.timing->frame.median_ms, 11.0);
+  EXPECT_DOUBLE_EQ(back.timing->frame.median, 11.0);
   EXPECT_DOUBLE_EQ(j["overhead_s"].get<double>(), 0.5 - 0.4);
   EXPECT_EQ(j["phases_s"].size(), 5u);
 }

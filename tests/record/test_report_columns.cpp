@@ -22,8 +22,8 @@ std::vector<JobRecord> records() {
   ok.timing = test::coarse_timing({10, 12, 11}, {4, 5, 4.5});
   ControlTiming control;
   control.technique = "none";
-  control.frame = TimingSeries::of({8, 8, 8});
-  control.frame_ratio = RatioSeries::of({1.25, 1.5, 1.375});
+  control.frame = Series::of({8, 8, 8});
+  control.frame_ratio = Series::of({1.25, 1.5, 1.375});
   ok.timing->control = control;
   MetricsRecord m;
   m.visibility.geometry = RegionStats{};

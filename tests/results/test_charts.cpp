@@ -17,9 +17,7 @@ namespace {
 
 // A series of three frames whose median is `median` (p10 and p90 about 10 %
 // and 20 % away).
-TimingSeries timing(double median) {
-  return TimingSeries::of({median * 0.875, median, median * 1.25});
-}
+Series timing(double median) { return Series::of({median * 0.875, median, median * 1.25}); }
 
 struct Technique {
   std::string variant;

@@ -56,9 +56,9 @@ TEST(FrameSchedule, WithoutControlCompileWarmupThenTimedFrames) {
   EXPECT_EQ(t.warmup_frames, 2);
   EXPECT_EQ(t.timed_frames, 3);
   // Only the timed frames (the 4th to 6th call) are samples.
-  EXPECT_EQ(t.frame.samples_ms, (std::vector<double>{4, 5, 6}));
-  EXPECT_EQ(t.technique.samples_ms, (std::vector<double>{2, 2.5, 3}));
-  EXPECT_EQ(t.shared.at("gbuffer").samples_ms, (std::vector<double>{0.25, 0.25, 0.25}));
+  EXPECT_EQ(t.frame.samples, (std::vector<double>{4, 5, 6}));
+  EXPECT_EQ(t.technique.samples, (std::vector<double>{2, 2.5, 3}));
+  EXPECT_EQ(t.shared.at("gbuffer").samples, (std::vector<double>{0.25, 0.25, 0.25}));
   EXPECT_FALSE(t.control.has_value());
   EXPECT_FALSE(t.fine.has_value());
 }
@@ -67,7 +67,7 @@ TEST(FrameSchedule, ZeroWarmupStillHasAnUntimedCompileFrame) {
   LoggingTarget target;
   const TimingRecord t = time_frames(target, schedule(0, 2));
   EXPECT_EQ(target.calls, Calls(3, "job"));
-  EXPECT_EQ(t.frame.samples_ms, (std::vector<double>{2, 3}));
+  EXPECT_EQ(t.frame.samples, (std::vector<double>{2, 3}));
 }
 
 TEST(FrameSchedule, ControlFramesInAbbaOrderAndTheJobsFrameLast) {
@@ -81,10 +81,10 @@ TEST(FrameSchedule, ControlFramesInAbbaOrderAndTheJobsFrameLast) {
             (Calls{"job", "job", "control", "control", "job", "job", "control", "job"}));
   // Job frames by call: compile 1, warm-up 2, timed 3 and 4 (the read-back
   // frame, 5, is not timed); control frames: warm-up 100, timed 200, 300.
-  EXPECT_EQ(t.frame.samples_ms, (std::vector<double>{3, 4}));
+  EXPECT_EQ(t.frame.samples, (std::vector<double>{3, 4}));
   ASSERT_TRUE(t.control.has_value());
   EXPECT_EQ(t.control->technique, "none");
-  EXPECT_EQ(t.control->frame.samples_ms, (std::vector<double>{200, 300}));
+  EXPECT_EQ(t.control->frame.samples, (std::vector<double>{200, 300}));
   EXPECT_EQ(t.control->frame_ratio.samples, (std::vector<double>{3.0 / 200, 4.0 / 300}));
 }
 
@@ -103,14 +103,14 @@ TEST(FrameSchedule, FineFramesFollowTheTimedOnes) {
   const TimingRecord t = time_frames(target, s);
   EXPECT_EQ(target.calls, (Calls{"job", "job", "job", "job", "fine", "fine"}));
   EXPECT_EQ(t.pass_timing, "fine");
-  EXPECT_EQ(t.frame.samples_ms, (std::vector<double>{3, 4}));
+  EXPECT_EQ(t.frame.samples, (std::vector<double>{3, 4}));
   ASSERT_TRUE(t.fine.has_value());
   EXPECT_EQ(t.fine->frames, 2);
   EXPECT_EQ(t.fine->pass_order, (std::vector<std::string>{"depth", "blur"}));
-  EXPECT_EQ(t.fine->frame.samples_ms, (std::vector<double>{5, 6}));
-  EXPECT_EQ(t.fine->passes.at("depth").samples_ms, (std::vector<double>{1.25, 1.5}));
+  EXPECT_EQ(t.fine->frame.samples, (std::vector<double>{5, 6}));
+  EXPECT_EQ(t.fine->passes.at("depth").samples, (std::vector<double>{1.25, 1.5}));
   // The sum of the passes per fine frame.
-  EXPECT_EQ(t.fine->technique.samples_ms, (std::vector<double>{3.75, 4.5}));
+  EXPECT_EQ(t.fine->technique.samples, (std::vector<double>{3.75, 4.5}));
 }
 
 TEST(FrameSchedule, FineFramesAreTheJobsOwnAfterAControlFrame) {

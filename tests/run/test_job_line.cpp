@@ -40,8 +40,8 @@ JobRecord finished_job() {
   r.technique_variant = "pcss";
   r.status = JobStatus::Ok;
   TimingRecord t;
-  t.frame.median_ms = 1.5;
-  t.technique.median_ms = 0.5;
+  t.frame.median = 1.5;
+  t.technique.median = 0.5;
   r.timing = t;
   MetricsRecord m;
   m.visibility.all.rmse = 0.03718;
