@@ -177,8 +177,8 @@ void JobRecord::describe(V& v) {
   v.field("scene_variant", &J::scene_variant, {"", "what ran"});
   v.field("technique_variant", &J::technique_variant, {"", "what ran"});
   v.field("resolution", &J::resolution, {"", "`<W>x<H>`"});
-  v.field("width", &J::width, {"px", ""});
-  v.field("height", &J::height, {"px", ""});
+  v.field("width", &J::width, {"px", "the frame's width: the resolution's W"});
+  v.field("height", &J::height, {"px", "the frame's height: the resolution's H"});
   v.field("scene", &J::scene, {"", "the scene"});
   v.field("technique", &J::technique, {"", "the technique"});
   v.field("backend", &J::backend, {"", "`osmesa` or `egl`"});

@@ -96,7 +96,10 @@ struct ReferenceRecord {
              "sqrt of the mean σ² over its penumbra: what the noise warning compares with "
              "the penumbra RMSE"});
     v.field("penumbra_pixels", &R::penumbra_pixels, {"px", "measured ones only"});
-    v.field("attached_shadow_pixels", &R::attached_shadow_pixels, {"px", ""});
+    v.field("attached_shadow_pixels", &R::attached_shadow_pixels,
+            {"px",
+             "pixels facing away from all of the light, where V is 0 for every technique and the "
+             "reference"});
     v.field("horizon_cut_pixels", &R::horizon_cut_pixels,
             {"px",
              "pixels whose tangent plane cuts the light, left out of every metric "

@@ -24,7 +24,8 @@ struct LightRecord {
     v.field("center", &LightRecord::center, {"", "[x, y, z]"});
     v.field("target", &LightRecord::target, {"", "[x, y, z] it faces"});
     v.field("size", &LightRecord::size, {"", "[width, height] of the rectangle"});
-    v.field("intensity", &LightRecord::intensity, {"", ""});
+    v.field("intensity", &LightRecord::intensity,
+            {"", "scales the light's term in the shaded image (V never depends on it)"});
   }
 };
 
@@ -55,8 +56,11 @@ struct DerivedRecord {
   template <class V>
   static void describe(V& v) {
     using D = DerivedRecord;
-    v.field("closedness_checked", &D::closedness_checked, {"", ""});
-    v.field("adjacency_built", &D::adjacency_built, {"", ""});
+    v.field("closedness_checked", &D::closedness_checked,
+            {"", "the casters' closedness was derived: a technique running on the scene needs it"});
+    v.field(
+        "adjacency_built", &D::adjacency_built,
+        {"", "the casters' edge adjacency was built: a technique running on the scene needs it"});
     v.field("receiver_inference", &D::receiver_inference,
             {"", "on unless the scene entry says `\"infer_receivers\": false`"});
     v.field("inferred_receivers", &D::inferred_receivers,
@@ -128,7 +132,7 @@ struct PluginRecord {
   template <class V>
   static void describe(V& v) {
     v.field("file", &PluginRecord::file, {"", "the module's name in its plugin folder"});
-    v.field("size", &PluginRecord::size, {"bytes", ""});
+    v.field("size", &PluginRecord::size, {"bytes", "of the module's file"});
     v.field("sha256", &PluginRecord::sha256, {"", "of its bytes, read once when it is loaded"});
     v.field("api_version", &PluginRecord::api_version,
             {"", "`kPluginApiVersion` (harness/plugin/plugin_identity.h): the plugin ABI's"});
