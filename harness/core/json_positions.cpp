@@ -28,7 +28,9 @@ TextPosition JsonPositions::find(const std::string& pointer) const {
     const auto it = offsets_.find(p);
     if (it != offsets_.end()) return position_of(it->second);
     if (p.empty()) return {};
-    p.erase(p.rfind('/'));
+    const size_t slash = p.rfind('/');
+    p.erase(slash == std::string::npos ? 0
+                                       : slash);  // "key" (no slash) falls back to the whole text
   }
 }
 
