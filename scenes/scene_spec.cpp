@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "core/scene_types.h"
 #include "scenes/receiver_inference.h"
 #include "scenes/topology.h"
@@ -58,10 +59,9 @@ Scene build_scene_from_spec(const std::string& spec) {
     doc = json::parse(spec, nullptr, false);
     if (doc.is_discarded() || !doc.is_object())
       throw InputError(kFile, "", "expected a JSON object {\"type\": ..., \"params\": {...}}");
-    for (auto it = doc.begin(); it != doc.end(); ++it)
-      if (it.key() != "type" && it.key() != "params")
-        throw InputError(kFile, "/" + it.key(),
-                         "unknown key '" + it.key() + "' (expected one of: type, params)");
+    JsonReader([](const std::string& pointer, const std::string& problem) {
+      throw InputError(kFile, pointer, problem);
+    }).only_keys(doc, "", {"type", "params"});
   } else {
     doc = parse_short_form(spec);
   }

@@ -28,22 +28,13 @@ json checked(const ConfigReader& r, const ParamSpec& s, const json& v, const std
     case ParamType::String:
       out = r.string(v, p);
       break;
-    case ParamType::Choice: {
-      out = r.string(v, p);
-      std::string list;
-      for (size_t i = 0; i < s.choices.size(); ++i) {
-        if (i > 0) list += i + 1 == s.choices.size() ? " or " : ", ";
-        list += "\"" + s.choices[i] + "\"";
-      }
-      bool known = false;
-      for (const auto& c : s.choices) known = known || c == out.get<std::string>();
-      if (!known) r.fail(p, "expected " + list + ", found " + v.dump());
+    case ParamType::Choice:
+      out = r.choice(v, p, s.choices);
       break;
-    }
   }
   if (s.rule) {
     const std::string expected = s.rule(out);
-    if (!expected.empty()) r.fail(p, "expected " + expected + ", found " + v.dump());
+    if (!expected.empty()) r.refuse(v, p, expected);
   }
   return out;
 }

@@ -9,46 +9,12 @@ namespace sb {
 
 using json = nlohmann::json;
 
-std::string describe(const json& v) {
-  std::string d = v.dump();
-  if (d.size() > 60) d = d.substr(0, 57) + "...";
-  return std::string(v.type_name()) + " " + d;
-}
+ConfigReader::ConfigReader(std::string file)
+    : JsonReader([file](const std::string& pointer, const std::string& problem) {
+        throw InputError(file, pointer.empty() ? "/" : pointer, problem);
+      }),
+      file_(std::move(file)) {}
 
-void ConfigReader::fail(const std::string& pointer, const std::string& what) const {
-  throw InputError(file_, pointer.empty() ? "/" : pointer, what);
-}
-const json& ConfigReader::object(const json& v, const std::string& pointer,
-                                 const std::string& what) const {
-  if (!v.is_object()) fail(pointer, "expected " + what + " (an object), found " + describe(v));
-  return v;
-}
-void ConfigReader::only_keys(const json& obj, const std::string& pointer,
-                             const std::vector<std::string>& allowed) const {
-  for (auto it = obj.begin(); it != obj.end(); ++it) {
-    bool ok = false;
-    for (const auto& a : allowed) ok = ok || a == it.key();
-    if (!ok) {
-      std::string list;
-      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      fail(pointer + "/" + it.key(),
-           "unknown key '" + it.key() + "' (expected one of: " + list + ")");
-    }
-  }
-}
-int ConfigReader::integer(const json& v, const std::string& pointer, long long lo,
-                          long long hi) const {
-  if (!v.is_number_integer()) fail(pointer, "expected an integer, found " + describe(v));
-  const auto i = v.get<long long>();
-  if (i < lo || i > hi)
-    fail(pointer, "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                      "], found " + v.dump());
-  return static_cast<int>(i);
-}
-std::string ConfigReader::string(const json& v, const std::string& pointer) const {
-  if (!v.is_string()) fail(pointer, "expected a string, found " + describe(v));
-  return v.get<std::string>();
-}
 std::string ConfigReader::label(const json& v, const std::string& pointer) const {
   std::string s = string(v, pointer);
   if (s.empty() || s.size() > 200)
@@ -57,18 +23,6 @@ std::string ConfigReader::label(const json& v, const std::string& pointer) const
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
       fail(pointer, "expected a label without control characters, found " + describe(v));
   return s;
-}
-double ConfigReader::number(const json& v, const std::string& pointer, double lo, double hi) const {
-  if (!v.is_number()) fail(pointer, "expected a number, found " + describe(v));
-  const double d = v.get<double>();
-  if (!(d >= lo && d <= hi))
-    fail(pointer, "expected a number in [" + json(lo).dump() + ", " + json(hi).dump() +
-                      "], found " + v.dump());
-  return d;
-}
-bool ConfigReader::boolean(const json& v, const std::string& pointer) const {
-  if (!v.is_boolean()) fail(pointer, "expected true or false, found " + describe(v));
-  return v.get<bool>();
 }
 glm::vec3 ConfigReader::vec3(const json& v, const std::string& pointer) const {
   if (!v.is_array() || v.size() != 3)

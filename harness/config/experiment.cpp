@@ -74,8 +74,7 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
   if (doc.contains("description")) e.description = r.string(doc["description"], "/description");
 
   // Scenes.
-  if (!doc.contains("scenes")) r.fail("/scenes", "expected a list of scenes, found nothing");
-  const json& scenes = doc["scenes"];
+  const json& scenes = r.member(doc, "", "scenes");
   if (!scenes.is_array() || scenes.empty())
     r.fail("/scenes", "expected a non-empty list of scenes, found " + describe(scenes));
   std::set<std::string> names;
@@ -84,8 +83,7 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
     const json& entry = r.object(scenes[i], p, "a scene");
     r.only_keys(entry, p,
                 {"type", "params", "light", "camera", "label", "infer_receivers", "max_rmse"});
-    if (!entry.contains("type")) r.fail(p + "/type", "expected a scene type, found nothing");
-    const std::string type = r.string(entry["type"], p + "/type");
+    const std::string type = r.string(r.member(entry, p, "type"), p + "/type");
     const SceneType* st = find_scene_type(type);
     if (st == nullptr) {
       std::string known;
@@ -104,10 +102,7 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
     check_camera(r, camera, p + "/camera");
     bool infer = true;
     if (entry.contains("infer_receivers")) {
-      if (!entry["infer_receivers"].is_boolean())
-        r.fail(p + "/infer_receivers",
-               "expected true or false, found " + describe(entry["infer_receivers"]));
-      infer = entry["infer_receivers"].get<bool>();
+      infer = r.boolean(entry["infer_receivers"], p + "/infer_receivers");
     }
     std::optional<double> max_rmse;
     if (entry.contains("max_rmse")) max_rmse = r.number(entry["max_rmse"], p + "/max_rmse", 0, 1);
@@ -118,11 +113,11 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
       SceneVariant v;
       v.type = type;
       v.pointer = p;
-      v.params = resolve_params(st->params, combo, file, p + "/params");
+      v.params = resolve_sweep_combo(st->params, given, combo, file, p + "/params");
       v.params = resolve_paths(st->params, v.params, file);
       if (st->check) {
         const auto [param, problem] = st->check(v.params);
-        if (!problem.empty()) r.fail(p + "/params/" += param, problem);
+        if (!problem.empty()) r.fail(swept_pointer(given, combo, p + "/params", param), problem);
       }
       v.name = variant_name(label, st->params, combo);
       for (auto it = given.begin(); it != given.end(); ++it)
@@ -139,9 +134,7 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
   }
 
   // Techniques.
-  if (!doc.contains("techniques"))
-    r.fail("/techniques", "expected a list of techniques, found nothing");
-  const json& techniques = doc["techniques"];
+  const json& techniques = r.member(doc, "", "techniques");
   if (!techniques.is_array() || techniques.empty())
     r.fail("/techniques", "expected a non-empty list of techniques, found " + describe(techniques));
   names.clear();
@@ -156,9 +149,7 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
   }
 
   // Resolutions.
-  if (!doc.contains("resolutions"))
-    r.fail("/resolutions", "expected a list of resolutions, found nothing");
-  const json& res = doc["resolutions"];
+  const json& res = r.member(doc, "", "resolutions");
   if (!res.is_array() || res.empty())
     r.fail("/resolutions", "expected a non-empty list of resolutions, found " + describe(res));
   for (size_t i = 0; i < res.size(); ++i) {

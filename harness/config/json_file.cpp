@@ -10,11 +10,35 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 
 namespace sb {
 namespace {
 
 using json = nlohmann::json;
+
+// The byte offset of the first '[' or '{' of `text` nested deeper than
+// `depth` levels (text.size() if none): the value the depth cap refuses.
+size_t first_deeper_than(const std::string& text, size_t depth) {
+  size_t level = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++level > depth) return i;
+    } else if ((c == ']' || c == '}') && level > 0) {
+      --level;
+    }
+  }
+  return text.size();
+}
 
 // Forwards every event to nlohmann's own DOM builder after checking depth and
 // duplicate keys, and keeps the JSON pointer of where it is.
@@ -96,7 +120,8 @@ class CheckedSax {
   void open(bool array) {
     if (int(frames_.size()) >= limits_.max_depth)
       throw InputError(file_, pointer(),
-                       "nested deeper than " + std::to_string(limits_.max_depth) + " levels");
+                       "nested deeper than " + std::to_string(limits_.max_depth) + " levels",
+                       location(first_deeper_than(text_, size_t(limits_.max_depth)) + 1));
     frames_.push_back({array, 0, {}, false, {}});
   }
 
@@ -106,8 +131,7 @@ class CheckedSax {
       if (f.array) {
         p += "/" + std::to_string(f.index);
       } else if (f.key_read) {
-        p += "/";
-        for (char c : f.key) p += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
+        p += "/" + pointer_token(f.key);
       }
     }
     return p;
@@ -137,28 +161,6 @@ class CheckedSax {
 // Walks a text nlohmann has already accepted and records where each value
 // starts. The grammar is JSON's own, so the walk is short; the nesting is
 // already capped (JsonLimits::max_depth), so it may recurse.
-// How deep arrays and objects nest in `text`, counted without recursion.
-size_t deepest_nesting(const std::string& text) {
-  size_t depth = 0, deepest = 0;
-  bool in_string = false;
-  for (size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (in_string) {
-      if (c == '\\')
-        ++i;
-      else if (c == '"')
-        in_string = false;
-    } else if (c == '"') {
-      in_string = true;
-    } else if (c == '[' || c == '{') {
-      deepest = std::max(deepest, ++depth);
-    } else if ((c == ']' || c == '}') && depth > 0) {
-      --depth;
-    }
-  }
-  return deepest;
-}
-
 class PositionScan {
  public:
   PositionScan(const std::string& text, JsonPositions& out) : t_(text), out_(out) {
@@ -178,7 +180,7 @@ class PositionScan {
                 .get<std::string>();
         space();
         ++i_;  // ':'
-        value(pointer + "/" + escape(key));
+        value(pointer + "/" + pointer_token(key));
         space();
         if (t_[i_] == ',') ++i_;
         space();
@@ -212,11 +214,6 @@ class PositionScan {
       if (t_[i_] == '\\') ++i_;
     ++i_;
   }
-  static std::string escape(const std::string& key) {
-    std::string p;
-    for (char c : key) p += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
-    return p;
-  }
   const std::string& t_;
   JsonPositions& out_;
   size_t i_ = 0;
@@ -237,7 +234,7 @@ json parse_json_text(const std::string& text, const std::string& file, const Jso
     // of equal pointers), if the rest of the text is JSON and not too deep
     // for it: it trusts the grammar and recurses.
     if (e.position().known() || e.problem().find("appears twice") == std::string::npos ||
-        !json::accept(text) || deepest_nesting(text) > size_t(limits.max_depth))
+        !json::accept(text) || first_deeper_than(text, size_t(limits.max_depth)) < text.size())
       throw;
     JsonPositions where(text, line_offset);
     PositionScan(text, where).value("");

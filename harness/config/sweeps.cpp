@@ -78,8 +78,7 @@ std::vector<json> expand_sweeps(const json& params, const std::string& file,
                                 const std::string& pointer) {
   std::vector<json> out{json::object()};
   if (params.is_null()) return out;
-  if (!params.is_object())
-    throw InputError(file, pointer, "expected an object of parameters, found " + describe(params));
+  ConfigReader(file).object(params, pointer, "parameters");
   // Counted before anything is expanded.
   if (sweep_count(params) > 100000)
     throw InputError(file, pointer, "the sweep expands to more than 100000 variants");
@@ -103,6 +102,31 @@ std::vector<json> expand_sweeps(const json& params, const std::string& file,
     out = std::move(next);
   }
   return out;
+}
+
+std::string swept_pointer(const json& given, const json& combo, const std::string& pointer,
+                          const std::string& key) {
+  const std::string member = pointer + "/" + pointer_token(key);
+  if (!given.is_object() || !given.contains(key) || !given[key].is_array() || !combo.contains(key))
+    return member;
+  const json& list = given[key];
+  for (size_t i = 0; i < list.size(); ++i)
+    if (list[i] == combo[key]) return member + "/" + std::to_string(i);
+  return member;
+}
+
+Params resolve_sweep_combo(const std::vector<ParamSpec>& specs, const json& given,
+                           const json& combo, const std::string& file, const std::string& pointer) {
+  try {
+    return resolve_params(specs, combo, file, pointer);
+  } catch (const InputError& e) {
+    if (given.is_object())
+      for (auto it = given.begin(); it != given.end(); ++it)
+        if (e.where() == pointer + "/" + pointer_token(it.key()))
+          throw InputError(e.file(), swept_pointer(given, combo, pointer, it.key()), e.problem(),
+                           e.position());
+    throw;
+  }
 }
 
 }  // namespace sb

@@ -19,6 +19,18 @@ uint64_t sweep_count(const nlohmann::json& params);
 std::string variant_name(const std::string& base, const std::vector<ParamSpec>& specs,
                          const nlohmann::json& given);
 
+// The pointer of parameter `key` of one sweep combination `combo` of the
+// parameters `given` at `pointer`: the list element it took when `key`
+// sweeps (".../params/k/2"), else the member (".../params/k").
+std::string swept_pointer(const nlohmann::json& given, const nlohmann::json& combo,
+                          const std::string& pointer, const std::string& key);
+
+// resolve_params for one combination of a sweep: an error about a swept
+// parameter names the list element the combination took.
+Params resolve_sweep_combo(const std::vector<ParamSpec>& specs, const nlohmann::json& given,
+                           const nlohmann::json& combo, const std::string& file,
+                           const std::string& pointer);
+
 // Refuses an experiment of more than limits.max_jobs jobs.
 void check_job_count(const ConfigReader& r, const nlohmann::json& doc,
                      const ExperimentLimits& limits);

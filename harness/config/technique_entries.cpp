@@ -51,7 +51,7 @@ std::vector<TechniqueVariant> technique_variants(const ConfigReader& r, const Re
   if (entry.is_string()) entry = json{{"name", entry}};
   r.object(entry, p, "a technique (a name or an object)");
   r.only_keys(entry, p, {"name", "params", "label", "own_map_size"});
-  if (!entry.contains("name")) r.fail(p + "/name", "expected a technique name, found nothing");
+  r.member(entry, p, "name");
   const bool own_map_size =
       entry.contains("own_map_size") && r.boolean(entry["own_map_size"], p + "/own_map_size");
   const std::string name = r.string(entry["name"], p + "/name");
@@ -70,10 +70,10 @@ std::vector<TechniqueVariant> technique_variants(const ConfigReader& r, const Re
     TechniqueVariant v;
     v.info = info;
     v.pointer = p;
-    v.params = resolve_params(info->params, combo, file, p + "/params");
+    v.params = resolve_sweep_combo(info->params, params, combo, file, p + "/params");
     if (info->check) {
       const auto [param, problem] = info->check(v.params);
-      if (!problem.empty()) r.fail(p + "/params/" += param, problem);
+      if (!problem.empty()) r.fail(swept_pointer(params, combo, p + "/params", param), problem);
     }
     v.name = variant_name(label, info->params, combo);
     for (auto it = params.begin(); it != params.end(); ++it)

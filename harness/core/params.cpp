@@ -1,9 +1,12 @@
 #include "core/params.h"
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 
 namespace sb {
 
@@ -115,69 +118,37 @@ std::string Params::get_string(const std::string& name) const {
 }
 
 namespace {
-// A value as JSON text for a message. Values may hold bytes that are not
-// UTF-8 (a scene spec from a command line): shown as U+FFFD, never thrown.
-std::string quoted_json(const nlohmann::json& v) {
-  return v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-}
-std::string describe(const nlohmann::json& v) {
-  std::string kind = v.type_name();
-  return kind + " " + quoted_json(v);
-}
-std::string number(double v) {
-  nlohmann::json j = v;
-  if (v == std::floor(v) && std::fabs(v) < 1e15) j = static_cast<long long>(v);
-  return j.dump();
-}
-}  // namespace
 
-namespace {
-nlohmann::json check_type_and_range(const ParamSpec& spec, const nlohmann::json& value,
-                                    const std::string& file, const std::string& pointer) {
-  const std::string where = "parameter '" + spec.name + "': ";
+// Fails with an InputError naming `file`, the pointer and the parameter.
+JsonReader param_reader(const std::string& file, const std::string& name) {
+  return JsonReader([file, name](const std::string& pointer, const std::string& problem) {
+    throw InputError(file, pointer, "parameter '" + name + "': " + problem);
+  });
+}
+
+// A bound of an Int spec as an integer (the default bounds are ±1e300).
+std::int64_t int_bound(double v) {
+  if (v <= double(std::numeric_limits<std::int64_t>::min()))
+    return std::numeric_limits<std::int64_t>::min();
+  if (v >= double(std::numeric_limits<std::int64_t>::max()))
+    return std::numeric_limits<std::int64_t>::max();
+  return static_cast<std::int64_t>(v);
+}
+
+nlohmann::json check_type_and_range(const JsonReader& r, const ParamSpec& spec,
+                                    const nlohmann::json& value, const std::string& pointer) {
   switch (spec.type) {
-    case ParamType::Int: {
-      if (!value.is_number_integer() &&
-          !(value.is_number_float() && value.get<double>() == std::floor(value.get<double>())))
-        throw InputError(file, pointer, where + "expected an integer, found " + describe(value));
-      const double v = value.get<double>();
-      if (v < spec.min || v > spec.max)
-        throw InputError(file, pointer,
-                         where + "expected an integer in [" + number(spec.min) + ", " +
-                             number(spec.max) + "], found " + quoted_json(value));
-      return static_cast<long long>(v);
-    }
-    case ParamType::Float: {
-      if (!value.is_number())
-        throw InputError(file, pointer, where + "expected a number, found " + describe(value));
-      const double v = value.get<double>();
-      if (!std::isfinite(v) || v < spec.min || v > spec.max)
-        throw InputError(file, pointer,
-                         where + "expected a number in [" + number(spec.min) + ", " +
-                             number(spec.max) + "], found " + quoted_json(value));
-      return v;
-    }
+    case ParamType::Int:
+      return r.integer(value, pointer, int_bound(spec.min), int_bound(spec.max), true);
+    case ParamType::Float:
+      return r.number(value, pointer, spec.min, spec.max);
     case ParamType::Bool:
-      if (!value.is_boolean())
-        throw InputError(file, pointer, where + "expected true or false, found " + describe(value));
-      return value;
+      return r.boolean(value, pointer);
     case ParamType::String:
-      if (!value.is_string())
-        throw InputError(file, pointer, where + "expected a string, found " + describe(value));
-      if (spec.is_path && value.get<std::string>().empty())
-        throw InputError(file, pointer, where + "expected a file path, found \"\"");
+      if (r.string(value, pointer).empty() && spec.is_path) r.refuse(value, pointer, "a file path");
       return value;
-    case ParamType::Choice: {
-      std::string list;
-      for (const auto& c : spec.choices) list += (list.empty() ? "" : ", ") + ("\"" + c + "\"");
-      if (!value.is_string())
-        throw InputError(file, pointer,
-                         where + "expected one of " + list + ", found " + describe(value));
-      for (const auto& c : spec.choices)
-        if (c == value.get<std::string>()) return value;
-      throw InputError(file, pointer,
-                       where + "expected one of " + list + ", found " + quoted_json(value));
-    }
+    case ParamType::Choice:
+      return r.choice(value, pointer, spec.choices);
   }
   return value;
 }
@@ -186,13 +157,11 @@ nlohmann::json check_type_and_range(const ParamSpec& spec, const nlohmann::json&
 
 nlohmann::json check_param_value(const ParamSpec& spec, const nlohmann::json& value,
                                  const std::string& file, const std::string& pointer) {
-  nlohmann::json v = check_type_and_range(spec, value, file, pointer);
+  const JsonReader r = param_reader(file, spec.name);
+  nlohmann::json v = check_type_and_range(r, spec, value, pointer);
   if (spec.rule) {
     const std::string expected = spec.rule(v);
-    if (!expected.empty())
-      throw InputError(
-          file, pointer,
-          "parameter '" + spec.name + "': expected " + expected + ", found " + quoted_json(value));
+    if (!expected.empty()) r.refuse(value, pointer, expected);
   }
   return v;
 }
@@ -200,27 +169,20 @@ nlohmann::json check_param_value(const ParamSpec& spec, const nlohmann::json& va
 Params resolve_params(const std::vector<ParamSpec>& specs, const nlohmann::json& given,
                       const std::string& file, const std::string& pointer) {
   nlohmann::json out = nlohmann::json::object();
-  if (!given.is_null() && !given.is_object())
-    throw InputError(file, pointer, "expected an object of parameters, found " + describe(given));
-  if (given.is_object()) {
-    for (auto it = given.begin(); it != given.end(); ++it) {
-      bool known = false;
-      for (const auto& s : specs) known = known || s.name == it.key();
-      if (!known) {
-        std::string names;
-        for (const auto& s : specs) names += (names.empty() ? "" : ", ") + s.name;
-        throw InputError(file, pointer + "/" + it.key(),
-                         "unknown parameter '" + it.key() +
-                             "' (known: " + (names.empty() ? "none" : names) + ")");
-      }
-    }
+  const JsonReader r([&file](const std::string& where, const std::string& problem) {
+    throw InputError(file, where, problem);
+  });
+  if (!given.is_null()) {
+    r.object(given, pointer, "parameters");
+    std::vector<std::string> names;
+    for (const auto& s : specs) names.push_back(s.name);
+    r.only_keys(given, pointer, names, "parameter");
   }
   for (const auto& s : specs) {
     if (given.is_object() && given.contains(s.name))
       out[s.name] = check_param_value(s, given.at(s.name), file, pointer + "/" + s.name);
     else if (s.is_path && s.default_value == "")
-      throw InputError(file, pointer + "/" + s.name,
-                       "parameter '" + s.name + "': expected a file path, found nothing");
+      r.member(nlohmann::json::object(), pointer, s.name);  // missing: fails
     else
       out[s.name] = s.default_value;
   }

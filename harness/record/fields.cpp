@@ -8,66 +8,21 @@ namespace {
 
 using json = nlohmann::json;
 
-std::string escape_token(const std::string& key) {
-  std::string out;
-  for (const char c : key) out += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
-  return out;
+JsonReader record_reader() {
+  return JsonReader([](const std::string& pointer, const std::string& problem) {
+    throw RecordError(pointer, problem);
+  });
 }
 
-// "a string", "an object", ...: what was found instead.
-std::string found(const json& v) {
-  if (v.is_string()) return "a string";
-  if (v.is_boolean()) return "a boolean";
-  if (v.is_null()) return "null";
-  if (v.is_array()) return "an array";
-  if (v.is_object()) return "an object";
-  if (v.is_number_integer()) return "a whole number";
-  return "a number";
-}
-
-std::optional<double> number_of(const json& v) {
-  if (v.is_number()) return v.get<double>();
-  if (v.is_string()) {
-    const auto& s = v.get_ref<const std::string&>();
-    if (s == "nan") return std::numeric_limits<double>::quiet_NaN();
-    if (s == "inf") return std::numeric_limits<double>::infinity();
-    if (s == "-inf") return -std::numeric_limits<double>::infinity();
-  }
-  return std::nullopt;
-}
-
-std::optional<std::string> string_of(const json& v) {
-  if (!v.is_string()) return std::nullopt;
-  return v.get<std::string>();
-}
-
-std::optional<int> int_of(const json& v) {
-  if (!v.is_number_integer()) return std::nullopt;
-  if (v.is_number_unsigned())
-    return v.get<std::uint64_t>() <= std::uint64_t(std::numeric_limits<int>::max())
-               ? std::optional<int>(v.get<int>())
-               : std::nullopt;
-  const std::int64_t i = v.get<std::int64_t>();
-  if (i < std::numeric_limits<int>::min() || i > std::numeric_limits<int>::max())
-    return std::nullopt;
-  return static_cast<int>(i);
-}
-
-// The array `v` (member `key` of `f`), each element read by `element`
-// (a "string", a "number", ...: `what`).
-template <class T>
-std::vector<T> elements(const Fields& f, const std::string& key, const json& v, const char* what,
-                        std::optional<T> (*element)(const json&)) {
-  if (!v.is_array())
-    f.fail(key, std::string("expected an array of ") + what + "s, found " + found(v));
+// The array member `key` of `f`, each element read by `element` at its own
+// pointer; `what` is what the array holds ("numbers").
+template <class T, class Element>
+std::vector<T> elements(const JsonReader& r, const std::string& pointer, const json& v,
+                        const char* what, Element element) {
+  r.array(v, pointer, what);
   std::vector<T> out;
-  for (size_t i = 0; i < v.size(); ++i) {
-    const std::optional<T> e = element(v[i]);
-    if (!e)
-      throw RecordError(f.pointer_of(key) + "/" + std::to_string(i),
-                        std::string("expected a ") + what + ", found " + found(v[i]));
-    out.push_back(*e);
-  }
+  for (size_t i = 0; i < v.size(); ++i)
+    out.push_back(element(v[i], pointer + "/" + std::to_string(i)));
   return out;
 }
 
@@ -86,12 +41,12 @@ json json_number(double v) {
 }
 
 Fields::Fields(const json& value, std::string pointer)
-    : value_(&value), pointer_(std::move(pointer)) {
-  if (!value.is_object()) throw RecordError(pointer_, "expected an object, found " + found(value));
+    : reader_(record_reader()), value_(&value), pointer_(std::move(pointer)) {
+  reader_.object(value, pointer_);
 }
 
 std::string Fields::pointer_of(const std::string& key) const {
-  return pointer_ + "/" + escape_token(key);
+  return pointer_ + "/" + pointer_token(key);
 }
 
 bool Fields::has(const std::string& key) const { return value_->contains(key); }
@@ -107,80 +62,71 @@ void Fields::fail(const std::string& key, const std::string& problem) const {
 }
 
 const json& Fields::at(const std::string& key) const {
-  const auto it = value_->find(key);
-  if (it == value_->end()) fail(key, "missing");
-  return *it;
+  return reader_.member(*value_, pointer_, key);
+}
+
+std::string Fields::choice(const std::string& key, const std::vector<std::string>& choices) const {
+  return reader_.choice(at(key), pointer_of(key), choices);
 }
 
 template <>
 std::string Fields::get<std::string>(const std::string& key) const {
-  const json& v = at(key);
-  if (!v.is_string()) fail(key, "expected a string, found " + found(v));
-  return v.get<std::string>();
+  return reader_.string(at(key), pointer_of(key));
 }
 
 template <>
 bool Fields::get<bool>(const std::string& key) const {
-  const json& v = at(key);
-  if (!v.is_boolean()) fail(key, "expected true or false, found " + found(v));
-  return v.get<bool>();
+  return reader_.boolean(at(key), pointer_of(key));
 }
 
 template <>
 double Fields::get<double>(const std::string& key) const {
-  const json& v = at(key);
-  const auto d = number_of(v);
-  if (!d) fail(key, "expected a number (or \"nan\", \"inf\", \"-inf\"), found " + found(v));
-  return *d;
+  return reader_.record_number(at(key), pointer_of(key));
 }
 
 template <>
 std::int64_t Fields::get<std::int64_t>(const std::string& key) const {
-  const json& v = at(key);
-  if (v.is_number_unsigned() &&
-      v.get<std::uint64_t>() > std::uint64_t(std::numeric_limits<std::int64_t>::max()))
-    fail(key, "the whole number is too large");
-  if (!v.is_number_integer()) fail(key, "expected a whole number, found " + found(v));
-  return v.get<std::int64_t>();
+  return reader_.integer(at(key), pointer_of(key), std::numeric_limits<std::int64_t>::min(),
+                         std::numeric_limits<std::int64_t>::max());
 }
 
 template <>
 std::uint64_t Fields::get<std::uint64_t>(const std::string& key) const {
-  const json& v = at(key);
-  if (!v.is_number_integer()) fail(key, "expected a whole number, found " + found(v));
-  if (!v.is_number_unsigned() && v.get<std::int64_t>() < 0)
-    fail(key, "expected a whole number >= 0, found " + v.dump());
-  return v.get<std::uint64_t>();
+  return reader_.unsigned_integer(at(key), pointer_of(key));
 }
 
 template <>
 int Fields::get<int>(const std::string& key) const {
-  const std::int64_t v = get<std::int64_t>(key);
-  if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
-    fail(key, "the whole number " + std::to_string(v) + " is out of range");
-  return static_cast<int>(v);
+  return static_cast<int>(reader_.integer(at(key), pointer_of(key), std::numeric_limits<int>::min(),
+                                          std::numeric_limits<int>::max()));
 }
 
 template <>
 std::vector<std::string> Fields::get<std::vector<std::string>>(const std::string& key) const {
-  return elements<std::string>(*this, key, at(key), "string", string_of);
+  return elements<std::string>(
+      reader_, pointer_of(key), at(key), "strings",
+      [&](const json& v, const std::string& p) { return reader_.string(v, p); });
 }
 
 template <>
 std::vector<double> Fields::get<std::vector<double>>(const std::string& key) const {
-  return elements<double>(*this, key, at(key), "number", number_of);
+  return elements<double>(
+      reader_, pointer_of(key), at(key), "numbers",
+      [&](const json& v, const std::string& p) { return reader_.record_number(v, p); });
 }
 
 template <>
 std::vector<int> Fields::get<std::vector<int>>(const std::string& key) const {
-  return elements<int>(*this, key, at(key), "whole number", int_of);
+  return elements<int>(
+      reader_, pointer_of(key), at(key), "integers", [&](const json& v, const std::string& p) {
+        return static_cast<int>(reader_.integer(v, p, std::numeric_limits<int>::min(),
+                                                std::numeric_limits<int>::max()));
+      });
 }
 
 template <>
 json Fields::get<json>(const std::string& key) const {
-  const json& v = at(key);
-  if (!v.is_object()) fail(key, "expected an object, found " + found(v));
-  return v;
+  return reader_.object(at(key), pointer_of(key));
 }
 
 Fields Fields::object(const std::string& key) const { return Fields(at(key), pointer_of(key)); }

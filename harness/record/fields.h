@@ -1,8 +1,10 @@
 #pragma once
 // Reading a record's JSON value by value, each named by its JSON pointer
 // (RFC 6901), so that whatever is wrong with a record is reported with its
-// place: "/timing/frame/median_ms: expected a number, found a string". The
-// reader of a file adds the file's name (results/store.h).
+// place: "at /timing/frame/median_ms: expected a number (or \"nan\", \"inf\",
+// \"-inf\"), found string \"fast\"". The checks and their messages are the one
+// JSON reader's (core/json_reader.h); the reader of a file adds the file's
+// name (results/store.h).
 //
 // Numbers: NaN and ±inf have no JSON spelling, so a record writes them as the
 // strings "nan", "inf" and "-inf" (json_number); reading a number accepts
@@ -13,6 +15,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "core/json_reader.h"
 
 namespace sb {
 
@@ -42,8 +46,8 @@ class Fields {
   bool has(const std::string& key) const;
   std::vector<std::string> keys() const;  // in the object's order
 
-  // A required member: a RecordError names it when it is missing or of
-  // another type. T is one of std::string, bool, double, int, std::int64_t,
+  // A required member: a RecordError names it when it is of another type,
+  // and this object when it is missing. T is one of std::string, bool, double, int, std::int64_t,
   // std::uint64_t, std::vector<std::string>, std::vector<double>,
   // std::vector<int>, or
   // nlohmann::json (any object, kept as it is).
@@ -58,11 +62,15 @@ class Fields {
   Fields object(const std::string& key) const;
   std::optional<Fields> find_object(const std::string& key) const;
 
+  // The member `key`, a string, one of `choices`.
+  std::string choice(const std::string& key, const std::vector<std::string>& choices) const;
+
   // A RecordError at this object's member `key`.
   [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
 
  private:
   const nlohmann::json& at(const std::string& key) const;
+  JsonReader reader_;
   const nlohmann::json* value_;
   std::string pointer_;
 };

@@ -45,8 +45,10 @@ TEST(Params, EachRuleIsChecked) {
   EXPECT_EQ(fails({{"b", 1}}, "expected true or false, found number 1"), "");
   EXPECT_EQ(fails({{"c", "z"}}, "expected one of \"a\", \"b\", found \"z\""), "");
   EXPECT_EQ(fails({{"k", 4}}, "expected an odd integer, found 4"), "");
-  EXPECT_EQ(fails({{"q", 1}}, "at /p/q: unknown parameter 'q' (known: n, x, b, c, k)"), "");
-  EXPECT_EQ(fails(nlohmann::json::array(), "expected an object of parameters"), "");
+  EXPECT_EQ(fails({{"q", 1}}, "at /p/q: unknown parameter 'q' (expected one of: n, x, b, c, k)"),
+            "");
+  EXPECT_EQ(
+      fails(nlohmann::json::array(), "at /p: expected parameters (an object), found array []"), "");
 }
 
 }  // namespace

@@ -48,7 +48,9 @@ TEST(GltfCli, BadSpecsExitWithCode2NamingTheParameter) {
   EXPECT_TRUE(contains(r.output, "expected NAME=VALUE")) << r.output;
   r = run_cli("scene export gltf" + out);
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_TRUE(contains(r.output, "parameter 'file'")) << r.output;
+  EXPECT_TRUE(
+      contains(r.output, "scene spec: at /params: missing required key \"file\" in this object"))
+      << r.output;
   r = run_cli("scene export sphere_grid");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_FALSE(std::filesystem::exists(dir / "x.glb"));

@@ -125,7 +125,8 @@ TEST(JobRecord, ThePluginAndTheCodeHashesRoundTripAndOlderRecordsLackThem) {
     (void)JobRecord::from_json(bad);
     FAIL() << "a plugin without its hash was read";
   } catch (const RecordError& e) {
-    EXPECT_EQ(e.pointer(), "/technique/plugin/sha256") << e.what();
+    EXPECT_EQ(e.pointer(), "/technique/plugin") << e.what();
+    EXPECT_EQ(e.problem(), "missing required key \"sha256\" in this object");
   }
 }
 
@@ -232,8 +233,8 @@ TEST(JobRecord, ASecondReferenceRoundTripsAndOtherRecordsLackIt) {
     (void)JobRecord::from_json(bad);
     FAIL() << "a second reference without metrics was read";
   } catch (const RecordError& e) {
-    EXPECT_NE(std::string(e.what()).find("/second_reference/visibility"), std::string::npos)
-        << e.what();
+    EXPECT_EQ(std::string(e.what()),
+              "at /second_reference: missing required key \"visibility\" in this object");
   }
 }
 
@@ -340,20 +341,26 @@ TEST(JobRecord, MissingOrIllTypedMembersAreNamedByPointer) {
   const json good = full_record().to_json();
   struct Case {
     const char* pointer;
-    json value;  // null: erase the member
-    const char* problem;
+    json value;           // null: erase the member
+    const char* at;       // the pointer the error names: a missing member's object
+    const char* problem;  // the whole problem
   } cases[] = {
-      {"/job_id", nullptr, "missing"},
-      {"/width", "64", "expected a whole number, found a string"},
-      {"/status", "done", "expected \"ok\", \"skipped\" or \"failed\""},
-      {"/scene/light/center", json::array({1, 2}), "expected 3 numbers"},
-      {"/timing/frame/median_ms", nullptr, "missing"},
-      {"/timing/frame/samples_ms/1", "fast", "expected a number, found a string"},
-      {"/metrics/visibility/all/rmse", true, "expected a number"},
-      {"/metrics/shaded/penumbra", json::array(), "expected an object, found an array"},
-      {"/reference/from_cache", 1, "expected true or false"},
-      {"/images/shaded", 3, "expected a string"},
-      {"/timing/pass_order/0", "clear", "which \"passes\" lacks"},
+      {"/job_id", nullptr, "", "missing required key \"job_id\" in this object"},
+      {"/width", "64", "/width", "expected an integer, found string \"64\""},
+      {"/status", "done", "/status",
+       "expected one of \"ok\", \"skipped\", \"failed\", found \"done\""},
+      {"/scene/light/center", json::array({1, 2}), "/scene/light/center", "expected 3 numbers"},
+      {"/timing/frame/median_ms", nullptr, "/timing/frame",
+       "missing required key \"median_ms\" in this object"},
+      {"/timing/frame/samples_ms/1", "fast", "/timing/frame/samples_ms/1",
+       "expected a number (or \"nan\", \"inf\", \"-inf\"), found string \"fast\""},
+      {"/metrics/visibility/all/rmse", true, "/metrics/visibility/all/rmse",
+       "expected a number (or \"nan\", \"inf\", \"-inf\"), found boolean true"},
+      {"/metrics/shaded/penumbra", json::array(), "/metrics/shaded/penumbra",
+       "expected an object, found array []"},
+      {"/reference/from_cache", 1, "/reference/from_cache",
+       "expected true or false, found number 1"},
+      {"/images/shaded", 3, "/images/shaded", "expected a string, found number 3"},
   };
   for (const auto& c : cases) {
     json j = good;
@@ -363,9 +370,14 @@ TEST(JobRecord, MissingOrIllTypedMembersAreNamedByPointer) {
     else
       j[p] = c.value;
     const RecordError e = error_of(j);
-    EXPECT_EQ(e.pointer(), c.pointer);
-    EXPECT_NE(e.problem().find(c.problem), std::string::npos) << c.pointer << ": " << e.what();
+    EXPECT_EQ(e.pointer(), c.at) << c.pointer;
+    EXPECT_EQ(e.problem(), c.problem) << c.pointer << ": " << e.what();
   }
+  json j = good;
+  j["timing"]["pass_order"][0] = "clear";
+  const RecordError e = error_of(j);
+  EXPECT_EQ(e.pointer(), "/timing/pass_order/0");
+  EXPECT_NE(e.problem().find("which \"passes\" lacks"), std::string::npos) << e.what();
 }
 
 // Read from a run folder, the message names the file, the line and the place.
