@@ -57,6 +57,9 @@ class Fields {
   // A member that is an object.
   Fields object(const std::string& key) const;
   std::optional<Fields> find_object(const std::string& key) const;
+  // A member that is an array of objects, each read at its own pointer
+  // ("/jobs/3").
+  std::vector<Fields> objects(const std::string& key) const;
 
   // A RecordError at this object's member `key`.
   [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
