@@ -54,8 +54,11 @@ ShardsPlan the_shards_plan(const std::vector<std::string>& dirs,
       out.plan = std::move(plan);
       first_dir = dir;
     } else if (const std::string d = plan_difference(*out.plan, plan); !d.empty()) {
-      warnings.push_back("the shards' plans differ: in " + first_dir + ", " + d + " in " + dir +
-                         "; the merged folder keeps no plan.json");
+      std::string why = "the shards' plans differ: in " + first_dir;
+      why += ", " + d;
+      why += " in " + dir;
+      why += "; the merged folder keeps no plan.json";
+      warnings.push_back(std::move(why));
       return {};
     }
   }

@@ -55,8 +55,10 @@ void members_of(const json& j, const std::string& at, const RecordPointers& sche
                 std::vector<std::string>& out) {
   if (!j.is_object() || (!at.empty() && listed(schema.opaque, at))) return;
   for (const auto& [key, value] : j.items()) {
-    out.push_back(at + "/" + key);
-    members_of(value, at + "/" + key, schema, out);
+    std::string member = at;
+    member += "/" + key;
+    out.push_back(member);
+    members_of(value, member, schema, out);
   }
 }
 
