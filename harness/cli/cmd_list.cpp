@@ -57,6 +57,12 @@ int cmd_list(const Args& a) {
     std::fputs(record_schema_markdown().c_str(), stdout);
     return kExitOk;
   }
+  if (a.plan_schema) {
+    if (!a.names.empty())
+      throw InputError("", "list", "--plan-schema prints the whole schema; it takes no NAME");
+    std::fputs(plan_schema_markdown().c_str(), stdout);
+    return kExitOk;
+  }
   const Registry r = load_registry(a);
   if (a.markdown) {
     if (!a.names.empty())

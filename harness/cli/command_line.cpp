@@ -366,6 +366,8 @@ std::unique_ptr<CLI::App> make_command_line(Args& a) {
                  "print docs/parameters.md: every parameter as Markdown tables");
   list->add_flag("--record-schema", a.record_schema,
                  "print the job record's schema tables, as docs/results.md holds them");
+  list->add_flag("--plan-schema", a.plan_schema,
+                 "print plan.json's schema tables, as docs/results.md holds them");
   list->add_flag("--names", a.names_only,
                  "print technique and scene type names only, one per line");
 

@@ -29,6 +29,7 @@ struct Args {
   bool no_cache = false, no_images = false, gbuffer = false, quiet = false;
   bool markdown = false;                                  // list, help
   bool record_schema = false;                             // list
+  bool plan_schema = false;                               // list
   bool names_only = false;                                // list
   std::string benchmark_out, bencher_out;                 // run, report: CI outputs
   std::string embree_config;                              // run: the reference's Embree ISA

@@ -1,41 +1,44 @@
 #include "plan/plan_json.h"
 
+#include "config/json_file.h"
+#include "core/error.h"
+#include "core/json_positions.h"
+
 namespace sb {
 
-using json = nlohmann::json;
-
-json plan_to_json(const Experiment& e, const Plan& plan) {
-  json scenes = json::array();
+PlanRecord plan_record(const Experiment& e, const Plan& plan) {
+  PlanRecord p;
+  p.config = e.file;
+  p.name = e.name;
+  p.shard_count = plan.shard_count;
+  p.counts = {static_cast<std::int64_t>(plan.count(JobOutcome::Status::Run)),
+              static_cast<std::int64_t>(plan.count(JobOutcome::Status::Skip)),
+              static_cast<std::int64_t>(plan.count(JobOutcome::Status::Fail))};
   for (size_t s = 0; s < plan.scenes.size(); ++s) {
     const ScenePlan& sp = plan.scenes[s];
-    scenes.push_back({{"name", e.scenes[s].name},
-                      {"error", sp.error},
-                      {"bad_input", sp.bad_input},
-                      {"input_error", sp.input_error},
-                      {"log", sp.log}});
+    p.scenes.push_back({e.scenes[s].name, sp.error, sp.bad_input, sp.input_error, sp.log});
   }
-  json jobs = json::array();
   for (const PlannedJob& j : plan.jobs)
-    jobs.push_back({{"id", j.id},
-                    {"index", j.index},
-                    {"scene", e.scenes[j.scene].name},
-                    {"resolution", e.resolutions[j.resolution].label()},
-                    {"technique", e.techniques[j.technique].name},
-                    {"outcome", to_string(j.outcome.status)},
-                    {"reason", j.outcome.reason},
-                    {"bad_input", j.outcome.bad_input},
-                    {"cost", j.cost},
-                    {"shard", j.shard}});
-  return {{"plan_version", kPlanVersion},
-          {"config", e.file},
-          {"name", e.name},
-          {"shard_count", plan.shard_count},
-          {"counts",
-           {{"run", plan.count(JobOutcome::Status::Run)},
-            {"skip", plan.count(JobOutcome::Status::Skip)},
-            {"fail", plan.count(JobOutcome::Status::Fail)}}},
-          {"scenes", std::move(scenes)},
-          {"jobs", std::move(jobs)}};
+    p.jobs.push_back({j.id, static_cast<std::int64_t>(j.index), e.scenes[j.scene].name,
+                      e.resolutions[j.resolution].label(), e.techniques[j.technique].name,
+                      to_string(j.outcome.status), j.outcome.reason, j.outcome.bad_input, j.cost,
+                      j.shard});
+  return p;
+}
+
+nlohmann::json plan_to_json(const Experiment& e, const Plan& plan) {
+  return plan_record(e, plan).to_json();
+}
+
+PlanRecord read_plan_file(const std::string& path) {
+  const std::string text = read_input_file(path, JsonLimits{}.max_bytes, "plan");
+  JsonPositions positions;
+  const nlohmann::json j = parse_json_text(text, path, {}, 0, &positions);
+  try {
+    return PlanRecord::from_json(j);
+  } catch (const RecordError& e) {
+    throw InputError(path, e.pointer(), e.problem(), positions.find(e.pointer()));
+  }
 }
 
 }  // namespace sb

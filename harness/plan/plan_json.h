@@ -1,23 +1,25 @@
 #pragma once
 // The plan as JSON: what `shadowbench plan CONFIG --json` prints and `run`
 // writes to its run folder as plan.json, so that what a run was told to do
-// can be read beside what it recorded. The shape (docs/results.md, "plan.json"):
-//   {"plan_version": 1, "config": file, "name": experiment name,
-//    "shard_count": N, "counts": {"run": n, "skip": n, "fail": n},
-//    "scenes": [{"name", "error", "bad_input", "input_error", "log": [...]}],
-//    "jobs": [{"id", "index", "scene", "resolution", "technique", "outcome",
-//              "reason", "bad_input", "cost", "shard"}]}
-// Jobs in plan order; "scene", "resolution" and "technique" are the variants'
-// names; "outcome" is "run", "skip" or "fail".
+// can be read beside what it recorded. Its shape is record/plan_record.h's
+// PlanRecord (docs/results.md, "The plan"): per scene variant its log and
+// error, per job in plan order its id, index, variant names, outcome
+// ("run", "skip" or "fail"), reason, cost and shard.
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "config/experiment.h"
 #include "plan/plan.h"
+#include "record/plan_record.h"
 
 namespace sb {
 
-constexpr int kPlanVersion = 1;
-
+PlanRecord plan_record(const Experiment& e, const Plan& plan);
 nlohmann::json plan_to_json(const Experiment& e, const Plan& plan);
+
+// A plan.json read back. Throws InputError naming the file, the line and
+// column and the JSON pointer of what is wrong (a file of another
+// plan_version is refused so).
+PlanRecord read_plan_file(const std::string& path);
 
 }  // namespace sb

@@ -12,7 +12,8 @@
 //   v.field(key, &S::member, {unit, doc, presence, suffixed})
 //       a member: a number, integer, bool, string, list, nlohmann::json,
 //       std::array<double, N>, a described struct, std::map<std::string, T>
-//       of those, or std::optional of any (absent when nullopt)
+//       of those, an std::vector of described structs (a JSON array of
+//       objects), or std::optional of any (absent when nullopt)
 //   v.object(key, {unit, doc}, [](auto& sub) { sub.field(...); })
 //       a JSON object of S's own members (record["stability"]["flicker"]
 //       ["reference"]): no struct of its own
@@ -31,6 +32,7 @@
 #include <optional>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 namespace sb {
 
@@ -72,6 +74,13 @@ struct NameMap<std::map<std::string, T>> : std::true_type {
 };
 
 template <class T>
+struct List : std::false_type {};
+template <class T>
+struct List<std::vector<T>> : std::true_type {
+  using type = T;
+};
+
+template <class T>
 struct Numbers : std::false_type {};
 template <std::size_t N>
 struct Numbers<std::array<double, N>> : std::true_type {
@@ -92,6 +101,11 @@ template <class T>
 concept Described = requires {
   T::kSchema;
 };
+
+// An std::vector of described structs: a JSON array of objects.
+template <class T>
+concept DescribedList =
+    describe_detail::List<T>::value && Described<typename describe_detail::List<T>::type>;
 
 // The presence a member of type M has under `p`.
 template <class M>

@@ -61,6 +61,16 @@ void Fields::fail(const std::string& key, const std::string& problem) const {
   throw RecordError(pointer_of(key), problem);
 }
 
+std::vector<Fields> Fields::objects(const std::string& key) const {
+  const json& v = at(key);
+  if (!v.is_array()) fail(key, "expected an array of objects, found " + found(v));
+  std::vector<Fields> out;
+  out.reserve(v.size());
+  for (size_t i = 0; i < v.size(); ++i)
+    out.emplace_back(v[i], pointer_of(key) + "/" + std::to_string(i));
+  return out;
+}
+
 const json& Fields::at(const std::string& key) const {
   return reader_.member(*value_, pointer_, key);
 }

@@ -61,6 +61,9 @@ class Fields {
   // A member that is an object.
   Fields object(const std::string& key) const;
   std::optional<Fields> find_object(const std::string& key) const;
+  // A member that is an array of objects, each read at its own pointer
+  // ("/jobs/3").
+  std::vector<Fields> objects(const std::string& key) const;
 
   // The member `key`, a string, one of `choices`.
   std::string choice(const std::string& key, const std::vector<std::string>& choices) const;

@@ -36,6 +36,10 @@ template <class T>
 nlohmann::json value_json(const T& v, const std::string& suffix) {
   if constexpr (Described<T>) {
     return write_record(v, suffix);
+  } else if constexpr (DescribedList<T>) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& e : v) out.push_back(write_record(e, suffix));
+    return out;
   } else if constexpr (NameMap<T>::value) {
     nlohmann::json out = nlohmann::json::object();
     for (const auto& [name, value] : v) out[name] = value_json(value, suffix);
@@ -55,6 +59,11 @@ template <class T>
 T value_of(const Fields& f, const std::string& key, const std::string& suffix) {
   if constexpr (Described<T>) {
     return read_record<T>(f.object(key), suffix);
+  } else if constexpr (DescribedList<T>) {
+    T out;
+    for (const Fields& e : f.objects(key))
+      out.push_back(read_record<typename describe_detail::List<T>::type>(e, suffix));
+    return out;
   } else if constexpr (NameMap<T>::value) {
     const Fields members = f.object(key);
     T out;

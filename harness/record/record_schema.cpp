@@ -9,10 +9,12 @@
 #include <type_traits>
 
 #include "record/job_record.h"
+#include "record/plan_record.h"
 
 namespace sb {
 namespace {
 
+using describe_detail::List;
 using describe_detail::NameMap;
 using describe_detail::Numbers;
 using describe_detail::Optional;
@@ -41,6 +43,8 @@ std::string type_name() {
     std::string anchor = T::kSchema.name;
     for (char& c : anchor) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return std::string("[`") + T::kSchema.name + "`](#" + anchor + ")";
+  } else if constexpr (DescribedList<T>) {
+    return "array of " + type_name<typename List<T>::type>();
   } else if constexpr (NameMap<T>::value) {
     return "name → " + type_name<typename NameMap<T>::type>();
   } else if constexpr (Numbers<T>::value) {
@@ -106,6 +110,8 @@ void walk_value(Schema& schema, const std::string& pointer, const std::string& s
   schema.pointers.members.push_back(pointer);
   if constexpr (Described<T>)
     walk_struct<T>(schema, pointer, suffix);
+  else if constexpr (DescribedList<T>)
+    walk_struct<typename List<T>::type>(schema, pointer + "/*", suffix);
   else if constexpr (NameMap<T>::value)
     walk_value<typename NameMap<T>::type>(schema, pointer + "/*", suffix);
   else if constexpr (std::is_same_v<T, nlohmann::json>)
@@ -175,16 +181,14 @@ std::string cell(const std::string& s) {
   return out;
 }
 
-Schema job_record_schema() {
+template <class Root>
+Schema schema_of() {
   Schema schema;
-  walk_struct<JobRecord>(schema, "", "");
+  walk_struct<Root>(schema, "", "");
   return schema;
 }
 
-}  // namespace
-
-std::string record_schema_markdown() {
-  const Schema schema = job_record_schema();
+std::string markdown(const Schema& schema) {
   std::ostringstream out;
   for (const Table& t : schema.tables) {
     out << "#### " << t.name << "\n\n";
@@ -204,7 +208,12 @@ std::string record_schema_markdown() {
   return out.str();
 }
 
-RecordPointers record_pointers() { return job_record_schema().pointers; }
+}  // namespace
+
+std::string record_schema_markdown() { return markdown(schema_of<JobRecord>()); }
+RecordPointers record_pointers() { return schema_of<JobRecord>().pointers; }
+std::string plan_schema_markdown() { return markdown(schema_of<PlanRecord>()); }
+RecordPointers plan_pointers() { return schema_of<PlanRecord>().pointers; }
 
 namespace {
 

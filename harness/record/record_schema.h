@@ -23,6 +23,11 @@ struct RecordPointers {
 };
 RecordPointers record_pointers();
 
+// The same for a run folder's plan.json (record/plan_record.h): the tables
+// `shadowbench list --plan-schema` prints, and its members' pointers.
+std::string plan_schema_markdown();
+RecordPointers plan_pointers();
+
 // Whether `pointer` ("/timing/shared/gbuffer") is `pattern`
 // ("/timing/shared/*"), token by token.
 bool pointer_matches(const std::string& pattern, const std::string& pointer);

@@ -12,6 +12,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "plan/plan_json.h"
 #include "record/job_record.h"
 #include "results/mixed_hosts.h"
 #include "results/report.h"
@@ -24,19 +25,70 @@ namespace fs = std::filesystem;
 namespace {
 
 // The shards of one config ran one plan and each kept it as plan.json: the
-// merged folder keeps it too when every folder holds the same bytes (not
-// when the shards named the config by different paths, nor for folders
-// written before runs kept their plan).
-void keep_the_shards_plan(const std::vector<std::string>& dirs, const std::string& out) {
-  std::optional<std::string> plan;
+// merged folder keeps it when every folder has one and they plan the same
+// jobs the same way (the config may have been named by different paths:
+// the first folder's file is kept). Otherwise a warning says why there is
+// none.
+struct ShardsPlan {
+  std::optional<PlanRecord> plan;
+  std::string text;  // the first folder's plan.json, as the run wrote it
+};
+
+ShardsPlan the_shards_plan(const std::vector<std::string>& dirs,
+                           std::vector<std::string>& warnings) {
+  ShardsPlan out;
+  std::string first_dir;
   for (const std::string& dir : dirs) {
-    std::ifstream in(fs::path(dir) / "plan.json", std::ios::binary);
-    if (!in) return;
-    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    if (plan && *plan != text) return;
-    plan = std::move(text);
+    const fs::path file = fs::path(dir) / "plan.json";
+    if (!fs::exists(file)) {
+      warnings.push_back(dir +
+                         " has no plan.json (written by a build before runs kept their "
+                         "plan): the merged folder has none, and which planned jobs are "
+                         "missing is not checked");
+      return {};
+    }
+    PlanRecord plan = read_plan_file(file.string());
+    if (!out.plan) {
+      std::ifstream in(file, std::ios::binary);
+      out.text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+      out.plan = std::move(plan);
+      first_dir = dir;
+    } else if (const std::string d = plan_difference(*out.plan, plan); !d.empty()) {
+      std::string why = "the shards' plans differ: in " + first_dir;
+      why += ", " + d;
+      why += " in " + dir;
+      why += "; the merged folder keeps no plan.json";
+      warnings.push_back(std::move(why));
+      return {};
+    }
   }
-  if (plan) write_file_atomically((fs::path(out) / "plan.json").string(), *plan, "merge: ");
+  return out;
+}
+
+// The planned jobs no folder recorded, said per shard.
+void warn_of_missing_jobs(const PlanRecord& plan, const std::map<std::string, std::string>& where,
+                          MergeSummary& summary) {
+  std::map<int, std::pair<size_t, size_t>> per_shard;  // shard -> (missing, planned)
+  for (const PlannedJobRecord& j : plan.jobs) {
+    auto& [missing, planned] = per_shard[j.shard];
+    ++planned;
+    if (where.count(j.id) == 0) {
+      ++missing;
+      summary.missing_jobs.push_back(j.id);
+    }
+  }
+  if (summary.missing_jobs.empty()) return;
+  std::string shards;
+  for (const auto& [shard, n] : per_shard)
+    if (n.first > 0)
+      shards += std::string(shards.empty() ? "" : ", ") + "shard " + std::to_string(shard) +
+                " of " + std::to_string(plan.shard_count) + ": " + std::to_string(n.first) +
+                " of its " + std::to_string(n.second);
+  summary.warnings.push_back(std::to_string(summary.missing_jobs.size()) + " of the plan's " +
+                             std::to_string(plan.jobs.size()) +
+                             (summary.missing_jobs.size() == 1 ? " jobs has" : " jobs have") +
+                             " no record in these folders (" + shards +
+                             "): the merged results are incomplete");
 }
 
 // An image path a record names, inside its run folder: relative, without
@@ -124,6 +176,7 @@ MergeSummary merge_runs(const std::string& out, const std::vector<std::string>& 
     order.push_back(s.record.job_id);
   }
   MergeSummary summary;
+  const ShardsPlan plan = the_shards_plan(dirs, summary.warnings);
   summary.hosts = distinct_hosts(records);
   if (summary.hosts.size() > 1 && !options.allow_mixed_hosts) {
     std::string list;
@@ -153,7 +206,10 @@ MergeSummary merge_runs(const std::string& out, const std::vector<std::string>& 
       ++summary.images;
     }
   }
-  keep_the_shards_plan(dirs, out);
+  if (plan.plan) {
+    write_file_atomically((fs::path(out) / "plan.json").string(), plan.text, "merge: ");
+    warn_of_missing_jobs(*plan.plan, where, summary);
+  }
   store.put_all(records);
   summary.records = records.size();
   write_reports(out, store.records(),

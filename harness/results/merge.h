@@ -8,6 +8,10 @@
 // job in two folders, and, unless allow_mixed_hosts, timings from different
 // hosts or GL renderers (host fingerprint and gl_renderer), which one
 // comparison must not mix. The report marks a folder that does mix them.
+//
+// The folders' plan.json files are read back (plan/plan_json.h): the merged
+// folder keeps the plan when they agree, and merge warns of every planned
+// job no folder recorded (a shard not given, or one that stopped early).
 #include <string>
 #include <vector>
 
@@ -21,6 +25,10 @@ struct MergeSummary {
   size_t records = 0;
   size_t images = 0;               // image files copied
   std::vector<std::string> hosts;  // "name (cpu), renderer", one per distinct host
+  // Jobs of the shards' plan (plan.json) that no folder recorded, in plan
+  // order; and what merge warns of: those, or why it kept no plan.json.
+  std::vector<std::string> missing_jobs;
+  std::vector<std::string> warnings;
 };
 
 // OUT must be new or hold no records. Throws InputError for the refusals

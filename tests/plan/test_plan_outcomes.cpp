@@ -3,13 +3,21 @@
 // (outcome_mismatch), and `plan --json` writes every job as make_plan
 // planned it (a bad scene's: test_plan.cpp).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <functional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "../config/cli_runner.h"
 #include "config/experiment.h"
+#include "core/error.h"
 #include "plan/plan.h"
+#include "plan/plan_json.h"
 #include "plugin/registry.h"
 #include "test_registry.h"
 
@@ -99,6 +107,98 @@ TEST(PlanOutcomes, PlanJsonListsEveryJobWithItsOutcomeCostAndShard) {
     }
   }
   EXPECT_NE(j["scenes"][0]["log"].dump().find("edge adjacency"), std::string::npos);
+}
+
+// plan.json read back is the plan that was written: every job's id, index,
+// outcome, reason, cost and shard, and every scene's log.
+TEST(PlanOutcomes, APlanFileReadsBackAsThePlanItWasWrittenFrom) {
+  const Experiment e = load_experiment(kScenes, registry());
+  const Plan plan = make_plan(e, 3);
+  const std::string file = (std::filesystem::path(::testing::TempDir()) /
+                            ("plan-" + std::to_string(::getpid()) + ".json"))
+                               .string();
+  std::ofstream(file) << plan_to_json(e, plan).dump(2) << "\n";
+  const PlanRecord read = read_plan_file(file);
+  EXPECT_EQ(read, plan_record(e, plan));
+  ASSERT_EQ(read.jobs.size(), plan.jobs.size());
+  for (size_t i = 0; i < plan.jobs.size(); ++i) {
+    EXPECT_EQ(read.jobs[i].id, plan.jobs[i].id);
+    EXPECT_EQ(read.jobs[i].outcome, to_string(plan.jobs[i].outcome.status));
+    EXPECT_EQ(read.jobs[i].reason, plan.jobs[i].outcome.reason);
+    EXPECT_EQ(read.jobs[i].shard, plan.jobs[i].shard);
+    EXPECT_DOUBLE_EQ(read.jobs[i].cost, plan.jobs[i].cost);
+  }
+  EXPECT_EQ(read.scenes[0].log, plan.scenes[0].log);
+  EXPECT_EQ(plan_difference(read, plan_record(e, plan)), "");
+  std::filesystem::remove(file);
+}
+
+// "LINE:COL" (1-based, in bytes) of byte `at` of `text`.
+std::string line_col(const std::string& text, size_t at) {
+  const size_t line = 1 + static_cast<size_t>(std::count(text.begin(), text.begin() + at, '\n'));
+  const size_t newline = text.rfind('\n', at == 0 ? 0 : at - 1);
+  return std::to_string(line) + ":" +
+         std::to_string(newline == std::string::npos ? at + 1 : at - newline);
+}
+
+// The byte just after the first `needle` in `text`.
+size_t after(const std::string& text, const std::string& needle) {
+  const size_t at = text.find(needle);
+  return at == std::string::npos ? at : at + needle.size();
+}
+
+// A plan.json that is wrong is refused with its file, line, column and
+// pointer: another version, an unknown outcome, counts the jobs contradict,
+// a job out of its place or shard, a job without a member. Each altered
+// value is one the text holds once, so its place is found in the text.
+TEST(PlanOutcomes, AWrongPlanFileIsRefusedAtItsLineColumnAndPointer) {
+  const Experiment e = load_experiment(kScenes, registry());
+  const nlohmann::json good = plan_to_json(e, make_plan(e, 2));
+  const std::string file = (std::filesystem::path(::testing::TempDir()) /
+                            ("bad-plan-" + std::to_string(::getpid()) + ".json"))
+                               .string();
+  struct Case {
+    std::function<void(nlohmann::json&)> alter;
+    std::string pointer;
+    std::function<size_t(const std::string&)> value_at;  // where the pointer's value starts
+    std::string problem;
+  };
+  const std::vector<Case> cases = {
+      {[](nlohmann::json& j) { j["plan_version"] = 2; }, "/plan_version",
+       [](const std::string& t) { return after(t, "\"plan_version\": "); },
+       "is 2; this build reads plan version 1 only"},
+      {[](nlohmann::json& j) { j["jobs"][3]["outcome"] = "maybe"; }, "/jobs/3/outcome",
+       [](const std::string& t) { return t.find("\"maybe\""); },
+       "expected \"run\", \"skip\" or \"fail\", found \"maybe\""},
+      {[](nlohmann::json& j) { j["counts"]["run"] = 5; }, "/counts",
+       [](const std::string& t) { return after(t, "\"counts\": "); },
+       "say 5 run, 1 skip, 0 fail; the jobs are 23, 1 and 0"},
+      {[](nlohmann::json& j) { j["jobs"][2]["index"] = 99; }, "/jobs/2/index",
+       [](const std::string& t) { return after(t, "\"index\": 99") - 2; },
+       "is 99 at place 2 of the jobs"},
+      {[](nlohmann::json& j) { j["jobs"][1]["shard"] = 3; }, "/jobs/1/shard",
+       [](const std::string& t) { return after(t, "\"shard\": 3") - 1; },
+       "is 3, not within 1 to shard_count 2"},
+      {[](nlohmann::json& j) { j["jobs"][0].erase("cost"); }, "/jobs/0/cost",
+       [](const std::string& t) { return t.find('{', after(t, "\"jobs\": [")); }, "missing"},
+  };
+  for (const Case& c : cases) {
+    nlohmann::json j = good;
+    c.alter(j);
+    const std::string text = j.dump(2);
+    std::ofstream(file) << text;
+    const size_t at = c.value_at(text);
+    ASSERT_NE(at, std::string::npos) << c.pointer;
+    try {
+      (void)read_plan_file(file);
+      ADD_FAILURE() << c.pointer << ": accepted";
+    } catch (const InputError& ex) {
+      const std::string msg = ex.what();
+      EXPECT_EQ(msg.rfind(file + ":" + line_col(text, at) + " (" + c.pointer + ")", 0), 0u) << msg;
+      EXPECT_NE(msg.find(c.problem), std::string::npos) << msg;
+    }
+  }
+  std::filesystem::remove(file);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "full_record.h"
+#include "record/plan_record.h"
 #include "record/record_json.h"
 #include "record/record_schema.h"
 
@@ -17,21 +18,30 @@ namespace {
 
 using json = nlohmann::json;
 
-const char* const kBegin = "<!-- record-schema: begin";
-const char* const kEnd = "<!-- record-schema: end -->";
-
-TEST(RecordSchema, TheDocsHoldTheGeneratedTables) {
+// The part of docs/results.md between the line holding `begin` and `end`.
+std::string doc_region(const std::string& begin, const std::string& end) {
   std::ifstream in(std::string(SHADOWBENCH_SOURCE_DIR) + "/docs/results.md");
   std::stringstream file;
   file << in.rdbuf();
   const std::string text = file.str();
-  const size_t begin = text.find(kBegin);
-  ASSERT_NE(begin, std::string::npos) << "docs/results.md lacks " << kBegin;
-  const size_t from = text.find('\n', begin) + 1;
-  const size_t end = text.find(kEnd, from);
-  ASSERT_NE(end, std::string::npos) << "docs/results.md lacks " << kEnd;
-  EXPECT_EQ(text.substr(from, end - from), record_schema_markdown())
+  const size_t at = text.find(begin);
+  if (at == std::string::npos) return "docs/results.md lacks " + begin;
+  const size_t from = text.find('\n', at) + 1;
+  const size_t to = text.find(end, from);
+  if (to == std::string::npos) return "docs/results.md lacks " + end;
+  return text.substr(from, to - from);
+}
+
+TEST(RecordSchema, TheDocsHoldTheGeneratedTables) {
+  EXPECT_EQ(doc_region("<!-- record-schema: begin", "<!-- record-schema: end -->"),
+            record_schema_markdown())
       << "regenerate the part between the markers: build/shadowbench list --record-schema";
+}
+
+TEST(RecordSchema, TheDocsHoldThePlansGeneratedTables) {
+  EXPECT_EQ(doc_region("<!-- plan-schema: begin", "<!-- plan-schema: end -->"),
+            plan_schema_markdown())
+      << "regenerate the part between the markers: build/shadowbench list --plan-schema";
 }
 
 bool listed(const std::vector<std::string>& patterns, const std::string& pointer) {
@@ -45,8 +55,22 @@ void members_of(const json& j, const std::string& at, const RecordPointers& sche
                 std::vector<std::string>& out) {
   if (!j.is_object() || (!at.empty() && listed(schema.opaque, at))) return;
   for (const auto& [key, value] : j.items()) {
-    out.push_back(at + "/" + key);
-    members_of(value, at + "/" + key, schema, out);
+    std::string member = at;
+    member += "/" + key;
+    out.push_back(member);
+    members_of(value, member, schema, out);
+  }
+}
+
+// Each written member is in the schema, and each schema member is written.
+void expect_the_schema_is_what_is_written(const RecordPointers& schema,
+                                          const std::vector<std::string>& written,
+                                          const std::string& writer) {
+  for (const std::string& p : written) EXPECT_TRUE(listed(schema.members, p)) << p;
+  for (const std::string& pattern : schema.members) {
+    bool found = false;
+    for (const std::string& p : written) found = found || pointer_matches(pattern, p);
+    EXPECT_TRUE(found) << pattern << " is in the schema; " << writer << " does not write it";
   }
 }
 
@@ -54,12 +78,7 @@ TEST(RecordSchema, ItListsEveryMemberARecordWritesAndNoOther) {
   const RecordPointers schema = record_pointers();
   std::vector<std::string> written;
   members_of(test::every_member_record().to_json(), "", schema, written);
-  for (const std::string& p : written) EXPECT_TRUE(listed(schema.members, p)) << p;
-  for (const std::string& pattern : schema.members) {
-    bool found = false;
-    for (const std::string& p : written) found = found || pointer_matches(pattern, p);
-    EXPECT_TRUE(found) << pattern << " is in the schema; every_member_record() does not write it";
-  }
+  expect_the_schema_is_what_is_written(schema, written, "every_member_record()");
 }
 
 TEST(RecordSchema, PointersMatchTokenByToken) {
@@ -116,6 +135,75 @@ TEST(RecordSchema, SeriesKeysTakeTheirUnit) {
   EXPECT_FALSE(t["control"]["frame_ratio"].contains("median_ms"));
   EXPECT_TRUE(t["fine"]["technique"].contains("p90_ms"));
   EXPECT_TRUE(t["passes"]["depth"].contains("min_ms"));
+}
+
+// A plan with every member set: two scenes (one that did not build), a job
+// of each outcome over two shards.
+PlanRecord every_member_plan() {
+  PlanRecord p;
+  p.config = "configs/two.json";
+  p.name = "two";
+  p.shard_count = 2;
+  p.counts = {1, 1, 1};
+  p.scenes = {{"grid", "", false, "", {"edge adjacency: 12 meshes", "closed: all"}},
+              {"jeep", "cannot read", true, "jeep.gltf:3:5 (/accessors/0): bad", {}}};
+  p.jobs = {
+      {"grid@64x48@pcf_box", 0, "grid", "64x48", "pcf_box", "run", "", false, 2.5, 1},
+      {"grid@64x48@shadow_volume", 1, "grid", "64x48", "shadow_volume", "skip",
+       "needs closed casters", false, 1.25, 2},
+      {"jeep@64x48@pcf_box", 2, "jeep", "64x48", "pcf_box", "fail", "cannot read", true, 0.5, 2}};
+  return p;
+}
+
+TEST(RecordSchema, ThePlanSchemaListsEveryMemberAPlanWritesAndNoOther) {
+  const RecordPointers schema = plan_pointers();
+  std::vector<std::string> written;
+  const json j = every_member_plan().to_json();
+  members_of(j, "", schema, written);
+  for (size_t i = 0; i < j["jobs"].size(); ++i)
+    members_of(j["jobs"][i], "/jobs/" + std::to_string(i), schema, written);
+  for (size_t i = 0; i < j["scenes"].size(); ++i)
+    members_of(j["scenes"][i], "/scenes/" + std::to_string(i), schema, written);
+  expect_the_schema_is_what_is_written(schema, written, "every_member_plan()");
+}
+
+TEST(RecordSchema, APlanRoundTripsEmptyAndFull) {
+  for (const PlanRecord& p : {PlanRecord{}, every_member_plan()}) {
+    const json j = p.to_json();
+    const PlanRecord read = PlanRecord::from_json(json::parse(j.dump()));
+    EXPECT_EQ(read, p);
+    EXPECT_EQ(read.to_json(), j);
+  }
+  // The jobs are an array of objects, each at its own pointer.
+  json j = every_member_plan().to_json();
+  j["jobs"][1]["cost"] = "cheap";
+  try {
+    (void)PlanRecord::from_json(j);
+    ADD_FAILURE() << "a string cost was read";
+  } catch (const RecordError& e) {
+    EXPECT_EQ(e.pointer(), "/jobs/1/cost");
+  }
+}
+
+TEST(RecordSchema, PlansDifferOnlyInWhatTheyPlan) {
+  const PlanRecord a = every_member_plan();
+  PlanRecord b = a;
+  b.config = "/elsewhere/two.json";
+  EXPECT_EQ(plan_difference(a, b), "");
+  b.jobs[1].shard = 1;
+  EXPECT_EQ(plan_difference(a, b),
+            "job 1 (grid@64x48@shadow_volume) is in shard 2, there in shard 1");
+  b = a;
+  b.jobs[0].outcome = "skip";
+  b.jobs[0].reason = "no";
+  EXPECT_EQ(plan_difference(a, b),
+            "job 0 (grid@64x48@pcf_box) is planned to run, there to skip (no)");
+  b = a;
+  b.jobs.pop_back();
+  EXPECT_EQ(plan_difference(a, b), "3 jobs, there 2");
+  b = a;
+  b.scenes[0].log.push_back("more");
+  EXPECT_EQ(plan_difference(a, b), "scene \"grid\" is planned otherwise (its log or error)");
 }
 
 }  // namespace

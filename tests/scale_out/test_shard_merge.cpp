@@ -139,5 +139,77 @@ TEST(ShardMerge, MergeRefusesAJobTwiceAndAnotherConfig) {
       << other.output;
 }
 
+std::string file_text(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The shards read each other's plan.json back: shards given the config by
+// different paths still ran one plan, which the merged folder keeps; a
+// merge without a shard names how many of the plan's jobs, of which shard,
+// have no record; shards whose plans differ keep no plan, and say why.
+TEST(ShardMerge, MergeReadsTheShardsPlansBackAndWarnsOfPlannedJobsNoFolderRecorded) {
+  const auto dir = two_shards(test_folder());
+  // Shard 2 again, from a copy of the config elsewhere.
+  fs::create_directories(dir / "elsewhere");
+  fs::copy_file(dir / "two.json", dir / "elsewhere" / "two.json");
+  const CliRun s2 =
+      run_shadowbench("run " + (dir / "elsewhere" / "two.json").string() + " --shard 2/2 --out " +
+                      (dir / "s2b").string() + " --no-cache --quiet");
+  ASSERT_EQ(s2.exit_code, 0) << s2.output;
+  const json plan1 = json::parse(file_text(dir / "s1" / "plan.json"));
+  const json plan2 = json::parse(file_text(dir / "s2b" / "plan.json"));
+  ASSERT_NE(plan1["config"], plan2["config"]);
+
+  const CliRun whole = run_shadowbench("merge " + (dir / "m").string() + " " +
+                                       (dir / "s1").string() + " " + (dir / "s2b").string());
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+  EXPECT_EQ(whole.output.find("warning"), std::string::npos) << whole.output;
+  EXPECT_EQ(file_text(dir / "m" / "plan.json"), file_text(dir / "s1" / "plan.json"));
+
+  // Without shard 2: its jobs, counted from the plan, are named missing.
+  size_t in_shard_2 = 0;
+  for (const json& j : plan1["jobs"]) in_shard_2 += j["shard"] == 2 ? 1 : 0;
+  ASSERT_GT(in_shard_2, 0u);
+  const CliRun part =
+      run_shadowbench("merge " + (dir / "part").string() + " " + (dir / "s1").string());
+  ASSERT_EQ(part.exit_code, 0) << part.output;
+  const std::string n = std::to_string(in_shard_2);
+  EXPECT_NE(part.output.find("merge: warning: " + n + " of the plan's " +
+                             std::to_string(plan1["jobs"].size()) +
+                             " jobs have no record in these folders (shard 2 of 2: " + n +
+                             " of its " + n + "): the merged results are incomplete"),
+            std::string::npos)
+      << part.output;
+
+  // Plans that differ: shard 2's says another shard for its first job.
+  json altered = plan2;
+  for (json& j : altered["jobs"])
+    if (j["shard"] == 2) {
+      j["shard"] = 1;
+      break;
+    }
+  std::ofstream(dir / "s2b" / "plan.json", std::ios::trunc) << altered.dump(2);
+  const CliRun differ = run_shadowbench("merge " + (dir / "m2").string() + " " +
+                                        (dir / "s1").string() + " " + (dir / "s2b").string());
+  ASSERT_EQ(differ.exit_code, 0) << differ.output;
+  EXPECT_NE(differ.output.find("the shards' plans differ"), std::string::npos) << differ.output;
+  EXPECT_NE(differ.output.find("is in shard 2, there in shard 1"), std::string::npos)
+      << differ.output;
+  EXPECT_FALSE(fs::exists(dir / "m2" / "plan.json"));
+
+  // A plan.json that is not one is refused, at its place.
+  altered["plan_version"] = 7;
+  std::ofstream(dir / "s2b" / "plan.json", std::ios::trunc) << altered.dump(2);
+  const CliRun bad = run_shadowbench("merge " + (dir / "m3").string() + " " +
+                                     (dir / "s1").string() + " " + (dir / "s2b").string());
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find((dir / "s2b" / "plan.json").string() + ":"), std::string::npos)
+      << bad.output;
+  EXPECT_NE(bad.output.find("(/plan_version): is 7; this build reads plan version 1 only"),
+            std::string::npos)
+      << bad.output;
+}
+
 }  // namespace
 }  // namespace sb::test
