@@ -3,7 +3,11 @@
 #include <cmath>
 #include <limits>
 
-namespace sb {
+namespace sb::record {
+
+using core::JsonReader;
+using core::pointer_token;
+
 namespace {
 
 using json = nlohmann::json;
@@ -63,7 +67,7 @@ void Fields::fail(const std::string& key, const std::string& problem) const {
 
 std::vector<Fields> Fields::objects(const std::string& key) const {
   const json& v = at(key);
-  if (!v.is_array()) fail(key, "expected an array of objects, found " + describe(v));
+  if (!v.is_array()) fail(key, "expected an array of objects, found " + core::describe(v));
   std::vector<Fields> out;
   out.reserve(v.size());
   for (size_t i = 0; i < v.size(); ++i)
@@ -146,4 +150,4 @@ std::optional<Fields> Fields::find_object(const std::string& key) const {
   return object(key);
 }
 
-}  // namespace sb
+}  // namespace sb::record
