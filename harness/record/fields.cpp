@@ -66,8 +66,7 @@ void Fields::fail(const std::string& key, const std::string& problem) const {
 }
 
 std::vector<Fields> Fields::objects(const std::string& key) const {
-  const json& v = at(key);
-  if (!v.is_array()) fail(key, "expected an array of objects, found " + core::describe(v));
+  const json& v = reader_.array(at(key), pointer_of(key), "objects");
   std::vector<Fields> out;
   out.reserve(v.size());
   for (size_t i = 0; i < v.size(); ++i)

@@ -189,7 +189,7 @@ TEST(PlanOutcomes, AWrongPlanFileIsRefusedAtItsLineColumnAndPointer) {
        "is 2; this build reads plan version 1 only"},
       {[](nlohmann::json& j) { j["jobs"][3]["outcome"] = "maybe"; }, "/jobs/3/outcome",
        [](const std::string& t) { return t.find("\"maybe\""); },
-       "expected \"run\", \"skip\" or \"fail\", found \"maybe\""},
+       "expected one of \"run\", \"skip\", \"fail\", found \"maybe\""},
       {[](nlohmann::json& j) { j["counts"]["run"] = 5; }, "/counts",
        [](const std::string& t) { return after(t, "\"counts\": "); },
        "say 5 run, 1 skip, 0 fail; the jobs are 23, 1 and 0"},
