@@ -126,9 +126,15 @@ Params resolve_sweep_combo(const std::vector<ParamSpec>& specs, const json& give
   try {
     return resolve_params(specs, combo, file, pointer);
   } catch (const InputError& e) {
+    // A known parameter's bad value is one element of its list; an unknown
+    // parameter is wrong as a key, whatever its values.
+    const auto known = [&specs](const std::string& key) {
+      return std::any_of(specs.begin(), specs.end(),
+                         [&key](const ParamSpec& s) { return s.name == key; });
+    };
     if (given.is_object())
       for (auto it = given.begin(); it != given.end(); ++it)
-        if (e.where() == pointer + "/" + pointer_token(it.key()))
+        if (known(it.key()) && e.where() == pointer + "/" + pointer_token(it.key()))
           throw InputError(e.file(), swept_pointer(given, combo, pointer, it.key()), e.problem(),
                            e.position());
     throw;

@@ -75,6 +75,9 @@ const Case kCases[] = {
     {"swept_parameter_type", R"("k": 5)", R"("k": [3, "five"])", "\"five\"",
      "/techniques/1/params/k/1"},
     {"swept_scene_parameter", R"("grid": 2)", R"("grid": [2, 0])", "0", "/scenes/0/params/grid/1"},
+    // An unknown parameter is wrong as a key: placed at it, not at an element.
+    {"swept_unknown_parameter", R"("k": 5)", R"("kk": [3, 5])", "[3, 5]",
+     "/techniques/1/params/kk"},
 };
 
 // "LINE:COL" of the byte `offset` of `text`, both from 1.

@@ -177,8 +177,9 @@ TEST(ShardMerge, MergeReadsTheShardsPlansBackAndWarnsOfPlannedJobsNoFolderRecord
   const std::string n = std::to_string(in_shard_2);
   EXPECT_NE(part.output.find("merge: warning: " + n + " of the plan's " +
                              std::to_string(plan1["jobs"].size()) +
-                             " jobs have no record in these folders (shard 2 of 2: " + n +
-                             " of its " + n + "): the merged results are incomplete"),
+                             (in_shard_2 == 1 ? " jobs has" : " jobs have") +
+                             " no record in these folders (shard 2 of 2: " + n + " of its " + n +
+                             "): the merged results are incomplete"),
             std::string::npos)
       << part.output;
 
