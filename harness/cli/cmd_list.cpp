@@ -26,8 +26,6 @@ using plugin::Registry;
 using plugin::TechniqueInfo;
 using record::plan_schema_markdown;
 using record::record_schema_markdown;
-using record::to_string;
-using results::to_string;
 
 namespace {
 

@@ -11,7 +11,6 @@
 namespace sb::results {
 
 using core::format_number;
-using core::to_string;
 using record::ImageMetrics;
 using record::JobRecord;
 using record::ReferenceRecord;

@@ -26,7 +26,6 @@ namespace sb::test {
 using config::Experiment;
 using config::load_experiment;
 using core::InputError;
-using core::to_string;
 using plan::decide_job;
 using plan::Derive;
 using plan::JobOutcome;
