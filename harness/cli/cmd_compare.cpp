@@ -13,7 +13,6 @@
 
 namespace sb::cli {
 
-using core::describe;
 using core::InputError;
 using core::kExitBadInput;
 using core::kExitInternal;

@@ -9,7 +9,6 @@ namespace sb::config {
 
 using core::describe;
 using core::InputError;
-using core::JsonReader;
 using core::kLargestCoordinate;
 
 using json = nlohmann::json;

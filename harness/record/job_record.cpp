@@ -4,8 +4,6 @@
 
 namespace sb::record {
 
-using core::describe;
-
 using json = nlohmann::json;
 
 namespace {

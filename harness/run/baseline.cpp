@@ -16,7 +16,6 @@ namespace sb::run {
 using config::Experiment;
 using config::ReferenceConfig;
 using config::Resolution;
-using core::describe;
 using core::file_safe;
 using core::ImageF;
 using core::Scene;

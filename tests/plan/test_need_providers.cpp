@@ -24,7 +24,6 @@ using plugin::DerivedData;
 using plugin::NeedProvider;
 using plugin::Needs;
 using plugin::Registry;
-using plugin::SilhouetteEdges;
 using plugin::TechniqueInfo;
 
 namespace {

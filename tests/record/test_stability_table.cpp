@@ -27,7 +27,6 @@ using results::make_markdown;
 using results::stability_cell;
 using results::stability_table;
 using results::StabilityCell;
-using results::StabilityTable;
 using results::StabilityVerdict;
 
 namespace {
