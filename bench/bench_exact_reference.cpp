@@ -192,8 +192,8 @@ BENCHMARK(BM_UnionBoostGeometry)->Unit(benchmark::kMillisecond);
 // segment's exact reference to measure the Monte Carlo error against.
 struct SegmentWorkload {
   sb::bench::SceneWorkload grid;
-  sb::Scene rectangle;
-  sb::ImageF exact;
+  sb::core::Scene rectangle;
+  sb::core::ImageF exact;
 };
 
 const SegmentWorkload& segment_grid() {
@@ -234,7 +234,7 @@ BENCHMARK(BM_ExactReferenceSegment)->Unit(benchmark::kMillisecond)->UseRealTime(
 // reference over its penumbra, and the RMS of the stated error there.
 void BM_MonteCarloReferenceSegment(benchmark::State& state) {
   const SegmentWorkload& w = segment_grid();
-  const sb::Scene& scene = state.range(1) == 0 ? w.grid.scene : w.rectangle;
+  const sb::core::Scene& scene = state.range(1) == 0 ? w.grid.scene : w.rectangle;
   const sb::reference::Settings settings{int(state.range(0)), 1};
   double err2 = 0.0, se2 = 0.0, count = 0.0;
   for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)

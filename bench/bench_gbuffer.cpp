@@ -31,9 +31,9 @@ namespace {
 constexpr int kWidth = 800, kHeight = 600;
 
 struct Workload {
-  sb::Scene scene;
-  std::unique_ptr<sb::GpuScene> gpu;
-  std::unique_ptr<sb::FrameTargets> targets;
+  sb::core::Scene scene;
+  std::unique_ptr<sb::gl::GpuScene> gpu;
+  std::unique_ptr<sb::run::FrameTargets> targets;
   glm::mat4 view_projection{1.0f};
 };
 
@@ -41,9 +41,9 @@ Workload& workload() {
   static Workload w = [] {
     Workload out;
     out.scene = sb::bench::scene_workload("sphere_grid").scene;
-    out.gpu = std::make_unique<sb::GpuScene>(out.scene, std::vector<std::vector<uint32_t>>{});
-    out.targets = std::make_unique<sb::FrameTargets>(kWidth, kHeight);
-    const sb::Camera& c = out.scene.camera;
+    out.gpu = std::make_unique<sb::gl::GpuScene>(out.scene, std::vector<std::vector<uint32_t>>{});
+    out.targets = std::make_unique<sb::run::FrameTargets>(kWidth, kHeight);
+    const sb::core::Camera& c = out.scene.camera;
     out.view_projection = c.projection(float(kWidth) / float(kHeight)) * c.view();
     return out;
   }();

@@ -20,9 +20,9 @@ constexpr int kHalfW = kW / 2;
 
 // A shadow-like pair: smooth visibility with a soft edge, and a noisy,
 // slightly shifted estimate of it.
-void make_pair(int channels, sb::ImageF& test, sb::ImageF& ref) {
-  ref = sb::ImageF(kW, kH, channels);
-  test = sb::ImageF(kW, kH, channels);
+void make_pair(int channels, sb::core::ImageF& test, sb::core::ImageF& ref) {
+  ref = sb::core::ImageF(kW, kH, channels);
+  test = sb::core::ImageF(kW, kH, channels);
   std::mt19937 rng(42);
   for (int y = 0; y < kH; ++y) {
     for (int x = 0; x < kW; ++x) {
@@ -38,7 +38,7 @@ void make_pair(int channels, sb::ImageF& test, sb::ImageF& ref) {
 }
 
 void BM_Compare(benchmark::State& state) {
-  sb::ImageF test, ref;
+  sb::core::ImageF test, ref;
   make_pair(static_cast<int>(state.range(0)), test, ref);
   for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
     sb::metrics::ErrorStats s = sb::metrics::compare(test, ref);
@@ -50,7 +50,7 @@ void BM_Compare(benchmark::State& state) {
 // As a job measures its visibility: seven masks (every pixel, the measured
 // ones, the penumbra, the soft union, the distance thirds) in one call.
 void BM_CompareSevenMasks(benchmark::State& state) {
-  sb::ImageF test, ref;
+  sb::core::ImageF test, ref;
   make_pair(static_cast<int>(state.range(0)), test, ref);
   std::vector<std::vector<uint8_t>> masks(6, std::vector<uint8_t>(size_t(kW) * kH));
   // Regions, as a frame's are: blocks of a few dozen pixels.
@@ -67,7 +67,7 @@ void BM_CompareSevenMasks(benchmark::State& state) {
 }
 
 void BM_Ssim(benchmark::State& state) {
-  sb::ImageF test, ref;
+  sb::core::ImageF test, ref;
   make_pair(static_cast<int>(state.range(0)), test, ref);
   for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
     double s = sb::metrics::ssim(test, ref);
@@ -83,7 +83,7 @@ void BM_SsimOnPath(benchmark::State& state) {
     state.SkipWithError(("this CPU has no " + sb::metrics::detail::to_string(path)).c_str());
     return;
   }
-  sb::ImageF test, ref;
+  sb::core::ImageF test, ref;
   make_pair(3, test, ref);
   for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
     std::vector<double> s = sb::metrics::detail::ssim_on(path, test, ref, 1.0, {nullptr});

@@ -141,10 +141,10 @@ TracedImage trace_with(const sb::bench::SceneWorkload& w, sb::reference::detail:
   const auto t0 = std::chrono::steady_clock::now();
   const double cpu0 = process_cpu_seconds();
   const d::FlatScene casters(
-      device, w.scene, [](const sb::Mesh& m) { return m.casts_shadow; }, true, traversal);
+      device, w.scene, [](const sb::core::Mesh& m) { return m.casts_shadow; }, true, traversal);
   const d::Layout layout = d::make_layout(spp);
   const d::RaySetup setup(w.scene, casters, layout, w.gbuffer.positions, w.gbuffer.normals, 1);
-  const sb::ImageF& positions = w.gbuffer.positions;
+  const sb::core::ImageF& positions = w.gbuffer.positions;
   TracedImage out;
   out.reached.assign(positions.pixel_count(), 0);
   std::vector<uint32_t> all(static_cast<size_t>(spp));

@@ -17,7 +17,7 @@ using sb::volume::SilhouetteMode;
 void silhouette_and_volume(benchmark::State& state, SilhouetteMode mode) {
   // 2·slices·(stacks − 1) triangles, slices = 2·stacks.
   const int stacks = int(state.range(0));
-  const sb::Mesh sphere = sb::make_uv_sphere("s", {0, 1.2f, 0}, 0.5f, 2 * stacks, stacks);
+  const sb::core::Mesh sphere = sb::make_uv_sphere("s", {0, 1.2f, 0}, 0.5f, 2 * stacks, stacks);
   const sb::volume::SilhouetteMesh shape =
       sb::volume::make_silhouette_mesh(sphere, sb::mesh_edges(sphere));
   sb::volume::SilhouetteSettings settings;

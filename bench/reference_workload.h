@@ -13,7 +13,7 @@
 namespace sb::bench {
 
 struct SceneWorkload {
-  Scene scene;
+  core::Scene scene;
   reference::GBuffer gbuffer;
   size_t covered = 0;  // pixels with a surface
 };
@@ -21,13 +21,13 @@ struct SceneWorkload {
 // The scene type `type` at its defaults, with `overrides` on top.
 inline SceneWorkload scene_workload(const std::string& type_name,
                                     const nlohmann::json& overrides = nlohmann::json::object()) {
-  const SceneType* type = find_scene_type(type_name);
+  const core::SceneType* type = core::find_scene_type(type_name);
   if (!type) throw std::runtime_error("no " + type_name + " scene type");
   nlohmann::json params = nlohmann::json::object();
   for (const auto& p : type->params) params[p.name] = p.default_value;
   params.update(overrides);
   SceneWorkload out;
-  out.scene = type->build(Params(params));
+  out.scene = type->build(core::Params(params));
   out.gbuffer = reference::trace_gbuffer(out.scene, 800, 600);
   for (size_t i = 0; i < out.gbuffer.positions.pixel_count(); ++i)
     out.covered += out.gbuffer.positions.data[i * 4 + 3] > 0.5f;

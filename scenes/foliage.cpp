@@ -24,6 +24,17 @@
 #include "scenes/triangle_budget.h"
 
 namespace sb {
+
+using core::AlphaMode;
+using core::Bounds;
+using core::float_param;
+using core::int_param;
+using core::make_area_light;
+using core::Mesh;
+using core::Params;
+using core::Scene;
+using core::SceneType;
+
 namespace {
 
 // splitmix64: a small, portable generator (std distributions differ between

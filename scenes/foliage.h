@@ -5,5 +5,5 @@ namespace sb {
 // Procedural trees: closed tapered-cylinder trunks and branches, and
 // alpha-tested, double-sided leaf quads carrying a generated leaf mask. Almost
 // every leaf edge is a silhouette and the leaves are thin, open occluders.
-SceneType foliage_scene_type();
+core::SceneType foliage_scene_type();
 }  // namespace sb

@@ -6,6 +6,8 @@
 
 namespace sb::gltf {
 
+using core::InputError;
+
 void ImportStep::fail(const std::string& where, const std::string& what) const {
   throw InputError(file_, where, what);
 }

@@ -9,6 +9,9 @@
 #include "core/error.h"
 
 namespace sb::gltf {
+
+using core::InputError;
+
 namespace {
 
 namespace fs = std::filesystem;

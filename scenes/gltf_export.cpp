@@ -16,6 +16,15 @@
 #include "core/atomic_file.h"
 
 namespace sb {
+
+using core::AlphaMode;
+using core::AreaLight;
+using core::Camera;
+using core::Mesh;
+using core::Scene;
+using core::TextureImage;
+using core::write_file_atomically;
+
 namespace {
 
 using json = nlohmann::json;

@@ -11,9 +11,9 @@
 
 namespace sb {
 
-std::vector<uint8_t> export_glb_bytes(const Scene& scene);
+std::vector<uint8_t> export_glb_bytes(const core::Scene& scene);
 // Writes atomically (core/atomic_file.h); throws JobError (a
 // std::runtime_error) when the file cannot be written.
-void export_glb(const Scene& scene, const std::string& path);
+void export_glb(const core::Scene& scene, const std::string& path);
 
 }  // namespace sb

@@ -9,6 +9,9 @@
 #include "scenes/gltf_import.h"
 
 namespace sb::gltf {
+
+using core::TextureImage;
+
 namespace {
 
 uint32_t be32(const unsigned char* p) {

@@ -15,7 +15,7 @@ class ImageDecoder : public ImportStep {
  public:
   explicit ImageDecoder(const std::string& file) : ImportStep(file) {}
   // Image `index` of the model, as straight (unassociated) RGBA8.
-  TextureImage decode(const tg::Image& img, size_t index);
+  core::TextureImage decode(const tg::Image& img, size_t index);
 
  private:
   size_t decoded_texels_ = 0;  // of every image decoded so far

@@ -18,6 +18,13 @@
 #include "scenes/gltf_uri_sandbox.h"
 
 namespace sb {
+
+using core::AreaLight;
+using core::Bounds;
+using core::Camera;
+using core::make_area_light;
+using core::Scene;
+
 namespace {
 
 namespace fs = std::filesystem;

@@ -20,7 +20,7 @@ struct GltfImportOptions {
 // Malformed or unsupported input throws InputError naming the file and the
 // place ("accessor 3", "node 'wheel' (5)", "image 2 uri", ...); it never reads
 // files outside the glTF file's own folder.
-Scene load_gltf(const std::string& path, const GltfImportOptions& options = {});
+core::Scene load_gltf(const std::string& path, const GltfImportOptions& options = {});
 
 // Limits, checked before anything of that size is allocated.
 inline constexpr size_t kGltfMaxTriangles = 100'000'000;  // whole scene, after instancing

@@ -5,6 +5,8 @@
 
 namespace sb::gltf {
 
+using core::AlphaMode;
+
 MaterialInfo MaterialReader::material(int index, const std::string& primitive) {
   MaterialInfo info;  // glTF's default material: white, opaque
   if (index < 0) return info;

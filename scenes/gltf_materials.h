@@ -18,7 +18,7 @@ struct MaterialInfo {
   glm::vec3 albedo{1.0f};
   int texture = -1;  // into the Scene's textures
   int texcoord = 0;
-  AlphaMode mode = AlphaMode::Opaque;
+  core::AlphaMode mode = core::AlphaMode::Opaque;
   float cutoff = 0.5f;
   bool double_sided = false;
   bool transform = false;
@@ -29,7 +29,7 @@ class MaterialReader : public ImportStep {
  public:
   // Decoded textures are appended to `textures`.
   MaterialReader(const std::string& file, const tg::Model& model,
-                 std::vector<TextureImage>& textures)
+                 std::vector<core::TextureImage>& textures)
       : ImportStep(file), model_(model), textures_(textures), images_(file) {}
   // Material `index` (< 0: glTF's default material) of the primitive named `primitive`.
   MaterialInfo material(int index, const std::string& primitive);
@@ -39,7 +39,7 @@ class MaterialReader : public ImportStep {
   void texture_transform(const tg::Value& t, const std::string& where, MaterialInfo& info) const;
 
   const tg::Model& model_;
-  std::vector<TextureImage>& textures_;
+  std::vector<core::TextureImage>& textures_;
   ImageDecoder images_;
   std::map<int, int> image_to_texture_;
 };

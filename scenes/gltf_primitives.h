@@ -22,7 +22,7 @@ struct LoadedPrimitive {
   std::vector<uint32_t> indices;  // triangle list
   glm::vec3 albedo{1.0f};
   int texture = -1;
-  AlphaMode alpha_mode = AlphaMode::Opaque;
+  core::AlphaMode alpha_mode = core::AlphaMode::Opaque;
   float alpha_cutoff = 0.5f;
   bool double_sided = false;
 };
@@ -31,7 +31,7 @@ class PrimitiveLoader : public ImportStep {
  public:
   // Textures the materials use are appended to `textures`.
   PrimitiveLoader(const std::string& file, const tg::Model& model,
-                  std::vector<TextureImage>& textures)
+                  std::vector<core::TextureImage>& textures)
       : ImportStep(file),
         model_(model),
         accessors_(file, model),

@@ -4,6 +4,11 @@
 
 namespace sb {
 
+using core::float_param;
+using core::Params;
+using core::path_param;
+using core::SceneType;
+
 SceneType gltf_scene_type() {
   return {"gltf",
           "a glTF 2.0 file (.gltf/.glb): its default scene, first camera and first "

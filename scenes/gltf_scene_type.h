@@ -3,5 +3,5 @@
 
 namespace sb {
 // A glTF 2.0 file (.gltf or .glb) as a scene; see docs/scenes.md.
-SceneType gltf_scene_type();
+core::SceneType gltf_scene_type();
 }  // namespace sb

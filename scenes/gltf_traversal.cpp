@@ -9,6 +9,9 @@
 #include "scenes/gltf_import.h"
 
 namespace sb::gltf {
+
+using core::Mesh;
+
 namespace {
 
 bool casts_shadow_flag(const tg::Value& extras, bool def) {

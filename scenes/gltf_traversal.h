@@ -33,7 +33,7 @@ struct PendingLight {
 class Traversal : public ImportStep {
  public:
   // Meshes, textures and the ambient colour go into `scene`.
-  Traversal(const std::string& file, const tg::Model& model, Scene& scene)
+  Traversal(const std::string& file, const tg::Model& model, core::Scene& scene)
       : ImportStep(file), model_(model), scene_(scene), primitives_(file, model, scene.textures) {}
   void run();
   const PendingCamera& camera() const { return camera_; }
@@ -47,7 +47,7 @@ class Traversal : public ImportStep {
   bool visit_light(size_t node_index, const glm::dmat4& world);
 
   const tg::Model& model_;
-  Scene& scene_;
+  core::Scene& scene_;
   PrimitiveLoader primitives_;
   size_t total_triangles_ = 0;
   PendingCamera camera_;

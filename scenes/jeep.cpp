@@ -30,6 +30,17 @@
 #include "scenes/triangle_budget.h"
 
 namespace sb {
+
+using core::Bounds;
+using core::choice_param;
+using core::float_param;
+using core::int_param;
+using core::make_area_light;
+using core::Mesh;
+using core::Params;
+using core::Scene;
+using core::SceneType;
+
 namespace {
 
 const glm::vec3 kOlive(0.30f, 0.33f, 0.16f);

@@ -6,6 +6,10 @@
 
 namespace sb {
 
+using core::AlphaMode;
+using core::Mesh;
+using core::TextureImage;
+
 TextureImage make_leaf_texture(int size, uint32_t seed) {
   TextureImage t;
   t.name = "leaf_mask";

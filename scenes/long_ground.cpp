@@ -27,6 +27,16 @@
 #include "scenes/sphere_grid.h"
 
 namespace sb {
+
+using core::choice_param;
+using core::float_param;
+using core::int_param;
+using core::make_area_light;
+using core::Mesh;
+using core::Params;
+using core::Scene;
+using core::SceneType;
+
 namespace {
 
 constexpr float kPostHalfWidth = 0.1f;

@@ -7,5 +7,5 @@ namespace sb {
 // map's texels are too coarse near the camera and wasted far away
 // (perspective aliasing). Parameters and placement are documented in
 // long_ground.cpp.
-SceneType long_ground_scene_type();
+core::SceneType long_ground_scene_type();
 }  // namespace sb

@@ -5,6 +5,10 @@
 #include <stdexcept>
 
 namespace sb {
+
+using core::AnalyticShape;
+using core::Mesh;
+
 namespace {
 
 constexpr float kTwoPi = 2.0f * std::numbers::pi_v<float>;

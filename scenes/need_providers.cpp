@@ -12,6 +12,18 @@
 
 namespace sb {
 
+using core::AreaLight;
+using core::Bounds;
+using core::Mesh;
+using core::Scene;
+using plugin::CasterAdjacency;
+using plugin::CasterEdges;
+using plugin::DerivedData;
+using plugin::MeshEdge;
+using plugin::NeedProvider;
+using plugin::PlanarReceiver;
+using plugin::SilhouetteEdges;
+
 DerivedDataCounters& derived_data_counters() {
   static DerivedDataCounters counters;
   return counters;
@@ -57,7 +69,7 @@ glm::vec4 face_plane(const Mesh& m, uint32_t t) {
 
 NeedProvider caster_closedness() {
   NeedProvider p;
-  p.name = need::kCasterClosedness;
+  p.name = plugin::need::kCasterClosedness;
   p.summary = "closedness of each caster (boundary, non-manifold, mis-wound edges)";
   p.when = NeedProvider::When::Plan;
   p.derive = [](const Scene& scene, DerivedData& data, std::vector<std::string>& log) {
@@ -68,7 +80,7 @@ NeedProvider caster_closedness() {
       if (m.casts_shadow) ++derived_data_counters().closedness_checks;
       if (!topology->back().closed()) ++open;
     }
-    data.put<CasterTopology>(need::kCasterClosedness, std::move(topology));
+    data.put<CasterTopology>(plugin::need::kCasterClosedness, std::move(topology));
     log.push_back("checked closedness of the casters (" + std::to_string(open) + " open)");
   };
   return p;
@@ -76,15 +88,15 @@ NeedProvider caster_closedness() {
 
 NeedProvider closed_casters() {
   NeedProvider p;
-  p.name = need::kClosedCasters;
+  p.name = plugin::need::kClosedCasters;
   p.summary = "every caster is a closed 2-manifold (else skipped)";
-  p.requires_needs = {need::kCasterClosedness};
+  p.requires_needs = {plugin::need::kCasterClosedness};
   p.when = NeedProvider::When::Plan;
   p.derive = [](const Scene&, DerivedData& data, std::vector<std::string>&) {
-    data.put_check(need::kClosedCasters);
+    data.put_check(plugin::need::kClosedCasters);
   };
   p.unmet = [](const Scene& scene, const DerivedData& data) -> std::string {
-    const auto& topology = data.get<CasterTopology>(need::kCasterClosedness);
+    const auto& topology = data.get<CasterTopology>(plugin::need::kCasterClosedness);
     for (size_t i = 0; i < scene.meshes.size(); ++i) {
       const auto& m = scene.meshes[i];
       const auto& topo = topology[i];
@@ -106,11 +118,11 @@ NeedProvider closed_casters() {
 
 NeedProvider opaque_casters() {
   NeedProvider p;
-  p.name = need::kOpaqueCasters;
+  p.name = plugin::need::kOpaqueCasters;
   p.summary = "no caster is alpha-tested (else skipped)";
   p.when = NeedProvider::When::Plan;
   p.derive = [](const Scene&, DerivedData& data, std::vector<std::string>&) {
-    data.put_check(need::kOpaqueCasters);
+    data.put_check(plugin::need::kOpaqueCasters);
   };
   p.unmet = [](const Scene& scene, const DerivedData&) -> std::string {
     for (const auto& m : scene.meshes)
@@ -123,7 +135,7 @@ NeedProvider opaque_casters() {
 
 NeedProvider planar_receiver() {
   NeedProvider p;
-  p.name = need::kPlanarReceiver;
+  p.name = plugin::need::kPlanarReceiver;
   p.summary = "a plane under every caster, receiving all their shadows (else skipped)";
   p.when = NeedProvider::When::Plan;
   p.derive = [](const Scene& scene, DerivedData& data, std::vector<std::string>& log) {
@@ -131,13 +143,13 @@ NeedProvider planar_receiver() {
     PlanarReceiver r;
     if (find_planar_receiver(scene, r)) {
       log.push_back("planar receiver: mesh '" + r.mesh + "'");
-      data.put<PlanarReceiver>(need::kPlanarReceiver, std::make_shared<PlanarReceiver>(r));
+      data.put<PlanarReceiver>(plugin::need::kPlanarReceiver, std::make_shared<PlanarReceiver>(r));
     } else {
       log.emplace_back("no planar receiver");
     }
   };
   p.unmet = [](const Scene&, const DerivedData& data) -> std::string {
-    return data.find<PlanarReceiver>(need::kPlanarReceiver) != nullptr
+    return data.find<PlanarReceiver>(plugin::need::kPlanarReceiver) != nullptr
                ? ""
                : "needs a planar receiver under every caster; the scene has none";
   };
@@ -158,11 +170,11 @@ std::string light_shape(const AreaLight& l) {
 
 NeedProvider linear_light() {
   NeedProvider p;
-  p.name = need::kLinearLight;
+  p.name = plugin::need::kLinearLight;
   p.summary = "the light is a segment, light.size [w, 0] or [0, h] (else skipped)";
   p.when = NeedProvider::When::Plan;
   p.derive = [](const Scene&, DerivedData& data, std::vector<std::string>&) {
-    data.put_check(need::kLinearLight);
+    data.put_check(plugin::need::kLinearLight);
   };
   p.unmet = [](const Scene& scene, const DerivedData&) -> std::string {
     if (scene.light.is_segment()) return "";
@@ -174,11 +186,11 @@ NeedProvider linear_light() {
 
 NeedProvider rectangular_light() {
   NeedProvider p;
-  p.name = need::kRectangularLight;
+  p.name = plugin::need::kRectangularLight;
   p.summary = "the light is a rectangle or a point, not a segment (else skipped)";
   p.when = NeedProvider::When::Plan;
   p.derive = [](const Scene&, DerivedData& data, std::vector<std::string>&) {
-    data.put_check(need::kRectangularLight);
+    data.put_check(plugin::need::kRectangularLight);
   };
   p.unmet = [](const Scene& scene, const DerivedData&) -> std::string {
     if (!scene.light.is_segment()) return "";
@@ -189,7 +201,7 @@ NeedProvider rectangular_light() {
 
 NeedProvider edge_adjacency() {
   NeedProvider p;
-  p.name = need::kEdgeAdjacency;
+  p.name = plugin::need::kEdgeAdjacency;
   p.summary = "edge adjacency of the casters";
   p.derive = [](const Scene& scene, DerivedData& data, std::vector<std::string>& log) {
     auto adjacency = std::make_shared<CasterAdjacency>(scene.meshes.size());
@@ -200,7 +212,7 @@ NeedProvider edge_adjacency() {
       triangles += scene.meshes[i].triangle_count();
       ++derived_data_counters().adjacency_builds;
     }
-    data.put<CasterAdjacency>(need::kEdgeAdjacency, std::move(adjacency));
+    data.put<CasterAdjacency>(plugin::need::kEdgeAdjacency, std::move(adjacency));
     log.push_back("built edge adjacency for " + std::to_string(triangles) + " caster triangles");
   };
   return p;
@@ -208,7 +220,7 @@ NeedProvider edge_adjacency() {
 
 NeedProvider caster_edges() {
   NeedProvider p;
-  p.name = need::kCasterEdges;
+  p.name = plugin::need::kCasterEdges;
   p.summary = "every edge of the casters with the triangles on either side, on the CPU";
   p.derive = [](const Scene& scene, DerivedData& data, std::vector<std::string>& log) {
     auto edges = std::make_shared<CasterEdges>(scene.meshes.size());
@@ -218,7 +230,7 @@ NeedProvider caster_edges() {
       (*edges)[i] = mesh_edges(scene.meshes[i]);
       count += (*edges)[i].size();
     }
-    data.put<CasterEdges>(need::kCasterEdges, std::move(edges));
+    data.put<CasterEdges>(plugin::need::kCasterEdges, std::move(edges));
     log.push_back("listed " + std::to_string(count) + " caster edges");
   };
   return p;
@@ -226,14 +238,14 @@ NeedProvider caster_edges() {
 
 NeedProvider silhouette_edges() {
   NeedProvider p;
-  p.name = need::kSilhouetteEdges;
+  p.name = plugin::need::kSilhouetteEdges;
   p.summary = "the casters' edges with both faces' planes, in a GPU buffer";
   // Packed and uploaded in one go once a context exists: the CPU copy is
   // not kept.
   p.derive = [](const Scene&, DerivedData&, std::vector<std::string>& log) {
     log.emplace_back("silhouette edges of the casters (uploaded when run)");
   };
-  p.upload = [](const Scene& scene, const GpuScene&, DerivedData& data) {
+  p.upload = [](const Scene& scene, const gl::GpuScene&, DerivedData& data) {
     const SilhouetteEdgeRecords packed = pack_silhouette_edges(scene);
     auto edges = std::make_shared<SilhouetteEdges>();
     edges->edge_count = GLsizei(packed.floats.size() / 16);
@@ -243,7 +255,7 @@ NeedProvider silhouette_edges() {
     edges->storage = gl::make_buffer(GLsizeiptr(floats.size() * sizeof(float)), floats.data());
     for (const auto& [first, count] : packed.mesh_ranges)
       edges->meshes.push_back({GLint(first), GLsizei(count)});
-    data.put<SilhouetteEdges>(need::kSilhouetteEdges, std::move(edges));
+    data.put<SilhouetteEdges>(plugin::need::kSilhouetteEdges, std::move(edges));
     ++derived_data_counters().silhouette_uploads;
   };
   return p;

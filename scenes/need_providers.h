@@ -14,9 +14,9 @@ namespace sb {
 // need::kCasterClosedness's data: per scene mesh (receivers: default).
 using CasterTopology = std::vector<MeshTopology>;
 // The first planar mesh that has every caster vertex on its light side.
-bool find_planar_receiver(const Scene& scene, PlanarReceiver& out);
+bool find_planar_receiver(const core::Scene& scene, plugin::PlanarReceiver& out);
 
-const std::vector<NeedProvider>& builtin_need_providers();
+const std::vector<plugin::NeedProvider>& builtin_need_providers();
 
 // The packed std430 records of need::kSilhouetteEdges (plugin/silhouette_edges.h):
 // 16 floats per edge, and per mesh its first edge and count.
@@ -24,7 +24,7 @@ struct SilhouetteEdgeRecords {
   std::vector<float> floats;
   std::vector<std::pair<int, int>> mesh_ranges;  // (first edge, count) per mesh
 };
-SilhouetteEdgeRecords pack_silhouette_edges(const Scene& scene);
+SilhouetteEdgeRecords pack_silhouette_edges(const core::Scene& scene);
 
 // Process-wide counters of derived data built (for tests and logs).
 struct DerivedDataCounters {

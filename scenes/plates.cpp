@@ -59,6 +59,18 @@
 #include "scenes/sphere_grid.h"
 
 namespace sb {
+
+using core::Bounds;
+using core::Camera;
+using core::choice_param;
+using core::float_param;
+using core::InputError;
+using core::make_area_light;
+using core::Mesh;
+using core::Params;
+using core::Scene;
+using core::SceneType;
+
 namespace {
 
 constexpr float kFovY = 45.0f;           // degrees, vertical

@@ -9,5 +9,5 @@ namespace sb {
 // configuration in which variance shadow maps bleed light into the lower
 // plate's umbra (Lauritzen, GPU Gems 3 ch. 8). Parameters and placement are
 // documented in plates.cpp.
-SceneType plates_scene_type();
+core::SceneType plates_scene_type();
 }  // namespace sb

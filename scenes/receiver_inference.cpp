@@ -6,6 +6,9 @@
 
 namespace sb {
 
+using core::Mesh;
+using core::Scene;
+
 std::optional<glm::dvec4> mesh_plane(const Mesh& m, double eps) {
   glm::dvec3 n(0.0);
   double best = 0.0;

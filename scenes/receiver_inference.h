@@ -23,12 +23,12 @@ namespace sb {
 
 // The plane (n, d), n·x + d = 0, of a mesh whose referenced vertices all lie
 // within `eps` of it (its largest triangle gives n); nothing if not planar.
-std::optional<glm::dvec4> mesh_plane(const Mesh& mesh, double eps);
+std::optional<glm::dvec4> mesh_plane(const core::Mesh& mesh, double eps);
 
 // Whether meshes[mesh] is such a mesh (casting or not). Also the rule for a
 // receiver that filtered maps may draw: nothing lies behind it. Builds the
 // test below for one question: a loop over meshes makes one test instead.
-bool can_shadow_nothing(const Scene& scene, size_t mesh);
+bool can_shadow_nothing(const core::Scene& scene, size_t mesh);
 
 // can_shadow_nothing for the meshes of one scene, which must outlive it and
 // not change: the scene's bounds and a box tree over its vertices are made
@@ -37,17 +37,17 @@ bool can_shadow_nothing(const Scene& scene, size_t mesh);
 // `validate` and `run`; issue 42).
 class ShadowNothingTest {
  public:
-  explicit ShadowNothingTest(const Scene& scene);
+  explicit ShadowNothingTest(const core::Scene& scene);
   bool operator()(size_t mesh) const;
 
  private:
-  const Scene& scene_;
-  Bounds bounds_;
+  const core::Scene& scene_;
+  core::Bounds bounds_;
   PointBoxTree vertices_;  // every vertex an index refers to, of every mesh
 };
 
 // Marks every such casting mesh `casts_shadow = false` and returns their
 // names, in scene order. Meshes that already cast nothing are not listed.
-std::vector<std::string> infer_receivers(Scene& scene);
+std::vector<std::string> infer_receivers(core::Scene& scene);
 
 }  // namespace sb

@@ -11,6 +11,21 @@
 #include "scenes/topology.h"
 
 namespace sb {
+
+using core::AreaLight;
+using core::Bounds;
+using core::Camera;
+using core::find_scene_type;
+using core::InputError;
+using core::JsonReader;
+using core::Mesh;
+using core::Params;
+using core::resolve_params;
+using core::Scene;
+using core::scene_types;
+using core::SceneType;
+using core::to_string;
+
 namespace {
 
 using json = nlohmann::json;

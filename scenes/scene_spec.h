@@ -9,9 +9,9 @@
 namespace sb {
 
 // Throws InputError (file "scene spec") naming the bad parameter.
-Scene build_scene_from_spec(const std::string& spec);
+core::Scene build_scene_from_spec(const std::string& spec);
 
 // Meshes, triangles, textures, bounds, light and camera; closedness per mesh.
-std::string describe_scene(const Scene& scene);
+std::string describe_scene(const core::Scene& scene);
 
 }  // namespace sb

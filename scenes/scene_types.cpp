@@ -14,6 +14,10 @@
 
 namespace sb {
 
+// core/scene_types.h's registry, which knows the scene types of scenes/.
+using core::AreaLight;
+using core::SceneType;
+
 namespace {
 std::vector<SceneType>& registry() {
   static std::vector<SceneType> types = {sphere_grid_scene_type(),
@@ -28,22 +32,22 @@ std::vector<SceneType>& registry() {
 }
 }  // namespace
 
-const std::vector<SceneType>& scene_types() { return registry(); }
+const std::vector<SceneType>& core::scene_types() { return registry(); }
 
-void add_scene_type(SceneType type) {
+void core::add_scene_type(SceneType type) {
   if (find_scene_type(type.name) != nullptr)
     throw std::logic_error("scene type '" + type.name + "' registered twice");
   registry().push_back(std::move(type));
 }
 
-const SceneType* find_scene_type(const std::string& name) {
+const SceneType* core::find_scene_type(const std::string& name) {
   for (const auto& t : scene_types())
     if (t.name == name) return &t;
   return nullptr;
 }
 
-AreaLight make_area_light(const glm::vec3& center, const glm::vec3& target, float width,
-                          float height, float intensity) {
+AreaLight core::make_area_light(const glm::vec3& center, const glm::vec3& target, float width,
+                                float height, float intensity) {
   AreaLight l;
   l.center = center;
   l.target = target;

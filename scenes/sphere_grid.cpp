@@ -8,6 +8,16 @@
 
 namespace sb {
 
+using core::AnalyticShape;
+using core::bool_param;
+using core::float_param;
+using core::int_param;
+using core::make_area_light;
+using core::Mesh;
+using core::Params;
+using core::Scene;
+using core::SceneType;
+
 Mesh make_uv_sphere(const std::string& name, glm::vec3 center, float radius, int slices,
                     int stacks) {
   Mesh m;

@@ -4,10 +4,10 @@
 namespace sb {
 // Forest et al. 2006's test scene: a grid of UV spheres above a ground plane
 // under a square area light. Layers stack further grids above the first.
-SceneType sphere_grid_scene_type();
+core::SceneType sphere_grid_scene_type();
 // A closed UV sphere: slices × stacks, 2*slices*(stacks-1) triangles.
-Mesh make_uv_sphere(const std::string& name, glm::vec3 center, float radius, int slices,
-                    int stacks);
+core::Mesh make_uv_sphere(const std::string& name, glm::vec3 center, float radius, int slices,
+                          int stacks);
 // A single-sided quad in the y = height plane, facing +y.
-Mesh make_ground_plane(const std::string& name, glm::vec3 center, float half_size);
+core::Mesh make_ground_plane(const std::string& name, glm::vec3 center, float half_size);
 }  // namespace sb

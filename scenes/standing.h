@@ -6,5 +6,5 @@ namespace sb {
 // square area light to one side: its shadow is hard at the contact line and
 // widest at its far end, the case that fixed-width blurs cannot follow.
 // Parameters and placement are documented in standing.cpp.
-SceneType standing_scene_type();
+core::SceneType standing_scene_type();
 }  // namespace sb

@@ -42,6 +42,16 @@
 #include "scenes/sphere_grid.h"
 
 namespace sb {
+
+using core::choice_param;
+using core::float_param;
+using core::int_param;
+using core::make_area_light;
+using core::Mesh;
+using core::Params;
+using core::Scene;
+using core::SceneType;
+
 namespace {
 
 const glm::vec3 kCasterAlbedo(0.55f, 0.5f, 0.45f);

@@ -7,5 +7,5 @@ namespace sb {
 // occluders thinner than a shadow-map texel, each over a ground plane under a
 // square area light. Parameters and placement are documented in
 // stress_geometry.cpp.
-SceneType stress_geometry_scene_type();
+core::SceneType stress_geometry_scene_type();
 }  // namespace sb

@@ -4,6 +4,10 @@
 #include <unordered_map>
 
 namespace sb {
+
+using core::Mesh;
+using plugin::MeshEdge;
+
 namespace {
 
 // Maps every vertex to the first vertex with the same position.

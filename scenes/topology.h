@@ -21,14 +21,14 @@ struct MeshTopology {
 // Counts boundary, non-manifold and inconsistently wound edges. Vertices are
 // welded by exact position first, so split normals or UV seams do not open a
 // mesh.
-MeshTopology analyse_topology(const Mesh& mesh);
+MeshTopology analyse_topology(const core::Mesh& mesh);
 
 // Index buffer for GL_TRIANGLES_ADJACENCY: per triangle (v0,a01,v1,a12,v2,a20)
 // where aij is the far vertex of the neighbour across edge vi-vj. A boundary
 // edge repeats the triangle's own opposite vertex.
-std::vector<uint32_t> build_adjacency_indices(const Mesh& mesh);
+std::vector<uint32_t> build_adjacency_indices(const core::Mesh& mesh);
 
 // Every edge of a mesh once (MeshEdge, plugin/need_data.h).
-std::vector<MeshEdge> mesh_edges(const Mesh& mesh);
+std::vector<plugin::MeshEdge> mesh_edges(const core::Mesh& mesh);
 
 }  // namespace sb

@@ -12,6 +12,24 @@
 #include "run/take_turns.h"
 
 namespace sb::cli {
+
+using core::InputError;
+using core::kExitBadInput;
+using core::kExitInternal;
+using core::kExitJobsFailed;
+using core::kExitOk;
+using record::JobRecord;
+using results::check_options;
+using results::compare_exit_code;
+using results::compare_runs;
+using results::CompareOptions;
+using results::CompareResult;
+using results::format_comparison;
+using results::read_job_records;
+using run::take_turns;
+using run::TurnCommand;
+using run::TurnsResult;
+
 namespace {
 
 int compare_dirs(const std::string& base, const std::string& fresh, const CompareOptions& options) {

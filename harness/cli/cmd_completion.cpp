@@ -10,6 +10,12 @@
 #include "core/scene_types.h"
 
 namespace sb::cli {
+
+using core::InputError;
+using core::kExitOk;
+using core::scene_types;
+using plugin::Registry;
+
 namespace {
 
 bool visible(const CLI::Option* o) { return !o->get_group().empty(); }

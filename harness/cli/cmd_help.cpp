@@ -7,6 +7,10 @@
 #include "core/error.h"
 
 namespace sb::cli {
+
+using core::InputError;
+using core::kExitOk;
+
 namespace {
 
 std::string cell(std::string text) {

@@ -11,6 +11,22 @@
 #include "scenes/need_providers.h"
 
 namespace sb::cli {
+
+using config::accepted_values;
+using config::markdown_param_table;
+using core::did_you_mean;
+using core::find_scene_type;
+using core::InputError;
+using core::kExitOk;
+using core::ParamSpec;
+using core::scene_types;
+using core::to_string;
+using plugin::NeedProvider;
+using plugin::Registry;
+using plugin::TechniqueInfo;
+using record::plan_schema_markdown;
+using record::record_schema_markdown;
+
 namespace {
 
 // Needs as the technique declared them (plugin/needs.h).

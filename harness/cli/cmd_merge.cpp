@@ -7,6 +7,11 @@
 
 namespace sb::cli {
 
+using core::kExitOk;
+using results::merge_runs;
+using results::MergeOptions;
+using results::MergeSummary;
+
 int cmd_merge(const Args& a) {
   MergeOptions o;
   o.allow_mixed_hosts = a.allow_mixed_hosts;

@@ -9,6 +9,12 @@
 #include "core/install_layout.h"
 
 namespace sb::cli {
+
+using core::executable_dir;
+using core::InputError;
+using core::kExitOk;
+using plugin::Registry;
+
 namespace {
 
 namespace fs = std::filesystem;

@@ -14,6 +14,17 @@
 
 namespace sb::cli {
 
+using core::InputError;
+using core::kExitOk;
+using results::ChartFile;
+using results::ChartOptions;
+using results::make_markdown;
+using results::read_job_records;
+using results::ReportChart;
+using results::write_charts;
+using results::write_html_report;
+using results::write_reports;
+
 int cmd_report(const Args& a) {
   if (a.run_dir.empty())
     throw InputError("", "command line", "expected one RUN_DIR (see shadowbench report --help)");

@@ -15,6 +15,23 @@
 
 namespace sb::cli {
 
+using config::Experiment;
+using core::InputError;
+using core::kExitBadInput;
+using core::kExitInternal;
+using core::kExitJobsFailed;
+using core::kExitOk;
+using plan::parse_shard;
+using plugin::Registry;
+using results::make_markdown;
+using results::read_job_records;
+using run::Isolation;
+using run::isolation_from_string;
+using run::run_experiment;
+using run::RunOptions;
+using run::RunSummary;
+using run::TurnTaker;
+
 int cmd_run(const Args& a) {
   const Registry r = load_registry(a);
   const Experiment e = load_checked_experiment(a, r);

@@ -10,6 +10,10 @@
 
 namespace sb::cli {
 
+using core::InputError;
+using core::kExitOk;
+using core::Scene;
+
 int cmd_scene_export(const Args& a) {
   if (a.scene_spec.empty() || a.scene_out.empty())
     throw InputError("", "command line",

@@ -14,6 +14,22 @@
 
 namespace sb::cli {
 
+using config::Experiment;
+using config::TechniqueVariant;
+using core::InputError;
+using core::kExitBadInput;
+using core::kExitInternal;
+using core::kExitOk;
+using plan::describe_plan;
+using plan::describe_shards;
+using plan::make_plan;
+using plan::Plan;
+using plan::plan_to_json;
+using plan::PlannedJob;
+using plan::ScenePlan;
+using plugin::Registry;
+using results::json_text;
+
 int cmd_validate(const Args& a, bool show_plan) {
   const Registry r = load_registry(a);
   const Experiment e = load_checked_experiment(a, r);

@@ -14,6 +14,10 @@
 #include "reference/embree_isa.h"
 
 namespace sb::cli {
+
+using core::kExitBadInput;
+using plan::parse_shard;
+
 namespace {
 
 // Validators in the harness's words ("expected ..., found '...'"); CLI11

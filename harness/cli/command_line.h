@@ -27,17 +27,17 @@ struct Args {
   std::string shell;                  // completion
   std::string out, backend = "osmesa", cache_dir = "results/cache", plugins;
   bool no_cache = false, no_images = false, gbuffer = false, quiet = false;
-  bool markdown = false;                                  // list, help
-  bool record_schema = false;                             // list
-  bool plan_schema = false;                               // list
-  bool names_only = false;                                // list
-  std::string benchmark_out, bencher_out;                 // run, report: CI outputs
-  std::string embree_config;                              // run: the reference's Embree ISA
-  std::string pass_timing = "coarse";                     // run
-  double max_jobs = double(ExperimentLimits{}.max_jobs);  // run, validate, plan
-  CompareOptions compare;                                 // compare, compare-builds
-  std::string builds_normalize = "control";               // compare-builds' own default
-  std::string base_binary, new_binary;                    // compare-builds
+  bool markdown = false;                                          // list, help
+  bool record_schema = false;                                     // list
+  bool plan_schema = false;                                       // list
+  bool names_only = false;                                        // list
+  std::string benchmark_out, bencher_out;                         // run, report: CI outputs
+  std::string embree_config;                                      // run: the reference's Embree ISA
+  std::string pass_timing = "coarse";                             // run
+  double max_jobs = double(config::ExperimentLimits{}.max_jobs);  // run, validate, plan
+  results::CompareOptions compare;                                // compare, compare-builds
+  std::string builds_normalize = "control";                       // compare-builds' own default
+  std::string base_binary, new_binary;                            // compare-builds
   std::string take_turns;               // run: IN_FD,OUT_FD (compare-builds, hidden)
   int turn_block = 5;                   // run, compare-builds: frames per turn
   std::string isolation = "group";      // run: job, group or none

@@ -27,7 +27,7 @@ int cmd_new_technique(const Args& a);
 
 // The plugins of --plugins (or the installed folder) and of
 // $SHADOWBENCH_PLUGIN_PATH; exits with code 3 when none load.
-Registry load_registry(const Args& a);
+plugin::Registry load_registry(const Args& a);
 
 // The CONFIG argument, or InputError when there is none.
 std::string one_config(const Args& a);
@@ -35,12 +35,12 @@ std::string one_config(const Args& a);
 // CONFIG loaded and checked against the plugins and --max-jobs, with a
 // warning on stderr for each parameter a technique declares but never reads
 // and for each technique whose shadow-map size differs from the others'.
-Experiment load_checked_experiment(const Args& a, const Registry& r);
+config::Experiment load_checked_experiment(const Args& a, const plugin::Registry& r);
 
 // "<name>-<UTC yyyymmdd-hhmmss>": a run folder's default name.
 std::string default_run_id(const std::string& name);
 
 // --benchmark-out and --bencher-out of run and report.
-void write_ci_outputs(const Args& a, const std::vector<JobRecord>& records);
+void write_ci_outputs(const Args& a, const std::vector<record::JobRecord>& records);
 
 }  // namespace sb::cli

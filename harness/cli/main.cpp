@@ -34,12 +34,12 @@ int main(int argc, char** argv) {
     if (a.command == "help") return cmd_help(a, *app);
     if (a.command == "completion") return cmd_completion(a, *app);
     std::fprintf(stderr, "shadowbench: internal error: no handler for '%s'\n", a.command.c_str());
-    return kExitInternal;
-  } catch (const InputError& e) {
+    return sb::core::kExitInternal;
+  } catch (const sb::core::InputError& e) {
     std::fprintf(stderr, "shadowbench: error: %s\n", e.what());
-    return kExitBadInput;
+    return sb::core::kExitBadInput;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "shadowbench: internal error: %s\n", e.what());
-    return kExitInternal;
+    return sb::core::kExitInternal;
   }
 }

@@ -8,6 +8,11 @@
 #include "core/error.h"
 
 namespace sb::cli {
+
+using core::InputError;
+using plugin::Registry;
+using plugin::TechniqueInfo;
+
 namespace {
 
 namespace fs = std::filesystem;

@@ -14,7 +14,7 @@ namespace sb::cli {
 // lowercase C identifier (a-z, 0-9 and '_', starting with a letter, no "__",
 // at most 48 characters), not a C++ keyword (it names a namespace and a
 // CMake target), and no technique `registry` knows.
-std::string technique_name_problem(const std::string& name, const Registry& registry);
+std::string technique_name_problem(const std::string& name, const plugin::Registry& registry);
 
 // Writes `tmpl`'s files into `folder` with @NAME@ and `values` (placeholder
 // -> text) filled in, and returns the paths written. Throws InputError,

@@ -16,6 +16,21 @@
 
 namespace sb::cli {
 
+using config::Experiment;
+using config::ExperimentLimits;
+using config::load_experiment;
+using config::unequal_map_size_warnings;
+using config::unread_parameter_warnings;
+using core::default_plugin_dir;
+using core::extra_plugin_dirs;
+using core::InputError;
+using core::kExitInternal;
+using plugin::PluginLoadFailure;
+using plugin::Registry;
+using record::JobRecord;
+using results::write_bencher_json;
+using results::write_benchmark_json;
+
 namespace {
 
 // A folder in the plugin path that holds no module at all is most likely a

@@ -6,6 +6,10 @@
 
 namespace sb::cli {
 
+using core::data_dirs;
+using core::default_plugin_dir;
+using core::extra_plugin_dirs;
+
 std::string version_text() {
   std::string text = "shadowbench " SHADOWBENCH_VERSION " (git " SHADOWBENCH_GIT_DESCRIBE ")\n";
   text += "GL backends:";

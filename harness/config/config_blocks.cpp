@@ -6,7 +6,17 @@
 #include "reference/adaptive.h"
 #include "reference/embree_isa.h"
 
-namespace sb {
+namespace sb::config {
+
+using core::bool_param;
+using core::choice_param;
+using core::float_param;
+using core::int_param;
+using core::ParamSpec;
+using core::ParamType;
+using core::string_param;
+using core::to_string;
+
 namespace {
 
 using json = nlohmann::json;
@@ -256,4 +266,4 @@ std::string markdown_config_blocks() {
   return out;
 }
 
-}  // namespace sb
+}  // namespace sb::config

@@ -15,11 +15,11 @@
 #include "config/experiment.h"
 #include "core/params.h"
 
-namespace sb {
+namespace sb::config {
 
 // One key of a block.
 struct BlockKey {
-  BlockKey(ParamSpec spec_, std::function<void(Experiment&, const nlohmann::json&)> store_,
+  BlockKey(core::ParamSpec spec_, std::function<void(Experiment&, const nlohmann::json&)> store_,
            std::function<nlohmann::json(const Experiment&)> value_, std::string type_doc_ = "")
       : spec(std::move(spec_)),
         store(std::move(store_)),
@@ -27,7 +27,7 @@ struct BlockKey {
         type_doc(std::move(type_doc_)) {}
   // Name, type, default, range or choices, rule and meaning. The default is
   // what the Experiment holds when the key is absent (a test checks it).
-  ParamSpec spec;
+  core::ParamSpec spec;
   // Stores a checked value; null for a key read elsewhere (frames.control, a
   // technique entry, needs the registry).
   std::function<void(Experiment&, const nlohmann::json&)> store;
@@ -58,4 +58,4 @@ void read_config_blocks(const ConfigReader& r, const nlohmann::json& doc, Experi
 // One Markdown table per block: | key | type | default | accepted | meaning |.
 std::string markdown_config_blocks();
 
-}  // namespace sb
+}  // namespace sb::config

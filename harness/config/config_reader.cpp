@@ -5,7 +5,11 @@
 #include "core/error.h"
 #include "core/scene_setup_check.h"
 
-namespace sb {
+namespace sb::config {
+
+using core::describe;
+using core::InputError;
+using core::kLargestCoordinate;
 
 using json = nlohmann::json;
 
@@ -54,4 +58,4 @@ float ConfigReader::positive(const json& v, const std::string& pointer, bool all
   return static_cast<float>(d);
 }
 
-}  // namespace sb
+}  // namespace sb::config

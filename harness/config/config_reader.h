@@ -9,15 +9,15 @@
 
 #include "core/json_reader.h"
 
-namespace sb {
+namespace sb::config {
 
-class ConfigReader : public JsonReader {
+class ConfigReader : public core::JsonReader {
  public:
   explicit ConfigReader(std::string file);
   // An integer in [lo, hi]; 2.0 is refused (unlike a technique parameter).
   int integer(const nlohmann::json& v, const std::string& pointer, long long lo,
               long long hi) const {
-    return static_cast<int>(JsonReader::integer(v, pointer, lo, hi));
+    return static_cast<int>(core::JsonReader::integer(v, pointer, lo, hi));
   }
   // A label names variants in tables and charts: short, printable.
   std::string label(const nlohmann::json& v, const std::string& pointer) const;
@@ -31,4 +31,4 @@ class ConfigReader : public JsonReader {
   std::string file_;
 };
 
-}  // namespace sb
+}  // namespace sb::config

@@ -19,7 +19,24 @@
 #include "core/nearest_names.h"
 #include "core/scene_setup_check.h"
 
-namespace sb {
+namespace sb::config {
+
+using core::describe;
+using core::did_you_mean;
+using core::find_scene_type;
+using core::Hasher;
+using core::InputError;
+using core::job_id;
+using core::JsonPositions;
+using core::located;
+using core::Params;
+using core::ParamSpec;
+using core::Scene;
+using core::scene_setup_problem;
+using core::scene_types;
+using core::SceneType;
+using plugin::Registry;
+
 namespace {
 
 using json = nlohmann::json;
@@ -221,4 +238,4 @@ Scene build_scene(const SceneVariant& v, const std::string& config_file) {
   return scene;
 }
 
-}  // namespace sb
+}  // namespace sb::config

@@ -16,7 +16,7 @@
 #include "plugin/registry.h"
 #include "reference/settings.h"
 
-namespace sb {
+namespace sb::config {
 
 struct SceneVariant {
   std::string type;     // "sphere_grid"
@@ -24,8 +24,8 @@ struct SceneVariant {
   std::string pointer;  // JSON pointer of its entry, for messages
   // Where its entry is in the config file (load_experiment), for messages
   // about the built scene.
-  TextPosition position;
-  Params params;
+  core::TextPosition position;
+  core::Params params;
   nlohmann::json swept = nlohmann::json::object();  // the parameters this variant fixed by sweep
   nlohmann::json light = nlohmann::json::object();  // overrides (validated)
   nlohmann::json camera = nlohmann::json::object();
@@ -38,10 +38,10 @@ struct SceneVariant {
 };
 
 struct TechniqueVariant {
-  const TechniqueInfo* info = nullptr;
+  const plugin::TechniqueInfo* info = nullptr;
   std::string name;     // readable variant name: "pcf/k=5"
   std::string pointer;  // JSON pointer of its entry
-  Params params;
+  core::Params params;
   nlohmann::json given = nlohmann::json::object();  // the parameters its entry set, sweeps fixed
   nlohmann::json swept = nlohmann::json::object();  // the parameters this variant fixed by sweep
   // "own_map_size": true: its map size differs from the others' on purpose
@@ -52,7 +52,7 @@ struct TechniqueVariant {
   // the others run; `info` is then a stand-in that needs nothing, declares
   // no parameter (`params` are as given, unchecked) and cannot be created.
   std::string unavailable;
-  std::shared_ptr<const TechniqueInfo> stand_in;  // owns `info` when unavailable
+  std::shared_ptr<const plugin::TechniqueInfo> stand_in;  // owns `info` when unavailable
 };
 
 struct Resolution {
@@ -131,12 +131,12 @@ struct Experiment {
   std::string content_hash;  // of the file's bytes
   // The registry the techniques came from: the planner finds the providers
   // of plugins' own needs in it (plugin/needs.h).
-  const Registry* registry = nullptr;
+  const plugin::Registry* registry = nullptr;
   // Where each value is in the file (load_experiment; empty when parsed from
   // JSON alone), so that a problem found later names its line and column.
-  std::shared_ptr<const JsonPositions> positions;
-  TextPosition position(const std::string& pointer) const {
-    return positions ? positions->find(pointer) : TextPosition{};
+  std::shared_ptr<const core::JsonPositions> positions;
+  core::TextPosition position(const std::string& pointer) const {
+    return positions ? positions->find(pointer) : core::TextPosition{};
   }
 };
 
@@ -149,23 +149,23 @@ struct ExperimentLimits {
 
 // Throws InputError naming the file, the line and column, the JSON pointer,
 // what was expected and what was found (parse_experiment: no line and column).
-Experiment load_experiment(const std::string& path, const Registry& registry,
+Experiment load_experiment(const std::string& path, const plugin::Registry& registry,
                            const ExperimentLimits& limits = {});
 Experiment parse_experiment(const nlohmann::json& doc, const std::string& file,
-                            const Registry& registry, const ExperimentLimits& limits = {});
+                            const plugin::Registry& registry, const ExperimentLimits& limits = {});
 
 // Applies a scene entry's "light" and "camera" overrides (already validated).
-void apply_overrides(const SceneVariant& variant, Scene& scene);
+void apply_overrides(const SceneVariant& variant, core::Scene& scene);
 
 // Builds a variant as a run does: the generator (or glTF file), the
 // overrides, then core/scene_setup_check.h. A setup that cannot be measured
 // (a degenerate camera, coordinates out of range, no proper triangle) throws
 // InputError naming `config_file` and the entry's pointer.
-Scene build_scene(const SceneVariant& variant, const std::string& config_file);
+core::Scene build_scene(const SceneVariant& variant, const std::string& config_file);
 
 // Cross product of list-valued entries of `params` (an object). Each result
 // maps every key to a scalar; `swept` lists the keys that were lists.
 std::vector<nlohmann::json> expand_sweeps(const nlohmann::json& params, const std::string& file,
                                           const std::string& pointer);
 
-}  // namespace sb
+}  // namespace sb::config

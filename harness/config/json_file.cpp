@@ -12,7 +12,14 @@
 #include "core/error.h"
 #include "core/json_reader.h"
 
-namespace sb {
+namespace sb::config {
+
+using core::InputError;
+using core::JsonPositions;
+using core::located;
+using core::pointer_token;
+using core::TextPosition;
+
 namespace {
 
 using json = nlohmann::json;
@@ -270,4 +277,4 @@ json read_json_file(const std::string& path, const JsonLimits& limits) {
   return parse_json_text(read_input_file(path, limits.max_bytes, "file"), path, limits);
 }
 
-}  // namespace sb
+}  // namespace sb::config

@@ -14,7 +14,7 @@
 
 #include "core/json_positions.h"
 
-namespace sb {
+namespace sb::config {
 
 struct JsonLimits {
   size_t max_bytes = size_t(16) << 20;
@@ -26,7 +26,7 @@ struct JsonLimits {
 // where each value starts, for messages about values found wrong later.
 nlohmann::json parse_json_text(const std::string& text, const std::string& file,
                                const JsonLimits& limits = {}, size_t line_offset = 0,
-                               JsonPositions* positions = nullptr);
+                               core::JsonPositions* positions = nullptr);
 
 // Reads and parses a regular file of at most limits.max_bytes.
 nlohmann::json read_json_file(const std::string& path, const JsonLimits& limits = {});
@@ -34,4 +34,4 @@ nlohmann::json read_json_file(const std::string& path, const JsonLimits& limits 
 // Reads a regular file of at most max_bytes (InputError otherwise).
 std::string read_input_file(const std::string& path, size_t max_bytes, const std::string& what);
 
-}  // namespace sb
+}  // namespace sb::config

@@ -4,7 +4,11 @@
 
 #include "core/error.h"
 
-namespace sb {
+namespace sb::config {
+
+using core::InputError;
+using core::ParamSpec;
+
 namespace {
 
 struct MapSize {
@@ -70,4 +74,4 @@ std::vector<std::string> unequal_map_size_warnings(const Experiment& e) {
   return out;
 }
 
-}  // namespace sb
+}  // namespace sb::config

@@ -10,7 +10,7 @@
 
 #include "config/experiment.h"
 
-namespace sb {
+namespace sb::config {
 
 // One warning per technique variant whose map size differs from the size
 // most of the others use (the largest on a tie), naming the config, the
@@ -18,4 +18,4 @@ namespace sb {
 // a variant of the common size. Empty when every size agrees.
 std::vector<std::string> unequal_map_size_warnings(const Experiment& e);
 
-}  // namespace sb
+}  // namespace sb::config

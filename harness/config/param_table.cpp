@@ -2,7 +2,12 @@
 
 #include <cstdio>
 
-namespace sb {
+namespace sb::config {
+
+using core::ParamSpec;
+using core::ParamType;
+using core::to_string;
+
 namespace {
 
 std::string number(double v) {
@@ -61,4 +66,4 @@ std::string markdown_param_table(const std::vector<ParamSpec>& specs) {
   return out;
 }
 
-}  // namespace sb
+}  // namespace sb::config

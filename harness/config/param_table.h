@@ -7,16 +7,16 @@
 
 #include "core/params.h"
 
-namespace sb {
+namespace sb::config {
 
 // What a config may give: "1 … 15, odd", the choices, "a file path,
 // relative to the config, required"; with `markdown`, choices in backticks.
-std::string accepted_values(const ParamSpec& spec, bool markdown);
+std::string accepted_values(const core::ParamSpec& spec, bool markdown);
 
 // `text` as a Markdown table cell: pipes escaped.
 std::string markdown_cell(const std::string& text);
 
 // | parameter | type | default | accepted | meaning |, one row per spec.
-std::string markdown_param_table(const std::vector<ParamSpec>& specs);
+std::string markdown_param_table(const std::vector<core::ParamSpec>& specs);
 
-}  // namespace sb
+}  // namespace sb::config

@@ -3,7 +3,10 @@
 #include <cstdint>
 #include <stdexcept>
 
-namespace sb {
+namespace sb::config {
+
+using core::describe;
+
 namespace {
 
 constexpr uint64_t kMaxPixels = uint64_t(1) << 24;
@@ -41,4 +44,4 @@ Resolution parse_resolution(const ConfigReader& r, const json& v, const std::str
   return res;
 }
 
-}  // namespace sb
+}  // namespace sb::config

@@ -6,9 +6,9 @@
 #include "config/config_reader.h"
 #include "config/experiment.h"
 
-namespace sb {
+namespace sb::config {
 
 Resolution parse_resolution(const ConfigReader& r, const nlohmann::json& v,
                             const std::string& pointer);
 
-}  // namespace sb
+}  // namespace sb::config

@@ -3,7 +3,15 @@
 #include "config/experiment.h"
 #include "core/scene_setup_check.h"
 
-namespace sb {
+namespace sb::config {
+
+using core::AreaLight;
+using core::Camera;
+using core::camera_problem;
+using core::describe;
+using core::fit_clip_planes;
+using core::make_area_light;
+using core::Scene;
 
 using json = nlohmann::json;
 
@@ -94,4 +102,4 @@ void apply_overrides(const SceneVariant& v, Scene& scene) {
   if (cam.contains("far")) scene.camera.far_plane = cam["far"].get<float>();
 }
 
-}  // namespace sb
+}  // namespace sb::config

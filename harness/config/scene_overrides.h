@@ -8,9 +8,9 @@
 
 #include "config/config_reader.h"
 
-namespace sb {
+namespace sb::config {
 
 void check_light(const ConfigReader& r, const nlohmann::json& light, const std::string& pointer);
 void check_camera(const ConfigReader& r, const nlohmann::json& camera, const std::string& pointer);
 
-}  // namespace sb
+}  // namespace sb::config

@@ -4,7 +4,13 @@
 
 #include "core/error.h"
 
-namespace sb {
+namespace sb::config {
+
+using core::InputError;
+using core::Params;
+using core::ParamSpec;
+using core::pointer_token;
+using core::resolve_params;
 
 using json = nlohmann::json;
 
@@ -135,4 +141,4 @@ Params resolve_sweep_combo(const std::vector<ParamSpec>& specs, const json& give
   }
 }
 
-}  // namespace sb
+}  // namespace sb::config

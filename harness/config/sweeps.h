@@ -10,13 +10,13 @@
 #include "config/config_reader.h"
 #include "config/experiment.h"
 
-namespace sb {
+namespace sb::config {
 
 // How many variants an entry's parameters sweep to, saturating.
 uint64_t sweep_count(const nlohmann::json& params);
 
 // "base/k=5,size=1024" from the explicitly given parameters, in declaration order.
-std::string variant_name(const std::string& base, const std::vector<ParamSpec>& specs,
+std::string variant_name(const std::string& base, const std::vector<core::ParamSpec>& specs,
                          const nlohmann::json& given);
 
 // The pointer of parameter `key` of one sweep combination `combo` of the
@@ -27,12 +27,12 @@ std::string swept_pointer(const nlohmann::json& given, const nlohmann::json& com
 
 // resolve_params for one combination of a sweep: an error about a swept
 // parameter names the list element the combination took.
-Params resolve_sweep_combo(const std::vector<ParamSpec>& specs, const nlohmann::json& given,
-                           const nlohmann::json& combo, const std::string& file,
-                           const std::string& pointer);
+core::Params resolve_sweep_combo(const std::vector<core::ParamSpec>& specs,
+                                 const nlohmann::json& given, const nlohmann::json& combo,
+                                 const std::string& file, const std::string& pointer);
 
 // Refuses an experiment of more than limits.max_jobs jobs.
 void check_job_count(const ConfigReader& r, const nlohmann::json& doc,
                      const ExperimentLimits& limits);
 
-}  // namespace sb
+}  // namespace sb::config

@@ -6,7 +6,15 @@
 #include "config/unknown_technique.h"
 #include "core/error.h"
 
-namespace sb {
+namespace sb::config {
+
+using core::JobError;
+using core::Params;
+using core::ParamSpec;
+using core::string_param;
+using plugin::Registry;
+using plugin::Technique;
+using plugin::TechniqueInfo;
 
 using json = nlohmann::json;
 
@@ -85,4 +93,4 @@ std::vector<TechniqueVariant> technique_variants(const ConfigReader& r, const Re
   return out;
 }
 
-}  // namespace sb
+}  // namespace sb::config

@@ -5,7 +5,11 @@
 
 #include "core/nearest_names.h"
 
-namespace sb {
+namespace sb::config {
+
+using core::did_you_mean;
+using plugin::PluginLoadFailure;
+using plugin::Registry;
 
 UnknownTechnique unknown_technique(const std::string& name, const Registry& registry) {
   std::vector<std::string> known;
@@ -38,4 +42,4 @@ UnknownTechnique unknown_technique(const std::string& name, const Registry& regi
   return out;
 }
 
-}  // namespace sb
+}  // namespace sb::config

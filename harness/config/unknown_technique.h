@@ -6,7 +6,7 @@
 
 #include "plugin/registry.h"
 
-namespace sb {
+namespace sb::config {
 
 struct UnknownTechnique {
   // unknown technique "my_pcf" (plugin /p/my_pcf.so failed to load: <why>);
@@ -18,6 +18,6 @@ struct UnknownTechnique {
   bool plugin_failed = false;
 };
 
-UnknownTechnique unknown_technique(const std::string& name, const Registry& registry);
+UnknownTechnique unknown_technique(const std::string& name, const plugin::Registry& registry);
 
-}  // namespace sb
+}  // namespace sb::config

@@ -4,7 +4,12 @@
 
 #include "core/error.h"
 
-namespace sb {
+namespace sb::config {
+
+using core::InputError;
+using core::Params;
+using core::ParamSpec;
+using plugin::TechniqueInfo;
 
 std::vector<std::string> unread_parameters(const TechniqueInfo& info, const Params& params) {
   const Params fresh(params.json());  // whatever was read before (info.check) does not count
@@ -34,4 +39,4 @@ std::vector<std::string> unread_parameter_warnings(const Experiment& e) {
   return out;
 }
 
-}  // namespace sb
+}  // namespace sb::config

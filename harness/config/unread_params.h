@@ -12,14 +12,15 @@
 
 #include "config/experiment.h"
 
-namespace sb {
+namespace sb::config {
 
 // The parameters `info.create(params)` does not read, in declaration order.
 // Empty when create() throws: the job says why when it runs.
-std::vector<std::string> unread_parameters(const TechniqueInfo& info, const Params& params);
+std::vector<std::string> unread_parameters(const plugin::TechniqueInfo& info,
+                                           const core::Params& params);
 
 // One warning per technique variant of `e` and parameter it never reads,
 // naming the config, the entry, the technique variant and the parameter.
 std::vector<std::string> unread_parameter_warnings(const Experiment& e);
 
-}  // namespace sb
+}  // namespace sb::config

@@ -10,7 +10,7 @@
 
 #include "core/error.h"
 
-namespace sb {
+namespace sb::core {
 
 namespace {
 
@@ -68,4 +68,4 @@ bool is_atomic_temp_name(std::string_view name) {
   return pos == name.size();
 }
 
-}  // namespace sb
+}  // namespace sb::core

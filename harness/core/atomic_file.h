@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-namespace sb {
+namespace sb::core {
 
 // `context` starts every error message (e.g. "reference cache: "), so that
 // callers keep their prefixes. Throws JobError naming the file and what
@@ -45,4 +45,4 @@ class AtomicFile {
 // the "<name>.tmp-<pid>" of earlier versions: what a killed writer leaves.
 bool is_atomic_temp_name(std::string_view name);
 
-}  // namespace sb
+}  // namespace sb::core

@@ -16,7 +16,7 @@
 // exact in a float, uniform on that grid, never 1.
 #include <cstdint>
 
-namespace sb {
+namespace sb::core {
 
 inline constexpr uint64_t kSplitMix64Gamma = 0x9e3779b97f4a7c15ull;
 
@@ -40,4 +40,4 @@ constexpr float uniform_float(uint64_t seed, uint64_t index) {
   return unit_float(splitmix64(seed, index));
 }
 
-}  // namespace sb
+}  // namespace sb::core

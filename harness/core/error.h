@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace sb {
+namespace sb::core {
 
 enum ExitCode : int {
   kExitOk = 0,
@@ -61,4 +61,4 @@ class JobError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-}  // namespace sb
+}  // namespace sb::core

@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-namespace sb {
+namespace sb::core {
 
 std::string format_number(const char* printf_format, double v) {
   char buf[64];
@@ -10,4 +10,4 @@ std::string format_number(const char* printf_format, double v) {
   return buf;
 }
 
-}  // namespace sb
+}  // namespace sb::core

@@ -3,8 +3,8 @@
 // report and `compare` all print numbers this way.
 #include <string>
 
-namespace sb {
+namespace sb::core {
 
 std::string format_number(const char* printf_format, double v);
 
-}  // namespace sb
+}  // namespace sb::core

@@ -1,6 +1,6 @@
 #include "core/hash.h"
 
-namespace sb {
+namespace sb::core {
 
 Hasher& Hasher::add(const void* data, size_t size) {
   const auto* p = static_cast<const unsigned char*>(data);
@@ -35,4 +35,4 @@ std::string to_hex(uint64_t value) {
   return s;
 }
 
-}  // namespace sb
+}  // namespace sb::core

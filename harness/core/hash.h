@@ -8,7 +8,7 @@
 #include <string_view>
 #include <type_traits>
 
-namespace sb {
+namespace sb::core {
 
 class Hasher {
  public:
@@ -33,4 +33,4 @@ class Hasher {
 uint64_t fnv1a64(std::string_view bytes);
 std::string to_hex(uint64_t value);
 
-}  // namespace sb
+}  // namespace sb::core

@@ -3,7 +3,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace sb {
+namespace sb::core {
 
 struct ImageF {
   int width = 0;
@@ -26,4 +26,4 @@ struct ImageF {
   }
 };
 
-}  // namespace sb
+}  // namespace sb::core

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <system_error>
 
-namespace sb {
+namespace sb::core {
 namespace fs = std::filesystem;
 
 namespace {
@@ -70,4 +70,4 @@ std::vector<std::string> data_dirs() {
   return dirs;
 }
 
-}  // namespace sb
+}  // namespace sb::core

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace sb {
+namespace sb::core {
 
 // The running executable's folder; "" when /proc/self/exe cannot be read.
 std::string executable_dir();
@@ -28,4 +28,4 @@ std::vector<std::string> extra_plugin_dirs();
 // installed prefix). The last two only when they exist.
 std::vector<std::string> data_dirs();
 
-}  // namespace sb
+}  // namespace sb::core

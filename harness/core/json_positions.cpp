@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace sb {
+namespace sb::core {
 
 JsonPositions::JsonPositions(const std::string& text, size_t line_offset)
     : line_offset_(line_offset) {
@@ -44,4 +44,4 @@ InputError located(const InputError& error, const std::string& file,
   return InputError(error.file(), where.empty() ? "/" : where, error.problem(), at);
 }
 
-}  // namespace sb
+}  // namespace sb::core

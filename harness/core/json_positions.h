@@ -11,7 +11,7 @@
 
 #include "core/error.h"
 
-namespace sb {
+namespace sb::core {
 
 class JsonPositions {
  public:
@@ -43,4 +43,4 @@ class JsonPositions {
 InputError located(const InputError& error, const std::string& file,
                    const JsonPositions& positions);
 
-}  // namespace sb
+}  // namespace sb::core

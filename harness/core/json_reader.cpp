@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <limits>
 
-namespace sb {
+namespace sb::core {
 
 using json = nlohmann::json;
 
@@ -159,4 +159,4 @@ void JsonReader::refuse(const json& v, const std::string& pointer,
   fail(pointer, "expected " + expected + ", found " + text_of(v));
 }
 
-}  // namespace sb
+}  // namespace sb::core

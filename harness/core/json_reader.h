@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-namespace sb {
+namespace sb::core {
 
 // "number 3.5", "string \"abc\"", "null": a found value's type and JSON text,
 // cut at 60 bytes. Bytes that are not UTF-8 show as U+FFFD.
@@ -77,4 +77,4 @@ class JsonReader {
   Fail fail_;
 };
 
-}  // namespace sb
+}  // namespace sb::core

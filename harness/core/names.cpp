@@ -4,7 +4,7 @@
 
 #include "core/hash.h"
 
-namespace sb {
+namespace sb::core {
 namespace {
 
 constexpr size_t kReadableMax = 96;
@@ -60,4 +60,4 @@ std::string job_id(const std::string& scene_variant, const std::string& resoluti
          file_safe(technique_variant);
 }
 
-}  // namespace sb
+}  // namespace sb::core

@@ -12,7 +12,7 @@
 // leaves its folder. The result is at most 77 bytes.
 #include <string>
 
-namespace sb {
+namespace sb::core {
 
 std::string file_safe(const std::string& name);
 
@@ -20,4 +20,4 @@ std::string file_safe(const std::string& name);
 std::string job_id(const std::string& scene_variant, const std::string& resolution,
                    const std::string& technique_variant);
 
-}  // namespace sb
+}  // namespace sb::core

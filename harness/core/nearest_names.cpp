@@ -4,7 +4,7 @@
 #include <numeric>
 #include <utility>
 
-namespace sb {
+namespace sb::core {
 
 size_t edit_distance(const std::string& a, const std::string& b) {
   // One row of the dynamic programme at a time.
@@ -48,4 +48,4 @@ std::string did_you_mean(const std::string& name, const std::vector<std::string>
   return out + "?";
 }
 
-}  // namespace sb
+}  // namespace sb::core

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace sb {
+namespace sb::core {
 
 // Levenshtein distance: insertions, deletions and substitutions, each 1.
 size_t edit_distance(const std::string& a, const std::string& b);
@@ -19,4 +19,4 @@ std::vector<std::string> nearest_names(const std::string& name,
 // " did you mean a, b or c?" for nearest_names(), or "" when there are none.
 std::string did_you_mean(const std::string& name, const std::vector<std::string>& known);
 
-}  // namespace sb
+}  // namespace sb::core

@@ -8,7 +8,7 @@
 #include "core/error.h"
 #include "core/json_reader.h"
 
-namespace sb {
+namespace sb::core {
 
 ParamSpec int_param(std::string name, int def, int min, int max, std::string doc) {
   return {std::move(name),
@@ -189,4 +189,4 @@ Params resolve_params(const std::vector<ParamSpec>& specs, const nlohmann::json&
   return Params(std::move(out));
 }
 
-}  // namespace sb
+}  // namespace sb::core

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace sb {
+namespace sb::core {
 
 enum class ParamType { Int, Float, Bool, Choice, String };
 
@@ -89,4 +89,4 @@ nlohmann::json check_param_value(const ParamSpec& spec, const nlohmann::json& va
 Params resolve_params(const std::vector<ParamSpec>& specs, const nlohmann::json& given,
                       const std::string& file, const std::string& pointer);
 
-}  // namespace sb
+}  // namespace sb::core

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
-namespace sb {
+namespace sb::core {
 
 float sample_alpha(const TextureImage& texture, glm::vec2 uv) {
   if (texture.width <= 0 || texture.height <= 0) return 1.0f;
@@ -69,9 +69,9 @@ Bounds Scene::caster_bounds() const {
   return b;
 }
 
-}  // namespace sb
+}  // namespace sb::core
 
-namespace sb {
+namespace sb::core {
 
 void fit_clip_planes(Camera& camera, const Bounds& bounds) {
   if (bounds.empty()) return;
@@ -86,4 +86,4 @@ void fit_clip_planes(Camera& camera, const Bounds& bounds) {
   camera.near_plane = std::max(0.5f * nearest, 1e-4f * camera.far_plane);
 }
 
-}  // namespace sb
+}  // namespace sb::core

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace sb {
+namespace sb::core {
 
 // An 8-bit RGBA image. Row 0 is texture coordinate v = 0 (glTF's top row);
 // every sampler in the project reads it nearest-texel with wrap-around, so
@@ -143,4 +143,4 @@ struct Scene {
 // fitted to another eye.
 void fit_clip_planes(Camera& camera, const Bounds& bounds);
 
-}  // namespace sb
+}  // namespace sb::core

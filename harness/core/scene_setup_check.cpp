@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-namespace sb {
+namespace sb::core {
 namespace {
 
 bool finite(const glm::vec3& v) {
@@ -66,4 +66,4 @@ std::string scene_setup_problem(const Scene& scene) {
   return camera_problem(scene.camera);
 }
 
-}  // namespace sb
+}  // namespace sb::core

@@ -9,7 +9,7 @@
 
 #include "core/scene.h"
 
-namespace sb {
+namespace sb::core {
 
 // Coordinates beyond this cannot be ray traced (Embree's 1.8e18, with room
 // for the offsets and light directions made from them).
@@ -22,4 +22,4 @@ std::string scene_setup_problem(const Scene& scene);
 // The camera alone (the config checks its overrides with it).
 std::string camera_problem(const Camera& camera);
 
-}  // namespace sb
+}  // namespace sb::core

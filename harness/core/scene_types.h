@@ -10,7 +10,7 @@
 #include "core/params.h"
 #include "core/scene.h"
 
-namespace sb {
+namespace sb::core {
 
 struct SceneType {
   std::string name;
@@ -31,4 +31,4 @@ void add_scene_type(SceneType type);
 AreaLight make_area_light(const glm::vec3& center, const glm::vec3& target, float width,
                           float height, float intensity = 1.0f);
 
-}  // namespace sb
+}  // namespace sb::core

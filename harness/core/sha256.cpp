@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace sb {
+namespace sb::core {
 namespace {
 
 // One digest in progress; freed whatever happens.
@@ -60,4 +60,4 @@ std::optional<std::string> sha256_file_hex(const std::string& path) {
   return h.hex();
 }
 
-}  // namespace sb
+}  // namespace sb::core

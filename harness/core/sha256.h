@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-namespace sb {
+namespace sb::core {
 
 // 64 lowercase hex digits of SHA-256 over `bytes`.
 std::string sha256_hex(std::string_view bytes);
@@ -15,4 +15,4 @@ std::string sha256_hex(std::string_view bytes);
 // SHA-256 of a file's bytes, read in blocks; nullopt when it cannot be read.
 std::optional<std::string> sha256_file_hex(const std::string& path);
 
-}  // namespace sb
+}  // namespace sb::core

@@ -9,6 +9,8 @@
 
 namespace sb::gl {
 
+using core::InputError;
+
 std::string to_string(Backend b) { return b == Backend::OSMesa ? "osmesa" : "egl"; }
 
 Backend backend_from_string(const std::string& name) {

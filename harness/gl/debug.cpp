@@ -6,6 +6,9 @@
 #include "gl/gl.h"
 
 namespace sb::gl {
+
+using core::JobError;
+
 namespace {
 
 std::mutex g_mutex;

@@ -2,7 +2,12 @@
 
 #include <stdexcept>
 
-namespace sb {
+namespace sb::gl {
+
+using core::Mesh;
+using core::Scene;
+using core::TextureImage;
+
 namespace {
 
 constexpr GLsizei kStride = sizeof(float) * 8;  // position, normal, uv
@@ -152,4 +157,4 @@ void GpuScene::draw_casters_adjacency(const std::function<bool(size_t mesh)>& in
     if (include(r.mesh)) draw(r, GL_TRIANGLES_ADJACENCY);
 }
 
-}  // namespace sb
+}  // namespace sb::gl

@@ -10,7 +10,7 @@
 #include "core/scene.h"
 #include "gl/objects.h"
 
-namespace sb {
+namespace sb::gl {
 
 // What a pass needs to know about one mesh before drawing it.
 struct DrawInfo {
@@ -39,10 +39,10 @@ struct MeshDrawFlags {
 class GpuScene {
  public:
   // adjacency: per mesh, indices from build_adjacency_indices(), or empty.
-  GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>& adjacency,
+  GpuScene(const core::Scene& scene, const std::vector<std::vector<uint32_t>>& adjacency,
            const std::vector<MeshDrawFlags>& flags = {});
 
-  const Scene& scene() const { return *scene_; }
+  const core::Scene& scene() const { return *scene_; }
   bool has_alpha_tested_casters() const;
   // Draws every mesh (draw_all) or the casters (draw_casters); `setup` runs
   // before each mesh so the pass can switch programs, uniforms or culling.
@@ -84,7 +84,7 @@ class GpuScene {
     size_t mesh = 0;  // index into Scene::meshes
   };
   void draw(const Range& r, GLenum mode) const;
-  const Scene* scene_;
+  const core::Scene* scene_;
   gl::Buffer vertices_;
   gl::Buffer indices_;
   gl::Buffer adjacency_;
@@ -96,4 +96,4 @@ class GpuScene {
   GLsizei adjacency_count_ = 0;
 };
 
-}  // namespace sb
+}  // namespace sb::gl

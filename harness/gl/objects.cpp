@@ -8,6 +8,8 @@
 
 namespace sb::gl {
 
+using core::JobError;
+
 void delete_texture(GLuint id) {
   meter_release(StorageKind::TextureName, id);
   glDeleteTextures(1, &id);

@@ -9,6 +9,9 @@
 #include "gl/debug.h"
 
 namespace sb::gl {
+
+using core::JobError;
+
 namespace {
 
 GLuint compile(const std::string& program, GLenum stage, const std::string& source) {

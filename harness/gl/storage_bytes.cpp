@@ -8,6 +8,8 @@
 
 namespace sb::gl {
 
+using core::JobError;
+
 namespace {
 
 // Bits per texel of the sized internal formats of OpenGL 4.5 (tables 8.12

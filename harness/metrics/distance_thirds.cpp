@@ -6,6 +6,8 @@
 
 namespace sb::metrics {
 
+using core::ImageF;
+
 std::array<std::vector<uint8_t>, 3> distance_thirds(const ImageF& positions, const glm::vec3& eye,
                                                     const std::vector<uint8_t>& measured) {
   const size_t n = size_t(positions.width) * size_t(positions.height);

@@ -16,7 +16,8 @@ namespace sb::metrics {
 // which belongs to no third); `measured`: one byte per pixel. Pixels at a
 // boundary go to the nearer third; when every pixel lies at one distance,
 // all are near. std::invalid_argument when the shapes differ.
-std::array<std::vector<uint8_t>, 3> distance_thirds(const ImageF& positions, const glm::vec3& eye,
+std::array<std::vector<uint8_t>, 3> distance_thirds(const core::ImageF& positions,
+                                                    const glm::vec3& eye,
                                                     const std::vector<uint8_t>& measured);
 
 }  // namespace sb::metrics

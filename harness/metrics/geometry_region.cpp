@@ -7,6 +7,8 @@
 
 namespace sb::metrics {
 
+using core::ImageF;
+
 std::vector<uint8_t> geometry_mask(const std::vector<LightHorizon>& horizon) {
   return horizon_mask(horizon, LightHorizon::Above);
 }

@@ -23,13 +23,14 @@ std::vector<uint8_t> geometry_mask(const std::vector<LightHorizon>& horizon);
 // there. Every figure but SSIM equals compare(test, ref, &region); SSIM is the
 // mean of that map over the region's pixels at least kSsimRadius from every
 // border.
-ErrorStats compare_within(const ImageF& test, const ImageF& ref,
+ErrorStats compare_within(const core::ImageF& test, const core::ImageF& ref,
                           const std::vector<uint8_t>& region);
 
 // True when every value outside `region` is bit for bit the same in test and
 // ref: then compare_within(test, ref, region) == compare(test, ref, &region),
 // and the region can share the other masks' SSIM pass (metrics.h). So it is
 // for any technique that writes V = 1 on the sky, and for every shaded image.
-bool matches_outside(const ImageF& test, const ImageF& ref, const std::vector<uint8_t>& region);
+bool matches_outside(const core::ImageF& test, const core::ImageF& ref,
+                     const std::vector<uint8_t>& region);
 
 }  // namespace sb::metrics

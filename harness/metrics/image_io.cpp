@@ -11,7 +11,11 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 
-namespace sb::io {
+namespace sb::metrics::io {
+
+using core::AtomicFile;
+using core::ImageF;
+using core::JobError;
 
 namespace {
 
@@ -150,4 +154,4 @@ ImageF read_image(const std::string& path) {
   return img;
 }
 
-}  // namespace sb::io
+}  // namespace sb::metrics::io

@@ -9,16 +9,16 @@
 
 #include "core/image.h"
 
-namespace sb::io {
+namespace sb::metrics::io {
 
 // float32 EXR. Channel names: 1 -> Y, 2 -> Y A, 3 -> R G B, 4 -> R G B A;
 // other counts are rejected.
-void write_exr(const std::string& path, const ImageF& img);
+void write_exr(const std::string& path, const core::ImageF& img);
 
 // 8-bit PNG: each value clamped to [0,1] (NaN -> 0), times 255, rounded to
 // nearest. No colour transform; 1 channel is grey, 2 grey+alpha, 3 RGB,
 // 4 RGBA (alpha written as given, not un-premultiplied).
-void write_png(const std::string& path, const ImageF& img);
+void write_png(const std::string& path, const core::ImageF& img);
 // The byte write_png stores for a value: [0, 1] scaled to 0..255 and
 // rounded half away from zero (std::lround), outside clamped, NaN 0.
 uint8_t png_byte(float v);
@@ -31,6 +31,6 @@ void write_mask_png(const std::string& path, const std::vector<uint8_t>& mask, i
 
 // First subimage of any file OpenImageIO reads, converted to float (8-bit
 // values become v/255), every channel, alpha not premultiplied by OIIO.
-ImageF read_image(const std::string& path);
+core::ImageF read_image(const std::string& path);
 
-}  // namespace sb::io
+}  // namespace sb::metrics::io

@@ -8,6 +8,12 @@
 
 namespace sb::metrics {
 
+using core::ImageF;
+using record::ImageMetrics;
+using record::MetricsRecord;
+using record::RegionStats;
+using record::VisibilityCheckRecord;
+
 namespace {
 
 RegionStats region_stats(const ErrorStats& s) {

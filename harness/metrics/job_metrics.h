@@ -18,20 +18,22 @@ namespace sb::metrics {
 // sums (accumulation, kernels) may overshoot by this much.
 inline constexpr float kVisibilityTolerance = 1e-5f;  // the failure message says 1e-5
 
-VisibilityCheckRecord check_visibility(const ImageF& visibility);
+record::VisibilityCheckRecord check_visibility(const core::ImageF& visibility);
 
 // The visibility buffer's and the shaded image's error against the
 // reference's (thirds included when the regions have them).
-MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const ImageF& ref_visibility,
-                      const ImageF& ref_shaded, const Regions& regions);
+record::MetricsRecord measure(const core::ImageF& visibility, const core::ImageF& shaded,
+                              const core::ImageF& ref_visibility, const core::ImageF& ref_shaded,
+                              const Regions& regions);
 
 // The visibility's error against another reference (the second one), over
 // the same regions: only the reference differs.
-ImageMetrics measure_visibility(const ImageF& visibility, const ImageF& ref_visibility,
-                                const Regions& regions);
+record::ImageMetrics measure_visibility(const core::ImageF& visibility,
+                                        const core::ImageF& ref_visibility, const Regions& regions);
 
 // A reference whose noise (`penumbra_rms_std_error`, reference::Result's)
 // is comparable to the error cannot rank techniques.
-std::optional<std::string> noise_warning(const MetricsRecord& m, double penumbra_rms_std_error);
+std::optional<std::string> noise_warning(const record::MetricsRecord& m,
+                                         double penumbra_rms_std_error);
 
 }  // namespace sb::metrics

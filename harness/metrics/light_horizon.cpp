@@ -2,6 +2,9 @@
 
 namespace sb::metrics {
 
+using core::AreaLight;
+using core::ImageF;
+
 std::vector<LightHorizon> classify_light_horizon(const ImageF& positions, const ImageF& normals,
                                                  const AreaLight& light) {
   std::vector<LightHorizon> out(positions.pixel_count(), LightHorizon::Background);

@@ -22,8 +22,9 @@ enum class LightHorizon : uint8_t { Background, Above, Cuts, Below };
 
 // `positions`: RGBA world positions, w = 0 on background; `normals`: RGB
 // geometric normals facing the camera.
-std::vector<LightHorizon> classify_light_horizon(const ImageF& positions, const ImageF& normals,
-                                                 const AreaLight& light);
+std::vector<LightHorizon> classify_light_horizon(const core::ImageF& positions,
+                                                 const core::ImageF& normals,
+                                                 const core::AreaLight& light);
 
 // 1 where the classification equals `which`.
 std::vector<uint8_t> horizon_mask(const std::vector<LightHorizon>& horizon, LightHorizon which);

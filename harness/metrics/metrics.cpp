@@ -14,7 +14,11 @@
 
 namespace sb::metrics {
 
+using core::ImageF;
+
 namespace detail {
+
+using core::ImageF;
 
 void check_same_shape(const ImageF& a, const ImageF& b, const char* fn) {
   if (!a.same_shape(b)) {

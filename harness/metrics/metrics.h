@@ -46,14 +46,14 @@ struct ErrorStats {
 
 // Error statistics of test against ref. Every figure, SSIM included, is
 // restricted to the masked pixels when a mask is given.
-ErrorStats compare(const ImageF& test, const ImageF& ref,
+ErrorStats compare(const core::ImageF& test, const core::ImageF& ref,
                    const std::vector<uint8_t>* mask = nullptr);
 
 // compare() over several masks of the same pair of images, in one pass of
 // the SSIM window (the map is the same whatever the mask; only which of its
 // pixels are averaged differs): out[i] == compare(test, ref, masks[i]),
 // bit for bit. A null mask is every pixel.
-std::vector<ErrorStats> compare(const ImageF& test, const ImageF& ref,
+std::vector<ErrorStats> compare(const core::ImageF& test, const core::ImageF& ref,
                                 const std::vector<const std::vector<uint8_t>*>& masks);
 
 // SSIM constants and window (Wang et al. 2004, as scikit-image's
@@ -72,33 +72,34 @@ inline constexpr double kSsimK2 = 0.03;
 // Computed in double. Returns NaN when the mask leaves no pixel in that
 // interior. Throws std::invalid_argument when width or height < 11 (as
 // skimage does) or data_range <= 0.
-double ssim(const ImageF& a, const ImageF& b, double data_range = 1.0,
+double ssim(const core::ImageF& a, const core::ImageF& b, double data_range = 1.0,
             const std::vector<uint8_t>* mask = nullptr);
 
 // ssim() over several masks in one pass: out[i] == ssim(a, b, data_range,
 // masks[i]), bit for bit.
-std::vector<double> ssim(const ImageF& a, const ImageF& b, double data_range,
+std::vector<double> ssim(const core::ImageF& a, const core::ImageF& b, double data_range,
                          const std::vector<const std::vector<uint8_t>*>& masks);
 
 // The full SSIM map (same shape as the inputs, one value per channel), border
 // pixels included (computed with reflected borders, as skimage's full=True).
-ImageF ssim_map(const ImageF& a, const ImageF& b, double data_range = 1.0);
+core::ImageF ssim_map(const core::ImageF& a, const core::ImageF& b, double data_range = 1.0);
 
 // Pixels in the reference penumbra: some channel of the visibility V has
 // eps < V < 1 - eps.
-std::vector<uint8_t> penumbra_mask(const ImageF& reference_visibility, float eps = 1e-6f);
+std::vector<uint8_t> penumbra_mask(const core::ImageF& reference_visibility, float eps = 1e-6f);
 
 // The soft pixels of either image: penumbra_mask(a) OR penumbra_mask(b). With
 // a technique and the reference, it adds what the reference's penumbra
 // misses: light bleeding into a true umbra and blur outside the true penumbra.
-std::vector<uint8_t> soft_union_mask(const ImageF& a, const ImageF& b, float eps = 1e-6f);
+std::vector<uint8_t> soft_union_mask(const core::ImageF& a, const core::ImageF& b,
+                                     float eps = 1e-6f);
 
 // RGB heat map of the per-pixel error (max over channels of |test - ref|)
 // through an inferno-like ramp: 0 -> black, >= full_scale -> the brightest
 // colour (pale yellow); non-finite errors are shown as full scale. Values are
 // display-encoded (sRGB) in [0,1], meant for write_png. Throws
 // std::invalid_argument when full_scale is not > 0.
-ImageF error_heatmap(const ImageF& test, const ImageF& ref, float full_scale);
+core::ImageF error_heatmap(const core::ImageF& test, const core::ImageF& ref, float full_scale);
 
 // The ramp itself: t in [0,1] (clamped) to display RGB.
 void heatmap_colour(float t, float rgb[3]);

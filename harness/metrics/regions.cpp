@@ -6,6 +6,8 @@
 
 namespace sb::metrics {
 
+using core::ImageF;
+
 std::vector<uint8_t> mask_and(std::vector<uint8_t> a, const std::vector<uint8_t>& b) {
   for (size_t i = 0; i < a.size(); ++i) a[i] = a[i] && b[i] ? 1 : 0;
   return a;

@@ -29,16 +29,16 @@ std::int64_t count_ones(const std::vector<uint8_t>& mask);
 // Pixels whose surface faces away from every point of the light are in
 // attached shadow whatever any technique says: V = 0 there for every
 // technique and the reference alike, so the error measures cast shadows only.
-void apply_attached_shadow(const std::vector<uint8_t>& attached, ImageF& visibility);
+void apply_attached_shadow(const std::vector<uint8_t>& attached, core::ImageF& visibility);
 
 // The unmeasured pixels (mask 0) take the reference's values: they show no
 // error in the heat map and in SSIM's windows.
-ImageF with_unmeasured_from(const ImageF& test, const ImageF& ref,
-                            const std::vector<uint8_t>& measured);
+core::ImageF with_unmeasured_from(const core::ImageF& test, const core::ImageF& ref,
+                                  const std::vector<uint8_t>& measured);
 
 // The `soft_union` region of one job: the soft pixels of its V or the
 // reference's, measured ones only.
-std::vector<uint8_t> soft_union_of(const ImageF& visibility, const ImageF& ref,
+std::vector<uint8_t> soft_union_of(const core::ImageF& visibility, const core::ImageF& ref,
                                    const std::vector<uint8_t>& measured);
 
 }  // namespace sb::metrics

@@ -4,6 +4,8 @@
 
 namespace sb::metrics {
 
+using core::ImageF;
+
 ShadowClass shadow_class(float v, float eps) {
   if (v <= eps) return ShadowClass::Umbra;
   if (v >= 1.0f - eps) return ShadowClass::Lit;

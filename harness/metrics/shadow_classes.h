@@ -20,7 +20,7 @@ ShadowClass shadow_class(float v, float eps = 1e-6f);
 // nonzero (first channel of single-channel images; std::invalid_argument
 // when the shapes differ).
 using ClassCounts = std::array<std::array<std::int64_t, 3>, 3>;
-ClassCounts confusion_matrix(const ImageF& technique, const ImageF& reference,
+ClassCounts confusion_matrix(const core::ImageF& technique, const core::ImageF& reference,
                              const std::vector<uint8_t>& mask, float eps = 1e-6f);
 
 }  // namespace sb::metrics

@@ -25,6 +25,8 @@
 
 namespace sb::metrics {
 
+using core::ImageF;
+
 namespace {
 
 using detail::SimdPath;

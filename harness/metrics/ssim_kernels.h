@@ -29,9 +29,11 @@ bool runs_here(SimdPath path);
 SimdPath widest_simd_path();
 
 // metrics::ssim() and ssim_map() on a given path (they take the widest).
-std::vector<double> ssim_on(SimdPath path, const ImageF& a, const ImageF& b, double data_range,
+std::vector<double> ssim_on(SimdPath path, const core::ImageF& a, const core::ImageF& b,
+                            double data_range,
                             const std::vector<const std::vector<uint8_t>*>& masks);
-ImageF ssim_map_on(SimdPath path, const ImageF& a, const ImageF& b, double data_range);
+core::ImageF ssim_map_on(SimdPath path, const core::ImageF& a, const core::ImageF& b,
+                         double data_range);
 
 inline constexpr int kSsimTaps = 11;
 

@@ -6,6 +6,9 @@
 #include <string>
 
 namespace sb::metrics {
+
+using core::ImageF;
+
 namespace {
 
 void check_pair(const ImageF& a, const ImageF& b, const std::vector<uint8_t>* mask,

@@ -26,7 +26,8 @@ struct FlickerStats {
 
 // Throws std::invalid_argument for fewer than two frames, frames of
 // different shapes or more than one channel, or a mask of another size.
-FlickerStats flicker(const std::vector<ImageF>& frames, const std::vector<uint8_t>* mask = nullptr);
+FlickerStats flicker(const std::vector<core::ImageF>& frames,
+                     const std::vector<uint8_t>* mask = nullptr);
 
 // Central finite difference of V in one parameter: V(p + h) and V(p - h).
 struct Sensitivity {
@@ -42,7 +43,7 @@ struct Sensitivity {
 };
 
 // Throws std::invalid_argument when h <= 0, or on shapes as flicker().
-Sensitivity sensitivity(const ImageF& v_plus, const ImageF& v_minus, double value, double h,
-                        const std::vector<uint8_t>* mask = nullptr);
+Sensitivity sensitivity(const core::ImageF& v_plus, const core::ImageF& v_minus, double value,
+                        double h, const std::vector<uint8_t>* mask = nullptr);
 
 }  // namespace sb::metrics

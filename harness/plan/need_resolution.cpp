@@ -5,7 +5,12 @@
 
 #include "scenes/need_providers.h"
 
-namespace sb {
+namespace sb::plan {
+
+using core::Scene;
+using plugin::NeedProvider;
+using plugin::Registry;
+using plugin::TechniqueInfo;
 
 const NeedProvider* find_need_provider(const std::string& name, const Registry* plugins) {
   const NeedProvider* from_plugin = plugins != nullptr ? plugins->find_provider(name) : nullptr;
@@ -122,4 +127,4 @@ ResolvedNeeds resolve_needs(const Scene& scene, const std::vector<const Techniqu
   return out;
 }
 
-}  // namespace sb
+}  // namespace sb::plan

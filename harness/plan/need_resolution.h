@@ -9,7 +9,7 @@
 #include "core/scene.h"
 #include "plugin/registry.h"
 
-namespace sb {
+namespace sb::plan {
 
 enum class Derive {
   Decide,  // only what skip decisions need (Plan needs); for plan and validate
@@ -17,19 +17,21 @@ enum class Derive {
 };
 
 struct ResolvedNeeds {
-  DerivedData data;
+  plugin::DerivedData data;
   std::vector<std::string> skip_reason;  // per technique; "" = runs
   // GPU stages for the running techniques' needs, in dependency order; the
   // runner calls each once the scene is on the GPU.
-  std::vector<const NeedProvider*> uploads;
+  std::vector<const plugin::NeedProvider*> uploads;
   std::vector<std::string> log;  // one line per datum derived or deferred
 };
 
 // The provider of `name`: the harness's, else `plugins`' (may be null).
 // Throws std::logic_error when a plugin provides a need the harness has.
-const NeedProvider* find_need_provider(const std::string& name, const Registry* plugins);
+const plugin::NeedProvider* find_need_provider(const std::string& name,
+                                               const plugin::Registry* plugins);
 
-ResolvedNeeds resolve_needs(const Scene& scene, const std::vector<const TechniqueInfo*>& techniques,
-                            const Registry* plugins, Derive derive);
+ResolvedNeeds resolve_needs(const core::Scene& scene,
+                            const std::vector<const plugin::TechniqueInfo*>& techniques,
+                            const plugin::Registry* plugins, Derive derive);
 
-}  // namespace sb
+}  // namespace sb::plan

@@ -8,7 +8,16 @@
 #include "plan/shards.h"
 #include "scenes/receiver_inference.h"
 
-namespace sb {
+namespace sb::plan {
+
+using config::build_scene;
+using config::Experiment;
+using config::SceneVariant;
+using core::InputError;
+using core::job_id;
+using core::Scene;
+using plugin::DerivedData;
+using plugin::TechniqueInfo;
 
 ScenePlan plan_scene(const Experiment& e, const SceneVariant& sv, Derive derive) {
   ScenePlan p;
@@ -149,4 +158,4 @@ std::string describe_plan(const Experiment& e, const Plan& plan) {
   return out;
 }
 
-}  // namespace sb
+}  // namespace sb::plan

@@ -15,16 +15,16 @@
 #include "core/scene.h"
 #include "plan/need_resolution.h"
 
-namespace sb {
+namespace sb::plan {
 
 // One scene variant, planned.
 struct ScenePlan {
-  const SceneVariant* variant = nullptr;
-  Scene scene;                                  // empty when the scene failed to build
-  DerivedData derived;                          // for the techniques' needs, as far as asked
-  std::vector<const NeedProvider*> uploads;     // GPU stages of the running techniques' needs
-  std::vector<std::string> inferred_receivers;  // scenes/receiver_inference.h
-  std::vector<std::string> skip_reason;         // per technique variant; "" = runs
+  const config::SceneVariant* variant = nullptr;
+  core::Scene scene;                                 // empty when the scene failed to build
+  plugin::DerivedData derived;                       // for the techniques' needs, as far as asked
+  std::vector<const plugin::NeedProvider*> uploads;  // GPU stages of the running techniques' needs
+  std::vector<std::string> inferred_receivers;       // scenes/receiver_inference.h
+  std::vector<std::string> skip_reason;              // per technique variant; "" = runs
   std::string error;             // why the scene could not be built: all its jobs fail
   bool bad_input = false;        // ... because its input (a glTF file, say) is bad
   std::string input_error;       // then the InputError's message (file and place)
@@ -33,7 +33,7 @@ struct ScenePlan {
 
 // Builds the scene and decides its jobs. Never throws for bad scene input:
 // it is recorded in `error` and `bad_input`.
-ScenePlan plan_scene(const Experiment& e, const SceneVariant& sv, Derive derive);
+ScenePlan plan_scene(const config::Experiment& e, const config::SceneVariant& sv, Derive derive);
 
 // What is decided for one job before it runs.
 struct JobOutcome {
@@ -48,7 +48,7 @@ const char* to_string(JobOutcome::Status status);  // "run", "skip", "fail"
 // The decision for technique variant `technique` on a planned scene: fail
 // when its plugin did not load or the scene did not build, skip with the
 // needs' reason, else run. The one rule both the plan and the executor apply.
-JobOutcome decide_job(const Experiment& e, const ScenePlan& scene, size_t technique);
+JobOutcome decide_job(const config::Experiment& e, const ScenePlan& scene, size_t technique);
 
 // "" when `decided` (the executor's decision, from the scene it built)
 // equals the plan's outcome; else an internal-error reason naming both, for
@@ -74,10 +74,10 @@ struct Plan {
 
 // The whole experiment's plan, without GL and without keeping scene data,
 // its jobs laid out in `shard_count` shards (plan/shards.h).
-Plan make_plan(const Experiment& e, int shard_count = 1);
+Plan make_plan(const config::Experiment& e, int shard_count = 1);
 
 // Human-readable: per scene, what it derives and infers; per job, run, skip
 // or fail with the reason.
-std::string describe_plan(const Experiment& e, const Plan& plan);
+std::string describe_plan(const config::Experiment& e, const Plan& plan);
 
-}  // namespace sb
+}  // namespace sb::plan

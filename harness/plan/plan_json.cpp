@@ -4,7 +4,16 @@
 #include "core/error.h"
 #include "core/json_positions.h"
 
-namespace sb {
+namespace sb::plan {
+
+using config::Experiment;
+using config::JsonLimits;
+using config::parse_json_text;
+using config::read_input_file;
+using core::InputError;
+using core::JsonPositions;
+using record::PlanRecord;
+using record::RecordError;
 
 PlanRecord plan_record(const Experiment& e, const Plan& plan) {
   PlanRecord p;
@@ -41,4 +50,4 @@ PlanRecord read_plan_file(const std::string& path) {
   }
 }
 
-}  // namespace sb
+}  // namespace sb::plan

@@ -12,14 +12,14 @@
 #include "plan/plan.h"
 #include "record/plan_record.h"
 
-namespace sb {
+namespace sb::plan {
 
-PlanRecord plan_record(const Experiment& e, const Plan& plan);
-nlohmann::json plan_to_json(const Experiment& e, const Plan& plan);
+record::PlanRecord plan_record(const config::Experiment& e, const Plan& plan);
+nlohmann::json plan_to_json(const config::Experiment& e, const Plan& plan);
 
 // A plan.json read back. Throws InputError naming the file, the line and
 // column and the JSON pointer of what is wrong (a file of another
 // plan_version is refused so).
-PlanRecord read_plan_file(const std::string& path);
+record::PlanRecord read_plan_file(const std::string& path);
 
-}  // namespace sb
+}  // namespace sb::plan

@@ -5,7 +5,11 @@
 #include <numeric>
 #include <stdexcept>
 
-namespace sb {
+namespace sb::plan {
+
+using config::Experiment;
+using config::Resolution;
+using config::TechniqueVariant;
 
 namespace {
 
@@ -104,4 +108,4 @@ std::string describe_shards(const Plan& plan) {
   return out;
 }
 
-}  // namespace sb
+}  // namespace sb::plan

@@ -18,7 +18,7 @@
 #include "config/experiment.h"
 #include "plan/plan.h"
 
-namespace sb {
+namespace sb::plan {
 
 struct ShardSpec {
   int index = 1;  // 1-based: "2/4" is the second of four
@@ -29,7 +29,7 @@ struct ShardSpec {
 ShardSpec parse_shard(const std::string& text);
 
 // The estimated cost of job (resolution, technique variant) of `e`.
-double job_cost(const Experiment& e, size_t resolution, size_t technique);
+double job_cost(const config::Experiment& e, size_t resolution, size_t technique);
 
 // Sets every job's shard, of `shard_count`, from the jobs' costs (make_plan
 // calls it); throws std::invalid_argument outside [1, 10000].
@@ -38,4 +38,4 @@ void assign_shards(Plan& plan, int shard_count);
 // The layout: per shard its job count, cost and share, then its jobs.
 std::string describe_shards(const Plan& plan);
 
-}  // namespace sb
+}  // namespace sb::plan

@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-namespace sb {
+namespace sb::plugin {
 namespace {
 
 std::string readable_type(const std::string& mangled) {
@@ -40,4 +40,4 @@ void DerivedData::throw_absent(const std::string& name) {
                          "' was not derived for this scene: declare it in the technique's Needs");
 }
 
-}  // namespace sb
+}  // namespace sb::plugin

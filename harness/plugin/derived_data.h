@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-namespace sb {
+namespace sb::plugin {
 
 class DerivedData {
  public:
@@ -54,4 +54,4 @@ class DerivedData {
   std::map<std::string, Entry> entries_;
 };
 
-}  // namespace sb
+}  // namespace sb::plugin

@@ -8,7 +8,7 @@
 
 #include "plugin/silhouette_edges.h"
 
-namespace sb {
+namespace sb::plugin {
 
 // need::kPlanarReceiver: a planar mesh with every caster on the light's side
 // of its plane.
@@ -37,4 +37,4 @@ struct MeshEdge {
 // receivers), for techniques that find silhouettes on the CPU.
 using CasterEdges = std::vector<std::vector<MeshEdge>>;
 
-}  // namespace sb
+}  // namespace sb::plugin

@@ -13,9 +13,11 @@
 #include "core/scene.h"
 #include "plugin/derived_data.h"
 
-namespace sb {
-
+namespace sb::gl {
 class GpuScene;
+}  // namespace sb::gl
+
+namespace sb::plugin {
 
 // The needs the harness provides, and what each gives the technique.
 namespace need {
@@ -70,13 +72,13 @@ struct NeedProvider {
   enum class When { Plan, Run } when = When::Run;
   // CPU, no GL: puts its data into `data` under `name` (or nothing, for a
   // pure check) and says what it did in `log`.
-  std::function<void(const Scene&, DerivedData& data, std::vector<std::string>& log)> derive;
+  std::function<void(const core::Scene&, DerivedData& data, std::vector<std::string>& log)> derive;
   // Optional: "" when the scene meets the need, else why not, worded to
   // follow the technique's name ("needs closed casters: mesh 'x' ...").
-  std::function<std::string(const Scene&, const DerivedData&)> unmet = nullptr;
+  std::function<std::string(const core::Scene&, const DerivedData&)> unmet = nullptr;
   // Optional, GPU: once per scene after its upload, with a current context;
   // puts GL resources into `data` (freed with it, in the same context).
-  std::function<void(const Scene&, const GpuScene&, DerivedData& data)> upload = nullptr;
+  std::function<void(const core::Scene&, const gl::GpuScene&, DerivedData& data)> upload = nullptr;
 };
 
-}  // namespace sb
+}  // namespace sb::plugin

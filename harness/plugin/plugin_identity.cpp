@@ -5,7 +5,9 @@
 
 #include "core/sha256.h"
 
-namespace sb {
+namespace sb::plugin {
+
+using core::sha256_file_hex;
 
 PluginIdentity identify_plugin(const std::string& path) {
   namespace fs = std::filesystem;
@@ -24,4 +26,4 @@ PluginIdentity identify_plugin(const std::string& path) {
   return id;
 }
 
-}  // namespace sb
+}  // namespace sb::plugin

@@ -7,13 +7,16 @@
 #include <cstdint>
 #include <string>
 
-namespace sb {
+namespace sb::plugin {
 
 // The plugin API's version: the contract of plugin/ (Technique, FrameInputs,
 // needs, TechniqueInfo, Registry) as compiled into a module. Bump it with
 // every change of that ABI.
-// 2: TechniqueInfo::needs_of_params; 3: ParamSpec::map_size
-inline constexpr int kPluginApiVersion = 3;
+// 2: TechniqueInfo::needs_of_params; 3: ParamSpec::map_size; 4: the names
+// live in their folders' namespaces (sb::core::Scene, sb::plugin::Technique,
+// sb::gl::GpuScene), so modules built before do not load; their source builds
+// unchanged, the names being kept in sb too (plugin/api_names.h)
+inline constexpr int kPluginApiVersion = 4;
 
 struct PluginIdentity {
   std::string file;       // relative to the plugin folder it was loaded from: "shadow_map.so"
@@ -25,4 +28,4 @@ struct PluginIdentity {
 // The identity of the module at `path`, read once; never throws.
 PluginIdentity identify_plugin(const std::string& path);
 
-}  // namespace sb
+}  // namespace sb::plugin

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace sb {
+namespace sb::plugin {
 
 bool Needs::has(const std::string& name) const {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -124,4 +124,4 @@ int Registry::load_plugins(const std::string& dir) {
   return loaded;
 }
 
-}  // namespace sb
+}  // namespace sb::plugin

@@ -17,26 +17,26 @@
 #include "plugin/plugin_identity.h"
 #include "plugin/technique.h"
 
-namespace sb {
+namespace sb::plugin {
 
 struct TechniqueInfo {
   std::string name;     // unique, used in configs: "shadow_map"
   std::string family;   // the plugin folder: "shadow_map"
   std::string summary;  // one line for `shadowbench list`
   Needs needs;
-  std::vector<ParamSpec> params;
-  std::function<std::unique_ptr<Technique>(const Params&)> create;
+  std::vector<core::ParamSpec> params;
+  std::function<std::unique_ptr<Technique>(const core::Params&)> create;
   // Optional rule across parameters, checked when a config is loaded: returns
   // "" when fine, else {parameter to blame, what is wrong}.
-  std::function<std::pair<std::string, std::string>(const Params&)> check = nullptr;
+  std::function<std::pair<std::string, std::string>(const core::Params&)> check = nullptr;
   // Optional: a job's cost relative to a hard shadow map's at the same
   // resolution (1 when absent), for balancing shards (plan/shards.h), e.g.
   // accumulation's, which grows with its light samples.
-  std::function<double(const Params&)> cost_weight = nullptr;
+  std::function<double(const core::Params&)> cost_weight = nullptr;
   // Optional: needs only some parameter values have, checked after `needs`
   // for each variant (two_map_bound's gradient shade needs opaque casters,
   // its other shades do not).
-  std::function<Needs(const Params&)> needs_of_params = nullptr;
+  std::function<Needs(const core::Params&)> needs_of_params = nullptr;
 };
 
 // A module load_plugins could not load: its path and the loader's own
@@ -96,7 +96,11 @@ class Registry {
   std::string search_hint_;
 };
 
-}  // namespace sb
+}  // namespace sb::plugin
 
 #define SHADOWBENCH_PLUGIN_ENTRY \
   extern "C" __attribute__((visibility("default"))) void shadowbench_register_plugin
+
+// The umbrella of the plugin API: with it, the names a plugin uses stay
+// reachable as sb::X (plugin/api_names.h).
+#include "plugin/api_names.h"  // IWYU pragma: export

@@ -19,7 +19,7 @@
 
 #include "gl/objects.h"
 
-namespace sb {
+namespace sb::plugin {
 
 struct SilhouetteEdges {
   static constexpr GLsizeiptr kBytesPerEdge = 64;
@@ -33,4 +33,4 @@ struct SilhouetteEdges {
   std::vector<MeshRange> meshes;  // per scene mesh; empty ranges for receivers
 };
 
-}  // namespace sb
+}  // namespace sb::plugin

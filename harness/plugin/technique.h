@@ -17,16 +17,18 @@
 #include "plugin/derived_data.h"
 #include "plugin/needs.h"
 
-namespace sb {
-
+namespace sb::gl {
 class GpuScene;
+}  // namespace sb::gl
+
+namespace sb::plugin {
 
 // Everything a technique may read for one (scene, resolution).
 struct FrameInputs {
   int width = 0;
   int height = 0;
-  const Scene* scene = nullptr;
-  const GpuScene* gpu = nullptr;
+  const core::Scene* scene = nullptr;
+  const gl::GpuScene* gpu = nullptr;
   glm::mat4 view{1.0f};
   glm::mat4 projection{1.0f};
   glm::mat4 view_projection{1.0f};
@@ -101,4 +103,4 @@ class Technique {
   virtual void render(const FrameInputs& in, gl::PassTimer& timer) = 0;
 };
 
-}  // namespace sb
+}  // namespace sb::plugin

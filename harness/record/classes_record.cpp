@@ -6,7 +6,7 @@
 
 #include "record/record_json.h"
 
-namespace sb {
+namespace sb::record {
 namespace {
 constexpr int kPenumbra = 1;
 const char* const kOrder[3] = {"lit", "penumbra", "umbra"};
@@ -50,4 +50,4 @@ void ClassesRecord::read_counts(const Fields& f) {
 nlohmann::json ClassesRecord::to_json() const { return write_record(*this); }
 ClassesRecord ClassesRecord::from_json(const Fields& f) { return read_record<ClassesRecord>(f); }
 
-}  // namespace sb
+}  // namespace sb::record

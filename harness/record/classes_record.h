@@ -21,7 +21,7 @@
 #include "record/describe.h"
 #include "record/fields.h"
 
-namespace sb {
+namespace sb::record {
 
 struct ClassesRecord {
   static constexpr RecordDoc kSchema{
@@ -71,4 +71,4 @@ struct ClassesRecord {
   static ClassesRecord from_json(const Fields& f);
 };
 
-}  // namespace sb
+}  // namespace sb::record

@@ -34,7 +34,7 @@
 #include <type_traits>
 #include <vector>
 
-namespace sb {
+namespace sb::record {
 
 // When a member is in a record's JSON.
 enum class Presence {
@@ -124,4 +124,4 @@ inline std::string suffix_of(const FieldInfo& info) {
   return info.unit[0] == '\0' ? std::string() : "_" + std::string(info.unit);
 }
 
-}  // namespace sb
+}  // namespace sb::record

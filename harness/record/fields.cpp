@@ -3,7 +3,11 @@
 #include <cmath>
 #include <limits>
 
-namespace sb {
+namespace sb::record {
+
+using core::JsonReader;
+using core::pointer_token;
+
 namespace {
 
 using json = nlohmann::json;
@@ -145,4 +149,4 @@ std::optional<Fields> Fields::find_object(const std::string& key) const {
   return object(key);
 }
 
-}  // namespace sb
+}  // namespace sb::record

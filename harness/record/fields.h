@@ -18,7 +18,7 @@
 
 #include "core/json_reader.h"
 
-namespace sb {
+namespace sb::record {
 
 // A record that does not follow its schema, and where.
 class RecordError : public std::runtime_error {
@@ -73,7 +73,7 @@ class Fields {
 
  private:
   const nlohmann::json& at(const std::string& key) const;
-  JsonReader reader_;
+  core::JsonReader reader_;
   const nlohmann::json* value_;
   std::string pointer_;
 };
@@ -99,4 +99,4 @@ std::vector<int> Fields::get<std::vector<int>>(const std::string& key) const;
 template <>
 nlohmann::json Fields::get<nlohmann::json>(const std::string& key) const;
 
-}  // namespace sb
+}  // namespace sb::record

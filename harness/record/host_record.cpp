@@ -6,7 +6,9 @@
 #include "core/hash.h"
 #include "record/record_json.h"
 
-namespace sb {
+namespace sb::record {
+
+using core::Hasher;
 
 using json = nlohmann::json;
 
@@ -117,4 +119,4 @@ std::vector<std::string> field_differences(
   return out;
 }
 
-}  // namespace sb
+}  // namespace sb::record

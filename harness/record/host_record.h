@@ -20,7 +20,7 @@
 #include "record/describe.h"
 #include "record/fields.h"
 
-namespace sb {
+namespace sb::record {
 
 // host.cpu
 struct CpuRecord {
@@ -190,4 +190,4 @@ std::vector<std::string> field_differences(
     const std::vector<std::pair<std::string, std::string>>& a,
     const std::vector<std::pair<std::string, std::string>>& b);
 
-}  // namespace sb
+}  // namespace sb::record

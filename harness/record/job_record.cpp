@@ -2,7 +2,7 @@
 
 #include "record/record_json.h"
 
-namespace sb {
+namespace sb::record {
 
 using json = nlohmann::json;
 
@@ -84,4 +84,4 @@ std::optional<double> JobRecord::metric(const MetricPath& path) const {
   return path.of(*metrics);
 }
 
-}  // namespace sb
+}  // namespace sb::record

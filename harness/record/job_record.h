@@ -25,7 +25,7 @@
 #include "record/stability_record.h"
 #include "record/timing_record.h"
 
-namespace sb {
+namespace sb::record {
 
 // The schema_version this build writes and reads.
 inline constexpr int kRecordSchemaVersion = 1;
@@ -232,4 +232,4 @@ void JobRecord::describe(V& v) {
   v.field("images", &J::images, {"", "the images written", Presence::UnlessEmpty});
 }
 
-}  // namespace sb
+}  // namespace sb::record

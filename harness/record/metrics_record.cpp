@@ -6,7 +6,7 @@
 
 #include "record/record_json.h"
 
-namespace sb {
+namespace sb::record {
 
 using json = nlohmann::json;
 
@@ -94,4 +94,4 @@ double MetricPath::of(const MetricsRecord& m) const {
   return number_of(*s, key_).value_or(0.0);  // parse() admits known keys only
 }
 
-}  // namespace sb
+}  // namespace sb::record

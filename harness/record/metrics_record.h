@@ -9,7 +9,7 @@
 #include "record/describe.h"
 #include "record/fields.h"
 
-namespace sb {
+namespace sb::record {
 
 // One image over one region of pixels (as metrics::ErrorStats).
 struct RegionStats {
@@ -133,4 +133,4 @@ class MetricPath {
   std::string key_;
 };
 
-}  // namespace sb
+}  // namespace sb::record

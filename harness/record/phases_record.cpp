@@ -2,9 +2,9 @@
 
 #include "record/record_json.h"
 
-namespace sb {
+namespace sb::record {
 
 nlohmann::json PhasesRecord::to_json() const { return write_record(*this); }
 PhasesRecord PhasesRecord::from_json(const Fields& f) { return read_record<PhasesRecord>(f); }
 
-}  // namespace sb
+}  // namespace sb::record

@@ -19,7 +19,7 @@
 #include "record/describe.h"
 #include "record/fields.h"
 
-namespace sb {
+namespace sb::record {
 
 struct PhasesRecord {
   static constexpr RecordDoc kSchema{"PhasesRecord", "where a rendered job's `duration_s` went"};
@@ -48,4 +48,4 @@ struct PhasesRecord {
   static PhasesRecord from_json(const Fields& f);
 };
 
-}  // namespace sb
+}  // namespace sb::record

@@ -2,7 +2,7 @@
 
 #include "record/record_json.h"
 
-namespace sb {
+namespace sb::record {
 
 void PlanRecord::check(const PlanRecord& p, const Fields& f) {
   if (p.plan_version != kPlanVersion)
@@ -72,4 +72,4 @@ std::string plan_difference(const PlanRecord& a, const PlanRecord& b) {
   return "";
 }
 
-}  // namespace sb
+}  // namespace sb::record

@@ -11,7 +11,7 @@
 #include "record/describe.h"
 #include "record/fields.h"
 
-namespace sb {
+namespace sb::record {
 
 // The version of plan.json's shape; a file of another is refused.
 constexpr int kPlanVersion = 1;
@@ -133,4 +133,4 @@ struct PlanRecord {
 // else the first difference, naming both values.
 std::string plan_difference(const PlanRecord& a, const PlanRecord& b);
 
-}  // namespace sb
+}  // namespace sb::record

@@ -13,7 +13,7 @@
 #include "record/describe.h"
 #include "record/fields.h"
 
-namespace sb {
+namespace sb::record {
 
 template <Described S>
 nlohmann::json write_record(const S& s, const std::string& suffix = "");
@@ -221,4 +221,4 @@ void read_record_into(S& s, const Fields& f, const std::string& suffix) {
   if constexpr (requires { S::check(s, f); }) S::check(s, f);
 }
 
-}  // namespace sb
+}  // namespace sb::record

@@ -11,7 +11,7 @@
 #include "record/job_record.h"
 #include "record/plan_record.h"
 
-namespace sb {
+namespace sb::record {
 namespace {
 
 using describe_detail::List;
@@ -238,4 +238,4 @@ bool pointer_matches(const std::string& pattern, const std::string& pointer) {
   return true;
 }
 
-}  // namespace sb
+}  // namespace sb::record

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace sb {
+namespace sb::record {
 
 // One table per record struct, in the order a record holds them: each
 // member's key, type, unit, when it is present and what it means.
@@ -32,4 +32,4 @@ RecordPointers plan_pointers();
 // ("/timing/shared/*"), token by token.
 bool pointer_matches(const std::string& pattern, const std::string& pointer);
 
-}  // namespace sb
+}  // namespace sb::record

@@ -2,11 +2,11 @@
 
 #include "record/record_json.h"
 
-namespace sb {
+namespace sb::record {
 
 nlohmann::json ReferenceRecord::to_json() const { return write_record(*this); }
 ReferenceRecord ReferenceRecord::from_json(const Fields& f) {
   return read_record<ReferenceRecord>(f);
 }
 
-}  // namespace sb
+}  // namespace sb::record

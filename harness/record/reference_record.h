@@ -9,7 +9,7 @@
 #include "record/describe.h"
 #include "record/fields.h"
 
-namespace sb {
+namespace sb::record {
 
 // record["reference"]["adaptive"], only for the adaptive reference
 // (reference.adaptive): its settings, the light samples it took per
@@ -117,4 +117,4 @@ struct ReferenceRecord {
   static ReferenceRecord from_json(const Fields& f);
 };
 
-}  // namespace sb
+}  // namespace sb::record

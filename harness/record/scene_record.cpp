@@ -2,7 +2,7 @@
 
 #include "record/record_json.h"
 
-namespace sb {
+namespace sb::record {
 
 nlohmann::json SceneRecord::to_json() const { return write_record(*this); }
 SceneRecord SceneRecord::from_json(const Fields& f) { return read_record<SceneRecord>(f); }
@@ -13,4 +13,4 @@ TechniqueRecord TechniqueRecord::from_json(const Fields& f) {
   return read_record<TechniqueRecord>(f);
 }
 
-}  // namespace sb
+}  // namespace sb::record

@@ -10,7 +10,7 @@
 #include "record/describe.h"
 #include "record/fields.h"
 
-namespace sb {
+namespace sb::record {
 
 struct LightRecord {
   static constexpr RecordDoc kSchema{"LightRecord", "the scene's rectangular light"};
@@ -179,4 +179,4 @@ struct TechniqueRecord {
   static TechniqueRecord from_json(const Fields& f);
 };
 
-}  // namespace sb
+}  // namespace sb::record

@@ -2,11 +2,11 @@
 
 #include "record/record_json.h"
 
-namespace sb {
+namespace sb::record {
 
 nlohmann::json SecondReferenceRecord::to_json() const { return write_record(*this); }
 SecondReferenceRecord SecondReferenceRecord::from_json(const Fields& f) {
   return read_record<SecondReferenceRecord>(f);
 }
 
-}  // namespace sb
+}  // namespace sb::record

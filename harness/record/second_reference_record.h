@@ -10,7 +10,7 @@
 #include "record/metrics_record.h"
 #include "record/reference_record.h"
 
-namespace sb {
+namespace sb::record {
 
 struct SecondReferenceRecord {
   static constexpr RecordDoc kSchema{
@@ -33,4 +33,4 @@ struct SecondReferenceRecord {
   static SecondReferenceRecord from_json(const Fields& f);
 };
 
-}  // namespace sb
+}  // namespace sb::record

@@ -2,7 +2,7 @@
 
 #include <set>
 
-namespace sb {
+namespace sb::record {
 
 using json = nlohmann::json;
 
@@ -98,4 +98,4 @@ std::string rerun_reason(const JobRecord& earlier, const json& spec, const std::
   return reason;
 }
 
-}  // namespace sb
+}  // namespace sb::record

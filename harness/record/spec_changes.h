@@ -8,7 +8,7 @@
 
 #include "record/job_record.h"
 
-namespace sb {
+namespace sb::record {
 
 // One "<dotted name> changed (<before> -> <after>)" per setting that differs,
 // nested objects compared member by member, in key order; a member on one
@@ -25,4 +25,4 @@ std::vector<std::string> spec_changes(const nlohmann::json& before, const nlohma
 std::string rerun_reason(const JobRecord& earlier, const nlohmann::json& spec,
                          const std::string& hash);
 
-}  // namespace sb
+}  // namespace sb::record

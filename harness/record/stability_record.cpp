@@ -2,11 +2,11 @@
 
 #include "record/record_json.h"
 
-namespace sb {
+namespace sb::record {
 
 nlohmann::json StabilityRecord::to_json() const { return write_record(*this); }
 StabilityRecord StabilityRecord::from_json(const Fields& f) {
   return read_record<StabilityRecord>(f);
 }
 
-}  // namespace sb
+}  // namespace sb::record

@@ -9,7 +9,7 @@
 #include "record/describe.h"
 #include "record/fields.h"
 
-namespace sb {
+namespace sb::record {
 
 // A mean flicker below this is no flicker, whatever the reference's: it
 // keeps a technique from being judged against a reference that did not
@@ -108,4 +108,4 @@ struct StabilityRecord {
   static StabilityRecord from_json(const Fields& f);
 };
 
-}  // namespace sb
+}  // namespace sb::record

@@ -5,7 +5,7 @@
 #include "record/record_json.h"
 #include "record/timing_stats.h"
 
-namespace sb {
+namespace sb::record {
 
 using json = nlohmann::json;
 
@@ -45,4 +45,4 @@ void TimingRecord::check(const TimingRecord& t, const Fields& f) {
 json TimingRecord::to_json() const { return write_record(*this); }
 TimingRecord TimingRecord::from_json(const Fields& f) { return read_record<TimingRecord>(f); }
 
-}  // namespace sb
+}  // namespace sb::record

@@ -11,7 +11,7 @@
 #include "record/describe.h"
 #include "record/fields.h"
 
-namespace sb {
+namespace sb::record {
 
 // One series of per-frame figures: its statistics and every sample, in frame
 // order. A timing series (milliseconds) writes its keys with the suffix
@@ -148,4 +148,4 @@ struct TimingRecord {
   static TimingRecord from_json(const Fields& f);
 };
 
-}  // namespace sb
+}  // namespace sb::record

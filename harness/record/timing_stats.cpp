@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numeric>
 
-namespace sb {
+namespace sb::record {
 
 namespace {
 double percentile(const std::vector<double>& sorted, double q) {
@@ -34,4 +34,4 @@ TimingStats summarize(std::vector<double> samples) {
   return s;
 }
 
-}  // namespace sb
+}  // namespace sb::record

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace sb {
+namespace sb::record {
 
 struct TimingStats {
   size_t count = 0;
@@ -17,4 +17,4 @@ struct TimingStats {
 // default), so p50 of {1,2,3,4} is 2.5.
 TimingStats summarize(std::vector<double> samples_ms);
 
-}  // namespace sb
+}  // namespace sb::record

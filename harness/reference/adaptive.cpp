@@ -15,6 +15,8 @@
 
 namespace sb::reference::detail {
 
+using core::ImageF;
+
 namespace {
 
 // The levels of one layout: level k is make_layout(pilot * 4^k) (stratify.h),

@@ -82,15 +82,15 @@ double stop_bias_bound(int n);
 double stop_rms_bound(int n);
 
 struct AdaptiveImages {
-  ImageF visibility, std_error;
+  core::ImageF visibility, std_error;
   // Light samples traced per pixel, pilot included (0 off the surfaces): at
   // most spp + pilot_spp.
-  ImageF samples;
+  core::ImageF samples;
 };
 
 // Pixels stopped at their pilot without a proof (the window rule), as the
 // images tell them: the pilot's samples only, and a standard error above 0.
-size_t unproven_stops(const ImageF& samples, const ImageF& std_error, int pilot_spp);
+size_t unproven_stops(const core::ImageF& samples, const core::ImageF& std_error, int pilot_spp);
 
 // The setup's layout must be make_layout(spp, strata) with spp and
 // pilot_spp as adaptive_layout_problem() accepts. `whole_light`, when given,

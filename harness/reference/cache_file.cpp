@@ -10,6 +10,9 @@
 
 namespace sb::reference::detail {
 
+using core::fnv1a64;
+using core::ImageF;
+
 namespace {
 
 constexpr char kMagic[8] = {'S', 'B', 'R', 'E', 'F', '\r', '\n', '\x1a'};

@@ -9,6 +9,8 @@
 
 namespace sb::reference::detail {
 
+using core::AreaLight;
+
 void link_neighbours(std::vector<CasterTriangle>& triangles) {
   struct Edge {
     uint32_t mesh;

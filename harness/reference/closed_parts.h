@@ -21,7 +21,7 @@ void link_neighbours(std::vector<CasterTriangle>& triangles);
 // each by its own signed volume (CasterTriangle::outward); a part the light
 // touches winds differently around its points, and is left open (outward
 // 0, no part).
-void find_parts(std::vector<CasterTriangle>& triangles, const AreaLight& light);
+void find_parts(std::vector<CasterTriangle>& triangles, const core::AreaLight& light);
 
 // The closed parts' crossings of the segment from a point p to the light's
 // centre, to tell whether some part winds around p more often than around

@@ -14,6 +14,13 @@
 
 namespace sb::reference::detail {
 
+using core::AnalyticShape;
+using core::InputError;
+using core::JobError;
+using core::Mesh;
+using core::sample_alpha;
+using core::to_string;
+
 namespace {
 
 const char* error_name(RTCError code) {

@@ -53,7 +53,7 @@ class FlatScene {
   // a mesh that has one, its analytic shape. mesh_of_geometry maps geomID to
   // mesh index, shape_of_geometry to what that geometry is.
   template <typename Pred>
-  FlatScene(Device& device, const Scene& scene, Pred take, bool analytic_shapes = false,
+  FlatScene(Device& device, const core::Scene& scene, Pred take, bool analytic_shapes = false,
             Traversal traversal = Traversal::Robust)
       : device_(device), source_(scene) {
     begin(traversal);
@@ -78,14 +78,14 @@ class FlatScene {
   RTCScene get() const { return scene_; }
   bool empty() const { return mesh_of_geometry.empty(); }
   std::vector<size_t> mesh_of_geometry;
-  std::vector<AnalyticShape::Kind> shape_of_geometry;  // None: the mesh's triangles
+  std::vector<core::AnalyticShape::Kind> shape_of_geometry;  // None: the mesh's triangles
 
   // What an alpha-tested geometry's filter needs: the mesh (uvs, indices)
   // and its texture. Hits on texels below the cutoff are rejected, exactly
   // where the rasteriser discards (sample_alpha, nearest texel).
   struct AlphaMask {
-    const Mesh* mesh;
-    const TextureImage* texture;
+    const core::Mesh* mesh;
+    const core::TextureImage* texture;
   };
 
   // What an analytic sphere's filter needs. A ray whose origin lies within
@@ -99,15 +99,15 @@ class FlatScene {
 
  private:
   void begin(Traversal traversal);
-  void add(const Mesh& mesh, size_t index);
-  void add_shape(const Mesh& mesh, size_t index);
+  void add(const core::Mesh& mesh, size_t index);
+  void add_shape(const core::Mesh& mesh, size_t index);
   // Both queries' filter, with its data.
   static void filter(RTCGeometry geom, void* data, RTCFilterFunctionN function);
   // Commits geom, attaches it as mesh `index` (of `kind`) and releases it.
-  void attach(RTCGeometry geom, size_t index, AnalyticShape::Kind kind, const char* what);
+  void attach(RTCGeometry geom, size_t index, core::AnalyticShape::Kind kind, const char* what);
   void commit();
   Device& device_;
-  const Scene& source_;
+  const core::Scene& source_;
   RTCScene scene_ = nullptr;
   std::vector<std::unique_ptr<AlphaMask>> masks_;
   std::vector<std::unique_ptr<OwnSphere>> spheres_;

@@ -13,6 +13,8 @@
 
 namespace sb::reference {
 
+using core::AreaLight;
+
 namespace {
 
 using detail::box_meets;

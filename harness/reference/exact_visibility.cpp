@@ -11,6 +11,11 @@
 
 namespace sb::reference {
 
+using core::AnalyticShape;
+using core::ImageF;
+using core::Mesh;
+using core::Scene;
+
 std::string ExactVisibility::unsupported_reason(const Scene& scene) {
   // A segment has an exact form (hidden_intervals); a point's V is 0 or 1.
   if (scene.light.is_point())

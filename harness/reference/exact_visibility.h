@@ -78,7 +78,7 @@ class ExactVisibility {
  public:
   // `closed`: per mesh of `scene`, whether it is a closed caster (empty: none
   // is, which is correct, only slower).
-  ExactVisibility(const Scene& scene, const std::vector<bool>& closed = {});
+  ExactVisibility(const core::Scene& scene, const std::vector<bool>& closed = {});
   ~ExactVisibility();
   ExactVisibility(const ExactVisibility&) = delete;
   ExactVisibility& operator=(const ExactVisibility&) = delete;
@@ -86,7 +86,7 @@ class ExactVisibility {
   // "" when every caster has an exact polygonal form, else why not.
   const std::string& unsupported() const { return unsupported_; }
   // The same, without building anything.
-  static std::string unsupported_reason(const Scene& scene);
+  static std::string unsupported_reason(const core::Scene& scene);
 
   // V at p, whose surface has the geometric normal n (facing the viewer).
   double visibility(const glm::dvec3& p, const glm::dvec3& n) const;
@@ -144,7 +144,7 @@ class ExactVisibility {
 
   // Every covered pixel of a G-buffer (positions.w > 0.5; normals: RGB),
   // in parallel over rows; background pixels get 1.
-  ImageF image(const ImageF& positions, const ImageF& normals) const;
+  core::ImageF image(const core::ImageF& positions, const core::ImageF& normals) const;
 
   // The casters' triangles it keeps (a closed caster's, all of them).
   size_t triangle_count() const { return casters_.triangles().size(); }
@@ -153,7 +153,7 @@ class ExactVisibility {
   // The offset viewpoint p + eps·n (see above).
   glm::dvec3 viewpoint(const glm::dvec3& surface, const glm::dvec3& n) const;
 
-  AreaLight light_;
+  core::AreaLight light_;
   detail::CasterBvh casters_;
   std::string unsupported_;
 };

@@ -12,6 +12,12 @@
 
 namespace sb::reference {
 
+using core::Hasher;
+using core::ImageF;
+using core::Mesh;
+using core::Scene;
+using core::TextureImage;
+
 namespace {
 
 using detail::embree_config_of;

@@ -11,6 +11,8 @@
 
 namespace sb::reference::detail {
 
+using core::JobError;
+
 KeyLock::KeyLock(const std::filesystem::path& file)
     : fd_(::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644)) {
   if (fd_ < 0)

@@ -6,6 +6,8 @@
 
 namespace sb::reference::detail {
 
+using core::AreaLight;
+
 namespace {
 
 // A unit vector perpendicular to the unit vector d.

@@ -14,7 +14,7 @@ namespace sb::reference::detail {
 struct Frame {
   glm::dvec3 centre, u, v, normal;
   double hw = 0.0, hh = 0.0;
-  explicit Frame(const AreaLight& l)
+  explicit Frame(const core::AreaLight& l)
       : centre(l.center),
         hw(glm::length(glm::dvec3(l.half_u))),
         hh(glm::length(glm::dvec3(l.half_v))) {
@@ -37,6 +37,6 @@ std::array<Plane, 5> pyramid(const Frame& f, const glm::dvec3& p);
 
 // The light (a rectangle or a segment) grown by a hair, 1e-6 of its size,
 // on every side, as the six planes of a box facing in.
-std::array<Plane, 6> light_box(const AreaLight& l);
+std::array<Plane, 6> light_box(const core::AreaLight& l);
 
 }  // namespace sb::reference::detail

@@ -8,6 +8,10 @@
 
 namespace sb::reference::detail {
 
+using core::ImageF;
+using core::JobError;
+using core::Scene;
+
 namespace {
 
 constexpr float kTfar = 1.0f - 1e-4f;  // direction = light sample - origin

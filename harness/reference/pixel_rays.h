@@ -24,19 +24,19 @@ namespace sb::reference::detail {
 
 // What every pixel's rays share: the light, the casters, the sample layout.
 struct RaySetup {
-  RaySetup(const Scene& scene, const FlatScene& casters, const Layout& layout,
-           const ImageF& positions, const ImageF& normals, uint64_t seed);
+  RaySetup(const core::Scene& scene, const FlatScene& casters, const Layout& layout,
+           const core::ImageF& positions, const core::ImageF& normals, uint64_t seed);
   const Layout& layout;
-  const ImageF& positions;  // RGBA32F, w > 0.5 on a surface
-  const ImageF& normals;    // 3 or 4 channels
-  RTCScene rtc;             // null without casters: only the horizon test remains
+  const core::ImageF& positions;  // RGBA32F, w > 0.5 on a surface
+  const core::ImageF& normals;    // 3 or 4 channels
+  RTCScene rtc;                   // null without casters: only the horizon test remains
   RayOffset offset;
   glm::vec3 center;          // the light's
   glm::vec3 corner, eu, ev;  // the light: corner + s*eu + t*ev
   uint64_t seed;
 };
 
-bool covered(const ImageF& positions, size_t pixel);
+bool covered(const core::ImageF& positions, size_t pixel);
 
 // Which of a pixel's two independent sample streams: the estimate's (the
 // uniform reference's samples) or the adaptive reference's pilot's, which

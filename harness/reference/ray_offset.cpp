@@ -5,6 +5,11 @@
 #include <glm/glm.hpp>
 
 namespace sb::reference::detail {
+
+using core::AnalyticShape;
+using core::Mesh;
+using core::Scene;
+
 namespace {
 
 double largest_coordinate(const glm::dvec3& v) {

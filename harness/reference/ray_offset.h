@@ -48,12 +48,13 @@ double offset_from(const glm::dvec3& p, double largest);
 class RayOffset {
  public:
   // `casters` is the scene the shadow rays are traced in (may be empty).
-  RayOffset(const Scene& scene, const FlatScene& casters) : scene_(scene), casters_(casters) {}
+  RayOffset(const core::Scene& scene, const FlatScene& casters)
+      : scene_(scene), casters_(casters) {}
   // eps for a surface point p; thread-safe.
   float at(const glm::vec3& p) const;
 
  private:
-  const Scene& scene_;
+  const core::Scene& scene_;
   const FlatScene& casters_;
 };
 

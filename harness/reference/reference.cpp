@@ -27,6 +27,15 @@
 
 namespace sb::reference {
 
+using core::AnalyticShape;
+using core::AreaLight;
+using core::Camera;
+using core::ImageF;
+using core::JobError;
+using core::Mesh;
+using core::Scene;
+using core::write_file_atomically;
+
 namespace {
 
 using detail::Device;

@@ -82,8 +82,8 @@ inline constexpr const char* kExactMethod = "exact_clipper";
 std::string method_id(const Settings& s);
 
 struct Result {
-  ImageF visibility;                   // 1 channel
-  ImageF std_error;                    // 1 channel, per-pixel standard error of the estimate
+  core::ImageF visibility;             // 1 channel
+  core::ImageF std_error;              // 1 channel, per-pixel standard error of the estimate
   double mean_std_error = 0;           // over covered pixels
   double penumbra_mean_std_error = 0;  // over pixels with 0<V<1
   // sqrt(mean of std_error²) over pixels with 0<V<1: the noise's RMS, the
@@ -95,7 +95,7 @@ struct Result {
   // but for the adaptive reference (its pilot's included, so up to spp +
   // pilot_spp), which also fills mean_spp and max_spp over the covered
   // pixels.
-  ImageF samples;
+  core::ImageF samples;
   double mean_spp = 0;
   int max_spp = 0;
   // The adaptive reference's covered pixels stopped at an agreeing pilot
@@ -117,8 +117,8 @@ struct Result {
 // UnsupportedIsa when the CPU lacks the ISA asked for, sb::InputError on
 // broken caster geometry, sb::JobError on Embree failures and on points so far
 // out that Embree cannot trace their rays.
-Result compute(const Scene& scene, const ImageF& positions, const ImageF& geometric_normals,
-               const Settings& s);
+Result compute(const core::Scene& scene, const core::ImageF& positions,
+               const core::ImageF& geometric_normals, const Settings& s);
 
 // As compute(), but looked up in / stored to cache_dir/<key>.sbref. The key
 // hashes everything V depends on (adaptive settings included): caster geometry (in order), the
@@ -130,12 +130,12 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
 // sharing cache_dir compute each key once: a miss takes the key's lock file
 // (<key>.lock, flock) and looks again before computing. An unwritable
 // cache_dir throws sb::JobError.
-Result get(const Scene& scene, const ImageF& positions, const ImageF& geometric_normals,
-           const Settings& s, const std::string& cache_dir);
+Result get(const core::Scene& scene, const core::ImageF& positions,
+           const core::ImageF& geometric_normals, const Settings& s, const std::string& cache_dir);
 
 // The key get() uses (16 hex digits), without computing anything.
-std::string cache_key(const Scene& scene, const ImageF& positions, const ImageF& geometric_normals,
-                      const Settings& s);
+std::string cache_key(const core::Scene& scene, const core::ImageF& positions,
+                      const core::ImageF& geometric_normals, const Settings& s);
 
 // A G-buffer made by primary ray casting with Embree (all meshes, casters and
 // receivers) through scene.camera, pixel centres, row 0 on top, the view-space
@@ -144,9 +144,9 @@ std::string cache_key(const Scene& scene, const ImageF& positions, const ImageF&
 // camera (as the rasterised G-buffer's: the side that is seen).
 // For tests and benchmarks that need the reference without GL.
 struct GBuffer {
-  ImageF positions;
-  ImageF normals;
+  core::ImageF positions;
+  core::ImageF normals;
 };
-GBuffer trace_gbuffer(const Scene& scene, int width, int height);
+GBuffer trace_gbuffer(const core::Scene& scene, int width, int height);
 
 }  // namespace sb::reference

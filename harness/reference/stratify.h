@@ -48,20 +48,20 @@ struct Layout {
 Layout make_layout(int spp, Strata strata = Strata::Square);
 
 // SplitMix64's finaliser (core/counter_rng.h): a bijective 64-bit mixer.
-inline uint64_t mix64(uint64_t z) { return splitmix64_mix(z); }
+inline uint64_t mix64(uint64_t z) { return core::splitmix64_mix(z); }
 
 // Each pixel draws from its own stream keyed by (seed, pixel, spp), so the
 // result does not depend on how pixels are spread over threads.
 inline uint64_t pixel_key(uint64_t seed, uint64_t pixel, uint64_t spp) {
-  return mix64(mix64(mix64(seed ^ 0x5b3e1f0a2c4d6e87ull) ^ pixel) ^ (spp * kSplitMix64Gamma));
+  return mix64(mix64(mix64(seed ^ 0x5b3e1f0a2c4d6e87ull) ^ pixel) ^ (spp * core::kSplitMix64Gamma));
 }
 
 // Counter-based draw: sample i gets two 24-bit uniforms in [0,1) from one
 // output, splitmix64(key, i): u its top 24 bits (unit_float), v bits 8-31.
 // No std distribution, so the same bits with any standard library.
 inline void sample_uv(uint64_t key, uint32_t i, float& u, float& v) {
-  const uint64_t z = splitmix64(key, i);
-  u = unit_float(z);
+  const uint64_t z = core::splitmix64(key, i);
+  u = core::unit_float(z);
   v = float(uint32_t(z >> 8) & 0xffffffu) * 0x1p-24f;
 }
 

@@ -6,7 +6,13 @@
 #include "results/compare.h"
 #include "results/store.h"
 
-namespace sb {
+namespace sb::results {
+
+using core::write_file_atomically;
+using record::JobRecord;
+using record::JobStatus;
+using record::Series;
+
 using nlohmann::json;
 
 json make_bencher_json(const std::vector<JobRecord>& records) {
@@ -37,4 +43,4 @@ void write_bencher_json(const std::string& path, const std::vector<JobRecord>& r
   write_file_atomically(path, json_text(make_bencher_json(records), 2) + "\n");
 }
 
-}  // namespace sb
+}  // namespace sb::results

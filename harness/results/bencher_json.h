@@ -14,9 +14,9 @@
 
 #include "record/job_record.h"
 
-namespace sb {
+namespace sb::results {
 
-nlohmann::json make_bencher_json(const std::vector<JobRecord>& records);
-void write_bencher_json(const std::string& path, const std::vector<JobRecord>& records);
+nlohmann::json make_bencher_json(const std::vector<record::JobRecord>& records);
+void write_bencher_json(const std::string& path, const std::vector<record::JobRecord>& records);
 
-}  // namespace sb
+}  // namespace sb::results

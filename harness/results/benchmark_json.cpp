@@ -12,7 +12,12 @@
 #include "core/atomic_file.h"
 #include "results/store.h"
 
-namespace sb {
+namespace sb::results {
+
+using core::write_file_atomically;
+using record::JobRecord;
+using record::JobStatus;
+
 namespace {
 
 using nlohmann::json;
@@ -149,4 +154,4 @@ void write_benchmark_json(const std::string& path, const std::vector<JobRecord>&
                         json_text(make_benchmark_json(records, benchmark_context()), 2) + "\n");
 }
 
-}  // namespace sb
+}  // namespace sb::results

@@ -16,13 +16,13 @@
 
 #include "record/job_record.h"
 
-namespace sb {
+namespace sb::results {
 
 // The context block for this machine and process, now.
 nlohmann::json benchmark_context();
-nlohmann::json make_benchmark_json(const std::vector<JobRecord>& records,
+nlohmann::json make_benchmark_json(const std::vector<record::JobRecord>& records,
                                    const nlohmann::json& context);
 // Writes make_benchmark_json(records, benchmark_context()) atomically.
-void write_benchmark_json(const std::string& path, const std::vector<JobRecord>& records);
+void write_benchmark_json(const std::string& path, const std::vector<record::JobRecord>& records);
 
-}  // namespace sb
+}  // namespace sb::results

@@ -27,7 +27,19 @@
 
 extern char** environ;
 
-namespace sb {
+namespace sb::results {
+
+using core::data_dirs;
+using core::file_safe;
+using core::InputError;
+using core::write_file_atomically;
+using record::FineTiming;
+using record::JobRecord;
+using record::JobStatus;
+using record::MetricPath;
+using record::Series;
+using record::TimingRecord;
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -520,4 +532,4 @@ std::vector<ChartFile> write_charts(const std::vector<JobRecord>& records,
   return out;
 }
 
-}  // namespace sb
+}  // namespace sb::results

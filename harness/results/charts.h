@@ -21,7 +21,7 @@
 
 #include "record/job_record.h"
 
-namespace sb {
+namespace sb::results {
 
 struct ChartOptions {
   // A dotted path into record["metrics"] (record/metrics_record.h, MetricPath):
@@ -46,7 +46,7 @@ struct ChartFile {
 // error metric (naming it), std::runtime_error when python3 or matplotlib is
 // missing (saying what to install) or when the plotting script fails (with
 // its stderr). No ok records: no charts, and python is not run.
-std::vector<ChartFile> write_charts(const std::vector<JobRecord>& records,
+std::vector<ChartFile> write_charts(const std::vector<record::JobRecord>& records,
                                     const std::string& out_dir, const ChartOptions& options = {});
 
 // Empty if /usr/bin/python3 can import matplotlib, else why not (and what to
@@ -58,4 +58,4 @@ std::string charts_unavailable_reason();
 // installed share folder), then in the source tree.
 std::string find_plot_script();
 
-}  // namespace sb
+}  // namespace sb::results

@@ -13,7 +13,21 @@
 #include "results/multiple_testing.h"
 #include "results/reference_identity.h"
 
-namespace sb {
+namespace sb::results {
+
+using core::format_number;
+using core::InputError;
+using core::kExitBadInput;
+using core::kExitOk;
+using record::build_fingerprint_fields;
+using record::ControlTiming;
+using record::field_differences;
+using record::host_fingerprint_fields;
+using record::JobRecord;
+using record::MetricPath;
+using record::Series;
+using record::summarize;
+
 namespace {
 
 // timing.<key>.samples_ms: "frame" or "technique"; the finite ones.
@@ -585,4 +599,4 @@ std::string format_comparison(const CompareResult& r, const CompareOptions& o) {
   return s;
 }
 
-}  // namespace sb
+}  // namespace sb::results

@@ -28,7 +28,7 @@
 
 #include "record/job_record.h"
 
-namespace sb {
+namespace sb::results {
 
 // The exit code of `shadowbench compare` when some job regressed (0: none,
 // 2: bad input). Distinct from 1, which `run` uses for failed jobs.
@@ -102,7 +102,7 @@ struct ReferenceDifference {
 // what compare is for.
 struct PluginDifference {
   std::string technique;
-  PluginRecord base, fresh;
+  record::PluginRecord base, fresh;
 };
 
 struct CompareResult {
@@ -136,13 +136,13 @@ int compare_exit_code(const CompareResult& r);
 void check_options(const CompareOptions& o);
 // Throws InputError, besides check_options, when a job's BASE and NEW used
 // different control techniques under normalize "control".
-CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector<JobRecord>& fresh,
-                           const CompareOptions& o);
+CompareResult compare_runs(const std::vector<record::JobRecord>& base,
+                           const std::vector<record::JobRecord>& fresh, const CompareOptions& o);
 // The table that `shadowbench compare` prints.
 std::string format_comparison(const CompareResult& r, const CompareOptions& o);
 // A value of a record's metrics by a dotted path ("visibility.all.rmse", or
 // "metrics.visibility.all.rmse"); nullopt when the record has no metrics or
 // the path names no metric (record/metrics_record.h, MetricPath).
-std::optional<double> metric_value(const JobRecord& record, const std::string& dotted_path);
+std::optional<double> metric_value(const record::JobRecord& record, const std::string& dotted_path);
 
-}  // namespace sb
+}  // namespace sb::results

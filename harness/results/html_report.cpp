@@ -19,7 +19,15 @@
 #include "results/stability_table.h"
 #include "results/store.h"
 
-namespace sb {
+namespace sb::results {
+
+using core::format_number;
+using core::ImageF;
+using core::write_file_atomically;
+using record::JobRecord;
+using record::JobStatus;
+using record::ReferenceRecord;
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -194,7 +202,7 @@ void write_legend(const fs::path& path) {
     for (int y = 0; y < kHeight; ++y)
       for (int c = 0; c < 3; ++c) img.at(x, y, c) = rgb[c];
   }
-  io::write_png(path.string(), img);
+  metrics::io::write_png(path.string(), img);
 }
 
 class Page {
@@ -539,4 +547,4 @@ void write_html_report(const std::vector<JobRecord>& records, const std::string&
                         Page(records, run_dir, out, run_from_out, charts, title).render());
 }
 
-}  // namespace sb
+}  // namespace sb::results

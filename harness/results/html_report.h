@@ -9,7 +9,7 @@
 
 #include "record/job_record.h"
 
-namespace sb {
+namespace sb::results {
 
 // A chart made by the caller. Paths are relative to out_dir; an absolute one,
 // or one relative to the working directory that names an existing file (as
@@ -30,11 +30,11 @@ inline constexpr const char* kHeatmapLegendFile = "heatmap_legend.png";
 // run_dir) are linked relative to out_dir, not copied. After loading, the
 // page's script sets <body data-images-ok="true|false" data-missing="...">
 // and logs console.error for each image that did not load.
-void write_html_report(const std::vector<JobRecord>& records, const std::string& run_dir,
+void write_html_report(const std::vector<record::JobRecord>& records, const std::string& run_dir,
                        const std::string& out_dir, const std::vector<ReportChart>& charts,
                        const std::string& title);
 
 // & < > " ' as character references: safe in text and in quoted attributes.
 std::string html_escape(const std::string& s);
 
-}  // namespace sb
+}  // namespace sb::results

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace sb {
+namespace sb::results {
 namespace {
 
 // Coefficients c[k] of the Gaussian binomial [m+n choose m]_q: c[k] is the
@@ -96,4 +96,4 @@ MannWhitneyResult mann_whitney_u(std::span<const double> x, std::span<const doub
   return r;
 }
 
-}  // namespace sb
+}  // namespace sb::results

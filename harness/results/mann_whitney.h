@@ -10,7 +10,7 @@
 // there are no ties, asymptotic otherwise.
 #include <span>
 
-namespace sb {
+namespace sb::results {
 
 enum class MwuMethod { kAuto, kExact, kAsymptotic };
 
@@ -24,4 +24,4 @@ struct MannWhitneyResult {
 MannWhitneyResult mann_whitney_u(std::span<const double> x, std::span<const double> y,
                                  MwuMethod method = MwuMethod::kAuto);
 
-}  // namespace sb
+}  // namespace sb::results

@@ -19,7 +19,17 @@
 #include "results/run_lock.h"
 #include "results/store.h"
 
-namespace sb {
+namespace sb::results {
+
+using core::InputError;
+using core::write_file_atomically;
+using plan::read_plan_file;
+using record::ImagesRecord;
+using record::JobRecord;
+using record::plan_difference;
+using record::PlannedJobRecord;
+using record::PlanRecord;
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -218,4 +228,4 @@ MergeSummary merge_runs(const std::string& out, const std::vector<std::string>& 
   return summary;
 }
 
-}  // namespace sb
+}  // namespace sb::results

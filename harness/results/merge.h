@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-namespace sb {
+namespace sb::results {
 
 struct MergeOptions {
   bool allow_mixed_hosts = false;
@@ -36,4 +36,4 @@ struct MergeSummary {
 MergeSummary merge_runs(const std::string& out, const std::vector<std::string>& dirs,
                         const MergeOptions& options);
 
-}  // namespace sb
+}  // namespace sb::results

@@ -2,7 +2,10 @@
 
 #include <set>
 
-namespace sb {
+namespace sb::results {
+
+using record::JobRecord;
+using record::JobStatus;
 
 std::string host_label(const JobRecord& r) {
   std::string label = r.host.name.value_or("?");
@@ -21,4 +24,4 @@ std::vector<std::string> distinct_hosts(const std::vector<JobRecord>& records) {
   return labels;
 }
 
-}  // namespace sb
+}  // namespace sb::results

@@ -7,13 +7,13 @@
 
 #include "record/job_record.h"
 
-namespace sb {
+namespace sb::results {
 
 // "name (cpu), renderer".
-std::string host_label(const JobRecord& r);
+std::string host_label(const record::JobRecord& r);
 
 // The hosts that timed the ok jobs, told apart by host fingerprint and GL
 // renderer, as host labels in order of first appearance.
-std::vector<std::string> distinct_hosts(const std::vector<JobRecord>& records);
+std::vector<std::string> distinct_hosts(const std::vector<record::JobRecord>& records);
 
-}  // namespace sb
+}  // namespace sb::results

@@ -4,7 +4,7 @@
 #include <numeric>
 #include <stdexcept>
 
-namespace sb {
+namespace sb::results {
 
 std::optional<Correction> parse_correction(const std::string& name) {
   if (name == "holm") return Correction::kHolm;
@@ -65,4 +65,4 @@ std::vector<double> adjust_p_values(std::span<const double> p, Correction c) {
   return out;
 }
 
-}  // namespace sb
+}  // namespace sb::results

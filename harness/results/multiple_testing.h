@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-namespace sb {
+namespace sb::results {
 
 enum class Correction { kHolm, kBenjaminiHochberg, kNone };
 
@@ -33,4 +33,4 @@ const char* correction_name(Correction c);
 // Throws std::invalid_argument for a p outside [0, 1] or NaN.
 std::vector<double> adjust_p_values(std::span<const double> p, Correction c);
 
-}  // namespace sb
+}  // namespace sb::results

@@ -5,7 +5,7 @@
 #include <limits>
 #include <tuple>
 
-namespace sb {
+namespace sb::results {
 
 std::vector<std::size_t> pareto_front_indices(const std::vector<ParetoPoint>& points) {
   std::vector<std::size_t> order;
@@ -43,4 +43,4 @@ std::vector<ParetoPoint> pareto_front(const std::vector<ParetoPoint>& points) {
   return out;
 }
 
-}  // namespace sb
+}  // namespace sb::results

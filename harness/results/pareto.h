@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-namespace sb {
+namespace sb::results {
 
 struct ParetoPoint {
   double time = 0.0;
@@ -30,4 +30,4 @@ std::vector<std::size_t> pareto_front_indices(const std::vector<ParetoPoint>& po
 // The front's points themselves, in the same order.
 std::vector<ParetoPoint> pareto_front(const std::vector<ParetoPoint>& points);
 
-}  // namespace sb
+}  // namespace sb::results

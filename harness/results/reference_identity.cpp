@@ -2,7 +2,10 @@
 
 #include <charconv>
 
-namespace sb {
+namespace sb::results {
+
+using record::ReferenceRecord;
+
 namespace {
 
 // The shortest text that reads back as the same double: two settings that
@@ -38,4 +41,4 @@ std::vector<std::pair<std::string, std::string>> reference_identity_fields(
   return f;
 }
 
-}  // namespace sb
+}  // namespace sb::results

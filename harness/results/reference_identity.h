@@ -10,7 +10,7 @@
 
 #include "record/reference_record.h"
 
-namespace sb {
+namespace sb::results {
 
 // method, spp, seed, embree_isa, adaptive.pilot_spp,
 // adaptive.target_std_error, cache_key (which also covers the reference's
@@ -18,6 +18,6 @@ namespace sb {
 // G-buffer's points), in that order. A member the record lacks (no
 // reference, no adaptive settings, a record without a cache key) is "".
 std::vector<std::pair<std::string, std::string>> reference_identity_fields(
-    const std::optional<ReferenceRecord>& reference);
+    const std::optional<record::ReferenceRecord>& reference);
 
-}  // namespace sb
+}  // namespace sb::results

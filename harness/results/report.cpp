@@ -10,7 +10,11 @@
 #include "results/stability_table.h"
 #include "results/store.h"
 
-namespace sb {
+namespace sb::results {
+
+using core::write_file_atomically;
+using record::JobRecord;
+
 namespace {
 
 std::string csv_escape(const std::string& s) {
@@ -103,4 +107,4 @@ void write_reports(const std::string& run_dir, const std::vector<JobRecord>& rec
   write_file_atomically((fs::path(run_dir) / "summary.md").string(), make_markdown(records, title));
 }
 
-}  // namespace sb
+}  // namespace sb::results

@@ -7,7 +7,7 @@
 
 #include "record/job_record.h"
 
-namespace sb {
+namespace sb::results {
 
 // Text from records (labels, reasons) inside a Markdown table or heading:
 // the characters that end a cell, open code, links, emphasis or HTML are
@@ -15,10 +15,10 @@ namespace sb {
 // inject markup.
 std::string markdown_text(const std::string& s);
 
-std::string make_csv(const std::vector<JobRecord>& records);
-std::string make_markdown(const std::vector<JobRecord>& records, const std::string& title);
+std::string make_csv(const std::vector<record::JobRecord>& records);
+std::string make_markdown(const std::vector<record::JobRecord>& records, const std::string& title);
 // Writes results.csv and summary.md into run_dir (atomically).
-void write_reports(const std::string& run_dir, const std::vector<JobRecord>& records,
+void write_reports(const std::string& run_dir, const std::vector<record::JobRecord>& records,
                    const std::string& title);
 
-}  // namespace sb
+}  // namespace sb::results

@@ -8,7 +8,17 @@
 #include "core/format_number.h"
 #include "reference/reference.h"
 
-namespace sb {
+namespace sb::results {
+
+using core::format_number;
+using record::ImageMetrics;
+using record::JobRecord;
+using record::ReferenceRecord;
+using record::RegionStats;
+using record::Series;
+using record::TimingRecord;
+using record::to_string;
+
 namespace {
 
 // A figure of the visibility buffer's metrics over one region.
@@ -189,4 +199,4 @@ std::string reference_label(const ReferenceRecord& r) {
   return out;
 }
 
-}  // namespace sb
+}  // namespace sb::results

@@ -8,7 +8,7 @@
 
 #include "record/job_record.h"
 
-namespace sb {
+namespace sb::results {
 
 struct ReportColumn {
   const char* name = "";    // how code refers to the column ("frame_ms")
@@ -20,14 +20,14 @@ struct ReportColumn {
   // HTML tables leave the column out when no record has a value for it.
   bool optional = false;
   // Exactly one of the two: a text cell, or a number printed with `format`.
-  std::string (*text)(const JobRecord&) = nullptr;
-  std::optional<double> (*number)(const JobRecord&) = nullptr;
+  std::string (*text)(const record::JobRecord&) = nullptr;
+  std::optional<double> (*number)(const record::JobRecord&) = nullptr;
   const char* format = nullptr;  // printf format of a number
 
   bool numeric() const { return number != nullptr; }
   // The cell: the text, or the number formatted ("" when absent or NaN,
   // "inf" and "-inf" for infinities).
-  std::string cell(const JobRecord& r) const;
+  std::string cell(const record::JobRecord& r) const;
 };
 
 // In table order: scene, resolution, technique, status, the figures, reason.
@@ -36,10 +36,10 @@ const std::vector<ReportColumn>& report_columns();
 const ReportColumn& report_column(const std::string& name);
 // The columns of one (scene, resolution) table of `records`: not the
 // per-group ones, nor optional ones that no record fills.
-std::vector<const ReportColumn*> group_table_columns(const std::vector<JobRecord>& records);
+std::vector<const ReportColumn*> group_table_columns(const std::vector<record::JobRecord>& records);
 
 // "exact (exact_clipper)" or "Monte Carlo, 256 spp (embree_stratified_packet16)",
 // and why an exact reference asked for is Monte Carlo.
-std::string reference_label(const ReferenceRecord& r);
+std::string reference_label(const record::ReferenceRecord& r);
 
-}  // namespace sb
+}  // namespace sb::results

@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-namespace sb {
+namespace sb::results {
 
 RunFolderLock::RunFolderLock(const std::string& run_dir) {
   std::filesystem::create_directories(run_dir);
@@ -46,4 +46,4 @@ RunFolderLock::~RunFolderLock() {
   if (fd_ >= 0) ::close(fd_);  // closing drops the flock
 }
 
-}  // namespace sb
+}  // namespace sb::results

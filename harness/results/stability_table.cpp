@@ -7,7 +7,15 @@
 #include "core/format_number.h"
 #include "results/report.h"
 
-namespace sb {
+namespace sb::results {
+
+using core::format_number;
+using record::FlickerRecord;
+using record::JobRecord;
+using record::JobStatus;
+using record::kFlickerFloor;
+using record::StabilityRecord;
+
 const char* to_string(StabilityVerdict v) {
   switch (v) {
     case StabilityVerdict::Ok:
@@ -137,4 +145,4 @@ std::string stability_markdown(const std::vector<JobRecord>& records) {
   return out;
 }
 
-}  // namespace sb
+}  // namespace sb::results

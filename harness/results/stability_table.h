@@ -8,7 +8,7 @@
 
 #include "record/job_record.h"
 
-namespace sb {
+namespace sb::results {
 
 enum class StabilityVerdict { Ok, Degraded, Broken, Failed, Skipped };
 const char* to_string(StabilityVerdict v);  // "ok", "degraded", "broken", "failed", "skipped"
@@ -27,19 +27,19 @@ struct StabilityCell {
 //    popping pixels (|ΔV| > 0.05), over flicker_factor × the reference's +
 //    kFlickerFloor; or a stiff parameter;
 //  - ok otherwise.
-StabilityCell stability_cell(const JobRecord& r);
+StabilityCell stability_cell(const record::JobRecord& r);
 
 struct StabilityTable {
   std::vector<std::string> cases;       // scene variants (with "@ WxH" when a run has several)
   std::vector<std::string> techniques;  // technique variants, in the run's order
   // cells[t][c]: the record of technique t in case c, if the run has one.
-  std::vector<std::vector<const JobRecord*>> cells;
+  std::vector<std::vector<const record::JobRecord*>> cells;
 };
 
 // nullopt when no record carries stability figures (a run without the block).
-std::optional<StabilityTable> stability_table(const std::vector<JobRecord>& records);
+std::optional<StabilityTable> stability_table(const std::vector<record::JobRecord>& records);
 
 // The table as a Markdown section ("" without one).
-std::string stability_markdown(const std::vector<JobRecord>& records);
+std::string stability_markdown(const std::vector<record::JobRecord>& records);
 
-}  // namespace sb
+}  // namespace sb::results

@@ -9,7 +9,18 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 
-namespace sb {
+namespace sb::results {
+
+using config::parse_json_text;
+using config::read_input_file;
+using config::read_json_file;
+using core::InputError;
+using core::is_atomic_temp_name;
+using core::write_file_atomically;
+using record::JobRecord;
+using record::JobStatus;
+using record::RecordError;
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -135,4 +146,4 @@ std::vector<nlohmann::json> read_run_records(const std::string& run_dir) {
   return out;
 }
 
-}  // namespace sb
+}  // namespace sb::results

@@ -11,7 +11,7 @@
 
 #include "record/job_record.h"
 
-namespace sb {
+namespace sb::results {
 
 class ResultsStore {
  public:
@@ -23,25 +23,25 @@ class ResultsStore {
 
   const std::string& dir() const { return dir_; }
   // A finished record from an earlier run of this directory, or null.
-  const JobRecord* finished(const std::string& job_id) const;
+  const record::JobRecord* finished(const std::string& job_id) const;
   // Stores the record and rewrites results.jsonl (records ordered by `order`).
-  void put(const JobRecord& record);
+  void put(const record::JobRecord& record);
   // Stores each record, then rewrites results.jsonl once.
-  void put_all(const std::vector<JobRecord>& records);
+  void put_all(const std::vector<record::JobRecord>& records);
   void set_order(std::vector<std::string> job_ids) { order_ = std::move(job_ids); }
   // The record files left out, each "file: at /pointer: problem".
   const std::vector<std::string>& untrusted() const { return untrusted_; }
   // Rewrites results.jsonl from the records: a run killed between a record
   // and the index left them apart.
   void rewrite_index() const;
-  std::vector<JobRecord> records() const;  // in plan order, then the rest
+  std::vector<record::JobRecord> records() const;  // in plan order, then the rest
 
  private:
   std::vector<std::string> ordered_ids() const;  // records()'s order
-  void keep(JobRecord record, const nlohmann::json& as_json);
+  void keep(record::JobRecord record, const nlohmann::json& as_json);
   void rewrite_jsonl() const;
   std::string dir_;
-  std::map<std::string, JobRecord> records_;
+  std::map<std::string, record::JobRecord> records_;
   // Each record's results.jsonl line, made once: a run's every record
   // rewrites the file, which would otherwise serialise every record again.
   std::map<std::string, std::string> lines_;
@@ -54,7 +54,7 @@ class ResultsStore {
 // JSON, or a record that does not follow the schema (record/job_record.h;
 // another schema_version included), is an InputError naming the file, the
 // line and the JSON pointer.
-std::vector<JobRecord> read_job_records(const std::string& run_dir);
+std::vector<record::JobRecord> read_job_records(const std::string& run_dir);
 // The same lines as JSON, unread: for tests and tools that check the written
 // schema itself.
 std::vector<nlohmann::json> read_run_records(const std::string& run_dir);
@@ -63,4 +63,4 @@ std::vector<nlohmann::json> read_run_records(const std::string& run_dir);
 // making nlohmann throw and the run lose its records.
 std::string json_text(const nlohmann::json& value, int indent = -1);
 
-}  // namespace sb
+}  // namespace sb::results

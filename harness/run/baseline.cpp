@@ -11,7 +11,16 @@
 #include "metrics/metrics.h"
 #include "run/run_images.h"
 
-namespace sb {
+namespace sb::run {
+
+using config::Experiment;
+using config::ReferenceConfig;
+using config::Resolution;
+using core::file_safe;
+using core::ImageF;
+using core::Scene;
+using record::AdaptiveReferenceRecord;
+using record::ReferenceRecord;
 
 namespace {
 
@@ -148,4 +157,4 @@ Baseline make_baseline(const Experiment& e, const RunOptions& o, const EmbreeCho
   return b;
 }
 
-}  // namespace sb
+}  // namespace sb::run

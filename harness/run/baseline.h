@@ -18,31 +18,31 @@
 #include "run/run_events.h"
 #include "run/runner.h"
 
-namespace sb {
+namespace sb::run {
 
 struct Baseline {
-  ImageF positions, normals;     // the G-buffer's
-  reference::Settings settings;  // the first reference's
-  std::string cache_dir;         // where references are cached; "" when they are not
-  reference::Result ref;         // attached shadow applied
-  ImageF ref_shaded;             // the reference's V, shaded
+  core::ImageF positions, normals;  // the G-buffer's
+  reference::Settings settings;     // the first reference's
+  std::string cache_dir;            // where references are cached; "" when they are not
+  reference::Result ref;            // attached shadow applied
+  core::ImageF ref_shaded;          // the reference's V, shaded
   metrics::Regions regions;
-  ReferenceRecord ref_record;
+  record::ReferenceRecord ref_record;
   // reference.second_method's reference, and its record part.
   std::optional<reference::Result> second;
-  std::optional<ReferenceRecord> second_record;
-  ImagesRecord ref_images;  // every job's record names them
+  std::optional<record::ReferenceRecord> second_record;
+  record::ImagesRecord ref_images;  // every job's record names them
 
   // The reference of `scene` (the same one with its light moved, say) at
   // the G-buffer's points, with the first one's settings and cache.
-  reference::Result reference_of(const Scene& scene) const;
+  reference::Result reference_of(const core::Scene& scene) const;
 };
 
 // `targets` holds the G-buffer of `scene` (FrameTargets::render_gbuffer);
 // shading the reference leaves its V in the visibility target. Tells
 // `events` each reference's phase and logs how it was made.
-Baseline make_baseline(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
-                       RunEvents& events, const std::string& scene_name, const Scene& scene,
-                       const Resolution& res, FrameTargets& targets);
+Baseline make_baseline(const config::Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
+                       RunEvents& events, const std::string& scene_name, const core::Scene& scene,
+                       const config::Resolution& res, FrameTargets& targets);
 
-}  // namespace sb
+}  // namespace sb::run

@@ -15,7 +15,7 @@
 #include <fstream>
 #include <stdexcept>
 
-namespace sb {
+namespace sb::run {
 
 namespace {
 
@@ -210,4 +210,4 @@ bool write_fully(int fd, const std::string& text) {
   return true;
 }
 
-}  // namespace sb
+}  // namespace sb::run

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-namespace sb {
+namespace sb::run {
 
 class ChildProcess {
  public:
@@ -67,4 +67,4 @@ std::string signal_name(int signal);
 // false when the reader is gone.
 bool write_fully(int fd, const std::string& text);
 
-}  // namespace sb
+}  // namespace sb::run

@@ -5,7 +5,11 @@
 #include "core/sha256.h"
 #include "plugin/plugin_identity.h"
 
-namespace sb {
+namespace sb::run {
+
+using core::sha256_file_hex;
+using plugin::identify_plugin;
+
 namespace {
 
 // The shared object (or executable) that holds `address`.
@@ -35,4 +39,4 @@ const CodeIdentity& this_code() {
   return kCode;
 }
 
-}  // namespace sb
+}  // namespace sb::run

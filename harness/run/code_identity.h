@@ -4,7 +4,7 @@
 // rebuilt harness would otherwise resume records of the old one.
 #include <string>
 
-namespace sb {
+namespace sb::run {
 
 struct CodeIdentity {
   // SHA-256 of each file's bytes; "" when it could not be found or read.
@@ -16,4 +16,4 @@ struct CodeIdentity {
 // This process's code, hashed once (the first call reads the files).
 const CodeIdentity& this_code();
 
-}  // namespace sb
+}  // namespace sb::run

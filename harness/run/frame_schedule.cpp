@@ -7,7 +7,12 @@
 
 #include "run/io_trace.h"
 
-namespace sb {
+namespace sb::run {
+
+using record::ControlTiming;
+using record::FineTiming;
+using record::Series;
+using record::TimingRecord;
 
 namespace {
 
@@ -116,4 +121,4 @@ TimingRecord time_frames(FrameTarget& target, const FrameSchedule& s) {
   return t;
 }
 
-}  // namespace sb
+}  // namespace sb::run

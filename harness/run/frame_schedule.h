@@ -14,7 +14,7 @@
 #include "gl/pass_timer.h"
 #include "record/timing_record.h"
 
-namespace sb {
+namespace sb::run {
 
 // What renders the frames: the GL executor's (run/technique_frames.h), or a
 // test's fake. Each frame's name is for error messages and the I/O trace.
@@ -38,6 +38,6 @@ struct FrameSchedule {
 
 // Renders the schedule's frames on `target` and returns their statistics and
 // samples (timing.control's ratios included); a frame that throws ends it.
-TimingRecord time_frames(FrameTarget& target, const FrameSchedule& schedule);
+record::TimingRecord time_frames(FrameTarget& target, const FrameSchedule& schedule);
 
-}  // namespace sb
+}  // namespace sb::run

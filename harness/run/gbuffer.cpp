@@ -4,7 +4,14 @@
 
 #include "gl/debug.h"
 
-namespace sb {
+namespace sb::run {
+
+using core::ImageF;
+using core::Scene;
+using gl::DrawInfo;
+using gl::GpuScene;
+using plugin::FrameInputs;
+
 namespace {
 
 const char* const kGBufferVertex = R"(#version 450 core
@@ -252,4 +259,4 @@ void FrameTargets::upload_visibility(const ImageF& v) {
   gl::throw_if_errors("uploading visibility");
 }
 
-}  // namespace sb
+}  // namespace sb::run

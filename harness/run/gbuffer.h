@@ -17,7 +17,7 @@
 #include "gl/program.h"
 #include "plugin/technique.h"
 
-namespace sb {
+namespace sb::run {
 
 class FrameTargets {
  public:
@@ -28,25 +28,25 @@ class FrameTargets {
 
   // Rasterises the camera view: world position, geometric normal, shading
   // normal, albedo, depth-stencil; then keeps a copy of the depth-stencil.
-  void render_gbuffer(const GpuScene& gpu, const glm::mat4& view_projection);
+  void render_gbuffer(const gl::GpuScene& gpu, const glm::mat4& view_projection);
   // Puts back the depth-stencil render_gbuffer() left: what a frame starts
   // from, whatever the previous frame's technique did to its stencil.
   void restore_gbuffer();
   // Shades with the current visibility: linear radiance → display value
   // (gamma 2.2), written to the RGBA32F shaded target.
-  void render_shading(const Scene& scene);
+  void render_shading(const core::Scene& scene);
 
-  FrameInputs inputs(const Scene& scene, const GpuScene& gpu, const glm::mat4& view,
-                     const glm::mat4& projection) const;
+  plugin::FrameInputs inputs(const core::Scene& scene, const gl::GpuScene& gpu,
+                             const glm::mat4& view, const glm::mat4& projection) const;
 
-  ImageF read_positions() const;          // 4 channels
-  ImageF read_geometric_normals() const;  // 3 channels
+  core::ImageF read_positions() const;          // 4 channels
+  core::ImageF read_geometric_normals() const;  // 3 channels
   // 1 where the surface belongs to a mesh that casts no shadow, else 0.
-  ImageF read_receiver_mask() const;
-  ImageF read_visibility() const;  // 1 channel
-  ImageF read_shaded() const;      // 3 channels
+  core::ImageF read_receiver_mask() const;
+  core::ImageF read_visibility() const;  // 1 channel
+  core::ImageF read_shaded() const;      // 3 channels
   // Overwrites the visibility target (used to shade the reference).
-  void upload_visibility(const ImageF& v);
+  void upload_visibility(const core::ImageF& v);
 
  private:
   int width_;
@@ -59,6 +59,6 @@ class FrameTargets {
 };
 
 // Reads a texture's level 0 into an image, flipping rows so row 0 is on top.
-ImageF read_texture(GLuint texture, int width, int height, int channels);
+core::ImageF read_texture(GLuint texture, int width, int height, int channels);
 
-}  // namespace sb
+}  // namespace sb::run

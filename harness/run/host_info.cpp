@@ -24,7 +24,17 @@
 #define SHADOWBENCH_CXX_FLAGS ""
 #endif
 
-namespace sb {
+namespace sb::run {
+
+using record::build_fingerprint;
+using record::BuildRecord;
+using record::CpuRecord;
+using record::host_fingerprint;
+using record::HostRecord;
+using record::kCpuIsaFeatures;
+using record::kTimingEnvironment;
+using record::parse_gl_stack;
+
 namespace {
 
 std::string_view trimmed(std::string_view s) {
@@ -151,4 +161,4 @@ BuildRecord describe_build() {
   return b;
 }
 
-}  // namespace sb
+}  // namespace sb::run

@@ -9,20 +9,20 @@
 
 #include "record/host_record.h"
 
-namespace sb {
+namespace sb::run {
 
 // This machine, as it times a job with a context that reports `gl_renderer`
 // and `gl_version`; `embree_isa` is the reference's ("" when unknown).
 // Reads /proc/cpuinfo, /etc/os-release and sysfs once per process.
-HostRecord describe_host(const std::string& gl_renderer, const std::string& gl_version,
-                         const std::string& embree_isa);
+record::HostRecord describe_host(const std::string& gl_renderer, const std::string& gl_version,
+                                 const std::string& embree_isa);
 
 // This build: SHADOWBENCH_VERSION and what CMake passed to host_info.cpp.
-BuildRecord describe_build();
+record::BuildRecord describe_build();
 
 // The parsers describe_host uses, for tests: the first "model name" of a
 // /proc/cpuinfo text, and PRETTY_NAME of an os-release text (quotes removed).
 std::optional<std::string> cpuinfo_model_name(std::string_view cpuinfo);
 std::optional<std::string> os_release_pretty_name(std::string_view os_release);
 
-}  // namespace sb
+}  // namespace sb::run

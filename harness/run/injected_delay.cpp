@@ -6,7 +6,9 @@
 
 #include "core/error.h"
 
-namespace sb {
+namespace sb::run {
+
+using core::InputError;
 
 std::optional<InjectedDelay> InjectedDelay::from_environment() {
   const char* value = std::getenv(kInjectDelayVariable);
@@ -53,4 +55,4 @@ std::string InjectedDelay::describe() const {
          kInjectDelayVariable + "): a test of the CI gate, not a measurement";
 }
 
-}  // namespace sb
+}  // namespace sb::run

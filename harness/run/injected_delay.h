@@ -12,7 +12,7 @@
 #include <optional>
 #include <string>
 
-namespace sb {
+namespace sb::run {
 
 inline constexpr const char* kInjectDelayVariable = "SHADOWBENCH_INJECT_DELAY";
 
@@ -41,4 +41,4 @@ class InjectedDelay {
   bool relative_ = false;
 };
 
-}  // namespace sb
+}  // namespace sb::run

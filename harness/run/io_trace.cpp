@@ -10,7 +10,9 @@
 #include "core/error.h"
 #include "run/child_process.h"
 
-namespace sb {
+namespace sb::run {
+
+using core::InputError;
 
 namespace {
 
@@ -71,4 +73,4 @@ ParentIoSpan::~ParentIoSpan() {
   write_trace({{"parent-io", what_, begin_ns_, monotonic_ns()}});
 }
 
-}  // namespace sb
+}  // namespace sb::run

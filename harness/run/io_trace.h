@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-namespace sb {
+namespace sb::run {
 
 inline constexpr const char* kIoTraceVariable = "SHADOWBENCH_IO_TRACE";
 inline constexpr const char* kSlowParentIoVariable = "SHADOWBENCH_SLOW_PARENT_IO";
@@ -59,4 +59,4 @@ class ParentIoSpan {
   std::int64_t begin_ns_ = 0, slow_ns_ = 0;
 };
 
-}  // namespace sb
+}  // namespace sb::run

@@ -21,7 +21,16 @@
 #include "run/child_process.h"
 #include "run/io_trace.h"
 
-namespace sb {
+namespace sb::run {
+
+using config::Experiment;
+using config::Resolution;
+using config::SceneVariant;
+using core::format_number;
+using plan::PlannedJob;
+using record::JobRecord;
+using record::JobStatus;
+using results::json_text;
 
 using json = nlohmann::json;
 using Clock = std::chrono::steady_clock;
@@ -314,4 +323,4 @@ IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const Emb
   return outcome;
 }
 
-}  // namespace sb
+}  // namespace sb::run

@@ -24,7 +24,7 @@
 #include "run/run_events.h"
 #include "run/runner.h"
 
-namespace sb {
+namespace sb::run {
 
 // The parent's side also hears the child's stderr, line by line.
 class ParentEvents : public RunEvents {
@@ -45,8 +45,8 @@ struct IsolatedOutcome {
 // job ending in one job_finished event. The children are forked: they read
 // the parent's PlannedJobs that `work` points to. Throws std::runtime_error when a
 // child cannot make its GL context (as the run would fail in-process).
-IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
-                             size_t scene, const ResolutionWork& work, const TimeLimits& limits,
-                             ParentEvents& events);
+IsolatedOutcome run_isolated(const config::Experiment& e, const RunOptions& o,
+                             const EmbreeChoice& embree, size_t scene, const ResolutionWork& work,
+                             const TimeLimits& limits, ParentEvents& events);
 
-}  // namespace sb
+}  // namespace sb::run

@@ -21,7 +21,30 @@
 #include "run/stability_probe.h"
 #include "run/technique_frames.h"
 
-namespace sb {
+namespace sb::run {
+
+using config::Experiment;
+using config::Resolution;
+using config::SceneVariant;
+using config::TechniqueVariant;
+using core::ImageF;
+using core::job_id;
+using core::Scene;
+using gl::GpuScene;
+using plan::decide_job;
+using plan::Derive;
+using plan::JobOutcome;
+using plan::outcome_mismatch;
+using plan::plan_scene;
+using plan::PlannedJob;
+using plan::ScenePlan;
+using plugin::DerivedData;
+using plugin::FrameInputs;
+using plugin::PlanarReceiver;
+using plugin::Technique;
+using record::JobRecord;
+using record::JobStatus;
+using record::PhasesRecord;
 
 namespace {
 
@@ -135,7 +158,7 @@ class JobExecutor::Impl {
 
     FrameInputs in = targets.inputs(st.scene, gpu, view, projection);
     in.derived = &derived;
-    if (const auto* r = derived.find<PlanarReceiver>(need::kPlanarReceiver)) {
+    if (const auto* r = derived.find<PlanarReceiver>(plugin::need::kPlanarReceiver)) {
       in.has_receiver_plane = true;
       in.receiver_plane = r->plane;
     }
@@ -218,4 +241,4 @@ void JobExecutor::run_scene(size_t scene, const std::vector<ResolutionWork>& wor
   impl_->run_scene(impl_->experiment().scenes.at(scene), work);
 }
 
-}  // namespace sb
+}  // namespace sb::run

@@ -16,19 +16,20 @@
 #include "run/run_events.h"
 #include "run/runner.h"
 
-namespace sb {
+namespace sb::run {
 
 // One (scene, resolution)'s jobs, in plan order: the run's Plan's (made once
 // in the parent; forked children share it).
 struct ResolutionWork {
   size_t resolution = 0;
-  std::vector<const PlannedJob*> jobs;
+  std::vector<const plan::PlannedJob*> jobs;
 };
 
 class JobExecutor {
  public:
   // Makes the GL context (which throws when the backend cannot start).
-  JobExecutor(const Experiment& e, const RunOptions& o, EmbreeChoice embree, RunEvents& events);
+  JobExecutor(const config::Experiment& e, const RunOptions& o, EmbreeChoice embree,
+              RunEvents& events);
   ~JobExecutor();
   JobExecutor(const JobExecutor&) = delete;
   JobExecutor& operator=(const JobExecutor&) = delete;
@@ -44,4 +45,4 @@ class JobExecutor {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace sb
+}  // namespace sb::run

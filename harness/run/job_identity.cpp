@@ -15,7 +15,23 @@
 #include "run/host_info.h"
 #include "run/injected_delay.h"
 
-namespace sb {
+namespace sb::run {
+
+using config::Experiment;
+using config::ReferenceConfig;
+using config::Resolution;
+using config::SceneVariant;
+using config::TechniqueVariant;
+using core::Hasher;
+using core::InputError;
+using core::job_id;
+using plan::ScenePlan;
+using plugin::PluginIdentity;
+using record::BuildRecord;
+using record::BuiltScene;
+using record::JobRecord;
+using record::PluginRecord;
+using results::json_text;
 
 using json = nlohmann::json;
 
@@ -194,9 +210,10 @@ BuiltScene built_scene(const SceneVariant& sv, const ScenePlan& st) {
   b.light = {vec3(l.center), vec3(l.target), {l.width(), l.height()}, l.intensity};
   const auto& c = st.scene.camera;
   b.camera = {vec3(c.eye), vec3(c.target), c.fov_y_degrees};
-  b.derived = {st.derived.has(need::kCasterClosedness), st.derived.has(need::kEdgeAdjacency),
-               sv.infer_receivers, st.inferred_receivers};
+  b.derived = {st.derived.has(plugin::need::kCasterClosedness),
+               st.derived.has(plugin::need::kEdgeAdjacency), sv.infer_receivers,
+               st.inferred_receivers};
   return b;
 }
 
-}  // namespace sb
+}  // namespace sb::run

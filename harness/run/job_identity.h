@@ -12,7 +12,7 @@
 #include "reference/settings.h"
 #include "run/runner.h"
 
-namespace sb {
+namespace sb::run {
 
 // The reference's Embree device, resolved once per run: a CPU without the
 // ISA is the environment's problem, found before any job runs.
@@ -20,12 +20,12 @@ struct EmbreeChoice {
   std::string config;  // as chosen: option, experiment, environment or ""
   std::string isa;     // what it resolves to on this CPU
 };
-EmbreeChoice choose_embree(const Experiment& e, const RunOptions& o);
+EmbreeChoice choose_embree(const config::Experiment& e, const RunOptions& o);
 
 // A reference's settings as a run hands them to reference::get: the
 // config's, with the run's Embree device and the method asked for (the
 // first reference's or the second's).
-reference::Settings reference_settings(const ReferenceConfig& c, const EmbreeChoice& embree,
+reference::Settings reference_settings(const config::ReferenceConfig& c, const EmbreeChoice& embree,
                                        bool exact);
 
 // Everything that decides a job's numbers, as named fields (the record's
@@ -36,8 +36,9 @@ reference::Settings reference_settings(const ReferenceConfig& c, const EmbreeCho
 // the metrics and stability settings; the backend; and the build's
 // fingerprint, since timings are kept. This function is the one place that
 // lists them.
-nlohmann::json job_spec(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
-                        const SceneVariant& sv, const Resolution& res, const TechniqueVariant& tv);
+nlohmann::json job_spec(const config::Experiment& e, const RunOptions& o,
+                        const EmbreeChoice& embree, const config::SceneVariant& sv,
+                        const config::Resolution& res, const config::TechniqueVariant& tv);
 
 // The hash of job_spec(). A rerun into the same folder keeps a finished
 // record only when its hash is the same (record/spec_changes.h says why not).
@@ -47,14 +48,16 @@ std::string job_spec_hash(const nlohmann::json& spec);
 // strings and what the job measures. `sv`, `res` and `tv` must be elements
 // of `e`'s own lists (job_index is their place in them). The host is described with the GL
 // renderer and version given ("" before any context exists).
-JobRecord identity_record(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
-                          const SceneVariant& sv, const Resolution& res, const TechniqueVariant& tv,
-                          const std::string& gl_renderer = "", const std::string& gl_version = "");
+record::JobRecord identity_record(const config::Experiment& e, const RunOptions& o,
+                                  const EmbreeChoice& embree, const config::SceneVariant& sv,
+                                  const config::Resolution& res, const config::TechniqueVariant& tv,
+                                  const std::string& gl_renderer = "",
+                                  const std::string& gl_version = "");
 
 // The record's scene.built: what planning `sv` built (`st`).
-BuiltScene built_scene(const SceneVariant& sv, const ScenePlan& st);
+record::BuiltScene built_scene(const config::SceneVariant& sv, const plan::ScenePlan& st);
 
 // Now, UTC, as records write it: "2026-12-03T11:04:55Z".
 std::string now_iso8601();
 
-}  // namespace sb
+}  // namespace sb::run

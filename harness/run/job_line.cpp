@@ -4,7 +4,12 @@
 
 #include "results/report_columns.h"
 
-namespace sb {
+namespace sb::run {
+
+using record::JobRecord;
+using record::JobStatus;
+using record::to_string;
+using results::report_column;
 
 std::string job_line(const JobRecord& record, size_t done, size_t total) {
   std::string line = "[" + std::to_string(done) + "/" + std::to_string(total) + "] " +
@@ -25,4 +30,4 @@ std::string job_line(const JobRecord& record, size_t done, size_t total) {
   return line;
 }
 
-}  // namespace sb
+}  // namespace sb::run

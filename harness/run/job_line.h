@@ -9,8 +9,8 @@
 
 #include "record/job_record.h"
 
-namespace sb {
+namespace sb::run {
 
-std::string job_line(const JobRecord& record, size_t done, size_t total);
+std::string job_line(const record::JobRecord& record, size_t done, size_t total);
 
-}  // namespace sb
+}  // namespace sb::run

@@ -13,7 +13,17 @@
 #include "run/run_images.h"
 #include "run/technique_phase.h"
 
-namespace sb {
+namespace sb::run {
+
+using config::TechniqueVariant;
+using core::ImageF;
+using core::JobError;
+using plugin::Technique;
+using record::ClassesRecord;
+using record::JobRecord;
+using record::PhasesRecord;
+using record::SecondReferenceRecord;
+using record::VisibilityCheckRecord;
 
 namespace {
 
@@ -111,4 +121,4 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv, JobRecord& r, Phas
   }
 }
 
-}  // namespace sb
+}  // namespace sb::run

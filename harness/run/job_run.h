@@ -16,11 +16,11 @@
 #include "run/stability_probe.h"
 #include "run/technique_frames.h"
 
-namespace sb {
+namespace sb::run {
 
 // What every job of one (scene, resolution) runs with.
 struct JobSetting {
-  const Experiment& e;
+  const config::Experiment& e;
   const RunOptions& o;
   RunEvents& events;
   gl::TimingSource timing_source;
@@ -32,6 +32,7 @@ struct JobSetting {
 };
 
 // Whatever the job got to stays in `r` and `phases` when it throws.
-void run_job(const JobSetting& s, const TechniqueVariant& tv, JobRecord& r, PhasesRecord& phases);
+void run_job(const JobSetting& s, const config::TechniqueVariant& tv, record::JobRecord& r,
+             record::PhasesRecord& phases);
 
-}  // namespace sb
+}  // namespace sb::run

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace sb {
+namespace sb::run {
 
 Progress::Progress(std::FILE* out, bool enabled, size_t total)
     : out_(out), enabled_(enabled && out != nullptr), total_(total) {}
@@ -64,4 +64,4 @@ void Progress::draw() {
   drawn_ = true;
 }
 
-}  // namespace sb
+}  // namespace sb::run

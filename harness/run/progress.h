@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-namespace sb {
+namespace sb::run {
 
 class Progress {
  public:
@@ -41,4 +41,4 @@ class Progress {
   std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
 };
 
-}  // namespace sb
+}  // namespace sb::run

@@ -9,7 +9,7 @@
 
 #include "record/job_record.h"
 
-namespace sb {
+namespace sb::run {
 
 struct GlIdentity {
   std::string platform, renderer, version, timing_source;
@@ -31,9 +31,9 @@ class RunEvents {
                      const std::string& what) = 0;
   // A job starts rendering; `base` is its record so far (identity, host,
   // reference): what a failed record of it would say.
-  virtual void job_started(const JobRecord& base) = 0;
+  virtual void job_started(const record::JobRecord& base) = 0;
   // A job's final record: ok, skipped or failed.
-  virtual void job_finished(JobRecord record) = 0;
+  virtual void job_finished(record::JobRecord record) = 0;
   // A job is about to render its frames: returns once whoever hears these
   // events has done all they asked (records stored, lines printed), so that
   // none of it overlaps a timed frame (docs/robustness.md). In one process
@@ -41,4 +41,4 @@ class RunEvents {
   virtual void await_listener() {}
 };
 
-}  // namespace sb
+}  // namespace sb::run

@@ -9,7 +9,11 @@
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
 
-namespace sb {
+namespace sb::run {
+
+using core::ImageF;
+using record::ImagesRecord;
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -26,9 +30,9 @@ ImagesRecord write_reference_images(const RunOptions& o, const std::string& rel,
   if (!o.write_images) return images;
   const fs::path dir = fs::path(o.run_dir) / rel;
   fs::create_directories(dir);
-  io::write_exr((dir / "visibility.exr").string(), ref.visibility);
-  io::write_exr((dir / "std_error.exr").string(), ref.std_error);
-  io::write_png((dir / "shaded.png").string(), ref_shaded);
+  metrics::io::write_exr((dir / "visibility.exr").string(), ref.visibility);
+  metrics::io::write_exr((dir / "std_error.exr").string(), ref.std_error);
+  metrics::io::write_png((dir / "shaded.png").string(), ref_shaded);
   images.reference_visibility = rel + "/visibility.exr";
   images.reference_std_error = rel + "/std_error.exr";
   images.reference_shaded = rel + "/shaded.png";
@@ -42,12 +46,13 @@ ImagesRecord write_reference_images(const RunOptions& o, const std::string& rel,
   }
   for (const auto& [region, mask] : masks) {
     const std::string file = "mask_" + region + ".png";
-    io::write_mask_png((dir / file).string(), *mask, ref.visibility.width, ref.visibility.height);
+    metrics::io::write_mask_png((dir / file).string(), *mask, ref.visibility.width,
+                                ref.visibility.height);
     images.masks[region] = (fs::path(rel) / file).generic_string();
   }
   if (o.write_gbuffer) {
-    io::write_exr((dir / "positions.exr").string(), positions);
-    io::write_exr((dir / "normals.exr").string(), normals);
+    metrics::io::write_exr((dir / "positions.exr").string(), positions);
+    metrics::io::write_exr((dir / "normals.exr").string(), normals);
     images.gbuffer_positions = rel + "/positions.exr";
     images.gbuffer_normals = rel + "/normals.exr";
   }
@@ -64,17 +69,19 @@ ImagesRecord write_job_images(const std::string& run_dir, const std::string& job
   // one core busy (zlib), so the job's images take about half the time.
   tbb::parallel_invoke(
       [&] {
-        io::write_mask_png((dir / "mask_soft_union.png").string(),
-                           metrics::soft_union_of(visibility, ref_visibility, regions.measured),
-                           visibility.width, visibility.height);
+        metrics::io::write_mask_png(
+            (dir / "mask_soft_union.png").string(),
+            metrics::soft_union_of(visibility, ref_visibility, regions.measured), visibility.width,
+            visibility.height);
       },
-      [&] { io::write_exr((dir / "visibility.exr").string(), visibility); },
-      [&] { io::write_png((dir / "shaded.png").string(), shaded); },
+      [&] { metrics::io::write_exr((dir / "visibility.exr").string(), visibility); },
+      [&] { metrics::io::write_png((dir / "shaded.png").string(), shaded); },
       [&] {
-        io::write_png((dir / "error.png").string(),
-                      metrics::error_heatmap(metrics::with_unmeasured_from(
-                                                 visibility, ref_visibility, regions.measured),
-                                             ref_visibility, kHeatmapFullScale));
+        metrics::io::write_png(
+            (dir / "error.png").string(),
+            metrics::error_heatmap(
+                metrics::with_unmeasured_from(visibility, ref_visibility, regions.measured),
+                ref_visibility, kHeatmapFullScale));
       });
   ImagesRecord images;
   images.visibility = rel + "/visibility.exr";
@@ -85,4 +92,4 @@ ImagesRecord write_job_images(const std::string& run_dir, const std::string& job
   return images;
 }
 
-}  // namespace sb
+}  // namespace sb::run

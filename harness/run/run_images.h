@@ -10,20 +10,23 @@
 #include "reference/reference.h"
 #include "run/runner.h"
 
-namespace sb {
+namespace sb::run {
 
 // The reference's V, standard error and shaded image, the masks of the
 // regions every job shares (and with --gbuffer the G-buffer's), under
 // <run_dir>/<rel>; nothing without o.write_images.
-ImagesRecord write_reference_images(const RunOptions& o, const std::string& rel,
-                                    const reference::Result& ref, const ImageF& ref_shaded,
-                                    const metrics::Regions& regions, const ImageF& positions,
-                                    const ImageF& normals);
+record::ImagesRecord write_reference_images(const RunOptions& o, const std::string& rel,
+                                            const reference::Result& ref,
+                                            const core::ImageF& ref_shaded,
+                                            const metrics::Regions& regions,
+                                            const core::ImageF& positions,
+                                            const core::ImageF& normals);
 
 // The technique's V, its shaded image, its error heat map and its soft_union
 // mask, under <run_dir>/jobs/<job id>.
-ImagesRecord write_job_images(const std::string& run_dir, const std::string& job_id,
-                              const ImageF& visibility, const ImageF& shaded,
-                              const ImageF& ref_visibility, const metrics::Regions& regions);
+record::ImagesRecord write_job_images(const std::string& run_dir, const std::string& job_id,
+                                      const core::ImageF& visibility, const core::ImageF& shaded,
+                                      const core::ImageF& ref_visibility,
+                                      const metrics::Regions& regions);
 
-}  // namespace sb
+}  // namespace sb::run

@@ -24,7 +24,21 @@
 #include "run/job_line.h"
 #include "run/progress.h"
 
-namespace sb {
+namespace sb::run {
+
+using config::Experiment;
+using core::write_file_atomically;
+using plan::make_plan;
+using plan::Plan;
+using plan::plan_to_json;
+using plan::PlannedJob;
+using record::JobRecord;
+using record::JobStatus;
+using record::rerun_reason;
+using results::json_text;
+using results::ResultsStore;
+using results::RunFolderLock;
+using results::write_reports;
 
 Isolation isolation_from_string(const std::string& s) {
   if (s == "none") return Isolation::None;
@@ -276,4 +290,4 @@ RunSummary run_experiment(const Experiment& experiment, const RunOptions& option
   return Runner(experiment, options).run();
 }
 
-}  // namespace sb
+}  // namespace sb::run

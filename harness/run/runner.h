@@ -18,7 +18,7 @@
 #include "plan/shards.h"
 #include "plugin/registry.h"
 
-namespace sb {
+namespace sb::run {
 
 // Where jobs render: in this process, in one child process per (scene,
 // resolution), or in one child process per job.
@@ -55,7 +55,7 @@ struct RunOptions {
   // (enforced only with isolation).
   std::optional<double> job_seconds, setup_seconds;
   // Only this shard's jobs (plan/shards.h); 1/1 runs them all.
-  ShardSpec shard;
+  plan::ShardSpec shard;
 };
 
 struct RunSummary {
@@ -74,6 +74,6 @@ struct RunSummary {
   int bad_records = 0;  // record files of an earlier run that could not be trusted
 };
 
-RunSummary run_experiment(const Experiment& experiment, const RunOptions& options);
+RunSummary run_experiment(const config::Experiment& experiment, const RunOptions& options);
 
-}  // namespace sb
+}  // namespace sb::run

@@ -6,7 +6,15 @@
 #include "scenes/need_providers.h"
 #include "scenes/receiver_inference.h"
 
-namespace sb {
+namespace sb::run {
+
+using core::Mesh;
+using gl::GpuScene;
+using gl::MeshDrawFlags;
+using plan::ScenePlan;
+using plugin::CasterAdjacency;
+using plugin::DerivedData;
+using plugin::NeedProvider;
 
 namespace {
 
@@ -15,7 +23,7 @@ namespace {
 // them from the light (filtered maps may draw them).
 std::vector<MeshDrawFlags> draw_flags(const ScenePlan& st) {
   std::vector<MeshDrawFlags> flags(st.scene.meshes.size());
-  const auto* topology = st.derived.find<CasterTopology>(need::kCasterClosedness);
+  const auto* topology = st.derived.find<CasterTopology>(plugin::need::kCasterClosedness);
   const ShadowNothingTest shadows_nothing(st.scene);
   for (size_t i = 0; i < flags.size(); ++i) {
     const Mesh& m = st.scene.meshes[i];
@@ -28,7 +36,7 @@ std::vector<MeshDrawFlags> draw_flags(const ScenePlan& st) {
 }  // namespace
 
 UploadedScene upload_scene(const ScenePlan& st) {
-  const auto* adjacency = st.derived.find<CasterAdjacency>(need::kEdgeAdjacency);
+  const auto* adjacency = st.derived.find<CasterAdjacency>(plugin::need::kEdgeAdjacency);
   auto uploaded = std::make_unique<GpuScene>(st.scene, adjacency ? *adjacency : CasterAdjacency{},
                                              draw_flags(st));
   DerivedData with_gpu = st.derived;
@@ -36,4 +44,4 @@ UploadedScene upload_scene(const ScenePlan& st) {
   return {std::move(uploaded), std::move(with_gpu)};
 }
 
-}  // namespace sb
+}  // namespace sb::run

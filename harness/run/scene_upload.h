@@ -8,14 +8,14 @@
 #include "plan/plan.h"
 #include "plugin/derived_data.h"
 
-namespace sb {
+namespace sb::run {
 
 struct UploadedScene {
-  std::unique_ptr<GpuScene> gpu;
-  DerivedData derived;  // the plan's, and the GPU stages' (free it before gpu)
+  std::unique_ptr<gl::GpuScene> gpu;
+  plugin::DerivedData derived;  // the plan's, and the GPU stages' (free it before gpu)
 };
 
 // Both or neither: throws when the upload or a GPU stage fails.
-UploadedScene upload_scene(const ScenePlan& st);
+UploadedScene upload_scene(const plan::ScenePlan& st);
 
-}  // namespace sb
+}  // namespace sb::run

@@ -4,7 +4,22 @@
 #include <cmath>
 #include <exception>
 
-namespace sb {
+namespace sb::run {
+
+using config::StabilityConfig;
+using config::TechniqueVariant;
+using core::AreaLight;
+using core::Bounds;
+using core::ImageF;
+using core::Params;
+using core::ParamSpec;
+using core::ParamType;
+using core::Scene;
+using plugin::FrameInputs;
+using plugin::Technique;
+using record::FlickerRecord;
+using record::SensitivityRecord;
+using record::StabilityRecord;
 
 StabilityProbe::StabilityProbe(const StabilityConfig& config, double max_rmse, const Scene& scene,
                                const FrameInputs& in, std::vector<uint8_t> measured,
@@ -157,4 +172,4 @@ StabilityRecord StabilityProbe::measure(const TechniqueVariant& tv, Technique& p
   return r;
 }
 
-}  // namespace sb
+}  // namespace sb::run

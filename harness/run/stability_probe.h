@@ -23,49 +23,51 @@
 #include "plugin/technique.h"
 #include "record/stability_record.h"
 
-namespace sb {
+namespace sb::run {
 
 class StabilityProbe {
  public:
   // One untimed frame of a prepared technique under `in` (whose scene may be
   // the probe's moved copy); returns its V with the attached shadow applied.
-  using RenderVisibility = std::function<ImageF(Technique&, const FrameInputs&)>;
+  using RenderVisibility =
+      std::function<core::ImageF(plugin::Technique&, const plugin::FrameInputs&)>;
   // The reference's V of `scene` (another light) at the job's points, the
   // attached shadow applied.
-  using ReferenceVisibility = std::function<ImageF(const Scene&)>;
+  using ReferenceVisibility = std::function<core::ImageF(const core::Scene&)>;
 
-  StabilityProbe(const StabilityConfig& config, double max_rmse, const Scene& scene,
-                 const FrameInputs& in, std::vector<uint8_t> measured, RenderVisibility render,
-                 ReferenceVisibility reference);
+  StabilityProbe(const config::StabilityConfig& config, double max_rmse, const core::Scene& scene,
+                 const plugin::FrameInputs& in, std::vector<uint8_t> measured,
+                 RenderVisibility render, ReferenceVisibility reference);
 
   // `prepared` has rendered the job's frames under the scene's light.
-  StabilityRecord measure(const TechniqueVariant& tv, Technique& prepared);
+  record::StabilityRecord measure(const config::TechniqueVariant& tv, plugin::Technique& prepared);
 
   // The light translated by `distance` along its own u axis.
-  static AreaLight translated(const AreaLight& light, float distance);
+  static core::AreaLight translated(const core::AreaLight& light, float distance);
   // The light's rectangle scaled by `factor` about its centre.
-  static AreaLight scaled(const AreaLight& light, float factor);
+  static core::AreaLight scaled(const core::AreaLight& light, float factor);
 
  private:
-  FlickerRecord flicker(Technique& prepared);
-  SensitivityRecord parameter(const TechniqueVariant& tv, const ParamSpec& spec, double value);
-  SensitivityRecord light_size(Technique& prepared);
+  record::FlickerRecord flicker(plugin::Technique& prepared);
+  record::SensitivityRecord parameter(const config::TechniqueVariant& tv,
+                                      const core::ParamSpec& spec, double value);
+  record::SensitivityRecord light_size(plugin::Technique& prepared);
   // The step h for a value p: sensitivity_step × |p| (× 1 at 0), and the two
   // points it is taken at, kept inside [lo, hi] (one-sided at a bound).
   std::pair<double, double> points(double value, double lo, double hi) const;
   bool is_stiff(double relative, double reference_relative = 0.0) const;
 
-  StabilityConfig config_;
+  config::StabilityConfig config_;
   double max_rmse_;
-  Scene moved_;  // the scene, its light moved by the probe
-  AreaLight light_;
-  FrameInputs in_;  // the job's inputs, with the moved scene
+  core::Scene moved_;  // the scene, its light moved by the probe
+  core::AreaLight light_;
+  plugin::FrameInputs in_;  // the job's inputs, with the moved scene
   std::vector<uint8_t> measured_;
   RenderVisibility render_;
   ReferenceVisibility reference_;
   float step_ = 0;  // flicker translation per frame, world units
   std::optional<metrics::FlickerStats> reference_flicker_;
-  std::optional<std::pair<ImageF, ImageF>> reference_light_size_;
+  std::optional<std::pair<core::ImageF, core::ImageF>> reference_light_size_;
 };
 
-}  // namespace sb
+}  // namespace sb::run

@@ -16,7 +16,10 @@
 #include "core/error.h"
 #include "run/child_process.h"
 
-namespace sb {
+namespace sb::run {
+
+using core::InputError;
+
 namespace {
 
 // One line without its '\n'; nullopt at end of file before a full line.
@@ -165,4 +168,4 @@ TurnsResult take_turns(const TurnCommand& a, const TurnCommand& b) {
   return result;
 }
 
-}  // namespace sb
+}  // namespace sb::run

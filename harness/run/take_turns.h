@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace sb {
+namespace sb::run {
 
 // The run's side: `run --take-turns IN_FD,OUT_FD`.
 class TurnTaker {
@@ -44,4 +44,4 @@ struct TurnsResult {
 // protocol (both are then killed).
 TurnsResult take_turns(const TurnCommand& a, const TurnCommand& b);
 
-}  // namespace sb
+}  // namespace sb::run

@@ -8,7 +8,11 @@
 #include "gl/objects.h"
 #include "run/technique_phase.h"
 
-namespace sb {
+namespace sb::run {
+
+using config::TechniqueVariant;
+using core::ImageF;
+using plugin::Technique;
 
 gl::PassTimer::Frame render_frame(gl::PassTimer& timer, Technique& technique,
                                   const std::string& frame_name, gl::PassDetail detail,
@@ -91,4 +95,4 @@ gl::PassTimer::Frame TechniqueFrames::control_frame(const std::string& name) {
   return render_frame(timer_, *control_->technique, name, gl::PassDetail::Coarse, f_, nullptr);
 }
 
-}  // namespace sb
+}  // namespace sb::run

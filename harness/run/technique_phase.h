@@ -9,7 +9,7 @@
 
 #include "core/error.h"
 
-namespace sb {
+namespace sb::run {
 
 // Runs `work`, rethrowing whatever it throws as JobError("<technique>:
 // <phase>: <what>").
@@ -18,8 +18,8 @@ decltype(auto) in_technique_phase(const std::string& technique, const char* phas
   try {
     return std::forward<Work>(work)();
   } catch (const std::exception& e) {
-    throw JobError(technique + ": " + phase + ": " + e.what());
+    throw core::JobError(technique + ": " + phase + ": " + e.what());
   }
 }
 
-}  // namespace sb
+}  // namespace sb::run

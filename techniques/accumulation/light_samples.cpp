@@ -7,6 +7,9 @@
 #include "core/counter_rng.h"
 
 namespace sb::shadow {
+
+using core::uniform_float;
+
 namespace {
 
 // The largest m <= sqrt(n) dividing n: an m × (n/m) grid of strata.

@@ -4,6 +4,11 @@
 #include <cmath>
 
 namespace sb::shadow {
+
+using core::Bounds;
+using core::Mesh;
+using core::Scene;
+
 namespace {
 
 float side(const glm::vec4& plane, const glm::vec3& p) {

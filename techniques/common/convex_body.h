@@ -17,7 +17,7 @@ namespace sb::shadow {
 
 class ConvexBody {
  public:
-  static ConvexBody box(const Bounds& b);
+  static ConvexBody box(const core::Bounds& b);
   // Keeps the half-space dot(plane.xyz, p) + plane.w >= 0.
   void clip(const glm::vec4& plane);
   bool empty() const { return faces_.empty(); }
@@ -34,13 +34,13 @@ std::vector<glm::vec4> frustum_planes(const glm::mat4& view_projection);
 
 // Each mesh's bounding box (of all its positions), in Scene::meshes order:
 // scene data that no light or camera moves, computed once per scene.
-std::vector<Bounds> mesh_boxes(const Scene& scene);
+std::vector<core::Bounds> mesh_boxes(const core::Scene& scene);
 
 // The vertices of the union of `boxes` (mesh_boxes()) each cut to `planes`:
 // what the camera can see of the scene, tighter than one box around
 // everything (a ground and a far post leave the space between them out of
 // the near and far depths). Empty when nothing is inside.
-std::vector<glm::vec3> visible_body(const std::vector<Bounds>& boxes,
+std::vector<glm::vec3> visible_body(const std::vector<core::Bounds>& boxes,
                                     const std::vector<glm::vec4>& planes);
 
 }  // namespace sb::shadow

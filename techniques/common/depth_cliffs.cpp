@@ -7,6 +7,8 @@
 
 namespace sb::shadow {
 
+using core::Bounds;
+
 DepthMapGeometry::DepthMapGeometry(const std::vector<float>& depth, int size, const LightFrustum& f,
                                    float reach)
     : depth_(depth),

@@ -66,7 +66,7 @@ class DepthMapGeometry {
 // How far from `eye` geometry reconstructed from a map may end where
 // nothing lies behind it: twice the farthest corner of `scene_box`, past
 // every receiver the camera can see.
-float past_every_receiver(const Bounds& scene_box, const glm::vec3& eye);
+float past_every_receiver(const core::Bounds& scene_box, const glm::vec3& eye);
 
 // Which steps are cliffs: two flags per texel, index 2·(y·size + x) for the
 // step to (x + 1, y) and 2·(y·size + x) + 1 for the step to (x, y + 1).

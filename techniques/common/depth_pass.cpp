@@ -7,6 +7,17 @@
 #include "gl/debug.h"
 
 namespace sb::shadow {
+
+using core::as_map_size;
+using core::bool_param;
+using core::choice_param;
+using core::float_param;
+using core::int_param;
+using core::Params;
+using core::ParamSpec;
+using gl::DrawInfo;
+using gl::GpuScene;
+
 namespace {
 
 const char* const kDepthVertex = R"(#version 450 core

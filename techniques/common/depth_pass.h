@@ -37,7 +37,7 @@ enum class CullMode { None, Back, Front };
 CullMode cull_mode_from_string(const std::string& s);  // "none" | "back" | "front"
 // Face culling for one mesh of a pass from the light: only closed casters
 // are culled (receivers, double-sided and open meshes keep every face).
-void set_depth_pass_cull(CullMode cull, const DrawInfo& d);
+void set_depth_pass_cull(CullMode cull, const gl::DrawInfo& d);
 
 struct DepthBias {
   float constant = 0.0f;  // glPolygonOffset units
@@ -60,12 +60,12 @@ struct DepthMapSettings {
   }
 };
 // size, depth_format, constant_bias, slope_bias, cull, normal_offset
-std::vector<ParamSpec> depth_map_params(int default_size,
-                                        const std::string& default_cull = "front");
+std::vector<core::ParamSpec> depth_map_params(int default_size,
+                                              const std::string& default_cull = "front");
 // For variants whose filter taps compare depths away from the pixel.
-ParamSpec receiver_plane_param();
+core::ParamSpec receiver_plane_param();
 // Reads depth_map_params (and receiver_plane_bias when declared).
-DepthMapSettings depth_map_settings(const Params& p);
+DepthMapSettings depth_map_settings(const core::Params& p);
 
 class DepthMap {
  public:
@@ -80,7 +80,7 @@ class DepthMap {
   // plane, which would drag every average far behind the real receiver.
   // Only closed casters are culled (`cull`); open and double-sided ones
   // keep both faces.
-  void render(const GpuScene& gpu, const LightFrustum& f, CullMode cull, DepthBias bias,
+  void render(const gl::GpuScene& gpu, const LightFrustum& f, CullMode cull, DepthBias bias,
               bool receivers_too = false);
   GLuint texture() const { return texture_.get(); }
   int size() const { return size_; }

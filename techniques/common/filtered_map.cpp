@@ -3,6 +3,12 @@
 #include "gl/debug.h"
 
 namespace sb::shadow {
+
+using core::choice_param;
+using core::Params;
+using core::ParamSpec;
+using plugin::FrameInputs;
+
 namespace {
 
 const char* const kBasisHead = R"(#version 450 core

@@ -49,10 +49,10 @@ struct FilteredMapSettings {
 // prefilter, k, sigma. Mean-based reconstructions want the light-facing
 // surfaces in the map (cull "back"): with back faces the occluder depth sits
 // just above the receiver, and exp/Chebyshev bounds leak light in umbrae.
-std::vector<ParamSpec> filtered_map_params(int default_size,
-                                           const std::vector<std::string>& formats,
-                                           const std::string& default_cull = "back");
-FilteredMapSettings filtered_map_settings(const Params& p);
+std::vector<core::ParamSpec> filtered_map_params(int default_size,
+                                                 const std::vector<std::string>& formats,
+                                                 const std::string& default_cull = "back");
+FilteredMapSettings filtered_map_settings(const core::Params& p);
 
 struct BasisShader {
   int channels = 1;  // basis values per texel, 1..32 (layers of 4 beyond 4)
@@ -71,11 +71,11 @@ struct BasisShader {
   bool receivers_in_map = true;
 };
 
-class FilteredMapTechnique : public Technique {
+class FilteredMapTechnique : public plugin::Technique {
  public:
-  FilteredMapTechnique(const Params& p, std::string name, BasisShader shader);
-  void prepare(const FrameInputs& in) override;
-  void render(const FrameInputs& in, gl::PassTimer& timer) override;
+  FilteredMapTechnique(const core::Params& p, std::string name, BasisShader shader);
+  void prepare(const plugin::FrameInputs& in) override;
+  void render(const plugin::FrameInputs& in, gl::PassTimer& timer) override;
 
  protected:
   // The variant's own uniforms, set once in prepare().

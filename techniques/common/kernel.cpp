@@ -5,6 +5,12 @@
 
 namespace sb::shadow {
 
+using core::float_param;
+using core::int_param;
+using core::odd;
+using core::ParamSpec;
+using core::with_sentinel;
+
 KernelShape kernel_shape_from_string(const std::string& s) {
   if (s == "box") return KernelShape::Box;
   if (s == "gauss") return KernelShape::Gauss;

@@ -32,7 +32,7 @@ std::vector<float> kernel_weights(KernelShape shape, int k, float sigma);
 constexpr int kMaxKernelTaps = 63;
 
 // `k` (odd kernel side) and, for Gaussian kernels, `sigma`.
-ParamSpec kernel_size_param(int default_k, const std::string& doc);
-ParamSpec kernel_sigma_param();
+core::ParamSpec kernel_size_param(int default_k, const std::string& doc);
+core::ParamSpec kernel_sigma_param();
 
 }  // namespace sb::shadow

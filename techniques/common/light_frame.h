@@ -21,7 +21,7 @@ struct LightFrame {
   float half_width = 0.5f, half_height = 0.5f;
 
   LightFrame() = default;
-  explicit LightFrame(const AreaLight& light)
+  explicit LightFrame(const core::AreaLight& light)
       : center(light.center),
         half_width(glm::length(light.half_u)),
         half_height(glm::length(light.half_v)) {
@@ -53,7 +53,7 @@ struct LightFrame {
     return center + local.x * u + local.y * v + local.z * n;
   }
   // Light-frame z of the farthest corner of `box`.
-  float farthest(const Bounds& box) const {
+  float farthest(const core::Bounds& box) const {
     float z = -1e30f;
     for (int i = 0; i < 8; ++i) {
       const glm::vec3 corner((i & 1) ? box.hi.x : box.lo.x, (i & 2) ? box.hi.y : box.lo.y,

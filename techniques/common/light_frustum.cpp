@@ -9,6 +9,12 @@
 #include "core/error.h"
 
 namespace sb::shadow {
+
+using core::Bounds;
+using core::JobError;
+using core::Mesh;
+using core::Scene;
+
 namespace {
 
 // The largest distance along the light's axis of any point of `box` inside

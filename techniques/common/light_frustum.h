@@ -46,7 +46,7 @@ struct LightFrustum {
 // each caster's shadow (for maps whose filters reach into the outer
 // penumbra); false fits the casters alone, for hard maps from points that
 // are not on the light (two_map_bound's apexes).
-LightFrustum fit_light_frustum(const Scene& scene, const glm::vec3& eye,
+LightFrustum fit_light_frustum(const core::Scene& scene, const glm::vec3& eye,
                                bool widen_for_light = true);
 
 }  // namespace sb::shadow

@@ -3,6 +3,10 @@
 #include "gl/debug.h"
 
 namespace sb::shadow {
+
+using core::Params;
+using plugin::FrameInputs;
+
 namespace {
 
 const char* const kLookupHead = R"(#version 450 core

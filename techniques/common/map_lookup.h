@@ -58,8 +58,8 @@ class MapLookupPass {
 
   const gl::Program& program() const { return program_; }
   // Draws into in.visibility_framebuffer (blending is the caller's choice).
-  void draw(const FrameInputs& in, const LightFrustum& frustum, const DepthMapSettings& settings,
-            GLuint depth_map, float weight = 1.0f) const;
+  void draw(const plugin::FrameInputs& in, const LightFrustum& frustum,
+            const DepthMapSettings& settings, GLuint depth_map, float weight = 1.0f) const;
 
  private:
   gl::Program program_;
@@ -71,12 +71,12 @@ class MapLookupPass {
 // shadow_map, the PCF kernels, PCSS and their kin differ only in
 // `lit_fraction` and its uniforms. The light frustum is fitted in every
 // frame (plugin/technique.h: prepare() must not depend on the light).
-class SingleMapTechnique : public Technique {
+class SingleMapTechnique : public plugin::Technique {
  public:
-  SingleMapTechnique(const Params& p, std::string name, std::string lit_fraction_glsl,
+  SingleMapTechnique(const core::Params& p, std::string name, std::string lit_fraction_glsl,
                      bool linear_compare);
-  void prepare(const FrameInputs& in) override;
-  void render(const FrameInputs& in, gl::PassTimer& timer) override;
+  void prepare(const plugin::FrameInputs& in) override;
+  void render(const plugin::FrameInputs& in, gl::PassTimer& timer) override;
 
  protected:
   // The variant's own uniforms that depend on its parameters only: set once,
@@ -84,10 +84,10 @@ class SingleMapTechnique : public Technique {
   virtual void set_uniforms(const gl::Program& /*lookup*/) const {}
   // Those that depend on the light or its frustum: set in every frame.
   virtual void set_light_uniforms(const gl::Program& /*lookup*/, const LightFrustum& /*frustum*/,
-                                  const Scene& /*scene*/) const {}
+                                  const core::Scene& /*scene*/) const {}
   // The map's projection, fitted in every frame (timed, in the map's pass):
   // the casters seen from the light's centre, or a view-dependent warp.
-  virtual LightFrustum fit(const FrameInputs& in) const;
+  virtual LightFrustum fit(const plugin::FrameInputs& in) const;
   const DepthMapSettings& settings() const { return settings_; }
 
  private:

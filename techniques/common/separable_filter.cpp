@@ -6,6 +6,9 @@
 #include "gl/debug.h"
 
 namespace sb::shadow {
+
+using core::JobError;
+
 namespace {
 
 const char* const kFilterFragment = R"(#version 450 core

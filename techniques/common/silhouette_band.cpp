@@ -4,6 +4,9 @@
 
 namespace sb::shadow {
 
+using plugin::FrameInputs;
+using plugin::SilhouetteEdges;
+
 const char* const kSilhouetteBandVertexGlsl = R"(
 struct Edge {
   vec4 p0;       // xyz: first endpoint; w: mesh index
@@ -120,7 +123,7 @@ void set_fragment_image_uniforms(const gl::Program& program, const LightFrustum&
 }
 
 void draw_silhouette_bands(const FrameInputs& in) {
-  const auto& edges = in.derived->get<SilhouetteEdges>(need::kSilhouetteEdges);
+  const auto& edges = in.derived->get<SilhouetteEdges>(plugin::need::kSilhouetteEdges);
   if (edges.edge_count == 0) return;
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, edges.buffer());
   glBindVertexArray(gl::empty_vertex_array());

@@ -69,6 +69,6 @@ extern const char* const kSilhouetteBandFragmentGlsl;
 void set_fragment_image_uniforms(const gl::Program& program, const LightFrustum& frustum, int size);
 
 // Binds the edge buffer and draws 6 vertices per edge with the bound program.
-void draw_silhouette_bands(const FrameInputs& in);
+void draw_silhouette_bands(const plugin::FrameInputs& in);
 
 }  // namespace sb::shadow

@@ -5,13 +5,13 @@
 #include "plugin/registry.h"
 
 namespace sb::shadow {
-TechniqueInfo vsm_info();
-TechniqueInfo esm_info();
-TechniqueInfo evsm_info();
-TechniqueInfo msm_info();
-TechniqueInfo csm_convolution_info();
+plugin::TechniqueInfo vsm_info();
+plugin::TechniqueInfo esm_info();
+plugin::TechniqueInfo evsm_info();
+plugin::TechniqueInfo msm_info();
+plugin::TechniqueInfo csm_convolution_info();
 // esm's map and lookup GLSL (exposed for tests that run the lookup alone).
 BasisShader esm_shader(bool log_space, float exponent);
 // light_bleeding_reduction and min_variance, shared by vsm and evsm.
-std::vector<ParamSpec> bleeding_params(double default_min_variance);
+std::vector<core::ParamSpec> bleeding_params(double default_min_variance);
 }  // namespace sb::shadow

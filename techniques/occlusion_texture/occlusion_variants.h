@@ -2,5 +2,5 @@
 #include "plugin/registry.h"
 
 namespace sb::occlusion {
-TechniqueInfo occlusion_textures_info();
+plugin::TechniqueInfo occlusion_textures_info();
 }  // namespace sb::occlusion

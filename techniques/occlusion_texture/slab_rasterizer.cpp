@@ -8,6 +8,10 @@
 
 namespace sb::occlusion {
 
+using core::JobError;
+using gl::DrawInfo;
+using gl::GpuScene;
+
 const char* const kSlicingUniformsGlsl = R"(
 uniform vec3 light_center;
 uniform vec3 light_u;

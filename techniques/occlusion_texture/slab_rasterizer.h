@@ -43,7 +43,7 @@ class SlabRasterizer {
   // `targets`: ceil(slabs / 4) RGBA8 textures of size × size (level 0 is drawn).
   SlabRasterizer(int slabs, int size, const std::vector<GLuint>& targets, bool light_facing_only,
                  bool thin_occluder_fix);
-  void render(const GpuScene& gpu, const Slicing& slicing) const;
+  void render(const gl::GpuScene& gpu, const Slicing& slicing) const;
 
  private:
   int size_ = 0;

@@ -10,6 +10,10 @@
 
 namespace sb::occlusion {
 
+using core::JobError;
+using core::Mesh;
+using core::Scene;
+
 Projection projection_from_string(const std::string& s) {
   if (s == "central") return Projection::Central;
   if (s == "orthographic") return Projection::Orthographic;

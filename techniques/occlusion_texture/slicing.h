@@ -93,6 +93,6 @@ struct Slicing {
 };
 
 // Throws JobError, naming the mesh, when a caster reaches the light's plane.
-Slicing fit_slicing(const Scene& scene, int slabs, Projection projection);
+Slicing fit_slicing(const core::Scene& scene, int slabs, Projection projection);
 
 }  // namespace sb::occlusion

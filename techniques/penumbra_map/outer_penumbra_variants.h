@@ -3,6 +3,6 @@
 #include "plugin/registry.h"
 
 namespace sb::shadow {
-TechniqueInfo penumbra_maps_info();
-TechniqueInfo smoothies_info();
+plugin::TechniqueInfo penumbra_maps_info();
+plugin::TechniqueInfo smoothies_info();
 }  // namespace sb::shadow

@@ -2,6 +2,11 @@
 
 namespace sb::wedge {
 
+using core::AreaLight;
+using core::Bounds;
+using core::Params;
+using plugin::FrameInputs;
+
 SilhouetteWedges::SilhouetteWedges(const Params& p)
     : volumes_(volume::count_mode_from_string(p.get_string("mode")), /*cpu=*/true,
                volume::silhouette_settings(p)) {}

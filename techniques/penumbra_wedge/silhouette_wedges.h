@@ -17,9 +17,9 @@ namespace sb::wedge {
 class SilhouetteWedges {
  public:
   // Reads umbra_params() (wedge_variants.h).
-  explicit SilhouetteWedges(const Params& p);
-  void prepare(const FrameInputs& in);
-  void build(const FrameInputs& in, gl::PassTimer& timer);
+  explicit SilhouetteWedges(const core::Params& p);
+  void prepare(const plugin::FrameInputs& in);
+  void build(const plugin::FrameInputs& in, gl::PassTimer& timer);
 
   const LightFrame& frame() const { return frame_; }
   volume::CasterVolumes& volumes() { return volumes_; }

@@ -7,6 +7,9 @@
 #include <utility>
 
 namespace sb::wedge {
+
+using core::Bounds;
+
 namespace {
 
 float cross2(const glm::vec2& a, const glm::vec2& b) { return a.x * b.y - a.y * b.x; }

@@ -80,11 +80,11 @@ struct WedgeBatch {
 struct WedgeRange {
   float near = 1e-3f;
   float far = 1.0f;
-  Bounds box;
+  core::Bounds box;
 };
 // The range for a scene within `scene` (world): `far` at its farthest corner
 // from the light's plane, the box a little larger than `scene`.
-WedgeRange wedge_range(const LightFrame& frame, const Bounds& scene);
+WedgeRange wedge_range(const LightFrame& frame, const core::Bounds& scene);
 
 // Appends the wedge of the edge a → b (world). Returns false, appending
 // nothing, when no part of the edge lies within `range` or it has no length.

@@ -5,8 +5,8 @@
 #include "plugin/registry.h"
 
 namespace sb::wedge {
-TechniqueInfo penumbra_wedges_info();
-TechniqueInfo penumbra_wedges_blend_info();
+plugin::TechniqueInfo penumbra_wedges_info();
+plugin::TechniqueInfo penumbra_wedges_blend_info();
 // The umbra volumes' and silhouettes' parameters, which both share.
-std::vector<ParamSpec> umbra_params();
+std::vector<core::ParamSpec> umbra_params();
 }  // namespace sb::wedge

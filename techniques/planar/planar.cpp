@@ -53,6 +53,10 @@
 #include "plugin/registry.h"
 
 namespace sb {
+
+using core::JobError;
+using gl::DrawInfo;
+
 namespace {
 
 using planar::kProjectFragment;

@@ -58,6 +58,10 @@
 #include "plugin/registry.h"
 
 namespace sb {
+
+using core::JobError;
+using gl::DrawInfo;
+
 namespace {
 
 const char* const kBandVertex = R"(

@@ -3,5 +3,5 @@
 
 namespace sb {
 // Haines's plateaus (plateaus.cpp), registered by the planar family.
-TechniqueInfo plateaus_info();
+plugin::TechniqueInfo plateaus_info();
 }  // namespace sb

@@ -6,6 +6,10 @@
 #include "gl/debug.h"
 
 namespace sb::shadow {
+
+using gl::DrawInfo;
+using gl::GpuScene;
+
 namespace {
 
 const char* const kVertex = R"(#version 450 core

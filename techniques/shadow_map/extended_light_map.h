@@ -45,10 +45,10 @@ class ExtendedLightMap {
   ExtendedLightMap() = default;
   explicit ExtendedLightMap(const ExtendedLightMapSettings& s);
   // The shadow channel (and the light channel with SamePass).
-  void render_shadow_channel(const GpuScene& gpu, const LightFrustum& f);
+  void render_shadow_channel(const gl::GpuScene& gpu, const LightFrustum& f);
   // The light channel alone, over the depths the shadow channel left
   // (SeparatePass).
-  void render_light_channel(const GpuScene& gpu, const LightFrustum& f);
+  void render_light_channel(const gl::GpuScene& gpu, const LightFrustum& f);
   GLuint color() const { return color_.get(); }  // RGBA8: rgb light, a 8-bit depth
   GLuint depth() const { return depth_.get(); }
   const ExtendedLightMapSettings& settings() const { return settings_; }
@@ -61,7 +61,7 @@ class ExtendedLightMap {
   };
 
  private:
-  void draw(const GpuScene& gpu, const LightFrustum& f, const Programs& programs,
+  void draw(const gl::GpuScene& gpu, const LightFrustum& f, const Programs& programs,
             bool writes_depth);
 
   ExtendedLightMapSettings settings_;

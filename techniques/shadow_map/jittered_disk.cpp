@@ -8,6 +8,8 @@
 
 namespace sb::shadow {
 
+using core::uniform_float;
+
 std::vector<glm::vec2> jittered_disk(int n, unsigned seed) {
   const float golden = std::numbers::pi_v<float> * (3.0f - std::sqrt(5.0f));
   std::vector<glm::vec2> points;

@@ -11,6 +11,12 @@
 #include "core/error.h"
 
 namespace sb::shadow {
+
+using core::Bounds;
+using core::JobError;
+using core::Mesh;
+using core::Scene;
+
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::max();

@@ -45,10 +45,10 @@ struct WarpInfo {
 // once per scene. With nothing visible, both fall back to
 // fit_light_frustum. Throw sb::JobError where no single map can do it (PSM:
 // the light's image inside the visible body, needing a cube map).
-LightFrustum fit_psm(const Scene& scene, const std::vector<Bounds>& boxes, const CameraView& camera,
-                     WarpInfo* info = nullptr);
+LightFrustum fit_psm(const core::Scene& scene, const std::vector<core::Bounds>& boxes,
+                     const CameraView& camera, WarpInfo* info = nullptr);
 // `n_scale` multiplies n_opt: larger is nearer to the uniform map.
-LightFrustum fit_lispsm(const Scene& scene, const std::vector<Bounds>& boxes,
+LightFrustum fit_lispsm(const core::Scene& scene, const std::vector<core::Bounds>& boxes,
                         const CameraView& camera, float n_scale, WarpInfo* info = nullptr);
 
 }  // namespace sb::shadow

@@ -9,6 +9,15 @@
 #include "shadow_volume/near_plane_pyramid.h"
 
 namespace sb::volume {
+
+using core::choice_param;
+using core::float_param;
+using core::Mesh;
+using core::Params;
+using core::ParamSpec;
+using plugin::CasterEdges;
+using plugin::FrameInputs;
+
 const char* const kVolumeVertex = R"(#version 450 core
 layout(location = 0) in vec4 position;
 uniform mat4 view_projection;
@@ -114,7 +123,7 @@ void make_vec4_stream(gl::Buffer& buffer, gl::VertexArray& vao) {
 
 void CasterVolumes::prepare(const FrameInputs& in) {
   casters_.clear();
-  const auto* edges = cpu_ ? &in.derived->get<CasterEdges>(need::kCasterEdges) : nullptr;
+  const auto* edges = cpu_ ? &in.derived->get<CasterEdges>(plugin::need::kCasterEdges) : nullptr;
   for (size_t i = 0; i < in.scene->meshes.size(); ++i) {
     const Mesh& m = in.scene->meshes[i];
     if (!m.casts_shadow || m.indices.empty()) continue;

@@ -23,8 +23,8 @@ namespace sb::volume {
 
 // The parameters that the volume techniques share, with one help text for
 // the silhouette's mode: "silhouette", "epsilon" and "smooth_offset".
-std::vector<ParamSpec> silhouette_params(const std::string& silhouette_help);
-SilhouetteSettings silhouette_settings(const Params& p);
+std::vector<core::ParamSpec> silhouette_params(const std::string& silhouette_help);
+SilhouetteSettings silhouette_settings(const core::Params& p);
 
 enum class CountMode { ZPass, ZFail, Auto };
 // "zpass", "zfail" or "auto"; throws std::invalid_argument otherwise.
@@ -52,7 +52,7 @@ extern const char* const kVolumeVertex;
 // V from the stencil count in the visibility framebuffer (bound): 1 where
 // the count is zero, kStencilResolveFragment's V elsewhere; ends the
 // stencil test. `resolve` is a program made of kStencilResolveFragment.
-void resolve_stencil(const FrameInputs& in, const gl::Program& resolve);
+void resolve_stencil(const plugin::FrameInputs& in, const gl::Program& resolve);
 
 // A vertex array reading homogeneous positions (vec4, attribute 0) from a
 // buffer of its own, filled every frame: the volumes' vertex stream.
@@ -62,7 +62,7 @@ class CasterVolumes {
  public:
   struct Caster {
     size_t mesh = 0;  // index into Scene::meshes
-    Bounds box;
+    core::Bounds box;
     SilhouetteMesh shape;  // CPU path only
     bool zfail = true;
     VolumeVertices::Range range;
@@ -73,9 +73,9 @@ class CasterVolumes {
 
   // Scene data only: each caster's box and, on the CPU path, its triangles
   // and edges (need::kCasterEdges), the volume program and the vertex stream.
-  void prepare(const FrameInputs& in);
+  void prepare(const plugin::FrameInputs& in);
   // Per caster, this frame: z-fail or z-pass (the camera and light may move).
-  void choose_zfail(const FrameInputs& in);
+  void choose_zfail(const plugin::FrameInputs& in);
   // CPU path: silhouettes from `light` (choose_zfail first).
   void find_silhouettes(const glm::vec3& light);
   // CPU path: the volumes' triangles, and their upload.
@@ -83,11 +83,12 @@ class CasterVolumes {
   void upload();
   // CPU path: draws the casters counted by the given rule (stencil ops set
   // by the caller), with the program bound here.
-  void draw(const FrameInputs& in, bool zfail);
+  void draw(const plugin::FrameInputs& in, bool zfail);
   // CPU path: one caster's volume alone, with its own counting rule's
   // stencil ops; with `program` (vertex input: location 0, vec4; its
   // uniforms set by the caller) instead of the volumes' own.
-  void draw_caster(const FrameInputs& in, size_t caster, const gl::Program* program = nullptr);
+  void draw_caster(const plugin::FrameInputs& in, size_t caster,
+                   const gl::Program* program = nullptr);
 
   const std::vector<Caster>& casters() const { return casters_; }
   const std::vector<Silhouette>& silhouettes() const { return silhouettes_; }

@@ -4,5 +4,5 @@
 namespace sb::shadow {
 // hybrid_reconstruction: shadow volumes rebuilt from a depth map
 // (hybrid_reconstruction.cpp).
-TechniqueInfo hybrid_reconstruction_info();
+plugin::TechniqueInfo hybrid_reconstruction_info();
 }  // namespace sb::shadow

@@ -2,6 +2,8 @@
 
 namespace sb::volume {
 
+using core::Bounds;
+
 namespace {
 glm::vec4 plane_through(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
   const glm::vec3 n = glm::cross(b - a, c - a);

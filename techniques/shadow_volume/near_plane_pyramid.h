@@ -18,7 +18,7 @@ class NearPlanePyramid {
   // The rectangle is where the camera's near plane meets its frustum.
   NearPlanePyramid(const glm::vec3& light, const glm::mat4& view_projection);
   // False only when the box lies wholly outside the pyramid.
-  bool may_intersect(const Bounds& box) const;
+  bool may_intersect(const core::Bounds& box) const;
 
  private:
   std::array<glm::vec4, 6> planes_{};  // n·x + d > 0 outside

@@ -33,6 +33,9 @@
 #include "shadow_volume/hybrid_reconstruction.h"
 
 namespace sb {
+
+using core::JobError;
+
 namespace {
 
 const char* const kVolumeVertex = R"(#version 450 core

@@ -13,6 +13,9 @@
 
 namespace sb::volume {
 
+using core::Mesh;
+using plugin::MeshEdge;
+
 SilhouetteMode silhouette_mode_from_string(const std::string& s) {
   if (s == "discrete") return SilhouetteMode::Discrete;
   if (s == "accurate") return SilhouetteMode::Accurate;

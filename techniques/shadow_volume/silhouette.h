@@ -63,7 +63,8 @@ struct SilhouetteMesh {
   std::vector<Edge> edges;
   std::vector<uint32_t> edge_of_corner;  // the edge from corner c to the next corner
 };
-SilhouetteMesh make_silhouette_mesh(const Mesh& mesh, const std::vector<MeshEdge>& edges);
+SilhouetteMesh make_silhouette_mesh(const core::Mesh& mesh,
+                                    const std::vector<plugin::MeshEdge>& edges);
 
 struct SilhouetteVertex {
   glm::vec3 mesh;    // on the lit region's boundary, on the mesh

@@ -8,6 +8,9 @@
 
 namespace sb::shadow {
 
+using core::Bounds;
+using core::JobError;
+
 TwoApexes place_apexes(const LightFrame& light, const Bounds& casters) {
   glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
   float depth = std::numeric_limits<float>::max();

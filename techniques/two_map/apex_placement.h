@@ -48,6 +48,6 @@ struct TwoApexes {
 
 // `casters`: the casters' bounding box (world). Throws sb::JobError when
 // it reaches the light's plane (D <= 0).
-TwoApexes place_apexes(const LightFrame& light, const Bounds& casters);
+TwoApexes place_apexes(const LightFrame& light, const core::Bounds& casters);
 
 }  // namespace sb::shadow

@@ -8,6 +8,9 @@
 
 namespace sb::shadow {
 
+using core::AreaLight;
+using plugin::FrameInputs;
+
 const char* const kInnerImageGlsl = R"(
 uniform mat4 apex_view;
 uniform vec3 inner_apex;

@@ -32,7 +32,8 @@ class PenumbraBuffer {
   explicit PenumbraBuffer(int size);
   // The bands of the casters' silhouette seen from `apex` (its frustum
   // `frustum`), towards the inner apex `inner_apex`.
-  void render(const FrameInputs& in, const LightFrustum& frustum, const glm::vec3& inner_apex);
+  void render(const plugin::FrameInputs& in, const LightFrustum& frustum,
+              const glm::vec3& inner_apex);
   // RGBA32F: xyz the edge point q (world), w the image distance d; w < 0
   // where no band reached.
   GLuint texture() const { return texture_.get(); }

@@ -11,6 +11,10 @@
 #include "cli/new_technique.h"
 
 namespace sb::test {
+
+using plugin::Needs;
+using plugin::Registry;
+
 namespace {
 
 namespace fs = std::filesystem;

@@ -32,21 +32,21 @@ inline std::vector<double> noisy_samples(double median_ms, double noise, int n, 
 // An ok record with frame samples, per-pass detail for a "depth" and a
 // "lookup" pass (the first 40 % and 20 % of each frame) and visibility RMSE
 // values.
-inline JobRecord make_record(const std::string& job_id, const std::vector<double>& frame,
-                             double rmse, double penumbra_rmse,
-                             const std::string& run_id = "synthetic") {
+inline record::JobRecord make_record(const std::string& job_id, const std::vector<double>& frame,
+                                     double rmse, double penumbra_rmse,
+                                     const std::string& run_id = "synthetic") {
   std::vector<double> depth, lookup, technique;
   for (double f : frame) {
     depth.push_back(0.4 * f);
     lookup.push_back(0.2 * f);
     technique.push_back(0.6 * f);
   }
-  JobRecord r = identity_record("grid", "320x240", "synthetic");
+  record::JobRecord r = identity_record("grid", "320x240", "synthetic");
   r.job_id = job_id;
   r.run_id = run_id;
   r.timing = coarse_timing(frame, technique);
   add_fine_timing(*r.timing, {{"depth", depth}, {"lookup", lookup}});
-  MetricsRecord m;
+  record::MetricsRecord m;
   m.visibility.all.rmse = rmse;
   m.visibility.all.psnr = -20 * std::log10(rmse);
   m.visibility.penumbra.rmse = penumbra_rmse;
@@ -57,12 +57,13 @@ inline JobRecord make_record(const std::string& job_id, const std::vector<double
 
 // The same records as measured on another machine: another CPU model and,
 // when given, another GL renderer string; the host fingerprint follows.
-inline std::vector<JobRecord> on_host(std::vector<JobRecord> records, const std::string& cpu_model,
-                                      const std::string& gl_renderer = "") {
+inline std::vector<record::JobRecord> on_host(std::vector<record::JobRecord> records,
+                                              const std::string& cpu_model,
+                                              const std::string& gl_renderer = "") {
   for (auto& r : records) {
     r.host.cpu->model = cpu_model;
     if (!gl_renderer.empty()) r.gl_renderer = gl_renderer;
-    r.host.fingerprint = host_fingerprint(r.host, r.gl_renderer, r.gl_version);
+    r.host.fingerprint = record::host_fingerprint(r.host, r.gl_renderer, r.gl_version);
   }
   return records;
 }
@@ -70,10 +71,10 @@ inline std::vector<JobRecord> on_host(std::vector<JobRecord> records, const std:
 // An ok record whose frames were each timed next to a frame of the control
 // job `control` (timing.control): frame i = control_ms[i] × ratio[i], the
 // technique two thirds of it.
-inline JobRecord make_controlled_record(const std::string& job_id,
-                                        const std::vector<double>& control_ms,
-                                        const std::vector<double>& ratio, double rmse,
-                                        const std::string& control = "none") {
+inline record::JobRecord make_controlled_record(const std::string& job_id,
+                                                const std::vector<double>& control_ms,
+                                                const std::vector<double>& ratio, double rmse,
+                                                const std::string& control = "none") {
   const size_t n = std::min(control_ms.size(), ratio.size());
   std::vector<double> frame(n), technique(n), control_frame(n), ratios(n);
   for (size_t i = 0; i < n; ++i) {
@@ -82,20 +83,20 @@ inline JobRecord make_controlled_record(const std::string& job_id,
     control_frame[i] = control_ms[i];
     ratios[i] = frame[i] / control_ms[i];
   }
-  JobRecord r = make_record(job_id, frame, rmse, 2 * rmse);
-  r.timing->technique = Series::of(technique);
-  ControlTiming c;
+  record::JobRecord r = make_record(job_id, frame, rmse, 2 * rmse);
+  r.timing->technique = record::Series::of(technique);
+  record::ControlTiming c;
   c.technique = control;
-  c.frame = Series::of(control_frame);
-  c.frame_ratio = Series::of(ratios);
+  c.frame = record::Series::of(control_frame);
+  c.frame_ratio = record::Series::of(ratios);
   r.timing->control = std::move(c);
   return r;
 }
 
 // The records as measured against a Monte Carlo reference of `spp` samples
 // per pixel whose cache key is `cache_key` (record["reference"]).
-inline ReferenceRecord mc_reference(int spp, const std::string& cache_key) {
-  ReferenceRecord ref;
+inline record::ReferenceRecord mc_reference(int spp, const std::string& cache_key) {
+  record::ReferenceRecord ref;
   ref.method = "embree_stratified_packet16";
   ref.spp = spp;
   ref.seed = 1;
@@ -103,8 +104,8 @@ inline ReferenceRecord mc_reference(int spp, const std::string& cache_key) {
   ref.cache_key = cache_key;
   return ref;
 }
-inline std::vector<JobRecord> against(std::vector<JobRecord> records,
-                                      const ReferenceRecord& reference) {
+inline std::vector<record::JobRecord> against(std::vector<record::JobRecord> records,
+                                              const record::ReferenceRecord& reference) {
   for (auto& r : records) r.reference = reference;
   return records;
 }
@@ -116,7 +117,8 @@ inline std::filesystem::path temp_dir(const std::string& name) {
   return dir;
 }
 
-inline std::string write_run(const std::string& name, const std::vector<JobRecord>& records) {
+inline std::string write_run(const std::string& name,
+                             const std::vector<record::JobRecord>& records) {
   const auto dir = temp_dir(name);
   std::ofstream out(dir / "results.jsonl");
   for (const auto& r : records) out << r.to_json().dump() << "\n";

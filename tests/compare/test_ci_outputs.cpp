@@ -21,14 +21,14 @@ using sb::test::make_record;
 using sb::test::noisy_samples;
 namespace fs = std::filesystem;
 
-std::vector<sb::JobRecord> synthetic_records(double slowdown, uint32_t seed) {
-  std::vector<sb::JobRecord> rs;
+std::vector<sb::record::JobRecord> synthetic_records(double slowdown, uint32_t seed) {
+  std::vector<sb::record::JobRecord> rs;
   rs.push_back(make_record("grid__320x240__shadow_map--size=1024",
                            noisy_samples(20.0 * slowdown, 0.03, 15, seed), 0.10, 0.27));
   rs.push_back(make_record("grid__320x240__pcf_box--k=3+size=1024",
                            noisy_samples(25.0 * slowdown, 0.03, 15, seed + 1), 0.055, 0.15));
-  sb::JobRecord skipped =
-      sb::test::identity_record("grid", "320x240", "shadow_volume", sb::JobStatus::Skipped);
+  sb::record::JobRecord skipped =
+      sb::test::identity_record("grid", "320x240", "shadow_volume", sb::record::JobStatus::Skipped);
   skipped.reason = "casters are not closed";
   rs.push_back(skipped);
   return rs;
@@ -43,7 +43,7 @@ std::vector<const json*> named(const json& doc, const std::string& name) {
 
 TEST(BenchmarkJson, OneBenchmarkPerJobAndPassWithRepetitions) {
   const auto records = synthetic_records(1.0, 1);
-  const json doc = sb::make_benchmark_json(records, sb::benchmark_context());
+  const json doc = sb::results::make_benchmark_json(records, sb::results::benchmark_context());
   const json& ctx = doc["context"];
   for (const char* key : {"date", "host_name", "num_cpus", "mhz_per_cpu", "caches",
                           "library_build_type", "json_schema_version"})
@@ -86,7 +86,7 @@ TEST(BenchmarkJson, OneBenchmarkPerJobAndPassWithRepetitions) {
 TEST(BenchmarkJson, WrittenAtomically) {
   const auto dir = sb::test::temp_dir("atomic");
   const std::string path = (dir / "bench.json").string();
-  sb::write_benchmark_json(path, synthetic_records(1.0, 1));
+  sb::results::write_benchmark_json(path, synthetic_records(1.0, 1));
   std::ifstream in(path);
   const json doc = json::parse(in);
   EXPECT_EQ(doc["benchmarks"].size(), 114u);
@@ -115,8 +115,8 @@ TEST(BenchmarkJson, AcceptedByDebiansComparePy) {
                  << "(scripts/install-deps.sh --test)";
   const auto dir = sb::test::temp_dir("compare_py");
   const std::string a = (dir / "A.json").string(), b = (dir / "B.json").string();
-  sb::write_benchmark_json(a, synthetic_records(1.0, 1));
-  sb::write_benchmark_json(b, synthetic_records(1.3, 7));
+  sb::results::write_benchmark_json(a, synthetic_records(1.0, 1));
+  sb::results::write_benchmark_json(b, synthetic_records(1.3, 7));
   std::string out;
   const int code = run(
       std::string("/usr/bin/python3 ") + compare_py + " --no-color benchmarks " + a + " " + b, out);
@@ -138,10 +138,10 @@ TEST(BenchmarkJson, AcceptedByDebiansComparePy) {
 
 TEST(BencherJson, FollowsTheMetricFormat) {
   const auto records = synthetic_records(1.0, 1);
-  const json doc = sb::make_bencher_json(records);
+  const json doc = sb::results::make_bencher_json(records);
   ASSERT_EQ(doc.size(), 2u);  // the skipped job has no measures
   const json& b = doc["grid__320x240__shadow_map--size=1024"];
-  const sb::Series& frame = records[0].timing->frame;
+  const sb::record::Series& frame = records[0].timing->frame;
   // Bencher's built-in latency measure is in nanoseconds.
   EXPECT_DOUBLE_EQ(b["latency"]["value"].get<double>(), frame.median * 1e6);
   EXPECT_DOUBLE_EQ(b["latency"]["lower_value"].get<double>(), frame.p10 * 1e6);
@@ -163,7 +163,8 @@ TEST(BencherJson, FollowsTheMetricFormat) {
   auto with_nan = records;
   with_nan[0].metrics->visibility.all.rmse = std::nan("");
   EXPECT_FALSE(
-      sb::make_bencher_json(with_nan)["grid__320x240__shadow_map--size=1024"].contains("rmse"));
+      sb::results::make_bencher_json(with_nan)["grid__320x240__shadow_map--size=1024"].contains(
+          "rmse"));
 }
 
 }  // namespace

@@ -19,8 +19,8 @@ using sb::test::on_host;
 using sb::test::run_cli;
 using sb::test::write_run;
 
-std::vector<sb::JobRecord> run_of(double shadow_map_ms, double rmse, uint32_t seed,
-                                  const std::string& run_id) {
+std::vector<sb::record::JobRecord> run_of(double shadow_map_ms, double rmse, uint32_t seed,
+                                          const std::string& run_id) {
   return {
       make_record("grid__320x240__none", noisy_samples(10.0, 0.03, 15, seed), 0.31, 0.55, run_id),
       make_record("grid__320x240__shadow_map--size=1024",
@@ -41,7 +41,7 @@ TEST(CompareCli, SlowdownExitsWithTheRegressionCode) {
   const auto base = write_run("cli_base", run_of(20.0, 0.10, 1, "base"));
   const auto slow = write_run("cli_slow", run_of(26.0, 0.10, 21, "slow"));
   const auto r = run_cli("compare " + base + " " + slow);
-  EXPECT_EQ(r.exit_code, sb::kExitRegression) << r.output;
+  EXPECT_EQ(r.exit_code, sb::results::kExitRegression) << r.output;
   EXPECT_EQ(r.exit_code, 4);
   EXPECT_NE(r.output.find("REGRESSION"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("1 job(s) regressed"), std::string::npos) << r.output;

@@ -18,10 +18,10 @@
 
 namespace {
 
-using sb::compare_runs;
-using sb::CompareOptions;
-using sb::JobRecord;
-using sb::Verdict;
+using sb::record::JobRecord;
+using sb::results::compare_runs;
+using sb::results::CompareOptions;
+using sb::results::Verdict;
 using sb::test::make_record;
 using sb::test::noisy_samples;
 
@@ -35,7 +35,8 @@ std::vector<double> spread_frames(double scale) {
 
 // 50 jobs unchanged (the same frames on both sides, p = 1) and job 0 with
 // its frames scaled by `scale` in NEW.
-void fifty_jobs(double scale, std::vector<JobRecord>& base, std::vector<JobRecord>& fresh) {
+void fifty_jobs(double scale, std::vector<sb::record::JobRecord>& base,
+                std::vector<sb::record::JobRecord>& fresh) {
   for (int j = 0; j < 50; ++j) {
     const std::string id = "job" + std::to_string(j);
     base.push_back(make_record(id, spread_frames(1.0), 0.05, 0.1));
@@ -44,40 +45,42 @@ void fifty_jobs(double scale, std::vector<JobRecord>& base, std::vector<JobRecor
 }
 
 TEST(FamilyWise, OneJobJustUnderAlphaAmongFiftyIsNotFlagged) {
-  std::vector<JobRecord> base, fresh;
+  std::vector<sb::record::JobRecord> base, fresh;
   fifty_jobs(1.11, base, fresh);  // 11 % slower: p = 0.0114 (scipy), under alpha 0.02
-  CompareOptions none;
+  sb::results::CompareOptions none;
   none.correction = "none";
-  const auto per_job = compare_runs(base, fresh, none);
+  const auto per_job = sb::results::compare_runs(base, fresh, none);
   ASSERT_EQ(per_job.jobs.size(), 50u);
   EXPECT_NEAR(*per_job.jobs[0].p, 0.01140098291155517, 1e-9);
-  EXPECT_EQ(per_job.jobs[0].time, Verdict::kRegression);  // alpha per job: flagged
-  EXPECT_EQ(sb::compare_exit_code(per_job), sb::kExitRegression);
+  EXPECT_EQ(per_job.jobs[0].time, sb::results::Verdict::kRegression);  // alpha per job: flagged
+  EXPECT_EQ(sb::results::compare_exit_code(per_job), sb::results::kExitRegression);
 
-  const auto holm = compare_runs(base, fresh, CompareOptions{});  // the default: Holm
+  const auto holm =
+      sb::results::compare_runs(base, fresh, sb::results::CompareOptions{});  // the default: Holm
   EXPECT_EQ(holm.time_tests, 50);
   EXPECT_NEAR(*holm.jobs[0].p_adjusted, 50 * 0.01140098291155517, 1e-9);
-  EXPECT_EQ(holm.jobs[0].time, Verdict::kUnchanged);
+  EXPECT_EQ(holm.jobs[0].time, sb::results::Verdict::kUnchanged);
   EXPECT_EQ(holm.regressions, 0);
-  EXPECT_EQ(sb::compare_exit_code(holm), 0);
-  const std::string table = sb::format_comparison(holm, CompareOptions{});
+  EXPECT_EQ(sb::results::compare_exit_code(holm), 0);
+  const std::string table = sb::results::format_comparison(holm, sb::results::CompareOptions{});
   EXPECT_NE(table.find("alpha 0.02 after Holm's correction across the 50 job(s) tested"),
             std::string::npos)
       << table;
 
-  CompareOptions bh;
+  sb::results::CompareOptions bh;
   bh.correction = "bh";
-  EXPECT_EQ(compare_runs(base, fresh, bh).jobs[0].time, Verdict::kUnchanged);
+  EXPECT_EQ(sb::results::compare_runs(base, fresh, bh).jobs[0].time,
+            sb::results::Verdict::kUnchanged);
 }
 
 TEST(FamilyWise, ARealSlowdownAmongFiftyIsStillFlagged) {
-  std::vector<JobRecord> base, fresh;
+  std::vector<sb::record::JobRecord> base, fresh;
   fifty_jobs(1.3, base, fresh);  // 30 % slower: p = 7.477e-6 (scipy)
-  const auto r = compare_runs(base, fresh, CompareOptions{});
+  const auto r = sb::results::compare_runs(base, fresh, sb::results::CompareOptions{});
   EXPECT_NEAR(*r.jobs[0].p_adjusted, 50 * 7.477207640048691e-06, 1e-9);
-  EXPECT_EQ(r.jobs[0].time, Verdict::kRegression);
+  EXPECT_EQ(r.jobs[0].time, sb::results::Verdict::kRegression);
   EXPECT_EQ(r.regressions, 1);
-  const std::string table = sb::format_comparison(r, CompareOptions{});
+  const std::string table = sb::results::format_comparison(r, sb::results::CompareOptions{});
   EXPECT_NE(table.find("(p = 7.5e-06, adjusted 0.00037)"), std::string::npos) << table;
 }
 
@@ -89,10 +92,10 @@ TEST(FamilyWise, ARealSlowdownAmongFiftyIsStillFlagged) {
 // For each option set, the share of `trials` null runs of `jobs` jobs in
 // which it flags some job; the records of a trial are drawn once for all.
 std::vector<double> null_failure_rates(int jobs, int trials,
-                                       const std::vector<CompareOptions>& options) {
+                                       const std::vector<sb::results::CompareOptions>& options) {
   std::vector<int> failed(options.size(), 0);
   for (int t = 0; t < trials; ++t) {
-    std::vector<JobRecord> base, fresh;
+    std::vector<sb::record::JobRecord> base, fresh;
     for (int j = 0; j < jobs; ++j) {
       const auto seed = uint32_t(1000003 * t + 2 * j);
       const std::string id = "job" + std::to_string(j);
@@ -100,7 +103,7 @@ std::vector<double> null_failure_rates(int jobs, int trials,
       fresh.push_back(make_record(id, noisy_samples(1.0, 0.26, 30, seed + 1), 0.05, 0.1));
     }
     for (size_t k = 0; k < options.size(); ++k)
-      failed[k] += compare_runs(base, fresh, options[k]).regressions > 0;
+      failed[k] += sb::results::compare_runs(base, fresh, options[k]).regressions > 0;
   }
   std::vector<double> rates;
   rates.reserve(failed.size());
@@ -118,13 +121,13 @@ TEST(FamilyWise, NullRunsFailAtMostAlphaWithHolm) {
   const char* env = std::getenv("SHADOWBENCH_NULL_TRIALS");
   const int trials = env ? std::atoi(env) : 100;
   ASSERT_GT(trials, 0);
-  const double alpha = CompareOptions{}.alpha;
+  const double alpha = sb::results::CompareOptions{}.alpha;
   const double thresholds[2] = {0.0, 0.10};
   const char* corrections[3] = {"none", "holm", "bh"};
-  std::vector<CompareOptions> options;
+  std::vector<sb::results::CompareOptions> options;
   for (const double threshold : thresholds)
     for (const char* correction : corrections) {
-      CompareOptions o;
+      sb::results::CompareOptions o;
       o.time_threshold = threshold;
       o.correction = correction;
       options.push_back(o);

@@ -15,11 +15,11 @@
 
 namespace {
 
-using sb::compare_runs;
-using sb::CompareOptions;
-using sb::JobRecord;
-using sb::ReferenceRecord;
-using sb::Verdict;
+using sb::record::JobRecord;
+using sb::record::ReferenceRecord;
+using sb::results::compare_runs;
+using sb::results::CompareOptions;
+using sb::results::Verdict;
 using sb::test::against;
 using sb::test::make_record;
 using sb::test::mc_reference;
@@ -30,7 +30,7 @@ bool has(const std::string& text, const std::string& part) {
 }
 
 // Jobs "a" and "b": frames around `ms` (±3 %), visibility RMSE `rmse`.
-std::vector<JobRecord> two_jobs(double ms, double rmse, uint32_t seed) {
+std::vector<sb::record::JobRecord> two_jobs(double ms, double rmse, uint32_t seed) {
   return {make_record("a", noisy_samples(ms, 0.03, 15, seed), rmse, 2 * rmse),
           make_record("b", noisy_samples(ms, 0.03, 15, seed + 1), rmse, 2 * rmse)};
 }
@@ -39,20 +39,20 @@ TEST(ReferenceChange, ErrorsAgainstAnotherReferenceAreRefused) {
   // NEW's error is 0.03 higher, as a noisier 16-spp reference would make it.
   const auto base = against(two_jobs(20.0, 0.05, 1), mc_reference(64, "00aa"));
   const auto fresh = against(two_jobs(20.0, 0.08, 1), mc_reference(16, "11bb"));
-  const auto r = compare_runs(base, fresh, CompareOptions{});
+  const auto r = sb::results::compare_runs(base, fresh, sb::results::CompareOptions{});
   ASSERT_EQ(r.jobs.size(), 2u);
   for (const auto& c : r.jobs) {
     EXPECT_TRUE(c.error_refused) << c.job_id;
-    EXPECT_EQ(c.error, Verdict::kNotCompared) << c.job_id;
+    EXPECT_EQ(c.error, sb::results::Verdict::kNotCompared) << c.job_id;
     EXPECT_TRUE(has(c.note, "error not compared: the references differ (spp, cache_key")) << c.note;
-    EXPECT_EQ(c.time, Verdict::kUnchanged) << c.job_id;  // times are compared still
+    EXPECT_EQ(c.time, sb::results::Verdict::kUnchanged) << c.job_id;  // times are compared still
   }
   EXPECT_EQ(r.error_refused, 2);
   EXPECT_EQ(r.regressions, 0);
-  EXPECT_EQ(sb::compare_exit_code(r), 2);
+  EXPECT_EQ(sb::results::compare_exit_code(r), 2);
   ASSERT_EQ(r.references.size(), 1u);
   EXPECT_EQ(r.references[0].jobs, (std::vector<std::string>{"a", "b"}));
-  const std::string t = sb::format_comparison(r, CompareOptions{});
+  const std::string t = sb::results::format_comparison(r, sb::results::CompareOptions{});
   for (const char* part : {"reference: differs for 2 job(s); their errors are not compared",
                            "spp: \"64\" vs \"16\"", "cache_key: \"00aa\" vs \"11bb\"", "jobs: a, b",
                            "2 with error not compared", "--allow-reference-change"})
@@ -63,36 +63,37 @@ TEST(ReferenceChange, ErrorsAgainstAnotherReferenceAreRefused) {
 TEST(ReferenceChange, EachFieldIsChecked) {
   struct Case {
     const char* field;
-    void (*change)(ReferenceRecord&);
+    void (*change)(sb::record::ReferenceRecord&);
     const char* values;
   } cases[] = {
-      {"method", [](ReferenceRecord& r) { r.method = "exact_clipper"; },
+      {"method", [](sb::record::ReferenceRecord& r) { r.method = "exact_clipper"; },
        "method: \"embree_stratified_packet16\" vs \"exact_clipper\""},
-      {"spp", [](ReferenceRecord& r) { r.spp = 256; }, "spp: \"64\" vs \"256\""},
-      {"seed", [](ReferenceRecord& r) { r.seed = 7; }, "seed: \"1\" vs \"7\""},
-      {"embree_isa", [](ReferenceRecord& r) { r.embree_isa = "avx512"; },
+      {"spp", [](sb::record::ReferenceRecord& r) { r.spp = 256; }, "spp: \"64\" vs \"256\""},
+      {"seed", [](sb::record::ReferenceRecord& r) { r.seed = 7; }, "seed: \"1\" vs \"7\""},
+      {"embree_isa", [](sb::record::ReferenceRecord& r) { r.embree_isa = "avx512"; },
        "embree_isa: \"avx2\" vs \"avx512\""},
       {"adaptive.pilot_spp",
-       [](ReferenceRecord& r) {
-         r.adaptive = sb::AdaptiveReferenceRecord{64, 0.01, 80, 256, {}, {}};
+       [](sb::record::ReferenceRecord& r) {
+         r.adaptive = sb::record::AdaptiveReferenceRecord{64, 0.01, 80, 256, {}, {}};
        },
        "adaptive.pilot_spp: \"4\" vs \"64\""},
       {"adaptive.target_std_error",
-       [](ReferenceRecord& r) {
-         r.adaptive = sb::AdaptiveReferenceRecord{4, 0.011, 80, 256, {}, {}};
+       [](sb::record::ReferenceRecord& r) {
+         r.adaptive = sb::record::AdaptiveReferenceRecord{4, 0.011, 80, 256, {}, {}};
        },
        "adaptive.target_std_error: \"0.01\" vs \"0.011\""},
-      {"cache_key", [](ReferenceRecord& r) { r.cache_key = "ffff"; },
+      {"cache_key", [](sb::record::ReferenceRecord& r) { r.cache_key = "ffff"; },
        "cache_key: \"00aa\" vs \"ffff\""},
   };
-  ReferenceRecord ref = mc_reference(64, "00aa");
-  ref.adaptive = sb::AdaptiveReferenceRecord{4, 0.01, 20, 256, {}, {}};
+  sb::record::ReferenceRecord ref = mc_reference(64, "00aa");
+  ref.adaptive = sb::record::AdaptiveReferenceRecord{4, 0.01, 20, 256, {}, {}};
   for (const auto& c : cases) {
-    ReferenceRecord changed = ref;
+    sb::record::ReferenceRecord changed = ref;
     c.change(changed);
     // The same error on both sides: refused all the same.
-    const auto r = compare_runs(against(two_jobs(20.0, 0.05, 1), ref),
-                                against(two_jobs(20.0, 0.05, 1), changed), CompareOptions{});
+    const auto r = sb::results::compare_runs(against(two_jobs(20.0, 0.05, 1), ref),
+                                             against(two_jobs(20.0, 0.05, 1), changed),
+                                             sb::results::CompareOptions{});
     EXPECT_EQ(r.error_refused, 2) << c.field;
     ASSERT_EQ(r.references.size(), 1u) << c.field;
     EXPECT_EQ(r.references[0].differences, std::vector<std::string>{c.values}) << c.field;
@@ -102,73 +103,79 @@ TEST(ReferenceChange, EachFieldIsChecked) {
 
 TEST(ReferenceChange, ARecordWithoutReferenceIsAnotherReference) {
   const auto base = two_jobs(20.0, 0.05, 1);  // no record["reference"]
-  const auto r = compare_runs(base, against(two_jobs(20.0, 0.05, 1), mc_reference(64, "00aa")), {});
+  const auto r = sb::results::compare_runs(
+      base, against(two_jobs(20.0, 0.05, 1), mc_reference(64, "00aa")), {});
   EXPECT_EQ(r.error_refused, 2);
-  EXPECT_TRUE(has(sb::format_comparison(r, {}), "spp: (none) vs \"64\""))
-      << sb::format_comparison(r, {});
+  EXPECT_TRUE(has(sb::results::format_comparison(r, {}), "spp: (none) vs \"64\""))
+      << sb::results::format_comparison(r, {});
 }
 
 TEST(ReferenceChange, AllowReferenceChangeComparesWithANote) {
   const auto base = against(two_jobs(20.0, 0.05, 1), mc_reference(64, "00aa"));
   const auto fresh = against(two_jobs(20.0, 0.08, 1), mc_reference(16, "11bb"));
-  CompareOptions allow;
+  sb::results::CompareOptions allow;
   allow.allow_reference_change = true;
-  const auto r = compare_runs(base, fresh, allow);
+  const auto r = sb::results::compare_runs(base, fresh, allow);
   EXPECT_EQ(r.error_refused, 0);
-  EXPECT_EQ(r.jobs[0].error, Verdict::kRegression);
-  EXPECT_EQ(sb::compare_exit_code(r), sb::kExitRegression);
+  EXPECT_EQ(r.jobs[0].error, sb::results::Verdict::kRegression);
+  EXPECT_EQ(sb::results::compare_exit_code(r), sb::results::kExitRegression);
   EXPECT_TRUE(has(r.jobs[0].note, "error compared anyway (--allow-reference-change)"))
       << r.jobs[0].note;
-  const std::string t = sb::format_comparison(r, allow);
+  const std::string t = sb::results::format_comparison(r, allow);
   EXPECT_TRUE(has(t, "errors compared anyway (--allow-reference-change)")) << t;
   EXPECT_TRUE(has(t, "spp: \"64\" vs \"16\"")) << t;
 }
 
 TEST(ReferenceChange, TimesOnlyAreNotBlocked) {
-  CompareOptions times;
+  sb::results::CompareOptions times;
   times.metric = "none";
   const auto base = against(two_jobs(20.0, 0.05, 1), mc_reference(64, "00aa"));
-  auto r = compare_runs(base, against(two_jobs(20.2, 0.08, 11), mc_reference(16, "11bb")), times);
+  auto r = sb::results::compare_runs(
+      base, against(two_jobs(20.2, 0.08, 11), mc_reference(16, "11bb")), times);
   EXPECT_EQ(r.error_refused, 0);
-  EXPECT_EQ(r.jobs[0].error, Verdict::kNotCompared);
-  EXPECT_EQ(r.jobs[0].time, Verdict::kUnchanged);
+  EXPECT_EQ(r.jobs[0].error, sb::results::Verdict::kNotCompared);
+  EXPECT_EQ(r.jobs[0].time, sb::results::Verdict::kUnchanged);
   EXPECT_TRUE(r.references.empty());
-  EXPECT_EQ(sb::compare_exit_code(r), 0);
-  EXPECT_TRUE(has(sb::format_comparison(r, times), "error: not compared (--metric none)"));
+  EXPECT_EQ(sb::results::compare_exit_code(r), 0);
+  EXPECT_TRUE(has(sb::results::format_comparison(r, times), "error: not compared (--metric none)"));
   // A slowdown is found as before.
-  r = compare_runs(base, against(two_jobs(26.0, 0.08, 21), mc_reference(16, "11bb")), times);
-  EXPECT_EQ(r.jobs[0].time, Verdict::kRegression);
-  EXPECT_EQ(sb::compare_exit_code(r), sb::kExitRegression);
+  r = sb::results::compare_runs(base, against(two_jobs(26.0, 0.08, 21), mc_reference(16, "11bb")),
+                                times);
+  EXPECT_EQ(r.jobs[0].time, sb::results::Verdict::kRegression);
+  EXPECT_EQ(sb::results::compare_exit_code(r), sb::results::kExitRegression);
   // --metric none needs no metric in the records.
   auto bare = two_jobs(20.0, 0.05, 1);
   for (auto& rec : bare) rec.metrics.reset();
-  EXPECT_NO_THROW(compare_runs(bare, bare, times));
+  EXPECT_NO_THROW(sb::results::compare_runs(bare, bare, times));
 }
 
 TEST(ReferenceChange, ASlowdownStillExitsFourBesideARefusedError) {
   const auto base = against(two_jobs(20.0, 0.05, 1), mc_reference(64, "00aa"));
-  const auto r = compare_runs(base, against(two_jobs(26.0, 0.05, 21), mc_reference(16, "11bb")),
-                              CompareOptions{});
+  const auto r =
+      sb::results::compare_runs(base, against(two_jobs(26.0, 0.05, 21), mc_reference(16, "11bb")),
+                                sb::results::CompareOptions{});
   EXPECT_EQ(r.error_refused, 2);
-  EXPECT_EQ(r.jobs[0].time, Verdict::kRegression);
-  EXPECT_EQ(sb::compare_exit_code(r), sb::kExitRegression);
+  EXPECT_EQ(r.jobs[0].time, sb::results::Verdict::kRegression);
+  EXPECT_EQ(sb::results::compare_exit_code(r), sb::results::kExitRegression);
 }
 
 TEST(ReferenceChange, TheSameReferenceIsCompared) {
   const auto ref = mc_reference(64, "00aa");
-  auto r = compare_runs(against(two_jobs(20.0, 0.05, 1), ref),
-                        against(two_jobs(20.0, 0.08, 1), ref), CompareOptions{});
+  auto r = sb::results::compare_runs(against(two_jobs(20.0, 0.05, 1), ref),
+                                     against(two_jobs(20.0, 0.08, 1), ref),
+                                     sb::results::CompareOptions{});
   EXPECT_EQ(r.error_refused, 0);
-  EXPECT_EQ(r.jobs[0].error, Verdict::kRegression);
+  EXPECT_EQ(r.jobs[0].error, sb::results::Verdict::kRegression);
   EXPECT_EQ(r.references_without_key, 0);
   // Keys absent on both sides (records from before they were always
   // written): compared on the other fields, and said so.
   const auto keyless = mc_reference(64, "");
-  r = compare_runs(against(two_jobs(20.0, 0.05, 1), keyless),
-                   against(two_jobs(20.0, 0.05, 1), keyless), CompareOptions{});
+  r = sb::results::compare_runs(against(two_jobs(20.0, 0.05, 1), keyless),
+                                against(two_jobs(20.0, 0.05, 1), keyless),
+                                sb::results::CompareOptions{});
   EXPECT_EQ(r.error_refused, 0);
   EXPECT_EQ(r.references_without_key, 2);
-  EXPECT_TRUE(has(sb::format_comparison(r, {}), "2 job(s) have no reference cache_key"));
+  EXPECT_TRUE(has(sb::results::format_comparison(r, {}), "2 job(s) have no reference cache_key"));
 }
 
 TEST(ReferenceChangeCli, RefusesExitsTwoAndNamesTheFields) {

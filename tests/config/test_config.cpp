@@ -12,6 +12,13 @@
 #include "plugin/registry.h"
 
 namespace sb {
+
+using config::expand_sweeps;
+using config::Experiment;
+using config::load_experiment;
+using core::InputError;
+using plugin::Registry;
+
 namespace {
 
 const Registry& registry() { return test::registry(); }

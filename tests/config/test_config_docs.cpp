@@ -11,6 +11,15 @@
 #include "config_fixtures.h"
 
 namespace sb {
+
+using config::BlockKey;
+using config::config_blocks;
+using config::ConfigBlock;
+using config::Experiment;
+using config::markdown_config_blocks;
+using config::parse_experiment;
+using core::ParamType;
+
 namespace {
 
 const char* const kBegin = "<!-- generated: config blocks -->\n";

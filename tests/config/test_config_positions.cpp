@@ -12,6 +12,13 @@
 #include "core/error.h"
 
 namespace sb {
+
+using config::Experiment;
+using config::load_experiment;
+using core::InputError;
+using core::TextPosition;
+using plugin::Registry;
+
 namespace {
 
 const Registry& registry() { return test::registry(); }

@@ -14,6 +14,15 @@
 #include "plugin/registry.h"
 
 namespace sb::test {
+
+using config::Experiment;
+using config::ExperimentLimits;
+using config::load_experiment;
+using config::parse_experiment;
+using config::unequal_map_size_warnings;
+using core::InputError;
+using plugin::Registry;
+
 namespace {
 
 namespace fs = std::filesystem;

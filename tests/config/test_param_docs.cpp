@@ -10,6 +10,14 @@
 #include "config/param_table.h"
 
 namespace sb::test {
+
+using config::markdown_param_table;
+using core::choice_param;
+using core::float_param;
+using core::int_param;
+using core::odd;
+using core::ParamSpec;
+
 namespace {
 
 TEST(ParamDocs, TheDocsFileIsTheGeneratedOne) {

@@ -4,6 +4,17 @@
 #include "core/params.h"
 
 namespace sb {
+
+using core::bool_param;
+using core::choice_param;
+using core::float_param;
+using core::InputError;
+using core::int_param;
+using core::odd;
+using core::Params;
+using core::ParamSpec;
+using core::resolve_params;
+
 namespace {
 
 std::vector<ParamSpec> specs() {

@@ -13,6 +13,17 @@
 #include "plugin/registry.h"
 
 namespace sb::test {
+
+using config::Experiment;
+using config::ExperimentLimits;
+using config::load_experiment;
+using config::parse_experiment;
+using config::unread_parameter_warnings;
+using config::unread_parameters;
+using core::resolve_params;
+using plugin::Registry;
+using plugin::TechniqueInfo;
+
 namespace {
 
 namespace fs = std::filesystem;

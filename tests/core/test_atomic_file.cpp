@@ -14,6 +14,12 @@
 #include "core/error.h"
 
 namespace sb {
+
+using core::AtomicFile;
+using core::is_atomic_temp_name;
+using core::JobError;
+using core::write_file_atomically;
+
 namespace {
 
 namespace fs = std::filesystem;

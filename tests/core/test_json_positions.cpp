@@ -7,6 +7,10 @@
 #include "core/json_positions.h"
 
 namespace sb {
+
+using core::JsonPositions;
+using core::TextPosition;
+
 namespace {
 
 // The 1-based line and column of the first `token` in `text`.

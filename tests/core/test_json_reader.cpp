@@ -12,6 +12,10 @@
 #include "core/json_reader.h"
 
 namespace sb {
+
+using core::describe;
+using core::JsonReader;
+
 namespace {
 
 using json = nlohmann::json;

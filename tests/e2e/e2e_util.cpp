@@ -14,6 +14,15 @@
 #include "results/store.h"
 
 namespace sb::test {
+
+using config::Experiment;
+using config::parse_experiment;
+using core::ImageF;
+using plugin::Registry;
+using results::read_run_records;
+using run::run_experiment;
+using run::RunOptions;
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -36,22 +45,24 @@ const nlohmann::json& RunOutput::record(const std::string& technique_variant) co
 ImageF RunOutput::visibility(const std::string& technique_variant) const {
   const auto& r = record(technique_variant);
   if (r["status"] != "ok") throw std::runtime_error(technique_variant + ": " + r.dump());
-  return io::read_image((fs::path(dir) / r["images"]["visibility"].get<std::string>()).string());
+  return metrics::io::read_image(
+      (fs::path(dir) / r["images"]["visibility"].get<std::string>()).string());
 }
 
 ImageF RunOutput::reference_visibility() const {
-  return io::read_image(
+  return metrics::io::read_image(
       (fs::path(dir) / records.at(0)["images"]["reference_visibility"].get<std::string>())
           .string());
 }
 
 ImageF RunOutput::gbuffer_positions() const {
-  return io::read_image(
+  return metrics::io::read_image(
       (fs::path(dir) / records.at(0)["images"]["gbuffer_positions"].get<std::string>()).string());
 }
 
 ImageF RunOutput::image(const nlohmann::json& record, const std::string& key) const {
-  return io::read_image((fs::path(dir) / record["images"][key].get<std::string>()).string());
+  return metrics::io::read_image(
+      (fs::path(dir) / record["images"][key].get<std::string>()).string());
 }
 
 std::string process_temp_path(const std::string& name) {

@@ -15,14 +15,14 @@ namespace sb::test {
 
 struct RunOutput {
   std::string dir;
-  RunSummary summary;
+  run::RunSummary summary;
   std::vector<nlohmann::json> records;
   const nlohmann::json& record(const std::string& technique_variant) const;
-  ImageF visibility(const std::string& technique_variant) const;
-  ImageF reference_visibility() const;  // of the first record
-  ImageF gbuffer_positions() const;     // of the first record (write_gbuffer runs)
+  core::ImageF visibility(const std::string& technique_variant) const;
+  core::ImageF reference_visibility() const;  // of the first record
+  core::ImageF gbuffer_positions() const;     // of the first record (write_gbuffer runs)
   // Any image a record names under "images" (e.g. "visibility", "gbuffer_positions").
-  ImageF image(const nlohmann::json& record, const std::string& key) const;
+  core::ImageF image(const nlohmann::json& record, const std::string& key) const;
 };
 
 // `config` is an experiment JSON; `name` picks a fresh folder under /tmp.
@@ -31,16 +31,16 @@ RunOutput run_config(const nlohmann::json& config, const std::string& name,
                      bool write_gbuffer = false);
 // The same, with the run's options adjusted before it starts.
 RunOutput run_config_with(const nlohmann::json& config, const std::string& name,
-                          const std::function<void(RunOptions&)>& adjust, bool fresh = true);
+                          const std::function<void(run::RunOptions&)>& adjust, bool fresh = true);
 
 // Runs `config` against `registry` (test techniques registered in the test),
 // without images or a reference cache, into a fresh folder named `name`.
-RunOutput run_with_registry(const nlohmann::json& config, const Registry& registry,
+RunOutput run_with_registry(const nlohmann::json& config, const plugin::Registry& registry,
                             const std::string& name);
 
 // Pixels on the ground plane y = 0 (the sphere grid's and the test scenes'),
 // from a run's G-buffer positions.
-std::vector<bool> ground_pixels(const ImageF& positions);
+std::vector<bool> ground_pixels(const core::ImageF& positions);
 
 // A small sphere grid seen from close by, for fast runs.
 nlohmann::json small_scene(double light_size);

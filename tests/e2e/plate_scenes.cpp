@@ -8,6 +8,9 @@
 
 namespace sb::test {
 
+using core::Mesh;
+using core::Scene;
+
 double exact_visibility(const Plate& p, double x, double z, double size, double y) {
   const double k = (kLightHeight - y) / (p.h - y), half = 0.5 * size;
   const auto overlap = [&](double lo, double hi, double at) {

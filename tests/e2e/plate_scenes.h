@@ -29,7 +29,7 @@ double exact_visibility(const Plate& p, double x, double z, double size, double 
 // Writes the plates (meshes "plate0", "plate1", ...), any `extra` meshes and
 // a ground to dir/plates.glb, seen from `eye` looking at the origin.
 std::string write_plates(const std::filesystem::path& dir, const std::vector<Plate>& plates,
-                         const glm::vec3& eye, const std::vector<Mesh>& extra = {});
+                         const glm::vec3& eye, const std::vector<core::Mesh>& extra = {});
 
 // Two plates at different heights whose penumbrae overlap on the ground
 // under a light of side kOverlapLightSize, framed from kOverlapEye.

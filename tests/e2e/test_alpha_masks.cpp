@@ -13,6 +13,19 @@
 #include "scenes/sphere_grid.h"
 
 namespace sb::test {
+
+using core::add_scene_type;
+using core::AlphaMode;
+using core::bool_param;
+using core::find_scene_type;
+using core::ImageF;
+using core::make_area_light;
+using core::Mesh;
+using core::Params;
+using core::sample_alpha;
+using core::Scene;
+using core::TextureImage;
+
 namespace {
 
 using json = nlohmann::json;

@@ -11,6 +11,10 @@
 #include "results/store.h"
 
 namespace sb::test {
+
+using record::JobStatus;
+using results::read_job_records;
+
 namespace {
 
 namespace fs = std::filesystem;

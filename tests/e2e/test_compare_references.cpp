@@ -14,6 +14,9 @@
 #include "results/store.h"
 
 namespace sb::test {
+
+using results::read_job_records;
+
 namespace {
 
 namespace fs = std::filesystem;

@@ -9,6 +9,9 @@
 #include "run/injected_delay.h"
 
 namespace sb::test {
+
+using run::kInjectDelayVariable;
+
 namespace {
 
 using json = nlohmann::json;

@@ -18,6 +18,10 @@
 #include "results/store.h"
 
 namespace sb::test {
+
+using results::read_run_records;
+using results::RunFolderLock;
+
 namespace {
 
 namespace fs = std::filesystem;

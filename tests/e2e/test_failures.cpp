@@ -16,6 +16,21 @@
 #include "run/runner.h"
 
 namespace sb::test {
+
+using config::Experiment;
+using config::parse_experiment;
+using core::JobError;
+using core::Params;
+using plugin::FrameInputs;
+using plugin::Needs;
+using plugin::Registry;
+using plugin::Technique;
+using plugin::TechniqueInfo;
+using results::read_run_records;
+using run::run_experiment;
+using run::RunOptions;
+using run::RunSummary;
+
 namespace {
 
 class MakesAGlError final : public Technique {

@@ -8,6 +8,9 @@
 #include "record/job_record.h"
 
 namespace sb::test {
+
+using record::JobRecord;
+
 namespace {
 
 using json = nlohmann::json;

@@ -24,6 +24,11 @@
 #include "scenes/mesh_builders.h"
 
 namespace sb::test {
+
+using core::ImageF;
+using core::make_area_light;
+using core::Scene;
+
 namespace {
 
 using json = nlohmann::json;

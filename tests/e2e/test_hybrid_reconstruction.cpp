@@ -13,6 +13,10 @@
 #include "e2e_util.h"
 
 namespace sb::test {
+
+using core::ImageF;
+using run::RunOptions;
+
 namespace {
 
 using json = nlohmann::json;

@@ -16,6 +16,18 @@
 #include "plugin/registry.h"
 
 namespace sb::test {
+
+using core::add_scene_type;
+using core::AlphaMode;
+using core::find_scene_type;
+using core::Mesh;
+using core::Params;
+using core::ParamSpec;
+using core::Scene;
+using core::SceneType;
+using plugin::Registry;
+using plugin::TechniqueInfo;
+
 namespace {
 
 using json = nlohmann::json;

@@ -22,6 +22,12 @@
 #include "scenes/mesh_builders.h"
 
 namespace sb::test {
+
+using core::AreaLight;
+using core::ImageF;
+using core::Mesh;
+using core::Scene;
+
 namespace {
 
 using json = nlohmann::json;

@@ -16,6 +16,11 @@
 #include "scenes/sphere_grid.h"
 
 namespace sb::test {
+
+using core::AreaLight;
+using core::ImageF;
+using core::Scene;
+
 namespace {
 
 // Convex casters alone, with no ground: nothing occludes any point but its

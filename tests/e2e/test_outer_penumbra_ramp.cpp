@@ -49,6 +49,14 @@
 #include "e2e_util.h"
 
 namespace sb::test {
+
+using core::find_scene_type;
+using core::ImageF;
+using core::Mesh;
+using core::resolve_params;
+using core::Scene;
+using core::SceneType;
+
 namespace {
 
 using json = nlohmann::json;

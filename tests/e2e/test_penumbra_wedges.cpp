@@ -20,6 +20,10 @@
 #include "scenes/sphere_grid.h"
 
 namespace sb::test {
+
+using core::ImageF;
+using core::Scene;
+
 namespace {
 
 using json = nlohmann::json;

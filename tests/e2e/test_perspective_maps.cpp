@@ -11,6 +11,9 @@
 #include "e2e_util.h"
 
 namespace sb::test {
+
+using core::ImageF;
+
 namespace {
 
 using json = nlohmann::json;

@@ -16,6 +16,22 @@
 #include "run/run_events.h"
 
 namespace sb::test {
+
+using config::Experiment;
+using config::parse_experiment;
+using plan::JobOutcome;
+using plan::make_plan;
+using plan::Plan;
+using plan::PlannedJob;
+using plugin::Registry;
+using record::JobRecord;
+using record::JobStatus;
+using run::choose_embree;
+using run::GlIdentity;
+using run::JobExecutor;
+using run::RunEvents;
+using run::RunOptions;
+
 namespace {
 
 // The records the executor finishes, by job id.

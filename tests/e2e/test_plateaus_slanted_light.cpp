@@ -20,6 +20,11 @@
 #include "scenes/sphere_grid.h"
 
 namespace sb::test {
+
+using core::ImageF;
+using core::make_area_light;
+using core::Scene;
+
 namespace {
 
 using json = nlohmann::json;

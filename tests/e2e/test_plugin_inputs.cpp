@@ -8,6 +8,13 @@
 #include "plugin/registry.h"
 
 namespace sb::test {
+
+using core::Params;
+using plugin::FrameInputs;
+using plugin::Needs;
+using plugin::Registry;
+using plugin::Technique;
+
 namespace {
 
 struct Seen {
@@ -44,7 +51,7 @@ TEST(PluginInputs, TheReceiverPlaneAndTheGBuffersShadingInputsReachTheTechnique)
   registry.add({"reads_inputs",
                 "test",
                 "reads its inputs",
-                Needs{need::kPlanarReceiver},
+                Needs{plugin::need::kPlanarReceiver},
                 {},
                 [&seen](const Params&) { return std::make_unique<ReadsItsInputs>(&seen); }});
   const nlohmann::json config = {{"name", "inputs"},

@@ -12,6 +12,11 @@
 #include "scenes/receiver_inference.h"
 
 namespace sb::test {
+
+using core::ImageF;
+using core::Mesh;
+using core::Scene;
+
 namespace {
 
 void add_mesh(GltfBuilder& b, const std::string& name, const std::vector<float>& xyz,

@@ -24,6 +24,11 @@
 #include "run/job_identity.h"
 
 namespace sb::test {
+
+using plugin::kPluginApiVersion;
+using run::describe_build;
+using run::job_spec_hash;
+
 namespace {
 
 namespace fs = std::filesystem;

@@ -14,6 +14,14 @@
 #include "scenes/gltf_export.h"
 
 namespace sb::test {
+
+using core::Bounds;
+using core::find_scene_type;
+using core::ImageF;
+using core::resolve_params;
+using core::Scene;
+using core::SceneType;
+
 namespace {
 
 using json = nlohmann::json;
@@ -51,7 +59,8 @@ TEST_P(SceneRenders, ShadowsFallWhereTheLightSays) {
   const auto& r = out.records[0];
 
   // Not blank: the shaded picture has contrast.
-  const ImageF shaded = io::read_image(out.dir + "/" + r["images"]["shaded"].get<std::string>());
+  const ImageF shaded =
+      metrics::io::read_image(out.dir + "/" + r["images"]["shaded"].get<std::string>());
   float lo = 1.0f, hi = 0.0f;
   for (float v : shaded.data) lo = std::min(lo, v), hi = std::max(hi, v);
   EXPECT_GT(hi - lo, 0.3f) << type;

@@ -12,6 +12,9 @@
 #include "metrics/metrics.h"
 
 namespace sb::test {
+
+using core::ImageF;
+
 namespace {
 
 using json = nlohmann::json;

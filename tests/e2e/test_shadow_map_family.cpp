@@ -13,6 +13,9 @@
 #include "metrics/metrics.h"
 
 namespace sb::test {
+
+using core::ImageF;
+
 namespace {
 
 using json = nlohmann::json;

@@ -8,6 +8,11 @@
 #include "metrics/metrics.h"
 
 namespace sb::test {
+
+using core::ImageF;
+using core::InputError;
+using run::RunOptions;
+
 namespace {
 
 using json = nlohmann::json;

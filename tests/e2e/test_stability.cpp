@@ -15,6 +15,11 @@
 #include "results/report.h"
 
 namespace sb {
+
+using core::ImageF;
+using record::JobRecord;
+using results::make_markdown;
+
 namespace {
 
 using json = nlohmann::json;

@@ -15,6 +15,9 @@
 #include "metrics/shadow_classes.h"
 
 namespace sb::test {
+
+using core::ImageF;
+
 namespace {
 
 using json = nlohmann::json;

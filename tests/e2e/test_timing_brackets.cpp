@@ -19,6 +19,18 @@
 #include "run/runner.h"
 
 namespace sb::test {
+
+using config::Experiment;
+using config::parse_experiment;
+using core::Params;
+using plugin::FrameInputs;
+using plugin::Needs;
+using plugin::Registry;
+using plugin::Technique;
+using results::read_run_records;
+using run::run_experiment;
+using run::RunOptions;
+
 namespace {
 
 // Slow on its first frame only, as a technique whose shaders compile lazily.

@@ -13,9 +13,9 @@
 
 namespace {
 
-const sb::Registry& registry() {
-  static const sb::Registry r = [] {
-    sb::Registry loaded;
+const sb::plugin::Registry& registry() {
+  static const sb::plugin::Registry r = [] {
+    sb::plugin::Registry loaded;
     loaded.load_plugins(SHADOWBENCH_PLUGIN_DIR);
     return loaded;
   }();
@@ -32,8 +32,8 @@ extern "C" int LLVMFuzzerInitialize(int* /*argc*/, char*** /*argv*/) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   return sb::fuzz::expect_only_input_errors("fuzz_experiment", [&] {
     const std::string text(reinterpret_cast<const char*>(data), size);
-    const sb::Experiment e =
-        sb::parse_experiment(sb::parse_json_text(text, "fuzz.json"), "fuzz.json", registry());
-    (void)sb::unread_parameter_warnings(e);
+    const sb::config::Experiment e = sb::config::parse_experiment(
+        sb::config::parse_json_text(text, "fuzz.json"), "fuzz.json", registry());
+    (void)sb::config::unread_parameter_warnings(e);
   });
 }

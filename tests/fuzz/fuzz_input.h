@@ -16,7 +16,7 @@ template <class Body>
 int expect_only_input_errors(const char* target, Body&& body) {
   try {
     body();
-  } catch (const InputError&) {
+  } catch (const core::InputError&) {
     // The documented answer to bad input.
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: bad input ended in an exception that is not an InputError: %s\n",

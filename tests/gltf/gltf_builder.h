@@ -155,7 +155,7 @@ template <class F>
 std::string input_error(F&& f) {
   try {
     f();
-  } catch (const InputError& e) {
+  } catch (const core::InputError& e) {
     return e.what();
   }
   ADD_FAILURE() << "no InputError";

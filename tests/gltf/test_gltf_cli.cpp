@@ -6,6 +6,9 @@
 #include "tests/gltf/gltf_builder.h"
 
 namespace sb {
+
+using core::Scene;
+
 namespace {
 
 using test::run_cli;

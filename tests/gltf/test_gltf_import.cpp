@@ -12,6 +12,15 @@
 #include "tests/gltf/gltf_builder.h"
 
 namespace sb {
+
+using core::AlphaMode;
+using core::find_scene_type;
+using core::Mesh;
+using core::resolve_params;
+using core::Scene;
+using core::SceneType;
+using core::TextureImage;
+
 namespace {
 
 using test::GltfBuilder;

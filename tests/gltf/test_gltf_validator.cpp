@@ -11,6 +11,16 @@
 #include "tests/gltf/gltf_builder.h"
 
 namespace sb {
+
+using core::AlphaMode;
+using core::find_scene_type;
+using core::make_area_light;
+using core::Mesh;
+using core::resolve_params;
+using core::Scene;
+using core::SceneType;
+using core::TextureImage;
+
 namespace {
 
 using test::json;

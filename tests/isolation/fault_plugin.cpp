@@ -19,15 +19,15 @@
 
 namespace {
 
-class Fault final : public sb::Technique {
+class Fault final : public sb::plugin::Technique {
  public:
-  explicit Fault(const sb::Params& p)
+  explicit Fault(const sb::core::Params& p)
       : mode_(p.get_string("mode")), at_(p.get_string("at")), slow_ms_(p.get_float("slow_ms")) {}
 
-  void prepare(const sb::FrameInputs& /*in*/) override {
+  void prepare(const sb::plugin::FrameInputs& /*in*/) override {
     if (at_ == "prepare") fail();
   }
-  void render(const sb::FrameInputs& in, sb::gl::PassTimer& timer) override {
+  void render(const sb::plugin::FrameInputs& in, sb::gl::PassTimer& timer) override {
     if (at_ == "frame") fail();
     auto pass = timer.scope("clear");
     if (slow_ms_ > 0)
@@ -54,15 +54,16 @@ class Fault final : public sb::Technique {
 
 }  // namespace
 
-SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
+SHADOWBENCH_PLUGIN_ENTRY(sb::plugin::Registry& registry) {
   registry.add(
       {"fault",
        "fault",
        "test only: crashes, aborts, hangs, exits or throws on demand",
-       sb::Needs{},
-       {sb::choice_param("mode", "none", {"none", "crash", "abort", "hang", "exit", "throw"},
-                         "what to do"),
-        sb::choice_param("at", "frame", {"prepare", "frame"}, "when: in prepare() or in a frame"),
-        sb::float_param("slow_ms", 0.0, 0.0, 10000.0, "sleep this long in every frame")},
-       [](const sb::Params& p) { return std::make_unique<Fault>(p); }});
+       sb::plugin::Needs{},
+       {sb::core::choice_param("mode", "none", {"none", "crash", "abort", "hang", "exit", "throw"},
+                               "what to do"),
+        sb::core::choice_param("at", "frame", {"prepare", "frame"},
+                               "when: in prepare() or in a frame"),
+        sb::core::float_param("slow_ms", 0.0, 0.0, 10000.0, "sleep this long in every frame")},
+       [](const sb::core::Params& p) { return std::make_unique<Fault>(p); }});
 }

@@ -11,7 +11,14 @@ every #include "folder/..." of the project and fails when
     those two edges are named below, and no other may appear),
   - the kit includes anything beyond the plugin API (its headers are
     installed: they may name nothing that is not),
-  - a harness folder is missing from harness/README.md's table."""
+  - a harness folder is missing from harness/README.md's table,
+  - a harness header declares its names outside its folder's namespace:
+    harness/<folder>/x.h opens sb::<folder> or a namespace within it
+    (sb::<folder>::detail), never sb itself nor another folder's, except to
+    forward-declare another folder's class (`namespace sb::gl { class GpuScene; }`);
+    plugin/api_names.h alone opens sb, to keep the plugin API's names there.
+    Namespaces of other libraries (CLI, std) are theirs.
+`check_layout.py --self-test` checks that check."""
 import collections
 import os
 import re
@@ -68,7 +75,94 @@ def check_technique_include(root, path, dst):
              f"elsewhere must")
 
 
+# The one header that declares names in sb itself: using-declarations that
+# keep the plugin API's names reachable as sb::X for plugins.
+SB_NAMES_HEADER = "harness/plugin/api_names.h"
+COMMENT = re.compile(r"//[^\n]*|/\*.*?\*/", re.S)
+STRING = re.compile(r'R"([^(\s]*)\(.*?\)\1"|"(?:\\.|[^"\\\n])*"', re.S)
+NAMESPACE_OPEN = re.compile(r"\bnamespace\s+([A-Za-z_][A-Za-z0-9_:]*)\s*\{")
+FORWARD_DECLARATION = re.compile(r"^(?:\s*(?:class|struct)\s+[A-Za-z_][A-Za-z0-9_]*\s*;)+\s*$")
+
+
+def top_level_namespaces(text):
+    """(name, body) of each namespace block opened outside any brace, in a
+    text without comments and strings."""
+    text = STRING.sub('""', COMMENT.sub(" ", text))
+    depth, i, out = 0, 0, []
+    while i < len(text):
+        m = NAMESPACE_OPEN.match(text, i) if depth == 0 else None
+        if m and (i == 0 or not (text[i - 1].isalnum() or text[i - 1] == "_")):
+            start, level, j = m.end(), 1, m.end()
+            while j < len(text) and level:
+                level += {"{": 1, "}": -1}.get(text[j], 0)
+                j += 1
+            out.append((m.group(1), text[start:j - 1]))
+            i = j
+            continue
+        depth += {"{": 1, "}": -1}.get(text[i], 0)
+        i += 1
+    return out
+
+
+def namespace_problem(where, folder, text):
+    """Why the header `where` (in harness/`folder`/) declares names outside
+    sb::`folder`, or None."""
+    own = f"sb::{folder}"
+    for name, body in top_level_namespaces(text):
+        if name != "sb" and not name.startswith("sb::"):
+            continue  # another library's (a forward declaration, a specialisation)
+        if name == own or name.startswith(own + "::"):
+            continue
+        if name == "sb" and where == SB_NAMES_HEADER:
+            continue
+        if name != "sb" and FORWARD_DECLARATION.match(body):
+            continue  # another folder's class, declared ahead
+        return (f"{where} declares names in namespace {name}: a header of harness/{folder}/ "
+                f"declares its names in {own} (or a namespace within it, {own}::detail); "
+                f"harness/README.md, \"Namespaces\"")
+    return None
+
+
+def check_namespaces(root):
+    for folder in sorted(os.listdir(os.path.join(root, "harness"))):
+        base = os.path.join(root, "harness", folder)
+        if not os.path.isdir(base):
+            continue
+        for path in sorted(sources(root, os.path.join("harness", folder))):
+            if not path.endswith(".h"):
+                continue
+            with open(path, encoding="utf-8") as f:
+                problem = namespace_problem(os.path.relpath(path, root), folder, f.read())
+            if problem:
+                sys.exit(problem)
+
+
+def self_test():
+    """The namespace rule on made-up headers: what it accepts and refuses."""
+    ok = [("harness/run/a.h", "run", "namespace sb::run {\nstruct A {};\n}  // namespace sb::run"),
+          ("harness/run/a.h", "run", "namespace sb::run::detail { int f(); }"),
+          ("harness/run/a.h", "run", "namespace CLI { class App; }\nnamespace sb::run { }"),
+          ("harness/plugin/a.h", "plugin",
+           "namespace sb::gl {\nclass GpuScene;\n}\nnamespace sb::plugin { struct X { int a; }; }"),
+          ("harness/plugin/api_names.h", "plugin", "namespace sb { using plugin::Technique; }"),
+          ("harness/run/a.h", "run", "// namespace sb {\nnamespace sb::run { auto s = \"namespace sb {\"; }")]
+    bad = [("harness/run/a.h", "run", "namespace sb {\nstruct A {};\n}"),
+           ("harness/run/a.h", "run", "namespace sb::record { struct A {}; }"),
+           ("harness/run/a.h", "run", "namespace sb::runner { }"),
+           ("harness/core/a.h", "core", "namespace sb { using core::Scene; }"),
+           ("harness/run/a.h", "run", "namespace sb::run { }\nnamespace sb { class A; }")]
+    for where, folder, text in ok:
+        problem = namespace_problem(where, folder, text)
+        assert problem is None, f"refused, should accept: {text!r}: {problem}"
+    for where, folder, text in bad:
+        assert namespace_problem(where, folder, text), f"accepted, should refuse: {text!r}"
+    print(f"namespace rule: {len(ok)} accepted, {len(bad)} refused, as expected")
+
+
 def main():
+    if sys.argv[1:] == ["--self-test"]:
+        self_test()
+        return
     root = sys.argv[1]
     graph = collections.defaultdict(set)
     where = {}
@@ -115,6 +209,7 @@ def main():
             if src in ranks and dst in ranks and ranks[dst] > ranks[src]:
                 sys.exit(f"{where[(src, dst)]}: {src}/ (rank {ranks[src]}) includes {dst}/ "
                          f"(rank {ranks[dst]}), which harness/README.md puts after it")
+    check_namespaces(root)
     for src in sorted(graph):
         print(f"{src} -> {' '.join(sorted(graph[src]))}")
 

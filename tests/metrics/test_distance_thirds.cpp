@@ -7,6 +7,9 @@
 #include "metrics/distance_thirds.h"
 
 namespace sb::metrics {
+
+using core::ImageF;
+
 namespace {
 
 // A row of pixels on the x axis at x = 1..width, seen from the origin.

@@ -13,6 +13,10 @@
 #include "test_util.h"
 
 namespace sb::metrics {
+
+using core::AreaLight;
+using core::ImageF;
+
 namespace {
 
 // A G-buffer drawn from a character map, one row per string, under the

@@ -16,7 +16,11 @@
 #include "metrics/image_io.h"
 #include "test_util.h"
 
-namespace sb::io {
+namespace sb::metrics::io {
+
+using core::ImageF;
+using core::JobError;
+
 namespace {
 
 std::vector<std::string> leftovers(const std::filesystem::path& dir) {
@@ -167,4 +171,4 @@ TEST(metrics_image_io, PngBytesRoundHalfAwayFromZeroAsLroundDoes) {
 }
 
 }  // namespace
-}  // namespace sb::io
+}  // namespace sb::metrics::io

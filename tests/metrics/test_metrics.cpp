@@ -11,6 +11,9 @@
 #include "test_util.h"
 
 namespace sb::metrics {
+
+using core::ImageF;
+
 namespace {
 
 // Values on a 1/1024 grid in [0, 0.5], so adding 0.125 is exact in float.
@@ -302,7 +305,7 @@ TEST(metrics_heatmap, Endpoints) {
 TEST(metrics_compare, SeveralMasksEqualOneCallPerMask) {
   for (int channels : {1, 3}) {
     SCOPED_TRACE(channels);
-    sb::ImageF ref(37, 29, channels), test(37, 29, channels);
+    sb::core::ImageF ref(37, 29, channels), test(37, 29, channels);
     for (size_t i = 0; i < ref.data.size(); ++i) {
       ref.data[i] = float((i * 7919) % 101) / 100.0f;
       test.data[i] = ref.data[i] + (i % 5 == 0 ? float((i * 31) % 17) / 200.0f : 0.0f);

@@ -1,5 +1,5 @@
 // compare() against OpenImageIO's ImageBufAlgo::compare (what idiff reports),
-// on float EXR pairs written by io::write_exr and read back by OIIO itself.
+// on float EXR pairs written by metrics::io::write_exr and read back by OIIO itself.
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <gtest/gtest.h>
@@ -11,6 +11,9 @@
 #include "test_util.h"
 
 namespace sb::metrics {
+
+using core::ImageF;
+
 namespace {
 
 void expect_rel(double ours, double theirs, const char* what) {
@@ -32,8 +35,8 @@ void check_parity(int channels, uint32_t seed) {
   test.at(30, 20, 0) = 0.0f;
 
   const std::string ft = dir.file("test.exr"), fr = dir.file("ref.exr");
-  io::write_exr(ft, test);
-  io::write_exr(fr, ref);
+  metrics::io::write_exr(ft, test);
+  metrics::io::write_exr(fr, ref);
 
   OIIO::ImageBuf a(ft), b(fr);
   // Huge thresholds: OIIO sets .error whenever a value exceeds failthresh.
@@ -41,7 +44,7 @@ void check_parity(int channels, uint32_t seed) {
   ASSERT_FALSE(r.error) << a.geterror() << b.geterror();
   ASSERT_EQ(a.nchannels(), channels);
 
-  const ErrorStats s = compare(io::read_image(ft), io::read_image(fr));
+  const ErrorStats s = compare(metrics::io::read_image(ft), metrics::io::read_image(fr));
   expect_rel(s.rmse, r.rms_error, "rmse");
   expect_rel(s.mae, r.meanerror, "mae");
   expect_rel(s.psnr, r.PSNR, "psnr");

@@ -9,6 +9,10 @@
 #include "record/classes_record.h"
 
 namespace sb::metrics {
+
+using core::ImageF;
+using record::ClassesRecord;
+
 namespace {
 
 TEST(ShadowClasses, ThresholdsAreThePenumbraMasksEps) {

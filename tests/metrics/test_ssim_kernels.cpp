@@ -39,7 +39,7 @@ bool cpuinfo_lists(const std::string& flag) {
   return false;
 }
 
-bool same_bits(const sb::ImageF& a, const sb::ImageF& b) {
+bool same_bits(const sb::core::ImageF& a, const sb::core::ImageF& b) {
   return a.data.size() == b.data.size() &&
          std::memcmp(a.data.data(), b.data.data(), a.data.size() * sizeof(float)) == 0;
 }
@@ -59,12 +59,13 @@ TEST(SsimKernels, TheWidestPathIsTheWidestTheCpuListsInCpuinfo) {
 TEST(SsimKernels, EveryPathTheCpuRunsGivesTheBaselineBits) {
   int compared = 0;
   for (const auto& [w, h, c] : {std::tuple{300, 37, 1}, {173, 29, 3}, {11, 11, 1}, {97, 64, 3}}) {
-    const sb::ImageF a = sb::test::pattern_image(w, h, c);
-    const sb::ImageF b = sb::test::noise_image(w, h, c, uint32_t(w * h + c));
+    const sb::core::ImageF a = sb::test::pattern_image(w, h, c);
+    const sb::core::ImageF b = sb::test::noise_image(w, h, c, uint32_t(w * h + c));
     std::vector<uint8_t> mask(size_t(w) * size_t(h));
     for (size_t i = 0; i < mask.size(); ++i) mask[i] = (i * 7919) % 5 != 0;
     const std::vector<const std::vector<uint8_t>*> masks = {nullptr, &mask};
-    const sb::ImageF base_map = sb::metrics::detail::ssim_map_on(SimdPath::Baseline, a, b, 1.0);
+    const sb::core::ImageF base_map =
+        sb::metrics::detail::ssim_map_on(SimdPath::Baseline, a, b, 1.0);
     const std::vector<double> base =
         sb::metrics::detail::ssim_on(SimdPath::Baseline, a, b, 1.0, masks);
     for (const SimdPath path : kPaths) {
@@ -85,7 +86,8 @@ TEST(SsimKernels, EveryPathTheCpuRunsGivesTheBaselineBits) {
     }
   }
   // The public functions take the widest path.
-  const sb::ImageF a = sb::test::pattern_image(64, 48, 3), b = sb::test::noise_image(64, 48, 3, 5);
+  const sb::core::ImageF a = sb::test::pattern_image(64, 48, 3),
+                         b = sb::test::noise_image(64, 48, 3, 5);
   const SimdPath widest = sb::metrics::detail::widest_simd_path();
   EXPECT_TRUE(
       same_bits(sb::metrics::ssim_map(a, b), sb::metrics::detail::ssim_map_on(widest, a, b, 1.0)));

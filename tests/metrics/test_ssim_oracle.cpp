@@ -14,6 +14,9 @@
 #include "test_util.h"
 
 namespace sb::metrics {
+
+using core::ImageF;
+
 namespace {
 
 constexpr double kTol = 1e-4;
@@ -65,10 +68,10 @@ OracleRun run_oracle(const std::string& args) {
 // skimage), and the full map.
 void check_against_skimage(const std::string& name, const ImageF& a0, const ImageF& b0) {
   test::TempDir dir("ssim_" + name);
-  io::write_exr(dir.file("a.exr"), a0);
-  io::write_exr(dir.file("b.exr"), b0);
-  const ImageF a = io::read_image(dir.file("a.exr"));
-  const ImageF b = io::read_image(dir.file("b.exr"));
+  metrics::io::write_exr(dir.file("a.exr"), a0);
+  metrics::io::write_exr(dir.file("b.exr"), b0);
+  const ImageF a = metrics::io::read_image(dir.file("a.exr"));
+  const ImageF b = metrics::io::read_image(dir.file("b.exr"));
   test::write_dump(dir.file("a.sbf"), a);
   test::write_dump(dir.file("b.sbf"), b);
   const std::string files = quote(dir.file("a.sbf")) + " " + quote(dir.file("b.sbf"));

@@ -12,6 +12,9 @@
 #include "metrics/stability.h"
 
 namespace sb::metrics {
+
+using core::ImageF;
+
 namespace {
 
 ImageF filled(int w, int h, float v) { return ImageF(w, h, 1, v); }

@@ -38,9 +38,10 @@ class TempDir {
 
 // Uniform noise in [lo, hi), reproducible on every standard library (the
 // std distributions are not).
-inline ImageF noise_image(int w, int h, int c, uint32_t seed, float lo = 0.0f, float hi = 1.0f) {
+inline core::ImageF noise_image(int w, int h, int c, uint32_t seed, float lo = 0.0f,
+                                float hi = 1.0f) {
   std::mt19937 rng(seed);
-  ImageF img(w, h, c);
+  core::ImageF img(w, h, c);
   for (float& v : img.data) {
     v = lo + (hi - lo) * static_cast<float>(rng() >> 8) * (1.0f / 16777216.0f);
   }
@@ -48,8 +49,8 @@ inline ImageF noise_image(int w, int h, int c, uint32_t seed, float lo = 0.0f, f
 }
 
 // A smooth pattern with edges, so SSIM sees structure rather than noise.
-inline ImageF pattern_image(int w, int h, int c) {
-  ImageF img(w, h, c);
+inline core::ImageF pattern_image(int w, int h, int c) {
+  core::ImageF img(w, h, c);
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       for (int ch = 0; ch < c; ++ch) {
@@ -63,8 +64,8 @@ inline ImageF pattern_image(int w, int h, int c) {
 }
 
 // 3x3 box blur (clamped borders) followed by a shift of (dx, dy) pixels.
-inline ImageF blur_shift(const ImageF& src, int dx, int dy) {
-  ImageF out(src.width, src.height, src.channels);
+inline core::ImageF blur_shift(const core::ImageF& src, int dx, int dy) {
+  core::ImageF out(src.width, src.height, src.channels);
   auto clampi = [](int v, int n) { return v < 0 ? 0 : (v >= n ? n - 1 : v); };
   for (int y = 0; y < src.height; ++y) {
     for (int x = 0; x < src.width; ++x) {
@@ -84,7 +85,7 @@ inline ImageF blur_shift(const ImageF& src, int dx, int dy) {
 
 // Raw dump read by ssim_oracle.py: "SBF1", uint32 w, h, c, float32 data
 // (this test only runs on little-endian hosts).
-inline void write_dump(const std::string& path, const ImageF& img) {
+inline void write_dump(const std::string& path, const core::ImageF& img) {
   std::ofstream f(path, std::ios::binary);
   const uint32_t head[3] = {static_cast<uint32_t>(img.width), static_cast<uint32_t>(img.height),
                             static_cast<uint32_t>(img.channels)};
@@ -95,14 +96,14 @@ inline void write_dump(const std::string& path, const ImageF& img) {
   if (!f) throw std::runtime_error("cannot write " + path);
 }
 
-inline ImageF read_dump(const std::string& path) {
+inline core::ImageF read_dump(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   char magic[4];
   uint32_t head[3];
   f.read(magic, 4);
   f.read(reinterpret_cast<char*>(head), sizeof head);
   if (!f || std::string(magic, 4) != "SBF1") throw std::runtime_error("bad dump " + path);
-  ImageF img(static_cast<int>(head[0]), static_cast<int>(head[1]), static_cast<int>(head[2]));
+  core::ImageF img(static_cast<int>(head[0]), static_cast<int>(head[1]), static_cast<int>(head[2]));
   f.read(reinterpret_cast<char*>(img.data.data()),
          static_cast<std::streamsize>(img.data.size() * sizeof(float)));
   if (!f) throw std::runtime_error("short dump " + path);

@@ -13,6 +13,19 @@
 #include "scenes/sphere_grid.h"
 
 namespace sb::test {
+
+using core::Mesh;
+using core::Scene;
+using plan::Derive;
+using plan::find_need_provider;
+using plan::resolve_needs;
+using plan::ResolvedNeeds;
+using plugin::DerivedData;
+using plugin::NeedProvider;
+using plugin::Needs;
+using plugin::Registry;
+using plugin::TechniqueInfo;
+
 namespace {
 
 Scene box_on_ground() {
@@ -37,7 +50,7 @@ NeedProvider counting_provider(Counted* c, NeedProvider::When when) {
   NeedProvider p;
   p.name = "caster_count";
   p.summary = "how many meshes cast";
-  p.requires_needs = {need::kCasterClosedness};
+  p.requires_needs = {plugin::need::kCasterClosedness};
   p.when = when;
   p.derive = [c](const Scene& scene, DerivedData& data, std::vector<std::string>& log) {
     ++c->derived;
@@ -68,7 +81,7 @@ TEST(NeedProviders, APluginsNeedIsComputedOnlyWhenAskedAndAfterWhatItRequires) {
 
   r = resolve_needs(s, {&plain, &counting, &counting}, &plugins, Derive::Decide);
   EXPECT_EQ(counted.derived, 1);  // once, however many techniques ask
-  EXPECT_EQ(counted.saw, std::vector<std::string>{need::kCasterClosedness});
+  EXPECT_EQ(counted.saw, std::vector<std::string>{plugin::need::kCasterClosedness});
   EXPECT_EQ(r.data.get<int>("caster_count"), 1);
   EXPECT_EQ(r.skip_reason, (std::vector<std::string>{"", "", ""}));
 
@@ -96,7 +109,7 @@ TEST(NeedProviders, RunNeedsWaitForTheRunAndForTechniquesThatWillRun) {
   s.meshes[0] = make_ground_plane("open caster", glm::vec3(0, 1, 0), 1.0f);
   s.meshes[0].casts_shadow = true;
   const TechniqueInfo closed_and_counting =
-      wanting("closed_counting", {need::kClosedCasters, "caster_count"});
+      wanting("closed_counting", {plugin::need::kClosedCasters, "caster_count"});
   r = resolve_needs(s, {&closed_and_counting}, &plugins, Derive::All);
   EXPECT_NE(r.skip_reason[0], "");
   EXPECT_EQ(counted.derived, 1);
@@ -144,17 +157,17 @@ TEST(NeedProviders, TwoProvidersOfOneNeedAreRefused) {
 TEST(NeedProviders, APluginCannotReplaceAHarnessNeed) {
   Counted c;
   NeedProvider p = counting_provider(&c, NeedProvider::When::Plan);
-  p.name = need::kPlanarReceiver;
+  p.name = plugin::need::kPlanarReceiver;
   Registry plugins;
   plugins.add_provider(p);
   try {
-    find_need_provider(need::kPlanarReceiver, &plugins);
+    find_need_provider(plugin::need::kPlanarReceiver, &plugins);
     FAIL() << "a plugin replaced the harness's planar_receiver";
   } catch (const std::logic_error& e) {
     EXPECT_NE(std::string(e.what()).find("'planar_receiver'"), std::string::npos) << e.what();
   }
   // Without the clash, the harness's provider is found as before.
-  EXPECT_NE(find_need_provider(need::kPlanarReceiver, nullptr), nullptr);
+  EXPECT_NE(find_need_provider(plugin::need::kPlanarReceiver, nullptr), nullptr);
 }
 
 TEST(SilhouetteEdges, AClosedBoxHasEighteenEdgesEachWithTwoFaces) {

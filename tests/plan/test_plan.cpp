@@ -18,6 +18,21 @@
 #include "test_registry.h"
 
 namespace sb::test {
+
+using config::Experiment;
+using config::load_experiment;
+using config::parse_experiment;
+using core::AlphaMode;
+using core::Mesh;
+using core::Scene;
+using core::TextureImage;
+using plan::Derive;
+using plan::make_plan;
+using plan::Plan;
+using plan::PlannedJob;
+using plan::resolve_needs;
+using plugin::TechniqueInfo;
+
 namespace {
 
 const std::string kScenes = std::string(SHADOWBENCH_SOURCE_DIR) + "/configs/scenes.json";
@@ -58,7 +73,7 @@ TEST(PlanStage, ListsTheFoliageShadowVolumeSkipBeforeAnyGlContext) {
 TEST(PlanStage, EveryVolumeTechniqueSkipsOpenAndAlphaTestedCastersWithAReason) {
   std::vector<const TechniqueInfo*> volumes;
   for (const TechniqueInfo& t : registry().all())
-    if (t.needs.has(need::kClosedCasters)) volumes.push_back(&t);
+    if (t.needs.has(plugin::need::kClosedCasters)) volumes.push_back(&t);
   ASSERT_FALSE(volumes.empty());
   const auto scene = [](bool open, bool alpha_tested) {
     Scene s;

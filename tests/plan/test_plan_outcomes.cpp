@@ -22,6 +22,25 @@
 #include "test_registry.h"
 
 namespace sb::test {
+
+using config::Experiment;
+using config::load_experiment;
+using core::InputError;
+using plan::decide_job;
+using plan::Derive;
+using plan::JobOutcome;
+using plan::make_plan;
+using plan::outcome_mismatch;
+using plan::Plan;
+using plan::plan_record;
+using plan::plan_scene;
+using plan::plan_to_json;
+using plan::PlannedJob;
+using plan::read_plan_file;
+using plan::to_string;
+using record::plan_difference;
+using record::PlanRecord;
+
 namespace {
 
 const std::string kScenes = std::string(SHADOWBENCH_SOURCE_DIR) + "/configs/scenes.json";

@@ -4,9 +4,9 @@
 
 namespace sb::test {
 
-inline const Registry& registry() {
-  static const Registry r = [] {
-    Registry reg;
+inline const plugin::Registry& registry() {
+  static const plugin::Registry r = [] {
+    plugin::Registry reg;
     reg.load_plugins(SHADOWBENCH_PLUGIN_DIR);
     return reg;
   }();

@@ -15,6 +15,12 @@
 #include "test_registry.h"
 
 namespace sb::test {
+
+using config::Experiment;
+using config::parse_experiment;
+using plan::make_plan;
+using plan::parse_shard;
+
 namespace {
 
 Experiment sweep() {

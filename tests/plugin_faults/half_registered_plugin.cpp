@@ -7,18 +7,26 @@
 
 namespace {
 
-class Never final : public sb::Technique {
+class Never final : public sb::plugin::Technique {
  public:
-  void prepare(const sb::FrameInputs& /*in*/) override {}
-  void render(const sb::FrameInputs& /*in*/, sb::gl::PassTimer& /*timer*/) override {}
+  void prepare(const sb::plugin::FrameInputs& /*in*/) override {}
+  void render(const sb::plugin::FrameInputs& /*in*/, sb::gl::PassTimer& /*timer*/) override {}
 };
 
 }  // namespace
 
-SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
-  const auto make = [](const sb::Params&) { return std::make_unique<Never>(); };
-  registry.add(
-      {"half_registered", "half_registered", "registered before the clash", sb::Needs{}, {}, make});
-  registry.add(
-      {"pcf_box", "half_registered", "clashes with the shipped pcf_box", sb::Needs{}, {}, make});
+SHADOWBENCH_PLUGIN_ENTRY(sb::plugin::Registry& registry) {
+  const auto make = [](const sb::core::Params&) { return std::make_unique<Never>(); };
+  registry.add({"half_registered",
+                "half_registered",
+                "registered before the clash",
+                sb::plugin::Needs{},
+                {},
+                make});
+  registry.add({"pcf_box",
+                "half_registered",
+                "clashes with the shipped pcf_box",
+                sb::plugin::Needs{},
+                {},
+                make});
 }

@@ -10,6 +10,11 @@
 #include "core/nearest_names.h"
 
 namespace sb::test {
+
+using core::did_you_mean;
+using core::edit_distance;
+using core::nearest_names;
+
 namespace {
 
 bool has(const std::string& text, const std::string& part) {

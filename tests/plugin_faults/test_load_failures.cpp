@@ -9,6 +9,9 @@
 #include "plugin/registry.h"
 
 namespace sb::test {
+
+using plugin::Registry;
+
 namespace {
 
 bool has(const std::string& text, const std::string& part) {

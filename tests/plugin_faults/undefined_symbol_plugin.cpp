@@ -9,17 +9,18 @@ int sb_test_function_nobody_defines();  // declared, never defined
 
 namespace {
 
-class Never final : public sb::Technique {
+class Never final : public sb::plugin::Technique {
  public:
-  void prepare(const sb::FrameInputs& /*in*/) override {}
-  void render(const sb::FrameInputs& /*in*/, sb::gl::PassTimer& /*timer*/) override {}
+  void prepare(const sb::plugin::FrameInputs& /*in*/) override {}
+  void render(const sb::plugin::FrameInputs& /*in*/, sb::gl::PassTimer& /*timer*/) override {}
 };
 
 }  // namespace
 
-SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
+SHADOWBENCH_PLUGIN_ENTRY(sb::plugin::Registry& registry) {
   if (sb_test_function_nobody_defines() == 0) return;
-  registry.add({"my_pcf", "my_pcf", "never loads", sb::Needs{}, {}, [](const sb::Params&) {
-                  return std::make_unique<Never>();
-                }});
+  registry.add(
+      {"my_pcf", "my_pcf", "never loads", sb::plugin::Needs{}, {}, [](const sb::core::Params&) {
+         return std::make_unique<Never>();
+       }});
 }

@@ -10,8 +10,8 @@
 
 namespace sb::test {
 
-inline RegionStats region(double rmse) {
-  RegionStats s;
+inline record::RegionStats region(double rmse) {
+  record::RegionStats s;
   s.pixel_count = 1200;
   s.rmse = rmse;
   s.mae = rmse / 2;
@@ -30,12 +30,12 @@ inline RegionStats region(double rmse) {
 
 // An ok job with every optional member: fine pass timing, G-buffer images,
 // a warning, LP_NUM_THREADS, and non-finite numbers.
-inline JobRecord full_record() {
-  JobRecord r = test::identity_record("sphere_grid/light_size=2.0", "64x48", "pcf_box/k=3");
+inline record::JobRecord full_record() {
+  record::JobRecord r = test::identity_record("sphere_grid/light_size=2.0", "64x48", "pcf_box/k=3");
   r.scene.params = {{"grid", 9}, {"light_size", 2.0}};
   r.technique.family = "shadow_map";
   r.technique.params = {{"k", 3}, {"size", 1024}};
-  BuiltScene b;
+  record::BuiltScene b;
   b.triangles = 61562;
   b.caster_triangles = 61560;
   b.analytic_casters = 81;
@@ -47,14 +47,14 @@ inline JobRecord full_record() {
   r.host.name = "vm";
   r.started_at = "2026-12-01T00:00:00Z";
   r.duration_s = 0.5;
-  PhasesRecord phases;
+  record::PhasesRecord phases;
   phases.prepare = 0.01;
   phases.frames = 0.4;
   phases.measure = 0.05;
   phases.images = 0.03;
   r.phases_s = phases;
   r.overhead_s = phases.overhead(0.5);
-  ReferenceRecord ref;
+  record::ReferenceRecord ref;
   ref.method = "embree_stratified_packet16";
   ref.spp = 256;
   ref.seed = std::numeric_limits<std::uint64_t>::max();
@@ -68,8 +68,8 @@ inline JobRecord full_record() {
   r.reference = ref;
   r.timing = test::coarse_timing({10, 12, 11}, {4, 5, 4.5});
   test::add_fine_timing(*r.timing, {{"depth", {2, 2.5, 2.25}}, {"lookup", {2.5, 3, 2.75}}});
-  r.visibility_check = VisibilityCheckRecord{0, 1, 2, double(1e-5f)};
-  MetricsRecord m;
+  r.visibility_check = record::VisibilityCheckRecord{0, 1, 2, double(1e-5f)};
+  record::MetricsRecord m;
   m.visibility = {region(0.1), region(0.3), region(0.2)};
   m.shaded = {region(0.05), region(0.15), region(0.1)};
   m.shaded.all.psnr = std::numeric_limits<double>::infinity();
@@ -93,15 +93,15 @@ inline JobRecord full_record() {
 
 // full_record() with every optional member a record can have set: what
 // the schema test holds the schema's pointers to.
-inline JobRecord every_member_record() {
-  JobRecord r = full_record();
+inline record::JobRecord every_member_record() {
+  record::JobRecord r = full_record();
   r.spec = nlohmann::json{{"frames", {{"control", "none"}}}};
   r.job_index = 4;
   r.shard = "1/2";
   r.reason = "a visibility check failed";
-  r.technique.plugin = PluginRecord{"shadow_map.so", 812345, std::string(64, 'a'), 1};
+  r.technique.plugin = record::PluginRecord{"shadow_map.so", 812345, std::string(64, 'a'), 1};
   r.technique.gpu_bytes = 4096;
-  r.host.gl_stack = parse_gl_stack("llvmpipe (LLVM 15.0.6, 256 bits)", "4.5 Mesa 22.3.6");
+  r.host.gl_stack = record::parse_gl_stack("llvmpipe (LLVM 15.0.6, 256 bits)", "4.5 Mesa 22.3.6");
   r.host.env = {{"LP_NUM_THREADS", "2"}};
   r.host.kernel = "6.1.0";
   r.host.cpu_governor = "performance";
@@ -113,34 +113,34 @@ inline JobRecord every_member_record() {
   r.build.core_sha256 = std::string(64, 'c');
   r.build.plugin_api_sha256 = std::string(64, 'p');
   r.reference->exact_fallback = "the scene has no exact reference";
-  r.reference->adaptive = AdaptiveReferenceRecord{16, 0.01, 123.5, 1024, 7, 0.0223};
-  ControlTiming control;
+  r.reference->adaptive = record::AdaptiveReferenceRecord{16, 0.01, 123.5, 1024, 7, 0.0223};
+  record::ControlTiming control;
   control.technique = "none";
-  control.frame = Series::of({8, 8, 8});
-  control.frame_ratio = Series::of({1.25, 1.5, 1.375});
+  control.frame = record::Series::of({8, 8, 8});
+  control.frame_ratio = record::Series::of({1.25, 1.5, 1.375});
   r.timing->control = control;
-  for (ImageMetrics* m : {&r.metrics->visibility, &r.metrics->shaded}) {
+  for (record::ImageMetrics* m : {&r.metrics->visibility, &r.metrics->shaded}) {
     m->geometry = region(0.2);
     m->receivers = region(0.125);
     m->near_third = region(0.1);
     m->middle_third = region(0.2);
     m->far_third = region(0.3);
   }
-  SecondReferenceRecord second;
+  record::SecondReferenceRecord second;
   second.reference = *r.reference;
   second.visibility = r.metrics->visibility;
   r.second_reference = second;
-  StabilityRecord stability;
+  record::StabilityRecord stability;
   stability.max_rmse = 0.1;
   stability.flicker_factor = 2;
   stability.stiff_threshold = 1;
-  stability.flicker = FlickerRecord{3, 0.25, 0.01, 0.1, 0.2, 0.05, 1, 0.01, 0.1, 0.2, 0.05};
-  SensitivityRecord sensitivity;
+  stability.flicker = record::FlickerRecord{3, 0.25, 0.01, 0.1, 0.2, 0.05, 1, 0.01, 0.1, 0.2, 0.05};
+  record::SensitivityRecord sensitivity;
   sensitivity.reference_relative = 0.5;
   sensitivity.error = "the perturbed variant failed";
   stability.sensitivity["light_size"] = sensitivity;
   r.stability = stability;
-  ClassesRecord classes;
+  record::ClassesRecord classes;
   classes.counts = {{{90, 10, 0}, {30, 50, 20}, {0, 0, 100}}};
   r.classes = classes;
   r.child_stderr = {"Segmentation fault"};

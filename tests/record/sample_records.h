@@ -14,15 +14,16 @@ namespace sb::test {
 
 // A record of `status` with every identifying member filled in as `run`
 // fills it, and nothing measured: callers add timing, metrics, images.
-inline JobRecord identity_record(const std::string& scene_variant, const std::string& resolution,
-                                 const std::string& technique_variant,
-                                 JobStatus status = JobStatus::Ok) {
-  JobRecord r;
+inline record::JobRecord identity_record(const std::string& scene_variant,
+                                         const std::string& resolution,
+                                         const std::string& technique_variant,
+                                         record::JobStatus status = record::JobStatus::Ok) {
+  record::JobRecord r;
   r.run_id = "synthetic";
   r.experiment = "synthetic";
   r.config = "synthetic.json";
   r.config_hash = "0123456789abcdef";
-  r.job_id = job_id(scene_variant, resolution, technique_variant);
+  r.job_id = core::job_id(scene_variant, resolution, technique_variant);
   r.spec_hash = "fedcba9876543210";
   r.scene_variant = scene_variant;
   r.technique_variant = technique_variant;
@@ -39,11 +40,11 @@ inline JobRecord identity_record(const std::string& scene_variant, const std::st
   r.gl_version = "4.5 (Core Profile) Mesa";
   r.timing_source = "cpu_glfinish";
   r.host.hardware_threads = 2;
-  r.host.cpu = CpuRecord{"Synthetic CPU", {"sse4.2", "avx", "avx2", "fma"}, 2};
+  r.host.cpu = record::CpuRecord{"Synthetic CPU", {"sse4.2", "avx", "avx2", "fma"}, 2};
   r.host.os = "Debian GNU/Linux 12 (bookworm)";
-  r.host.fingerprint = host_fingerprint(r.host, r.gl_renderer, r.gl_version);
+  r.host.fingerprint = record::host_fingerprint(r.host, r.gl_renderer, r.gl_version);
   r.build.version = "0.1.0";
-  r.build.fingerprint = build_fingerprint(r.build);
+  r.build.fingerprint = record::build_fingerprint(r.build);
   r.status = status;
   r.finished_at = "2026-12-01T00:00:00Z";
   return r;
@@ -51,41 +52,42 @@ inline JobRecord identity_record(const std::string& scene_variant, const std::st
 
 // Timing of a coarse run: frame and technique samples, the shared passes
 // the rest of each frame (three quarters G-buffer, a quarter shading).
-inline TimingRecord coarse_timing(const std::vector<double>& frame,
-                                  const std::vector<double>& technique) {
-  TimingRecord t;
+inline record::TimingRecord coarse_timing(const std::vector<double>& frame,
+                                          const std::vector<double>& technique) {
+  record::TimingRecord t;
   t.warmup_frames = 1;
   t.timed_frames = static_cast<int>(frame.size());
-  t.frame = Series::of(frame);
-  t.technique = Series::of(technique);
+  t.frame = record::Series::of(frame);
+  t.technique = record::Series::of(technique);
   std::vector<double> gbuffer, shading;
   for (size_t i = 0; i < frame.size() && i < technique.size(); ++i) {
     gbuffer.push_back(0.75 * (frame[i] - technique[i]));
     shading.push_back(0.25 * (frame[i] - technique[i]));
   }
-  t.shared["gbuffer"] = Series::of(gbuffer);
-  t.shared["shading"] = Series::of(shading);
+  t.shared["gbuffer"] = record::Series::of(gbuffer);
+  t.shared["shading"] = record::Series::of(shading);
   return t;
 }
 
 // Per-pass detail as `run --pass-timing fine` adds it: `passes` in order,
 // each with its samples.
 inline void add_fine_timing(
-    TimingRecord& t, const std::vector<std::pair<std::string, std::vector<double>>>& passes) {
-  FineTiming fine;
+    record::TimingRecord& t,
+    const std::vector<std::pair<std::string, std::vector<double>>>& passes) {
+  record::FineTiming fine;
   std::vector<double> sum;
   for (const auto& [name, samples] : passes) {
     fine.pass_order.push_back(name);
-    fine.passes[name] = Series::of(samples);
+    fine.passes[name] = record::Series::of(samples);
     sum.resize(std::max(sum.size(), samples.size()));
     for (size_t i = 0; i < samples.size(); ++i) sum[i] += samples[i];
   }
   fine.frames = static_cast<int>(sum.size());
-  fine.technique = Series::of(sum);
+  fine.technique = record::Series::of(sum);
   std::vector<double> frame = sum;
   for (size_t i = 0; i < frame.size() && i < t.frame.samples.size(); ++i)
     frame[i] += t.frame.samples[i] - t.technique.samples[i];
-  fine.frame = Series::of(frame);
+  fine.frame = record::Series::of(frame);
   t.pass_timing = "fine";
   t.fine = std::move(fine);
 }

@@ -16,6 +16,24 @@
 #include "sample_records.h"
 
 namespace sb {
+
+using record::build_fingerprint;
+using record::BuildRecord;
+using record::CpuRecord;
+using record::field_differences;
+using record::GlStack;
+using record::host_fingerprint;
+using record::host_fingerprint_fields;
+using record::HostRecord;
+using record::JobRecord;
+using record::kCpuIsaFeatures;
+using record::parse_gl_stack;
+using record::RecordError;
+using run::cpuinfo_model_name;
+using run::describe_build;
+using run::describe_host;
+using run::os_release_pretty_name;
+
 namespace {
 
 using json = nlohmann::json;

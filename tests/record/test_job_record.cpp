@@ -17,6 +17,19 @@
 #include "sample_records.h"
 
 namespace sb {
+
+using core::InputError;
+using record::AdaptiveReferenceRecord;
+using record::BuiltScene;
+using record::ClassesRecord;
+using record::JobRecord;
+using record::JobStatus;
+using record::MetricPath;
+using record::PluginRecord;
+using record::RecordError;
+using record::SecondReferenceRecord;
+using results::read_job_records;
+
 namespace {
 
 using json = nlohmann::json;

@@ -14,6 +14,21 @@
 #include "record/record_schema.h"
 
 namespace sb {
+
+using record::Fields;
+using record::JobRecord;
+using record::plan_difference;
+using record::plan_pointers;
+using record::plan_schema_markdown;
+using record::PlanRecord;
+using record::pointer_matches;
+using record::read_record;
+using record::record_pointers;
+using record::record_schema_markdown;
+using record::RecordError;
+using record::RecordPointers;
+using record::write_record;
+
 namespace {
 
 using json = nlohmann::json;

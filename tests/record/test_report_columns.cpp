@@ -15,6 +15,23 @@
 #include "sample_records.h"
 
 namespace sb {
+
+using record::ClassesRecord;
+using record::ControlTiming;
+using record::JobRecord;
+using record::JobStatus;
+using record::MetricsRecord;
+using record::ReferenceRecord;
+using record::RegionStats;
+using record::SecondReferenceRecord;
+using record::Series;
+using results::make_csv;
+using results::make_markdown;
+using results::reference_label;
+using results::report_column;
+using results::report_columns;
+using results::write_html_report;
+
 namespace {
 
 std::vector<JobRecord> records() {

@@ -11,6 +11,11 @@
 #include "sample_records.h"
 
 namespace sb {
+
+using record::JobRecord;
+using record::rerun_reason;
+using record::spec_changes;
+
 namespace {
 
 using json = nlohmann::json;

@@ -15,6 +15,20 @@
 #include "sample_records.h"
 
 namespace sb {
+
+using record::FlickerRecord;
+using record::JobRecord;
+using record::JobStatus;
+using record::MetricsRecord;
+using record::SensitivityRecord;
+using record::StabilityRecord;
+using record::VisibilityCheckRecord;
+using results::make_markdown;
+using results::stability_cell;
+using results::stability_table;
+using results::StabilityCell;
+using results::StabilityVerdict;
+
 namespace {
 
 JobRecord measured(const std::string& scene, const std::string& technique, double rmse,

@@ -32,7 +32,9 @@ Settings adaptive(int spp, double target, int pilot, uint64_t seed) {
   return s;
 }
 
-bool covered(const sb::ImageF& positions, size_t i) { return positions.data[i * 4 + 3] > 0.5f; }
+bool covered(const sb::core::ImageF& positions, size_t i) {
+  return positions.data[i * 4 + 3] > 0.5f;
+}
 
 // Per pixel, the mean and variance of the adaptive estimate over `seeds`
 // seeds.
@@ -40,7 +42,7 @@ struct OverSeeds {
   std::vector<double> mean, variance;
 };
 
-OverSeeds over_seeds(const sb::Scene& scene, const sb::reference::GBuffer& g, int spp,
+OverSeeds over_seeds(const sb::core::Scene& scene, const sb::reference::GBuffer& g, int spp,
                      double target, int pilot, int seeds) {
   const size_t n = g.positions.pixel_count();
   std::vector<double> sum(n, 0.0), sum2(n, 0.0);
@@ -65,7 +67,7 @@ OverSeeds over_seeds(const sb::Scene& scene, const sb::reference::GBuffer& g, in
 // - exact) / its standard error. Unbiased estimates give chi²/n = mean z²
 // near 1 (the 189 pixels' own sampling: about ±0.1), and no |z| beyond 5.
 void expect_unbiased_below_the_full_count(int pilot) {
-  const sb::Scene scene = sbtest::sphere_over_plane();
+  const sb::core::Scene scene = sbtest::sphere_over_plane();
   const sb::reference::GBuffer g = sb::reference::trace_gbuffer(scene, 48, 36);
   Settings exact_settings;
   exact_settings.exact = true;
@@ -119,9 +121,9 @@ TEST(ReferenceAdaptiveBias, TheStopBoundsAreTheMaximaTheyClaim) {
 // The window's pixels around (cx, cy), cut out of a G-buffer: the reference
 // of a small image is the same per pixel (its rays depend on the pixel's
 // position, normal and index in the image, which the seed stands in for).
-sb::ImageF crop(const sb::ImageF& img, int cx, int cy, int half) {
+sb::core::ImageF crop(const sb::core::ImageF& img, int cx, int cy, int half) {
   const int side = 2 * half + 1;
-  sb::ImageF out(side, side, img.channels, 0.0f);
+  sb::core::ImageF out(side, side, img.channels, 0.0f);
   for (int y = 0; y < side; ++y)
     for (int x = 0; x < side; ++x)
       for (int c = 0; c < img.channels; ++c)
@@ -140,7 +142,7 @@ sb::ImageF crop(const sb::ImageF& img, int cx, int cy, int half) {
 // bias is within stop_bias_bound(4), and the root mean square error its stops
 // add within stop_rms_bound(4) (this speck makes both bounds nearly tight).
 TEST(ReferenceAdaptiveBias, AWindowStopReportsAndStaysWithinItsBounds) {
-  sb::Scene scene = sbtest::sphere_over_plane();
+  sb::core::Scene scene = sbtest::sphere_over_plane();
   scene.meshes.resize(1);  // the ground alone
   scene.light.half_v = {0, 0, 0};
   const sb::reference::GBuffer plain = sb::reference::trace_gbuffer(scene, 96, 72);

@@ -33,17 +33,17 @@ constexpr int kWidth = 160, kHeight = 120;
 constexpr int kSpp = 256;
 
 // The same faces wound the other way.
-sb::Mesh inverted(sb::Mesh m) {
+sb::core::Mesh inverted(sb::core::Mesh m) {
   for (size_t i = 0; i + 2 < m.indices.size(); i += 3)
     std::swap(m.indices[i + 1], m.indices[i + 2]);
   return m;
 }
 
 // The parts as one mesh.
-sb::Mesh merged(const std::string& name, const std::vector<sb::Mesh>& parts) {
-  sb::Mesh out;
+sb::core::Mesh merged(const std::string& name, const std::vector<sb::core::Mesh>& parts) {
+  sb::core::Mesh out;
   out.name = name;
-  for (const sb::Mesh& m : parts) {
+  for (const sb::core::Mesh& m : parts) {
     const auto base = uint32_t(out.positions.size());
     out.positions.insert(out.positions.end(), m.positions.begin(), m.positions.end());
     for (const uint32_t i : m.indices) out.indices.push_back(base + i);
@@ -51,11 +51,13 @@ sb::Mesh merged(const std::string& name, const std::vector<sb::Mesh>& parts) {
   return out;
 }
 
-sb::Scene lit_from_above(sb::Mesh caster) { return sbtest::over_plane(std::move(caster)); }
+sb::core::Scene lit_from_above(sb::core::Mesh caster) {
+  return sbtest::over_plane(std::move(caster));
+}
 
 // Two cubes over the ground, the smaller wound inward: the mesh's total
 // signed volume is the larger one's, positive.
-sb::Scene two_cubes_one_inverted() {
+sb::core::Scene two_cubes_one_inverted() {
   return lit_from_above(
       merged("cubes", {sb::make_box("big", {-1.0f, 1.4f, 0.0f}, glm::vec3(0.5f)),
                        inverted(sb::make_box("small", {0.9f, 1.2f, 0.3f}, glm::vec3(0.3f)))}));
@@ -65,8 +67,8 @@ sb::Scene two_cubes_one_inverted() {
 // light inside it, around an outward cube on its floor and a floating
 // hollow box whose cavity is wound inward (as a solid with a cavity is):
 // the room's negative volume outweighs the rest.
-sb::Scene room_around_a_cube_and_a_hollow_box() {
-  sb::Scene s;
+sb::core::Scene room_around_a_cube_and_a_hollow_box() {
+  sb::core::Scene s;
   s.meshes.push_back(
       merged("room", {inverted(sb::make_box("walls", {0, 3, 0}, {4, 3, 4})),
                       sb::make_box("cube", {0.8f, 0.5f, 0.2f}, glm::vec3(0.5f)),
@@ -84,7 +86,7 @@ sb::Scene room_around_a_cube_and_a_hollow_box() {
 // A floating box with a smaller one resting on it, face to face without
 // sharing an edge, and a third pushed halfway into its side, both wound
 // inward.
-sb::Scene touching_and_interpenetrating_boxes() {
+sb::core::Scene touching_and_interpenetrating_boxes() {
   return lit_from_above(merged(
       "stack", {sb::make_box("base", {0.0f, 0.9f, 0.0f}, {0.8f, 0.3f, 0.6f}),
                 inverted(sb::make_box("on_top", {0.2f, 1.5f, 0.1f}, glm::vec3(0.3f))),
@@ -97,7 +99,7 @@ bool covered(const ref::GBuffer& g, size_t i) { return g.positions.data[i * 4 + 
 // compares them (4 standard errors, one sample's weight where the stated
 // error is 0, on all but 0.1% of the covered pixels), and no pixel off by
 // more than 0.25, several times what 256 samples can stray.
-void expect_exact_agrees(const sb::Scene& scene, const std::string& label) {
+void expect_exact_agrees(const sb::core::Scene& scene, const std::string& label) {
   const ref::GBuffer g = ref::trace_gbuffer(scene, kWidth, kHeight);
   Settings exact_settings;
   exact_settings.exact = true;
@@ -130,7 +132,7 @@ void expect_exact_agrees(const sb::Scene& scene, const std::string& label) {
 // stops only when proven: lit by sees_whole_light, occluded by
 // hides_whole_light. Every pixel that stopped there with V = 1 or V = 0 must
 // have the full count's very value; both proofs must have stopped many.
-void expect_proofs_hold(const sb::Scene& scene, const std::string& label) {
+void expect_proofs_hold(const sb::core::Scene& scene, const std::string& label) {
   const ref::GBuffer g = ref::trace_gbuffer(scene, kWidth, kHeight);
   const Result full = ref::compute(scene, g.positions, g.normals, {kSpp, 1});
   Settings s(kSpp, 1);
@@ -176,7 +178,7 @@ TEST(ReferenceClosedParts, ExactAgreesWithMonteCarloOnPartsWoundBothWays) {
 // The same under a linear light (the square's u side), whose exact form
 // (hidden intervals) applies the same rule.
 TEST(ReferenceClosedParts, ExactAgreesWithMonteCarloOnPartsWoundBothWaysUnderASegment) {
-  sb::Scene scene = two_cubes_one_inverted();
+  sb::core::Scene scene = two_cubes_one_inverted();
   scene.light.half_v = {0, 0, 0};
   expect_exact_agrees(scene, "two cubes, one inverted, segment light");
 }
@@ -207,14 +209,14 @@ TEST(ReferenceClosedParts, AdaptiveProofsHoldOnTouchingParts) {
 // random points of the ground or the room's floor, beside and under the
 // parts.
 TEST(ReferenceClosedParts, KeepingTheSidesThatFaceThePointChangesNothing) {
-  const std::pair<std::string, sb::Scene> scenes[] = {
+  const std::pair<std::string, sb::core::Scene> scenes[] = {
       {"two cubes, one inverted", two_cubes_one_inverted()},
       {"room, cube, hollow box", room_around_a_cube_and_a_hollow_box()},
       {"touching boxes", touching_and_interpenetrating_boxes()}};
   for (const auto& [label, scene] : scenes) {
     SCOPED_TRACE(label);
     std::vector<bool> closed, open(scene.meshes.size(), false);
-    for (const sb::Mesh& m : scene.meshes) closed.push_back(m.casts_shadow);
+    for (const sb::core::Mesh& m : scene.meshes) closed.push_back(m.casts_shadow);
     const ref::ExactVisibility culled(scene, closed), all(scene, open);
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> xz(-2.5, 2.5);
@@ -235,14 +237,15 @@ TEST(ReferenceClosedParts, KeepingTheSidesThatFaceThePointChangesNothing) {
 // small box. (A silhouette pixel that lands on a back face, or a point of
 // one part inside another, starts its rays inside a solid like this.)
 TEST(ReferenceClosedParts, APointInsideOnePartBehindAnotherIsInItsUmbra) {
-  sb::Scene scene;
+  sb::core::Scene scene;
   scene.light = sbtest::square_light();
   scene.meshes.push_back(merged("nested", {sb::make_box("large", {0, 2, 0}, {1.5f, 1.0f, 1.5f}),
                                            sb::make_box("small", {0, 2.8f, 0}, glm::vec3(0.05f))}));
   std::vector<glm::vec3> points;
   for (int i = -2; i <= 2; ++i)
     for (int j = -2; j <= 2; ++j) points.push_back({0.04f * float(i), 1.8f, 0.05f * float(j)});
-  sb::ImageF positions(int(points.size()), 1, 4, 1.0f), normals(int(points.size()), 1, 3, 0.0f);
+  sb::core::ImageF positions(int(points.size()), 1, 4, 1.0f),
+      normals(int(points.size()), 1, 3, 0.0f);
   for (size_t i = 0; i < points.size(); ++i) {
     for (int c = 0; c < 3; ++c) positions.data[i * 4 + size_t(c)] = points[i][c];
     normals.data[i * 3 + 1] = 1.0f;  // up, towards the light
@@ -269,12 +272,13 @@ TEST(ReferenceClosedParts, APointInsideOnePartBehindAnotherIsInItsUmbra) {
 // from inside) would read V = 1: a part the light touches keeps every
 // triangle.
 TEST(ReferenceClosedParts, APartTheLightPokesOutOfKeepsEveryTriangle) {
-  sb::Scene scene;
+  sb::core::Scene scene;
   scene.light = sbtest::square_light();
   scene.meshes.push_back(sb::make_box("housing", {-1.4f, 5.5f, 0}, {1.6f, 6.5f, 3.0f}));
   const std::vector<glm::vec3> points{
       {-0.9f, 0, 0.3f}, {-0.7f, 0, 0.3f}, {-0.5f, 0, 0.3f}, {-0.3f, 0, 0.3f}, {-0.1f, 0, 0.3f}};
-  sb::ImageF positions(int(points.size()), 1, 4, 1.0f), normals(int(points.size()), 1, 3, 0.0f);
+  sb::core::ImageF positions(int(points.size()), 1, 4, 1.0f),
+      normals(int(points.size()), 1, 3, 0.0f);
   for (size_t i = 0; i < points.size(); ++i) {
     for (int c = 0; c < 3; ++c) positions.data[i * 4 + size_t(c)] = points[i][c];
     normals.data[i * 3 + 1] = 1.0f;

@@ -19,15 +19,15 @@
 
 namespace {
 
-sb::Scene build(const std::string& type_name, nlohmann::json params) {
-  const sb::SceneType* type = sb::find_scene_type(type_name);
+sb::core::Scene build(const std::string& type_name, nlohmann::json params) {
+  const sb::core::SceneType* type = sb::core::find_scene_type(type_name);
   if (!type) throw std::runtime_error("no scene type " + type_name);
   for (const auto& p : type->params)
     if (!params.contains(p.name) && !p.default_value.is_null()) params[p.name] = p.default_value;
-  return type->build(sb::Params(params));
+  return type->build(sb::core::Params(params));
 }
 
-void expect_agreement(const sb::Scene& scene, const std::string& label) {
+void expect_agreement(const sb::core::Scene& scene, const std::string& label) {
   const sb::reference::GBuffer g = sb::reference::trace_gbuffer(scene, 160, 120);
   sb::reference::Settings exact_settings;
   exact_settings.exact = true;

@@ -20,8 +20,8 @@ namespace {
 using sb::reference::ExactVisibility;
 
 // An axis-aligned box, outward counter-clockwise faces.
-sb::Mesh box(const std::string& name, glm::vec3 lo, glm::vec3 hi) {
-  sb::Mesh m;
+sb::core::Mesh box(const std::string& name, glm::vec3 lo, glm::vec3 hi) {
+  sb::core::Mesh m;
   m.name = name;
   for (int i = 0; i < 8; ++i)
     m.positions.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
@@ -34,7 +34,7 @@ sb::Mesh box(const std::string& name, glm::vec3 lo, glm::vec3 hi) {
   return m;
 }
 
-double signed_volume(const sb::Mesh& m) {
+double signed_volume(const sb::core::Mesh& m) {
   double v = 0.0;
   for (size_t i = 0; i < m.indices.size(); i += 3)
     v += glm::dot(glm::dvec3(m.positions[m.indices[i]]),
@@ -44,8 +44,8 @@ double signed_volume(const sb::Mesh& m) {
 }
 
 // The light of test_scenes.h: 2×2 at y = 10, facing down.
-sb::Scene plate_scene(bool with_ground) {
-  sb::Scene s;
+sb::core::Scene plate_scene(bool with_ground) {
+  sb::core::Scene s;
   s.light = sbtest::square_light();
   s.light.target = {0, 0, 0};
   // One open quad: a closed box's sides and bottom would widen its shadow
@@ -70,7 +70,7 @@ double plate_visibility(double x, double y, double z) {
 }
 
 TEST(ReferenceExact, APlateParallelToTheLightMatchesTheClosedForm) {
-  const sb::Scene scene = plate_scene(true);
+  const sb::core::Scene scene = plate_scene(true);
   {
     const ExactVisibility exact(scene);
     EXPECT_EQ(exact.unsupported(), "");
@@ -96,7 +96,7 @@ TEST(ReferenceExact, APlateParallelToTheLightMatchesTheClosedForm) {
 // the light's plane in a line x = const, and V is the part of the light on
 // its upper side.
 TEST(ReferenceExact, TheHorizonAloneHidesTheLightBelowTheTangentPlane) {
-  sb::Scene scene;
+  sb::core::Scene scene;
   scene.light = sbtest::square_light();
   scene.light.target = {0, 0, 0};
   const ExactVisibility exact(scene);
@@ -136,12 +136,12 @@ bool crosses(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& a, cons
 // midpoint rule, whose error is a fraction of a cell row per edge that
 // crosses the light: here it agreed to 3e-5).
 TEST(ReferenceExact, RandomTrianglesAgreeWithADenseRayCount) {
-  sb::Scene scene;
+  sb::core::Scene scene;
   scene.light = sbtest::square_light();
   scene.light.target = {0, 0, 0};
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> xz(-1.5f, 1.5f), y(3.0f, 8.0f), d(-0.8f, 0.8f);
-  sb::Mesh m;
+  sb::core::Mesh m;
   m.name = "triangles";
   for (int i = 0; i < 12; ++i) {
     const glm::vec3 c(xz(rng), y(rng), xz(rng));
@@ -179,12 +179,12 @@ TEST(ReferenceExact, RandomTrianglesAgreeWithADenseRayCount) {
 // A closed box seen from points around it: culling the triangles that face
 // away from the point changes nothing.
 TEST(ReferenceExact, ClosedCastersKeepOnlyTheirNearSideWhicheverWayTheyWind) {
-  sb::Scene scene;
+  sb::core::Scene scene;
   scene.light = sbtest::square_light();
   scene.light.target = {0, 0, 0};
   scene.meshes.push_back(box("box", {-0.5f, 3.0f, -0.3f}, {0.6f, 4.5f, 0.7f}));
   ASSERT_GT(signed_volume(scene.meshes[0]), 0.0) << "faces must wind outwards";
-  sb::Scene inward = scene;  // the same box wound the other way
+  sb::core::Scene inward = scene;  // the same box wound the other way
   for (size_t i = 0; i + 2 < inward.meshes[0].indices.size(); i += 3)
     std::swap(inward.meshes[0].indices[i + 1], inward.meshes[0].indices[i + 2]);
   const ExactVisibility all(scene, {false}), culled(scene, {true}), culled_inward(inward, {true});
@@ -204,7 +204,7 @@ TEST(ReferenceExact, APointInsideAClosedCasterIsInItsUmbraAsEveryShadowRayIs) {
   // there hits the mesh from inside. Seen from inside, a closed caster has
   // no near side to keep; the segment to the light's centre leaves it, so
   // the exact reference covers the whole light too.
-  sb::Scene scene;
+  sb::core::Scene scene;
   scene.light = sbtest::square_light();
   scene.light.target = {0, 0, 0};
   scene.meshes.push_back(box("box", {-0.5f, 0.0f, -0.5f}, {0.5f, 1.0f, 0.5f}));
@@ -217,17 +217,17 @@ TEST(ReferenceExact, APointInsideAClosedCasterIsInItsUmbraAsEveryShadowRayIs) {
 }
 
 TEST(ReferenceExact, MasksAnalyticShapesAndLightsOfNoAreaAreNamedAsUnsupported) {
-  sb::Scene masked = plate_scene(false);
-  masked.meshes[0].alpha_mode = sb::AlphaMode::Mask;
+  sb::core::Scene masked = plate_scene(false);
+  masked.meshes[0].alpha_mode = sb::core::AlphaMode::Mask;
   masked.meshes[0].base_color_texture = 0;
   EXPECT_NE(ExactVisibility(masked).unsupported().find("'plate' is alpha-masked"),
             std::string::npos);
-  sb::Scene analytic = plate_scene(false);
-  analytic.meshes[0].analytic = sb::AnalyticShape::sphere({0, 4, 0}, 1.0f);
+  sb::core::Scene analytic = plate_scene(false);
+  analytic.meshes[0].analytic = sb::core::AnalyticShape::sphere({0, 4, 0}, 1.0f);
   EXPECT_NE(ExactVisibility(analytic).unsupported().find("analytic"), std::string::npos);
   // A point light (a segment, one half zero, has an exact form:
   // test_linear_light.cpp).
-  sb::Scene point = plate_scene(false);
+  sb::core::Scene point = plate_scene(false);
   point.light.half_u = {0, 0, 0};
   point.light.half_v = {0, 0, 0};
   EXPECT_NE(ExactVisibility(point).unsupported().find("no area"), std::string::npos);
@@ -239,7 +239,7 @@ TEST(ReferenceExact, MasksAnalyticShapesAndLightsOfNoAreaAreNamedAsUnsupported) 
 // must hold where the plate's projection misses the light by more than its
 // 1e-5 safety margin (the ground the point lies on never defeats it).
 TEST(ReferenceExact, SeesTheWholeLightExactlyWhereThePlateHidesNothingOfIt) {
-  sb::Scene scene = plate_scene(true);
+  sb::core::Scene scene = plate_scene(true);
   scene.meshes[1].casts_shadow = true;
   const ExactVisibility exact(scene);
   int proven = 0, hidden = 0;
@@ -268,7 +268,7 @@ TEST(ReferenceExact, SeesTheWholeLightExactlyWhereThePlateHidesNothingOfIt) {
 
 // Below the tangent plane the surface hides the light itself; no caster.
 TEST(ReferenceExact, SeesTheWholeLightOnlyWhenAllOfItIsAboveTheSurface) {
-  sb::Scene scene;
+  sb::core::Scene scene;
   scene.light = sbtest::square_light();
   const ExactVisibility exact(scene);
   const glm::dvec3 surface(0.3, 2.0, -0.4), up(0, 1, 0);
@@ -293,7 +293,7 @@ TEST(ReferenceExact, SeesTheWholeLightPastABlockerOnlyBeyondTheMargin) {
   for (const auto& [offset, expected] :
        {std::pair{1e-2, true}, {1e-4, true}, {3e-6, false}, {-1e-9, false}, {-1e-2, false}}) {
     const float x0 = float(side + offset);
-    sb::Scene scene;
+    sb::core::Scene scene;
     scene.light = sbtest::square_light();
     scene.meshes.push_back(sbtest::quad("blocker", {x0, 5, -0.2f}, {x0 + 0.3f, 5, -0.2f},
                                         {x0 + 0.3f, 5, 0.2f}, {x0, 5, 0.2f}, true));
@@ -310,7 +310,7 @@ TEST(ReferenceExact, SeesTheWholeLightPastABlockerOnlyBeyondTheMargin) {
 TEST(ReferenceExact, SeesTheWholeLightNotPastABlockerAtTheLightsEdgeSeenAtAGrazingAngle) {
   const glm::dvec3 surface(-20, 0, 0), origin(-20, 1e-4, 0), up(0, 1, 0);
   const auto blocker_from = [](float x0) {
-    sb::Scene scene;
+    sb::core::Scene scene;
     scene.light = sbtest::square_light();
     scene.meshes.push_back(sbtest::quad("blocker", {x0, 9.999f, -0.5f}, {1.5f, 9.999f, -0.5f},
                                         {1.5f, 9.999f, 0.5f}, {x0, 9.999f, 0.5f}, true));
@@ -325,11 +325,11 @@ TEST(ReferenceExact, SeesTheWholeLightNotPastABlockerAtTheLightsEdgeSeenAtAGrazi
 }
 
 TEST(ReferenceExact, SeesTheWholeLightNeverForASegmentOrAPointLight) {
-  sb::Scene segment;
+  sb::core::Scene segment;
   segment.light = sbtest::square_light();
   segment.light.half_v = {0, 0, 0};
   EXPECT_FALSE(ExactVisibility(segment).sees_whole_light({0, 0, 0}, {0, 1e-4, 0}, {0, 1, 0}));
-  sb::Scene point;
+  sb::core::Scene point;
   point.light = sbtest::square_light();
   point.light.half_u = {0, 0, 0};
   point.light.half_v = {0, 0, 0};
@@ -381,7 +381,7 @@ double box_umbra_margin(const glm::dvec3& p, const glm::dvec3& lo, const glm::dv
 // whole light, and must hold where it covers it with room to spare.
 TEST(ReferenceExact, HidesTheWholeLightExactlyWhereABoxCoversAllOfIt) {
   const glm::dvec3 lo(-1.5, 3.0, -1.2), hi(1.7, 3.6, 1.4);
-  sb::Scene scene;
+  sb::core::Scene scene;
   scene.light = sbtest::square_light();
   scene.meshes.push_back(box("box", glm::vec3(lo), glm::vec3(hi)));
   scene.meshes.push_back(
@@ -412,7 +412,7 @@ TEST(ReferenceExact, HidesTheWholeLightExactlyWhereABoxCoversAllOfIt) {
 // The horizon alone, a point inside a closed caster, and what proves
 // nothing: an open quad however large, a light partly below the horizon.
 TEST(ReferenceExact, HidesTheWholeLightBelowTheHorizonInsideACasterAndNowhereElse) {
-  sb::Scene scene;
+  sb::core::Scene scene;
   scene.light = sbtest::square_light();
   scene.meshes.push_back(box("box", {-0.5f, 1.0f, -0.5f}, {0.5f, 2.0f, 0.5f}));
   scene.meshes.push_back(

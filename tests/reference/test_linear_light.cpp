@@ -31,13 +31,13 @@
 
 namespace {
 
-using sb::ImageF;
+using sb::core::ImageF;
 using sb::reference::ExactVisibility;
 namespace ref = sb::reference;
 
 // A segment light, `half` along half_u ([w, 0]) or half_v ([0, h]).
-sb::AreaLight segment(glm::vec3 center, glm::vec3 half, bool along_v) {
-  sb::AreaLight l;
+sb::core::AreaLight segment(glm::vec3 center, glm::vec3 half, bool along_v) {
+  sb::core::AreaLight l;
   l.center = center;
   l.half_u = along_v ? glm::vec3(0.0f) : half;
   l.half_v = along_v ? half : glm::vec3(0.0f);
@@ -47,7 +47,7 @@ sb::AreaLight segment(glm::vec3 center, glm::vec3 half, bool along_v) {
 
 // A one-row G-buffer of ground points facing up.
 struct Ground {
-  ImageF positions, normals;
+  sb::core::ImageF positions, normals;
   explicit Ground(const std::vector<glm::vec3>& points)
       : positions(int(points.size()), 1, 4, 0.0f), normals(int(points.size()), 1, 3, 0.0f) {
     for (size_t i = 0; i < points.size(); ++i) {
@@ -63,8 +63,8 @@ struct Ground {
 // ways: a half-plane for every ray in these tests. One open quad.
 struct HalfPlane {
   std::string name;
-  sb::Scene scene;
-  HalfPlane(std::string label, const sb::AreaLight& light, glm::vec3 edge, glm::vec3 along,
+  sb::core::Scene scene;
+  HalfPlane(std::string label, const sb::core::AreaLight& light, glm::vec3 edge, glm::vec3 along,
             glm::vec3 across)
       : name(std::move(label)) {
     scene.light = light;
@@ -285,8 +285,8 @@ TEST(referenceLinearLight, StratifyingAlongTheSegmentCutsTheError) {
 // Spheres and boxes (closed: only their near sides are kept) over a ground
 // plane, under a segment along half_u and one along half_v; G-buffers from
 // primary rays.
-void expect_agreement(const sb::AreaLight& light, const std::string& label) {
-  sb::Scene s;
+void expect_agreement(const sb::core::AreaLight& light, const std::string& label) {
+  sb::core::Scene s;
   s.meshes.push_back(sb::make_ground_plane("ground", {0, 0, 0}, 8.0f));
   s.meshes.push_back(sb::make_uv_sphere("sphere", {-1.0f, 1.2f, 0.3f}, 0.7f, 24, 16));
   s.meshes.push_back(sb::make_uv_sphere("small sphere", {1.3f, 0.8f, -0.9f}, 0.45f, 20, 12));
@@ -331,7 +331,7 @@ TEST(referenceLinearLight, ExactAgreesWithMonteCarloOnSpheresAndBoxes) {
 // From a point on the segment's line there is no plane through it: the rays
 // all run along the line, and the nearest crossing hides the rest.
 TEST(referenceLinearLight, APointOnTheSegmentsLineSeesItEndOn) {
-  sb::Scene s;
+  sb::core::Scene s;
   s.light = segment({0, 10, 0}, {1, 0, 0}, false);  // x from -1 to 1 at y = 10
   // A vertical square in the plane x = x0 around the line.
   const auto wall = [](float x0) {
@@ -368,7 +368,7 @@ TEST(referenceLinearLight, HiddenIntervalsAndTheirUnion) {
   EXPECT_NEAR(ExactVisibility::union_length({{0.0, 0.3}, {0.3 + 1e-6, 1.0}}), 1.0 - 1e-6, 1e-15);
   // Two plates side by side, seen from below the segment's centre: each
   // hides the part of the segment it spans, scaled by 2 from y = 5 to y = 10.
-  sb::Scene s;
+  sb::core::Scene s;
   s.light = segment({0, 10, 0}, {1, 0, 0}, false);
   s.meshes.push_back(
       sbtest::quad("a", {-0.4f, 5, -1}, {-0.1f, 5, -1}, {-0.1f, 5, 1}, {-0.4f, 5, 1}, true));
@@ -393,7 +393,7 @@ TEST(referenceLinearLight, HiddenIntervalsAndTheirUnion) {
 // The horizon alone: a segment tilted through the tangent plane is hidden
 // below it.
 TEST(referenceLinearLight, TheHorizonHidesThePartBelowTheTangentPlane) {
-  sb::Scene s;
+  sb::core::Scene s;
   s.light = segment({0, 1, 0}, {0, 2, 0}, false);  // from y = -1 to y = 3
   s.meshes.push_back(
       sbtest::quad("far away", {50, 0, 50}, {51, 0, 50}, {51, 1, 50}, {50, 1, 50}, true));
@@ -408,12 +408,12 @@ TEST(referenceLinearLight, TheHorizonHidesThePartBelowTheTangentPlane) {
 }
 
 TEST(referenceLinearLight, SegmentsAreExactAndPointsKeepTheirReason) {
-  const sb::Scene plate = half_planes()[0].scene;
+  const sb::core::Scene plate = half_planes()[0].scene;
   EXPECT_EQ(ExactVisibility::unsupported_reason(plate), "");
-  sb::Scene along_v = plate;
+  sb::core::Scene along_v = plate;
   along_v.light = segment({0, 10, 0}, {0, 0, 1}, true);
   EXPECT_EQ(ExactVisibility::unsupported_reason(along_v), "");
-  sb::Scene point = plate;
+  sb::core::Scene point = plate;
   point.light.half_u = point.light.half_v = glm::vec3(0.0f);
   ASSERT_TRUE(point.light.is_point());
   const std::string why = ExactVisibility::unsupported_reason(point);

@@ -16,7 +16,7 @@
 
 namespace {
 
-using sb::ImageF;
+using sb::core::ImageF;
 namespace ref = sb::reference;
 
 // ---- an occluder edge over a plane, solved exactly ---------------------------
@@ -46,7 +46,7 @@ double halfplane_area(double a, double b, double k) {
 // covering the half-plane a x + b z < 0, so its edge crosses the penumbra diagonally.
 struct EdgeScene {
   double a = std::cos(0.5), b = std::sin(0.5);
-  sb::Scene scene;
+  sb::core::Scene scene;
   EdgeScene() {
     scene.light = sbtest::square_light();
     scene.meshes.push_back(
@@ -66,8 +66,8 @@ struct EdgeScene {
 };
 
 // A hand-made G-buffer of ground points on [-1.5,1.5]^2, seen from above.
-std::pair<ImageF, ImageF> ground_gbuffer(int w, int h) {
-  ImageF pos(w, h, 4), nrm(w, h, 3);
+std::pair<sb::core::ImageF, sb::core::ImageF> ground_gbuffer(int w, int h) {
+  sb::core::ImageF pos(w, h, 4), nrm(w, h, 3);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       pos.at(x, y, 0) = -1.5f + 3.0f * (float(x) + 0.5f) / float(w);
@@ -80,7 +80,7 @@ std::pair<ImageF, ImageF> ground_gbuffer(int w, int h) {
 
 TEST(reference, HalfCoveredLightGivesOneHalf) {
   EdgeScene es;
-  ImageF pos(1, 1, 4), nrm(1, 1, 3);
+  sb::core::ImageF pos(1, 1, 4), nrm(1, 1, 3);
   pos.data = {0, 0, 0, 1};
   nrm.data = {0, 1, 0};
   const ref::Result r = ref::compute(es.scene, pos, nrm, {256, 1});
@@ -186,7 +186,7 @@ TEST(reference, LightBelowTheTangentPlaneIsOccludedByTheSurface) {
   EdgeScene es;
   es.scene.meshes[1].casts_shadow = false;  // nothing but the horizon
   const float h = 0.5f * es.scene.light.center.y;
-  ImageF pos(3, 1, 4), nrm(3, 1, 3);
+  sb::core::ImageF pos(3, 1, 4), nrm(3, 1, 3);
   // A wall point under the light's centre facing +x: half the light lies behind it.
   // A ground point seen from below (normal down): the light is entirely behind.
   // A ground point seen from above: fully lit.
@@ -204,20 +204,22 @@ TEST(reference, RejectsBadInput) {
   auto [pos, nrm] = ground_gbuffer(4, 3);
   EXPECT_THROW(ref::compute(es.scene, pos, nrm, {0, 1}), std::invalid_argument);
   EXPECT_THROW(ref::compute(es.scene, pos, nrm, {16, 1, "isa=avx9"}), std::invalid_argument);
-  EXPECT_THROW(ref::compute(es.scene, ImageF(4, 3, 3), nrm, {16, 1}), std::invalid_argument);
-  EXPECT_THROW(ref::compute(es.scene, pos, ImageF(5, 3, 3), {16, 1}), std::invalid_argument);
-  ImageF bad = pos;
+  EXPECT_THROW(ref::compute(es.scene, sb::core::ImageF(4, 3, 3), nrm, {16, 1}),
+               std::invalid_argument);
+  EXPECT_THROW(ref::compute(es.scene, pos, sb::core::ImageF(5, 3, 3), {16, 1}),
+               std::invalid_argument);
+  sb::core::ImageF bad = pos;
   bad.at(1, 1, 1) = std::numeric_limits<float>::infinity();
   EXPECT_THROW(ref::compute(es.scene, bad, nrm, {16, 1}), std::invalid_argument);
-  sb::Scene broken = es.scene;
+  sb::core::Scene broken = es.scene;
   broken.meshes[1].indices[2] = 99;
-  EXPECT_THROW(ref::compute(broken, pos, nrm, {16, 1}), sb::InputError);
+  EXPECT_THROW(ref::compute(broken, pos, nrm, {16, 1}), sb::core::InputError);
 }
 
 // ---- a sphere over a plane, positions by primary rays -------------------------
 
 TEST(reference, TraceGBufferSeesTheGround) {
-  sb::Scene s;
+  sb::core::Scene s;
   s.meshes.push_back(sbtest::quad("ground", {-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, false));
   s.camera.eye = {0, 5, 5};
   s.camera.target = {0, 0, 0};
@@ -240,7 +242,7 @@ TEST(reference, TraceGBufferSeesTheGround) {
 TEST(reference, TraceGBufferNormalsFaceTheCameraOnBackFaces) {
   // The same ground wound clockwise from above: its cross product points
   // down, away from the camera; the G-buffer's normal must still face it.
-  sb::Scene s;
+  sb::core::Scene s;
   s.meshes.push_back(sbtest::quad("ground", {-1, 0, -1}, {1, 0, -1}, {1, 0, 1}, {-1, 0, 1}, false));
   s.camera.eye = {0, 5, 5};
   s.camera.target = {0, 0, 0};
@@ -250,8 +252,8 @@ TEST(reference, TraceGBufferNormalsFaceTheCameraOnBackFaces) {
 }
 
 // RMS of v - v_ref over the penumbra of `mask` (default: of v_ref).
-double penumbra_rmse(const ImageF& v, const ImageF& v_ref, int* count = nullptr,
-                     const ImageF* mask = nullptr) {
+double penumbra_rmse(const sb::core::ImageF& v, const sb::core::ImageF& v_ref, int* count = nullptr,
+                     const sb::core::ImageF* mask = nullptr) {
   if (!mask) mask = &v_ref;
   double e2 = 0;
   int n = 0;
@@ -265,12 +267,12 @@ double penumbra_rmse(const ImageF& v, const ImageF& v_ref, int* count = nullptr,
   return n ? std::sqrt(e2 / n) : 0.0;
 }
 
-double penumbra_rms(const ImageF& se, const ImageF& v_ref) {
-  return penumbra_rmse(se, ImageF(se.width, se.height, 1, 0.0f), nullptr, &v_ref);
+double penumbra_rms(const sb::core::ImageF& se, const sb::core::ImageF& v_ref) {
+  return penumbra_rmse(se, sb::core::ImageF(se.width, se.height, 1, 0.0f), nullptr, &v_ref);
 }
 
 TEST(reference, StratifiedConvergence) {
-  const sb::Scene s = sbtest::sphere_over_plane();
+  const sb::core::Scene s = sbtest::sphere_over_plane();
   const ref::GBuffer g = ref::trace_gbuffer(s, 96, 72);
   const ref::Result r16 = ref::compute(s, g.positions, g.normals, {16, 3});
   const ref::Result r64 = ref::compute(s, g.positions, g.normals, {64, 3});
@@ -301,7 +303,7 @@ TEST(reference, StratifiedConvergence) {
 }
 
 TEST(reference, BitIdenticalForAnyThreadCount) {
-  const sb::Scene s = sbtest::sphere_over_plane();
+  const sb::core::Scene s = sbtest::sphere_over_plane();
   const ref::GBuffer g = ref::trace_gbuffer(s, 40, 30);
   const auto run = [&](size_t threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);

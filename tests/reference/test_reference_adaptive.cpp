@@ -27,12 +27,13 @@ using sb::reference::Settings;
 
 constexpr int kWidth = 160, kHeight = 120;
 
-sb::Scene build(const std::string& type_name, nlohmann::json params = nlohmann::json::object()) {
-  const sb::SceneType* type = sb::find_scene_type(type_name);
+sb::core::Scene build(const std::string& type_name,
+                      nlohmann::json params = nlohmann::json::object()) {
+  const sb::core::SceneType* type = sb::core::find_scene_type(type_name);
   if (!type) throw std::runtime_error("no scene type " + type_name);
   for (const auto& p : type->params)
     if (!params.contains(p.name) && !p.default_value.is_null()) params[p.name] = p.default_value;
-  return type->build(sb::Params(params));
+  return type->build(sb::core::Params(params));
 }
 
 Settings adaptive(int spp, double target, int pilot = 16) {
@@ -74,7 +75,8 @@ Agreement compare_with_full(const sb::reference::GBuffer& g, const Result& a, co
   return out;
 }
 
-void expect_agreement_with_full(const sb::Scene& scene, const std::string& label, int pilot = 16) {
+void expect_agreement_with_full(const sb::core::Scene& scene, const std::string& label,
+                                int pilot = 16) {
   const sb::reference::GBuffer g = sb::reference::trace_gbuffer(scene, kWidth, kHeight);
   const Result full = sb::reference::compute(scene, g.positions, g.normals, {256, 1});
   const Result a =
@@ -114,9 +116,10 @@ TEST(ReferenceAdaptive, AgreesWithTheFullCountOnFoliage) {
 // closed, prove no pilot occluded. Every proven pixel (its pilot's samples
 // only, standard error 0) has the full count's value, on five seeds.
 TEST(ReferenceAdaptive, ProvesPilotsAmongAlphaMaskedCastersOnlyWhereTheFullCountAgrees) {
-  const sb::Scene scene = build("foliage");
-  ASSERT_TRUE(std::any_of(scene.meshes.begin(), scene.meshes.end(),
-                          [](const sb::Mesh& m) { return m.casts_shadow && m.alpha_tested(); }));
+  const sb::core::Scene scene = build("foliage");
+  ASSERT_TRUE(std::any_of(scene.meshes.begin(), scene.meshes.end(), [](const sb::core::Mesh& m) {
+    return m.casts_shadow && m.alpha_tested();
+  }));
   const sb::reference::GBuffer g = sb::reference::trace_gbuffer(scene, kWidth, kHeight);
   for (uint64_t seed = 1; seed <= 5; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
@@ -150,7 +153,8 @@ TEST(ReferenceAdaptive, AgreesWithTheFullCountFromAFourSamplePilot) {
 // are alpha-masked: it has none). The criterion is the uniform reference's
 // in test_exact_agreement.cpp: 4 of the stated errors, floored at one
 // sample's weight at the pixel, on all but 0.1% of the covered pixels.
-void expect_agreement_with_exact(const sb::Scene& scene, const std::string& label, int pilot = 16) {
+void expect_agreement_with_exact(const sb::core::Scene& scene, const std::string& label,
+                                 int pilot = 16) {
   const sb::reference::GBuffer g = sb::reference::trace_gbuffer(scene, kWidth, kHeight);
   Settings exact_settings;
   exact_settings.exact = true;
@@ -196,7 +200,7 @@ TEST(ReferenceAdaptive, AgreesWithTheExactReferenceFromAFourSamplePilot) {
 // rays: with a target no estimate reaches, every refined pixel goes to the
 // full count and equals the uniform reference bit for bit, error included.
 TEST(ReferenceAdaptive, APixelRefinedToTheFullCountEqualsTheUniformReference) {
-  const sb::Scene scene = sbtest::sphere_over_plane();
+  const sb::core::Scene scene = sbtest::sphere_over_plane();
   const sb::reference::GBuffer g = sb::reference::trace_gbuffer(scene, 96, 72);
   const Result uniform = sb::reference::compute(scene, g.positions, g.normals, {64, 3});
   Settings s = adaptive(64, 1e-9, 4);
@@ -220,7 +224,7 @@ TEST(ReferenceAdaptive, APixelRefinedToTheFullCountEqualsTheUniformReference) {
 
 // The same on a linear light, whose strata nest along the segment.
 TEST(ReferenceAdaptive, NestsAlongASegmentLight) {
-  sb::Scene scene = sbtest::sphere_over_plane();
+  sb::core::Scene scene = sbtest::sphere_over_plane();
   scene.light.half_v = {0, 0, 0};
   const sb::reference::GBuffer g = sb::reference::trace_gbuffer(scene, 96, 72);
   const Result uniform = sb::reference::compute(scene, g.positions, g.normals, {256, 1});
@@ -240,7 +244,7 @@ TEST(ReferenceAdaptive, NestsAlongASegmentLight) {
 // seeds, the pilots alone (a target every pilot meets) converge on the
 // exact visibility of a point in a wide penumbra.
 TEST(ReferenceAdaptive, EstimatesBelowTheFullCountAreUnbiased) {
-  const sb::Scene scene = sbtest::sphere_over_plane();
+  const sb::core::Scene scene = sbtest::sphere_over_plane();
   const sb::reference::GBuffer g = sb::reference::trace_gbuffer(scene, 48, 36);
   Settings exact_settings;
   exact_settings.exact = true;
@@ -272,7 +276,7 @@ TEST(ReferenceAdaptive, EstimatesBelowTheFullCountAreUnbiased) {
 // the whole light fails there, so it is refined to the full count, on
 // every seed.
 TEST(ReferenceAdaptive, AnIsolatedPenumbraPixelAmongLitNeighboursIsStillRefined) {
-  sb::Scene scene = sbtest::sphere_over_plane();
+  sb::core::Scene scene = sbtest::sphere_over_plane();
   scene.meshes.resize(1);  // the ground alone
   const sb::reference::GBuffer plain = sb::reference::trace_gbuffer(scene, 96, 72);
   const size_t pix = 40 * 96 + 60;
@@ -300,7 +304,7 @@ TEST(ReferenceAdaptive, AnIsolatedPenumbraPixelAmongLitNeighboursIsStillRefined)
 }
 
 TEST(ReferenceAdaptive, ResultsDoNotDependOnTheThreadCount) {
-  const sb::Scene scene = sbtest::sphere_over_plane();
+  const sb::core::Scene scene = sbtest::sphere_over_plane();
   const sb::reference::GBuffer g = sb::reference::trace_gbuffer(scene, 96, 72);
   const Result many = sb::reference::compute(scene, g.positions, g.normals, adaptive(256, 0.02));
   tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
@@ -311,7 +315,7 @@ TEST(ReferenceAdaptive, ResultsDoNotDependOnTheThreadCount) {
 }
 
 TEST(ReferenceAdaptive, RefusesCountsThatDoNotNest) {
-  const sb::Scene scene = sbtest::sphere_over_plane();
+  const sb::core::Scene scene = sbtest::sphere_over_plane();
   const sb::reference::GBuffer g = sb::reference::trace_gbuffer(scene, 8, 6);
   for (const auto& [spp, pilot] : {std::pair{100, 16}, {32, 16}, {256, 8}, {4, 16}}) {
     SCOPED_TRACE(std::to_string(spp) + "/" + std::to_string(pilot));

@@ -19,7 +19,7 @@
 
 namespace {
 
-using sb::ImageF;
+using sb::core::ImageF;
 namespace ref = sb::reference;
 
 // A G-buffer of one row: the given points and normals, all covered.
@@ -29,8 +29,8 @@ struct Points {
     p.push_back(point);
     n.push_back(normal);
   }
-  ImageF positions() const {
-    ImageF img(int(p.size()), 1, 4);
+  sb::core::ImageF positions() const {
+    sb::core::ImageF img(int(p.size()), 1, 4);
     for (size_t i = 0; i < p.size(); ++i) {
       img.at(int(i), 0, 0) = p[i].x;
       img.at(int(i), 0, 1) = p[i].y;
@@ -39,28 +39,28 @@ struct Points {
     }
     return img;
   }
-  ImageF normals() const {
-    ImageF img(int(n.size()), 1, 3);
+  sb::core::ImageF normals() const {
+    sb::core::ImageF img(int(n.size()), 1, 3);
     for (size_t i = 0; i < n.size(); ++i)
       for (int c = 0; c < 3; ++c) img.at(int(i), 0, c) = n[i][c];
     return img;
   }
 };
 
-ref::Result trace(const sb::Scene& s, const Points& pts, int spp) {
+ref::Result trace(const sb::core::Scene& s, const Points& pts, int spp) {
   return ref::compute(s, pts.positions(), pts.normals(), {spp, 3});
 }
 
 // A UV sphere of the sphere grid's tessellation, with or without its shape.
-sb::Mesh sphere(glm::vec3 c, float r, int slices, int stacks, bool analytic) {
-  sb::Mesh m = sb::make_uv_sphere("sphere", c, r, slices, stacks);
-  if (analytic) m.analytic = sb::AnalyticShape::sphere(c, r);
+sb::core::Mesh sphere(glm::vec3 c, float r, int slices, int stacks, bool analytic) {
+  sb::core::Mesh m = sb::make_uv_sphere("sphere", c, r, slices, stacks);
+  if (analytic) m.analytic = sb::core::AnalyticShape::sphere(c, r);
   return m;
 }
 
 // A near-point light: a square of side 2e-4 at l.
-sb::AreaLight point_light(glm::vec3 l) {
-  sb::AreaLight light;
+sb::core::AreaLight point_light(glm::vec3 l) {
+  sb::core::AreaLight light;
   light.center = l;
   light.half_u = {1e-4f, 0, 0};
   light.half_v = {0, 0, 1e-4f};
@@ -109,7 +109,7 @@ TEST(referenceAnalytic, HardShadowOfASphereIsTheExactEllipse) {
   }
 
   for (const bool analytic : {true, false}) {
-    sb::Scene s;
+    sb::core::Scene s;
     s.light = point_light(glm::vec3(l));
     s.meshes.push_back(sphere(glm::vec3(c), float(r), 8, 6, analytic));
     const ref::Result res = trace(s, pts, 16);
@@ -146,7 +146,7 @@ TEST(referenceAnalytic, SoftShadowFromBelowTheCentreMatchesTheClosedForm) {
   Points pts;
   pts.add({0, 0, 0}, {0, 1, 0});  // the origin: a zero ray offset
   for (const bool analytic : {true, false}) {
-    sb::Scene s;
+    sb::core::Scene s;
     s.light.center = {0, float(H), 0};
     s.light.half_u = {float(a), 0, 0};
     s.light.half_v = {0, 0, float(a)};
@@ -172,7 +172,7 @@ TEST(referenceAnalytic, SoftShadowFromBelowTheCentreMatchesTheClosedForm) {
 // their plane have it below the smooth sphere's tangent plane at their corners.
 TEST(referenceAnalytic, OwnSphereDoesNotOccludeItsMeshsPoints) {
   const glm::vec3 c(0, 2, 0), l(2.5f, 10, 1.5f);
-  const sb::Mesh m = sphere(c, 1.0f, 8, 6, true);
+  const sb::core::Mesh m = sphere(c, 1.0f, 8, 6, true);
   Points pts;
   std::vector<float> expected;
   int smooth_dark = 0;  // sample points lit here, dark on the smooth sphere
@@ -196,7 +196,7 @@ TEST(referenceAnalytic, OwnSphereDoesNotOccludeItsMeshsPoints) {
       expected.push_back(lit ? 1.0f : 0.0f);
     }
   }
-  sb::Scene s;
+  sb::core::Scene s;
   s.light = point_light(l);
   s.meshes.push_back(m);
   const ref::Result res = trace(s, pts, 16);
@@ -214,7 +214,7 @@ TEST(referenceAnalytic, OwnSphereDoesNotOccludeItsMeshsPoints) {
 TEST(referenceAnalytic, NeighbourSphereOccludesExactly) {
   const glm::vec3 ca(0, 3, 0), cb(0.9f, 1, 0), l(0, 10, 0);
   const float r = 1.0f;
-  const sb::Mesh b_mesh = sphere(cb, r, 16, 12, true);
+  const sb::core::Mesh b_mesh = sphere(cb, r, 16, 12, true);
   Points pts;
   std::vector<float> expected;
   for (size_t t = 0; t < b_mesh.triangle_count(); ++t) {
@@ -239,7 +239,7 @@ TEST(referenceAnalytic, NeighbourSphereOccludesExactly) {
   ASSERT_GT(expected.size() - dark, 20u);
 
   for (const bool analytic : {true, false}) {
-    sb::Scene s;
+    sb::core::Scene s;
     s.light = point_light(l);
     s.meshes.push_back(sphere(ca, r, 8, 6, analytic));
     s.meshes.push_back(sphere(cb, r, 16, 12, analytic));
@@ -259,9 +259,9 @@ TEST(referenceAnalytic, NeighbourSphereOccludesExactly) {
 
 // ---- the scene option and the cache key ---------------------------------------
 
-sb::Scene grid(bool analytic) {
-  const sb::SceneType* t = sb::find_scene_type("sphere_grid");
-  return t->build(sb::resolve_params(
+sb::core::Scene grid(bool analytic) {
+  const sb::core::SceneType* t = sb::core::find_scene_type("sphere_grid");
+  return t->build(sb::core::resolve_params(
       t->params, {{"grid", 2}, {"slices", 8}, {"stacks", 6}, {"analytic", analytic}}, "test",
       "/params"));
 }
@@ -270,7 +270,7 @@ sb::Scene grid(bool analytic) {
 // key tells the analytic reference from the tessellated one, and follows the
 // shape itself.
 TEST(referenceAnalytic, CacheKeyTellsAnalyticFromTessellated) {
-  const sb::Scene tess = grid(false), analytic = grid(true);
+  const sb::core::Scene tess = grid(false), analytic = grid(true);
   EXPECT_EQ(tess.analytic_caster_count(), 0u);
   EXPECT_EQ(analytic.analytic_caster_count(), 4u);
   const ref::GBuffer gt = ref::trace_gbuffer(tess, 48, 36),
@@ -284,10 +284,10 @@ TEST(referenceAnalytic, CacheKeyTellsAnalyticFromTessellated) {
   const std::string key_analytic = ref::cache_key(analytic, gt.positions, gt.normals, st);
   EXPECT_NE(key_tess, key_analytic);
   EXPECT_EQ(key_analytic, ref::cache_key(grid(true), gt.positions, gt.normals, st));
-  sb::Scene bigger = analytic;
+  sb::core::Scene bigger = analytic;
   bigger.meshes[0].analytic.radius *= 1.01f;
   EXPECT_NE(ref::cache_key(bigger, gt.positions, gt.normals, st), key_analytic);
-  sb::Scene moved = analytic;
+  sb::core::Scene moved = analytic;
   moved.meshes[0].analytic.center.y += 0.01f;
   EXPECT_NE(ref::cache_key(moved, gt.positions, gt.normals, st), key_analytic);
 
@@ -303,15 +303,15 @@ TEST(referenceAnalytic, CacheKeyTellsAnalyticFromTessellated) {
 TEST(referenceAnalytic, RejectsShapesItCannotTrace) {
   Points pts;
   pts.add({0, 0, 0}, {0, 1, 0});
-  sb::Scene s;
+  sb::core::Scene s;
   s.light = point_light({0, 10, 0});
   s.meshes.push_back(sphere({0, 2, 0}, 1.0f, 8, 6, true));
   s.meshes[0].analytic.radius = 0.0f;
-  EXPECT_THROW(trace(s, pts, 1), sb::InputError);
+  EXPECT_THROW(trace(s, pts, 1), sb::core::InputError);
   s.meshes[0].analytic.radius = std::nanf("");
-  EXPECT_THROW(trace(s, pts, 1), sb::InputError);
+  EXPECT_THROW(trace(s, pts, 1), sb::core::InputError);
   s.meshes[0].analytic.radius = 0.9f;  // the mesh pokes out: its own points could hit it
-  EXPECT_THROW(trace(s, pts, 1), sb::InputError);
+  EXPECT_THROW(trace(s, pts, 1), sb::core::InputError);
 }
 
 }  // namespace

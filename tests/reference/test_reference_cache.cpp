@@ -33,7 +33,7 @@ class referenceCache : public ::testing::Test {
   ref::Result get(const ref::Settings& s = {16, 1}) {
     return ref::get(scene_, g_.positions, g_.normals, s, dir_.string());
   }
-  std::string key(const sb::Scene& scene, const ref::Settings& s = {16, 1}) const {
+  std::string key(const sb::core::Scene& scene, const ref::Settings& s = {16, 1}) const {
     return ref::cache_key(scene, g_.positions, g_.normals, s);
   }
   fs::path file(const std::string& key) const { return dir_ / (key + ".sbref"); }
@@ -52,7 +52,7 @@ class referenceCache : public ::testing::Test {
   }
 
   fs::path dir_;
-  sb::Scene scene_;
+  sb::core::Scene scene_;
   ref::GBuffer g_;
 };
 
@@ -90,7 +90,7 @@ TEST_F(referenceCache, KeyFollowsEverythingVisibilityDependsOn) {
   EXPECT_EQ(k, key(scene_));
   EXPECT_NE(k, key(scene_, {32, 1}));
   EXPECT_NE(k, key(scene_, {16, 2}));
-  sb::Scene s = scene_;
+  sb::core::Scene s = scene_;
   s.light.center.x += 0.01f;
   EXPECT_NE(k, key(s));
   s = scene_;
@@ -205,7 +205,7 @@ TEST_F(referenceCache, UnwritableDirectoryIsAJobError) {
   const fs::path blocker = dir_ / "not_a_dir";
   std::ofstream(blocker) << "x";
   EXPECT_THROW(ref::get(scene_, g_.positions, g_.normals, {16, 1}, (blocker / "cache").string()),
-               sb::JobError);
+               sb::core::JobError);
 }
 
 }  // namespace

@@ -32,29 +32,29 @@
 namespace {
 
 namespace ref = sb::reference;
-using sb::ImageF;
+using sb::core::ImageF;
 
 const int kSpps[] = {1, 4, 15, 16, 17, 256};
 
 struct Workload {
   std::string name;
-  sb::Scene scene;
+  sb::core::Scene scene;
   ref::GBuffer g;
   size_t covered = 0;
-  Workload(std::string n, sb::Scene sc, int w, int h)
+  Workload(std::string n, sb::core::Scene sc, int w, int h)
       : name(std::move(n)), scene(std::move(sc)), g(ref::trace_gbuffer(scene, w, h)) {
     for (size_t i = 0; i < g.positions.pixel_count(); ++i)
       covered += g.positions.data[i * 4 + 3] > 0.5f;
   }
 };
 
-sb::Scene default_scene(const char* type, const nlohmann::json& params) {
-  const sb::SceneType* t = sb::find_scene_type(type);
+sb::core::Scene default_scene(const char* type, const nlohmann::json& params) {
+  const sb::core::SceneType* t = sb::core::find_scene_type(type);
   if (t == nullptr) throw std::runtime_error(std::string("no scene type ") + type);
   nlohmann::json p = nlohmann::json::object();
   for (const auto& d : t->params) p[d.name] = d.default_value;
   p.update(params);
-  return t->build(sb::Params(p));
+  return t->build(sb::core::Params(p));
 }
 
 // A sphere's silhouette over a plane (rays within rounding of triangle
@@ -204,14 +204,14 @@ TEST(referenceShadowPacket, OneSamplePerPixelTracesOneLane) {
 
 TEST(referenceRayRange, PointsBeyondEmbreesRangeFailTheJob) {
   const Workload& w = workload();
-  ImageF pos = w.g.positions;
+  sb::core::ImageF pos = w.g.positions;
   size_t far_pixel = 0;
   while (pos.data[far_pixel * 4 + 3] <= 0.5f) ++far_pixel;
   pos.data[far_pixel * 4 + 0] = 3e18f;  // finite, but past Embree's 1.8e18
   try {
     (void)ref::compute(w.scene, pos, w.g.normals, {16, 1});
     FAIL() << "expected a JobError";
-  } catch (const sb::JobError& e) {
+  } catch (const sb::core::JobError& e) {
     EXPECT_NE(std::string(e.what()).find("beyond what Embree traces"), std::string::npos)
         << e.what();
   }

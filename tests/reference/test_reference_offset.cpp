@@ -21,14 +21,14 @@
 namespace {
 
 namespace ref = sb::reference;
-using sb::ImageF;
+using sb::core::ImageF;
 
 constexpr float kHalf = 0.025f;  // the cube's half side: 5 cm on a 300 m ground
 
 // Light 0.2×0.2 at (−10, 10, 0): 45° above the −x horizon, so the cube's
 // shadow falls towards +x. A second, tilted cube floats at z = 1.
-sb::Scene cube_on_huge_ground(bool ground_casts = false) {
-  sb::Scene s;
+sb::core::Scene cube_on_huge_ground(bool ground_casts = false) {
+  sb::core::Scene s;
   s.meshes.push_back(sbtest::quad("ground", {-150, 0, -150}, {-150, 0, 150}, {150, 0, 150},
                                   {150, 0, -150}, ground_casts));
   s.meshes.push_back(sb::make_box("cube", {0, kHalf, 0}, glm::vec3(kHalf)));
@@ -46,8 +46,8 @@ struct Point {
 };
 
 // A hand-made G-buffer, one point per pixel in a row.
-std::pair<ImageF, ImageF> gbuffer(const std::vector<Point>& points) {
-  ImageF pos(int(points.size()), 1, 4), nrm(int(points.size()), 1, 3);
+std::pair<sb::core::ImageF, sb::core::ImageF> gbuffer(const std::vector<Point>& points) {
+  sb::core::ImageF pos(int(points.size()), 1, 4), nrm(int(points.size()), 1, 3);
   for (size_t i = 0; i < points.size(); ++i) {
     for (int c = 0; c < 3; ++c) {
       pos.data[i * 4 + size_t(c)] = points[i].p[c];
@@ -61,7 +61,7 @@ std::pair<ImageF, ImageF> gbuffer(const std::vector<Point>& points) {
 // Points on a mesh's triangles, interpolated in float as a G-buffer would,
 // with the triangle's own normal, where all four light corners lie strictly
 // above the triangle's plane: on a convex solid nothing can block them.
-std::vector<Point> fully_lit_points(const sb::Mesh& m, const sb::AreaLight& light) {
+std::vector<Point> fully_lit_points(const sb::core::Mesh& m, const sb::core::AreaLight& light) {
   const glm::vec3 corners[4] = {light.point(0, 0), light.point(1, 0), light.point(0, 1),
                                 light.point(1, 1)};
   const float bary[][2] = {{0.2f, 0.3f}, {0.45f, 0.45f}, {0.1f, 0.8f}, {0.6f, 0.05f}};
@@ -82,11 +82,11 @@ std::vector<Point> fully_lit_points(const sb::Mesh& m, const sb::AreaLight& ligh
 
 class referenceOffset : public ::testing::TestWithParam<std::string> {
  protected:
-  ref::Result trace(const sb::Scene& s, const std::vector<Point>& points) {
+  ref::Result trace(const sb::core::Scene& s, const std::vector<Point>& points) {
     const auto [pos, nrm] = gbuffer(points);
     return ref::compute(s, pos, nrm, {256, 1, "isa=" + GetParam()});
   }
-  void expect_contact_shadow(const sb::Scene& s) {
+  void expect_contact_shadow(const sb::core::Scene& s) {
     const glm::vec3 up(0, 1, 0);
     std::vector<Point> dark, lit;
     for (float d : {0.002f, 0.01f, 0.02f, 0.03f, 0.035f, 0.04f, 0.045f})
@@ -134,7 +134,7 @@ TEST_P(referenceOffset, ContactShadowOfASmallCubeOnAHugeGround) {
 TEST_P(referenceOffset, NoSelfShadowNearTheOriginOfAHugeTiltedCaster) {
   const glm::dvec3 n(0, std::cos(0.35), std::sin(0.35)), e1(1, 0, 0), e2 = glm::cross(n, e1);
   const auto at = [&](double u, double v) { return glm::vec3(u * e1 + v * e2); };
-  sb::Scene s;
+  sb::core::Scene s;
   s.meshes.push_back(
       sbtest::quad("tilted", at(-150, -150), at(-150, 150), at(150, 150), at(150, -150), true));
   s.light = sbtest::square_light();
@@ -151,7 +151,7 @@ TEST_P(referenceOffset, NoSelfShadowNearTheOriginOfAHugeTiltedCaster) {
 // Faces that see the whole light above their plane: the top and the −x face
 // of the resting cube, and whichever faces of the tilted one do.
 TEST_P(referenceOffset, NoSelfShadowOnTheSmallCubesLitFaces) {
-  const sb::Scene s = cube_on_huge_ground();
+  const sb::core::Scene s = cube_on_huge_ground();
   std::vector<Point> points = fully_lit_points(s.meshes[1], s.light);
   const size_t resting = points.size();
   const std::vector<Point> tilted = fully_lit_points(s.meshes[2], s.light);
@@ -172,9 +172,9 @@ TEST(referenceOffsetScale, FollowsThePointAndItsOwnTrianglesOnly) {
   namespace d = ref::detail;
   for (bool ground_casts : {false, true}) {
     SCOPED_TRACE(ground_casts ? "casting ground" : "receiving ground");
-    const sb::Scene s = cube_on_huge_ground(ground_casts);
+    const sb::core::Scene s = cube_on_huge_ground(ground_casts);
     d::Device device("sse2");
-    const d::FlatScene casters(device, s, [](const sb::Mesh& m) { return m.casts_shadow; });
+    const d::FlatScene casters(device, s, [](const sb::core::Mesh& m) { return m.casts_shadow; });
     const d::RayOffset offset(s, casters);
     // On the cube's top: its vertices' largest coordinate is 0.05.
     EXPECT_EQ(offset.at({0.01f, 2 * kHalf, -0.005f}), d::kOffsetRelative * 2 * kHalf);
@@ -192,7 +192,7 @@ TEST(referenceOffsetScale, FollowsThePointAndItsOwnTrianglesOnly) {
 // 1024-spp Monte Carlo agree within four standard errors (one sample's
 // weight where the stated error is 0).
 TEST(referenceOffsetScale, TheExactReferenceSharesItBesideACasterFarAway) {
-  sb::Scene s = cube_on_huge_ground();
+  sb::core::Scene s = cube_on_huge_ground();
   s.meshes.push_back(sb::make_box("far", {20000, 1, 0}, glm::vec3(1.0f)));
   std::vector<Point> points = fully_lit_points(s.meshes[1], s.light);
   const glm::vec3 up(0, 1, 0);

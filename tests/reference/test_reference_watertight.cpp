@@ -31,15 +31,15 @@
 namespace {
 
 namespace ref = sb::reference;
-using sb::ImageF;
+using sb::core::ImageF;
 
 constexpr int kPoints = 64;
 constexpr int kSpp = 256;
 constexpr int kCells = 12;  // per side of the plate: edges at z = -3, -2.5, ..., 3
 
 struct EdgeScene {
-  sb::Scene scene;
-  ImageF positions{kPoints, 1, 4, 0.0f}, normals{kPoints, 1, 3, 0.0f};
+  sb::core::Scene scene;
+  sb::core::ImageF positions{kPoints, 1, 4, 0.0f}, normals{kPoints, 1, 3, 0.0f};
 
   EdgeScene() {
     const glm::dmat4 turn =
@@ -51,7 +51,7 @@ struct EdgeScene {
     const auto along = [&](double x, double y, double z) {
       return glm::vec3(turn * glm::dvec4(x, y, z, 0.0));
     };
-    sb::Mesh plate;
+    sb::core::Mesh plate;
     plate.name = "tessellated plate";
     plate.casts_shadow = true;
     for (int i = 0; i <= kCells; ++i)
@@ -96,7 +96,8 @@ size_t leaks_without_robust_mode(const EdgeScene& e, const std::string& isa) {
   namespace d = ref::detail;
   d::Device device(isa);
   const d::FlatScene casters(
-      device, e.scene, [](const sb::Mesh& m) { return m.casts_shadow; }, false, d::Traversal::Fast);
+      device, e.scene, [](const sb::core::Mesh& m) { return m.casts_shadow; }, false,
+      d::Traversal::Fast);
   const d::Layout layout = d::make_layout(kSpp, d::Strata::AlongS);
   const d::RaySetup setup(e.scene, casters, layout, e.positions, e.normals, 1);
   d::FtzDazScope ftz;

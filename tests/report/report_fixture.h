@@ -23,14 +23,14 @@ inline constexpr const char* kNastyReason = "GL error <GL_INVALID_ENUM> & \"bad\
 
 struct SyntheticRun {
   std::filesystem::path run_dir, out_dir;
-  std::vector<JobRecord> records;
-  std::vector<ReportChart> charts;
+  std::vector<record::JobRecord> records;
+  std::vector<results::ReportChart> charts;
 };
 
 // A small image with a gradient and a disc, so a screenshot of it is not flat.
-inline ImageF synthetic_image(int w, int h, float shift) {
+inline core::ImageF synthetic_image(int w, int h, float shift) {
   const float fw = static_cast<float>(w), fh = static_cast<float>(h);
-  ImageF img(w, h, 3);
+  core::ImageF img(w, h, 3);
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       const float fx = static_cast<float>(x), fy = static_cast<float>(y);
@@ -55,50 +55,50 @@ inline SyntheticRun make_synthetic_run(const std::filesystem::path& root,
   const float full_scale = 0.25f;
   struct Job {
     const char* technique;
-    JobStatus status;
+    record::JobStatus status;
     std::string reason;
     double frame_ms;  // in an order that text sorting would get wrong
   };
   const Job jobs[] = {
-      {"none", JobStatus::Ok, "", 2.5},
-      {"shadow_map/size=1024", JobStatus::Ok, "", 12.0},
-      {"pcf_box/k=3,size=1024", JobStatus::Ok, "", 9.0},
-      {"shadow_volume/mode=zpass", JobStatus::Skipped, "casters are not closed", 0.0},
-      {"vsm/k=9,prefilter=gauss", JobStatus::Failed, kNastyReason, 120.0}};
+      {"none", record::JobStatus::Ok, "", 2.5},
+      {"shadow_map/size=1024", record::JobStatus::Ok, "", 12.0},
+      {"pcf_box/k=3,size=1024", record::JobStatus::Ok, "", 9.0},
+      {"shadow_volume/mode=zpass", record::JobStatus::Skipped, "casters are not closed", 0.0},
+      {"vsm/k=9,prefilter=gauss", record::JobStatus::Failed, kNastyReason, 120.0}};
   const std::pair<int, int> sizes[] = {{64, 48}, {96, 72}};
   for (const auto& [w, h] : sizes) {
     const std::string res = std::to_string(w) + "x" + std::to_string(h);
     const std::string scene = "plates/layout=edge";
     const std::string ref_rel = "reference/plates--layout=edge__" + res;
     fs::create_directories(run.run_dir / ref_rel);
-    const ImageF ref = synthetic_image(w, h, 0.0f);
-    io::write_png((run.run_dir / ref_rel / "shaded.png").string(), ref);
+    const core::ImageF ref = synthetic_image(w, h, 0.0f);
+    metrics::io::write_png((run.run_dir / ref_rel / "shaded.png").string(), ref);
     float shift = 0.0f;
     for (const auto& j : jobs) {
       std::string safe = j.technique;
       for (char& c : safe) c = c == '/' ? '-' : c == ',' ? '+' : c;
-      JobRecord r = identity_record(scene, res, j.technique, j.status);
+      record::JobRecord r = identity_record(scene, res, j.technique, j.status);
       r.job_id = "plates--layout=edge__" + res;
       r.job_id += "__" + safe;
       r.gl_renderer = "llvmpipe <test>";
-      r.reference = ReferenceRecord{};
+      r.reference = record::ReferenceRecord{};
       r.reference->method = "embree_stratified_packet16";
       r.reference->spp = 256;
       if (!j.reason.empty()) r.reason = j.reason;
-      if (j.status != JobStatus::Skipped) {
+      if (j.status != record::JobStatus::Skipped) {
         shift += 0.05f;
         const std::string rel = "jobs/" + r.job_id;
         fs::create_directories(run.run_dir / rel);
-        const ImageF test = synthetic_image(w, h, shift);
-        io::write_png((run.run_dir / rel / "shaded.png").string(), test);
-        io::write_png((run.run_dir / rel / "error.png").string(),
-                      metrics::error_heatmap(test, ref, full_scale));
+        const core::ImageF test = synthetic_image(w, h, shift);
+        metrics::io::write_png((run.run_dir / rel / "shaded.png").string(), test);
+        metrics::io::write_png((run.run_dir / rel / "error.png").string(),
+                               metrics::error_heatmap(test, ref, full_scale));
         r.images.shaded = rel + "/shaded.png";
         r.images.error_heatmap = rel + "/error.png";
         r.images.error_heatmap_full_scale = full_scale;
         r.images.reference_shaded = ref_rel + "/shaded.png";
         r.timing = coarse_timing({j.frame_ms}, {0.5 + shift * 10.0});
-        MetricsRecord m;
+        record::MetricsRecord m;
         m.visibility.all.rmse = 0.2 - shift;
         m.visibility.all.mae = 0.1;
         m.visibility.all.max_error = 1.0;
@@ -123,8 +123,8 @@ inline SyntheticRun make_synthetic_run(const std::filesystem::path& root,
     std::fputs(svg.c_str(), f);
     std::fclose(f);
   }
-  io::write_png((run.out_dir / "charts" / "error_vs_time.png").string(),
-                synthetic_image(40, 20, 0.1f));
+  metrics::io::write_png((run.out_dir / "charts" / "error_vs_time.png").string(),
+                         synthetic_image(40, 20, 0.1f));
   run.charts.push_back(
       {"Error against frame time <all>", "charts/error_vs_time.svg", "charts/error_vs_time.png"});
   return run;
@@ -154,8 +154,8 @@ inline std::vector<std::string> between(const std::string& text, const std::stri
 }
 
 inline void write_synthetic_report(const SyntheticRun& run) {
-  write_html_report(run.records, run.run_dir.string(), run.out_dir.string(), run.charts,
-                    "synthetic <report> & co");
+  results::write_html_report(run.records, run.run_dir.string(), run.out_dir.string(), run.charts,
+                             "synthetic <report> & co");
 }
 
 }  // namespace sb::test

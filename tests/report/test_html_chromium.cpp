@@ -25,6 +25,9 @@
 #include "report_fixture.h"
 
 namespace sb {
+
+using core::ImageF;
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -125,7 +128,7 @@ TEST_F(report_chromium, PageLoadsEveryImageWithoutConsoleErrorsAndRenders) {
   EXPECT_TRUE(s.console.empty()) << "console messages:\n" << joined(s.console);
   ASSERT_TRUE(fs::is_regular_file(shot)) << s.log;
   EXPECT_GT(fs::file_size(shot), 20u * 1024u);
-  const ImageF img = io::read_image(shot.string());
+  const ImageF img = metrics::io::read_image(shot.string());
   EXPECT_EQ(img.width, 1280);
   EXPECT_EQ(img.height, 2000);
   // Not a blank page: many distinct colours (text, tables, images).

@@ -16,6 +16,13 @@
 #include "results/report.h"
 
 namespace sb {
+
+using core::ImageF;
+using results::html_escape;
+using results::kHeatmapLegendFile;
+using results::make_csv;
+using results::write_html_report;
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -134,7 +141,7 @@ TEST(report_html, LegendIsTheHeatMapRamp) {
   test::TempDir dir("html_legend");
   const auto run = test::make_synthetic_run(dir.path());
   test::write_synthetic_report(run);
-  const ImageF legend = io::read_image((run.out_dir / kHeatmapLegendFile).string());
+  const ImageF legend = metrics::io::read_image((run.out_dir / kHeatmapLegendFile).string());
   ASSERT_EQ(legend.channels, 3);
   ASSERT_GT(legend.width, 255);
   for (int x = 0; x < legend.width; ++x) {

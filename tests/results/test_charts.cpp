@@ -13,6 +13,22 @@
 #include "results/charts.h"
 
 namespace sb {
+
+using core::InputError;
+using record::BuiltScene;
+using record::FineTiming;
+using record::JobRecord;
+using record::JobStatus;
+using record::MetricsRecord;
+using record::RegionStats;
+using record::Series;
+using record::TimingRecord;
+using results::ChartFile;
+using results::ChartOptions;
+using results::charts_unavailable_reason;
+using results::find_plot_script;
+using results::write_charts;
+
 namespace {
 
 // A series of three frames whose median is `median` (p10 and p90 about 10 %

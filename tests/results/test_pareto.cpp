@@ -8,6 +8,11 @@
 #include "results/pareto.h"
 
 namespace sb {
+
+using results::pareto_front;
+using results::pareto_front_indices;
+using results::ParetoPoint;
+
 namespace {
 
 std::vector<std::string> labels(const std::vector<ParetoPoint>& front) {

@@ -15,6 +15,13 @@
 #include "results/store.h"
 
 namespace sb {
+
+using core::AtomicFile;
+using record::JobRecord;
+using record::JobStatus;
+using results::json_text;
+using results::ResultsStore;
+
 namespace {
 
 namespace fs = std::filesystem;

@@ -11,6 +11,12 @@
 #include "run/frame_schedule.h"
 
 namespace sb {
+
+using record::TimingRecord;
+using run::FrameSchedule;
+using run::FrameTarget;
+using run::time_frames;
+
 namespace {
 
 // Logs "job", "fine", "control" or "turn" per call. Each frame takes a time

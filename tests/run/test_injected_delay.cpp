@@ -8,6 +8,11 @@
 #include "run/injected_delay.h"
 
 namespace sb {
+
+using core::InputError;
+using run::InjectedDelay;
+using run::kInjectDelayVariable;
+
 namespace {
 
 TEST(InjectedDelay, NamesTheVariantBeforeTheLastAtAndTheMillisecondsAfter) {

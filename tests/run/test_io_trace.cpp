@@ -13,6 +13,16 @@
 #include "run/io_trace.h"
 
 namespace sb {
+
+using core::InputError;
+using run::io_trace_enabled;
+using run::kIoTraceVariable;
+using run::kSlowParentIoVariable;
+using run::monotonic_ns;
+using run::ParentIoSpan;
+using run::slow_parent_io_ns;
+using run::write_trace;
+
 namespace {
 
 namespace fs = std::filesystem;

@@ -9,6 +9,15 @@
 #include "run/job_line.h"
 
 namespace sb {
+
+using record::JobRecord;
+using record::JobStatus;
+using record::MetricsRecord;
+using record::RegionStats;
+using record::TimingRecord;
+using results::make_csv;
+using run::job_line;
+
 namespace {
 
 std::vector<std::string> split(const std::string& line, char sep) {

@@ -10,6 +10,10 @@
 #include "core/names.h"
 
 namespace sb {
+
+using core::file_safe;
+using core::job_id;
+
 namespace {
 
 void expect_safe(const std::string& name) {

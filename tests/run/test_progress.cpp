@@ -6,6 +6,9 @@
 #include "run/progress.h"
 
 namespace sb {
+
+using run::Progress;
+
 namespace {
 
 std::string contents(std::FILE* f) {

@@ -12,6 +12,13 @@
 #include "plugin/plugin_identity.h"
 
 namespace sb {
+
+using core::sha256_file_hex;
+using core::sha256_hex;
+using plugin::identify_plugin;
+using plugin::kPluginApiVersion;
+using plugin::PluginIdentity;
+
 namespace {
 
 namespace fs = std::filesystem;

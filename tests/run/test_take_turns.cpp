@@ -11,6 +11,10 @@
 #include "run/take_turns.h"
 
 namespace sb {
+
+using run::take_turns;
+using run::TurnsResult;
+
 namespace {
 
 namespace fs = std::filesystem;

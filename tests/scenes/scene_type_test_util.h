@@ -14,14 +14,14 @@
 
 namespace sb::test {
 
-inline Scene build_scene_type(const std::string& type, const nlohmann::json& given) {
-  const SceneType* t = find_scene_type(type);
+inline core::Scene build_scene_type(const std::string& type, const nlohmann::json& given) {
+  const core::SceneType* t = core::find_scene_type(type);
   EXPECT_NE(t, nullptr) << type;
-  return t->build(resolve_params(t->params, given, "test", "/params"));
+  return t->build(core::resolve_params(t->params, given, "test", "/params"));
 }
 
 // At the 4:3 aspect of the tests' framings.
-inline glm::vec3 ndc_of(const Scene& s, glm::vec3 p) {
+inline glm::vec3 ndc_of(const core::Scene& s, glm::vec3 p) {
   const glm::vec4 clip = s.camera.projection(4.0f / 3.0f) * s.camera.view() * glm::vec4(p, 1.0f);
   EXPECT_GT(clip.w, 0.0f);
   return glm::vec3(clip) / clip.w;

@@ -7,6 +7,17 @@
 #include "scenes/topology.h"
 
 namespace sb {
+
+using core::Bounds;
+using core::Mesh;
+using core::sample_alpha;
+using core::Scene;
+using core::TextureImage;
+using plan::Derive;
+using plan::resolve_needs;
+using plugin::Needs;
+using plugin::TechniqueInfo;
+
 namespace {
 
 using test::build_scene_type;
@@ -35,8 +46,12 @@ TEST(Foliage, WoodIsClosedLeavesAreOpenAndMasked) {
   ASSERT_EQ(s.textures.size(), 1u);
 
   // The skip reason names the leaves and their boundary edges.
-  TechniqueInfo volume{
-      "shadow_volume", "f", "", Needs{need::kClosedCasters, need::kOpaqueCasters}, {}, nullptr};
+  TechniqueInfo volume{"shadow_volume",
+                       "f",
+                       "",
+                       Needs{plugin::need::kClosedCasters, plugin::need::kOpaqueCasters},
+                       {},
+                       nullptr};
   EXPECT_EQ(resolve_needs(s, {&volume}, nullptr, Derive::Decide).skip_reason[0],
             "shadow_volume needs closed casters: mesh 'leaves' has 288 boundary edges");
 }

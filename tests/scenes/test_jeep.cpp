@@ -9,6 +9,11 @@
 #include "scenes/topology.h"
 
 namespace sb {
+
+using core::Bounds;
+using core::Mesh;
+using core::Scene;
+
 namespace {
 
 using test::build_scene_type;

@@ -8,6 +8,11 @@
 #include "scenes/topology.h"
 
 namespace sb {
+
+using core::AnalyticShape;
+using core::Bounds;
+using core::Mesh;
+
 namespace {
 
 glm::vec3 corner(const Mesh& m, size_t t, int k) { return m.positions[m.indices[3 * t + k]]; }

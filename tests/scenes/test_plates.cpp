@@ -10,6 +10,16 @@
 #include "scenes/topology.h"
 
 namespace sb {
+
+using core::Bounds;
+using core::find_scene_type;
+using core::InputError;
+using core::Mesh;
+using core::Params;
+using core::resolve_params;
+using core::Scene;
+using core::SceneType;
+
 namespace {
 
 using test::build_scene_type;

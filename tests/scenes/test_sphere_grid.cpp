@@ -5,6 +5,12 @@
 #include "scenes/sphere_grid.h"
 
 namespace sb {
+
+using core::AnalyticShape;
+using core::Bounds;
+using core::Mesh;
+using core::Scene;
+
 namespace {
 
 using test::build_scene_type;

@@ -9,6 +9,19 @@
 #include "scenes/topology.h"
 
 namespace sb {
+
+using core::AlphaMode;
+using core::Mesh;
+using core::Scene;
+using core::TextureImage;
+using plan::Derive;
+using plan::resolve_needs;
+using plan::ResolvedNeeds;
+using plugin::CasterAdjacency;
+using plugin::Needs;
+using plugin::PlanarReceiver;
+using plugin::TechniqueInfo;
+
 namespace {
 
 TEST(Topology, SphereIsClosed) {
@@ -71,25 +84,26 @@ TEST(SceneAnalysis, BuildsOnlyWhatTechniquesNeed) {
   s.meshes.push_back(make_uv_sphere("s", glm::vec3(0, 2, 0), 1.0f, 8, 6));
   s.meshes.push_back(make_ground_plane("g", glm::vec3(0), 5.0f));
   TechniqueInfo map{"map", "f", "", Needs{}, {}, nullptr};
-  TechniqueInfo volume{"volume", "f",    "", Needs{need::kEdgeAdjacency, need::kClosedCasters},
+  TechniqueInfo volume{"volume", "f",
+                       "",       Needs{plugin::need::kEdgeAdjacency, plugin::need::kClosedCasters},
                        {},       nullptr};
 
   const auto before = derived_data_counters();
   ResolvedNeeds r = resolve_needs(s, {&map}, nullptr, Derive::All);
-  EXPECT_FALSE(r.data.has(need::kCasterClosedness));
-  EXPECT_FALSE(r.data.has(need::kEdgeAdjacency));
+  EXPECT_FALSE(r.data.has(plugin::need::kCasterClosedness));
+  EXPECT_FALSE(r.data.has(plugin::need::kEdgeAdjacency));
   EXPECT_EQ(derived_data_counters().adjacency_builds, before.adjacency_builds);
   EXPECT_EQ(derived_data_counters().closedness_checks, before.closedness_checks);
 
   // Deciding skips checks closedness but builds no adjacency yet.
   r = resolve_needs(s, {&map, &volume}, nullptr, Derive::Decide);
-  EXPECT_TRUE(r.data.has(need::kCasterClosedness));
-  EXPECT_FALSE(r.data.has(need::kEdgeAdjacency));
+  EXPECT_TRUE(r.data.has(plugin::need::kCasterClosedness));
+  EXPECT_FALSE(r.data.has(plugin::need::kEdgeAdjacency));
   EXPECT_EQ(r.skip_reason[1], "");  // the open ground casts nothing
   EXPECT_EQ(derived_data_counters().adjacency_builds, before.adjacency_builds);
 
   r = resolve_needs(s, {&map, &volume}, nullptr, Derive::All);
-  const auto& adjacency = r.data.get<CasterAdjacency>(need::kEdgeAdjacency);
+  const auto& adjacency = r.data.get<CasterAdjacency>(plugin::need::kEdgeAdjacency);
   EXPECT_EQ(adjacency[0].size(), s.meshes[0].indices.size() * 2);
   EXPECT_TRUE(adjacency[1].empty());
 
@@ -97,7 +111,7 @@ TEST(SceneAnalysis, BuildsOnlyWhatTechniquesNeed) {
   const size_t builds = derived_data_counters().adjacency_builds;
   r = resolve_needs(s, {&volume}, nullptr, Derive::All);
   EXPECT_EQ(r.skip_reason[0], "volume needs closed casters: mesh 'g' has 4 boundary edges");
-  EXPECT_FALSE(r.data.has(need::kEdgeAdjacency));
+  EXPECT_FALSE(r.data.has(plugin::need::kEdgeAdjacency));
   EXPECT_EQ(derived_data_counters().adjacency_builds, builds);
 }
 
@@ -123,7 +137,7 @@ TEST(PlanarReceiver, FoundUnderTheCastersOnly) {
   EXPECT_FALSE(find_planar_receiver(s, r));
 
   // Only asked for when a technique needs it.
-  TechniqueInfo planar{"planar", "f", "", Needs{need::kPlanarReceiver}, {}, nullptr};
+  TechniqueInfo planar{"planar", "f", "", Needs{plugin::need::kPlanarReceiver}, {}, nullptr};
   TechniqueInfo map{"map", "f", "", Needs{}, {}, nullptr};
   const size_t before = derived_data_counters().receiver_searches;
   EXPECT_EQ(resolve_needs(s, {&map}, nullptr, Derive::Decide).skip_reason[0], "");
@@ -141,7 +155,8 @@ TEST(Capabilities, AlphaTestedCastersSkipTechniquesThatCannotHonourThem) {
   closed.base_color_texture = 0;
   closed.alpha_mode = AlphaMode::Mask;
   s.meshes.push_back(closed);
-  TechniqueInfo volume{"volume", "f",    "", Needs{need::kClosedCasters, need::kOpaqueCasters},
+  TechniqueInfo volume{"volume", "f",
+                       "",       Needs{plugin::need::kClosedCasters, plugin::need::kOpaqueCasters},
                        {},       nullptr};
   EXPECT_EQ(resolve_needs(s, {&volume}, nullptr, Derive::Decide).skip_reason[0],
             "volume cannot honour alpha masks: mesh 'masked' is alpha-tested");

@@ -10,6 +10,11 @@
 #include "two_map/apex_placement.h"
 
 namespace sb::shadow {
+
+using core::AreaLight;
+using core::Bounds;
+using core::JobError;
+
 namespace {
 
 // A light facing down (−y) from (0, 10, 0): its frame's z is the depth

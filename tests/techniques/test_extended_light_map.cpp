@@ -18,6 +18,15 @@
 #include "shadow_map/extended_light_map.h"
 
 namespace sb::shadow {
+
+using core::find_scene_type;
+using core::Mesh;
+using core::resolve_params;
+using core::Scene;
+using core::SceneType;
+using gl::GpuScene;
+using gl::MeshDrawFlags;
+
 namespace {
 
 constexpr int kSize = 128;

@@ -16,6 +16,15 @@
 #include "scenes/mesh_builders.h"
 
 namespace sb::test {
+
+using core::JobError;
+using core::Scene;
+using gl::GpuScene;
+using plan::find_need_provider;
+using plugin::DerivedData;
+using plugin::NeedProvider;
+using plugin::SilhouetteEdges;
+
 namespace {
 
 class GpuAccess : public ::testing::Test {
@@ -136,12 +145,12 @@ TEST_F(GpuAccess, SilhouetteEdgesOfABoxFromAPointAreItsOutline) {
   Scene scene;
   scene.meshes.push_back(make_box("box", {0, 1, 0}, {0.5f, 1.0f, 1.5f}));
   const GpuScene gpu(scene, {});
-  const NeedProvider* provider = find_need_provider(need::kSilhouetteEdges, nullptr);
+  const NeedProvider* provider = find_need_provider(plugin::need::kSilhouetteEdges, nullptr);
   ASSERT_NE(provider, nullptr);
   ASSERT_TRUE(provider->upload);
   DerivedData data;
   provider->upload(scene, gpu, data);
-  const auto& edges = data.get<SilhouetteEdges>(need::kSilhouetteEdges);
+  const auto& edges = data.get<SilhouetteEdges>(plugin::need::kSilhouetteEdges);
   ASSERT_EQ(edges.edge_count, 18);
   ASSERT_EQ(edges.meshes.size(), 1u);
   EXPECT_EQ(edges.meshes[0].edge_count, 18);

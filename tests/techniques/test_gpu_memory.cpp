@@ -13,6 +13,9 @@
 #include "gl/storage_bytes.h"
 
 namespace sb::test {
+
+using core::JobError;
+
 namespace {
 
 constexpr std::int64_t kMiB = 1024 * 1024;

@@ -13,6 +13,10 @@
 #include "core/scene_types.h"
 
 namespace sb::shadow {
+
+using core::AreaLight;
+using core::make_area_light;
+
 namespace {
 
 void expect_orthonormal(const LightFrame& f) {

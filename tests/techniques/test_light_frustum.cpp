@@ -9,6 +9,16 @@
 #include "core/scene_types.h"
 
 namespace sb::shadow {
+
+using core::Bounds;
+using core::find_scene_type;
+using core::JobError;
+using core::make_area_light;
+using core::Mesh;
+using core::resolve_params;
+using core::Scene;
+using core::SceneType;
+
 namespace {
 
 Scene scene_of(const char* type, const nlohmann::json& params) {

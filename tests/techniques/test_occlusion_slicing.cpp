@@ -16,6 +16,12 @@
 #include "occlusion_texture/slicing.h"
 
 namespace sb::occlusion {
+
+using core::AreaLight;
+using core::JobError;
+using core::Mesh;
+using core::Scene;
+
 namespace {
 
 // A square light of side `size` at y = 10 facing down (-y).

@@ -16,6 +16,13 @@
 #include "shadow_map/perspective_warp.h"
 
 namespace sb::shadow {
+
+using core::find_scene_type;
+using core::Mesh;
+using core::resolve_params;
+using core::Scene;
+using core::SceneType;
+
 namespace {
 
 constexpr float kAspect = 4.0f / 3.0f;

@@ -15,6 +15,11 @@
 #include "shadow_volume/volume_mesh.h"
 
 namespace sb::volume {
+
+using core::Bounds;
+using core::Camera;
+using core::Mesh;
+
 namespace {
 
 constexpr float kRadius = 0.5f;

@@ -34,6 +34,36 @@
 #include "scenes/receiver_inference.h"
 
 namespace sb::test {
+
+using config::Experiment;
+using config::load_experiment;
+using config::parse_experiment;
+using config::TechniqueVariant;
+using core::AreaLight;
+using core::Camera;
+using core::find_scene_type;
+using core::ImageF;
+using core::make_area_light;
+using core::Mesh;
+using core::Params;
+using core::resolve_params;
+using core::Scene;
+using core::SceneType;
+using gl::GpuScene;
+using gl::MeshDrawFlags;
+using plan::Derive;
+using plan::resolve_needs;
+using plan::ResolvedNeeds;
+using plugin::DerivedData;
+using plugin::FrameInputs;
+using plugin::NeedProvider;
+using plugin::PlanarReceiver;
+using plugin::Registry;
+using plugin::Technique;
+using plugin::TechniqueInfo;
+using run::FrameTargets;
+using run::read_texture;
+
 namespace {
 
 constexpr int kWidth = 96;

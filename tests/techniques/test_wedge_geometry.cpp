@@ -14,6 +14,10 @@
 #include "penumbra_wedge/wedge_geometry.h"
 
 namespace sb::wedge {
+
+using core::AreaLight;
+using core::Bounds;
+
 namespace {
 
 AreaLight square_light(float size, const glm::vec3& centre = {0.0f, 10.0f, 0.0f}) {

@@ -8,18 +8,19 @@
 
 namespace blurred {
 
-sb::NeedProvider receiver_basis_provider() {
-  sb::NeedProvider p;
+sb::plugin::NeedProvider receiver_basis_provider() {
+  sb::plugin::NeedProvider p;
   p.name = kReceiverBasis;
   p.summary = "an orthonormal frame over the planar receiver (receiver_blur)";
-  p.requires_needs = {sb::need::kPlanarReceiver};
+  p.requires_needs = {sb::plugin::need::kPlanarReceiver};
   // Run: only when a technique that asked will run. A scene without a
   // planar receiver already skipped it through planar_receiver.
-  p.when = sb::NeedProvider::When::Run;
-  p.derive = [](const sb::Scene& scene, sb::DerivedData& data, std::vector<std::string>& log) {
-    const auto* receiver = data.find<sb::PlanarReceiver>(sb::need::kPlanarReceiver);
+  p.when = sb::plugin::NeedProvider::When::Run;
+  p.derive = [](const sb::core::Scene& scene, sb::plugin::DerivedData& data,
+                std::vector<std::string>& log) {
+    const auto* receiver = data.find<sb::plugin::PlanarReceiver>(sb::plugin::need::kPlanarReceiver);
     if (receiver == nullptr) return;
-    const sb::Mesh* mesh = nullptr;
+    const sb::core::Mesh* mesh = nullptr;
     for (const auto& m : scene.meshes)
       if (m.name == receiver->mesh) mesh = &m;
     if (mesh == nullptr || mesh->positions.empty()) return;

@@ -18,6 +18,6 @@ struct ReceiverBasis {
   glm::vec2 half_extent{1.0f};  // along u and v
 };
 
-sb::NeedProvider receiver_basis_provider();
+sb::plugin::NeedProvider receiver_basis_provider();
 
 }  // namespace blurred
