@@ -4,12 +4,38 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
 
 namespace sb::plugin {
+
+namespace {
+
+// dlerror()'s words, and when the module names a shadowbench symbol this
+// build does not define (a mangled name in sb: "_ZN2sb...", "_ZNK2sb...",
+// "_ZTVN2sb..."), what that most likely means: it was built against another
+// plugin API version, whose names this build lacks.
+std::string dlopen_failure(const char* why) {
+  std::string out = why != nullptr ? why : "dlopen failed";
+  const std::string marker = "undefined symbol: _Z";
+  const size_t at = out.find(marker);
+  if (at != std::string::npos) {
+    size_t name = at + marker.size();  // past the mangling's capitals: N, K, TV, TI
+    while (name < out.size() && std::isupper(static_cast<unsigned char>(out[name])) != 0) ++name;
+    if (out.compare(name, 3, "2sb") == 0)
+      out +=
+          " (a shadowbench symbol this build lacks: the module was most likely built against "
+          "another plugin API version; this build's is " +
+          std::to_string(kPluginApiVersion) +
+          ". Rebuild it against this shadowbench: docs/writing_a_technique.md, \"Version\")";
+  }
+  return out;
+}
+
+}  // namespace
 
 bool Needs::has(const std::string& name) const {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -101,8 +127,7 @@ int Registry::load_plugins(const std::string& dir) {
       continue;  // and a failed one fails once
     void* handle = dlopen(f.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (handle == nullptr) {
-      const char* why = dlerror();
-      failures_.push_back({f.string(), why != nullptr ? why : "dlopen failed"});
+      failures_.push_back({f.string(), dlopen_failure(dlerror())});
       continue;
     }
     using Entry = void (*)(Registry&);

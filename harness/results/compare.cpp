@@ -17,15 +17,10 @@ namespace sb::results {
 
 using core::format_number;
 using core::InputError;
-using core::kExitBadInput;
-using core::kExitOk;
-using record::build_fingerprint_fields;
-using record::ControlTiming;
 using record::field_differences;
 using record::host_fingerprint_fields;
 using record::JobRecord;
 using record::MetricPath;
-using record::Series;
 using record::summarize;
 
 namespace {
@@ -34,7 +29,8 @@ namespace {
 std::vector<double> time_samples(const JobRecord& record, const std::string& key) {
   std::vector<double> out;
   if (!record.timing) return out;
-  const Series& series = key == "technique" ? record.timing->technique : record.timing->frame;
+  const record::Series& series =
+      key == "technique" ? record.timing->technique : record.timing->frame;
   for (const double d : series.samples)
     if (std::isfinite(d)) out.push_back(d);
   return out;
@@ -45,7 +41,7 @@ std::vector<double> time_samples(const JobRecord& record, const std::string& key
 // finite ones; nullopt without timing.control.
 std::optional<std::vector<double>> ratio_samples(const JobRecord& record, const std::string& key) {
   if (!record.timing || !record.timing->control) return std::nullopt;
-  const ControlTiming& control = *record.timing->control;
+  const record::ControlTiming& control = *record.timing->control;
   std::vector<double> out;
   if (key == "technique") {
     const auto& job = record.timing->technique.samples;
@@ -92,8 +88,8 @@ const FingerprintPair& note_fingerprints(const JobRecord& rb, const JobRecord& r
   }
   FingerprintPair& build = pair_of(out.builds, rb.build.fingerprint, rn.build.fingerprint);
   if (build.jobs++ == 0 && !build.same())
-    build.differences =
-        field_differences(build_fingerprint_fields(rb.build), build_fingerprint_fields(rn.build));
+    build.differences = field_differences(record::build_fingerprint_fields(rb.build),
+                                          record::build_fingerprint_fields(rn.build));
   return host;
 }
 
@@ -503,7 +499,7 @@ CompareResult compare_runs(const std::vector<JobRecord>& base, const std::vector
 
 int compare_exit_code(const CompareResult& r) {
   if (r.regressions > 0) return kExitRegression;
-  return r.time_refused > 0 || r.error_refused > 0 ? kExitBadInput : kExitOk;
+  return r.time_refused > 0 || r.error_refused > 0 ? core::kExitBadInput : core::kExitOk;
 }
 
 namespace {

@@ -13,7 +13,7 @@
 namespace sb::test {
 
 inline std::filesystem::path broken_plugin_folder() {
-  const std::filesystem::path dir = test_folder("sb_broken_plugins_");
+  std::filesystem::path dir = test_folder("sb_broken_plugins_");
   std::mt19937 bytes(41);
   std::ofstream corrupt(dir / "corrupt.so", std::ios::binary);
   for (int i = 0; i < 4096; ++i) corrupt.put(static_cast<char>(bytes() & 0xff));

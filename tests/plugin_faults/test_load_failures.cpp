@@ -3,6 +3,7 @@
 // naming a technique it may have registered says so (validate: exit 3).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "broken_plugins.h"
@@ -43,6 +44,30 @@ TEST(PluginLoadFailures, AreRecordedWithTheFileAndTheLoadersMessageNotThrown) {
   // The same folder again: each failure is said once.
   r.load_plugins(dir.string());
   EXPECT_EQ(r.load_failures().size(), 3u);
+}
+
+// A module built against an older plugin API names shadowbench symbols
+// this build lacks: the failure says to rebuild it, and names the version. A
+// module missing a symbol of its own gets no such hint.
+TEST(PluginLoadFailures, AModuleOfAnotherPluginApiIsToldToRebuild) {
+  Registry r;
+  EXPECT_EQ(r.load_plugins(OLD_API_PLUGIN_DIR), 0);
+  ASSERT_EQ(r.load_failures().size(), 1u);
+  const std::string& message = r.load_failures()[0].message;
+  EXPECT_TRUE(has(message, "undefined symbol: _ZN2sb26a_function_of_an_older_apiEv")) << message;
+  EXPECT_TRUE(has(message, "built against another plugin API version; this build's is " +
+                               std::to_string(plugin::kPluginApiVersion) +
+                               ". Rebuild it against this shadowbench"))
+      << message;
+
+  // my_pcf.so lacks a function of its own (not in sb).
+  Registry own;
+  own.load_plugins(broken_plugin_folder().string());
+  const auto it = std::find_if(own.load_failures().begin(), own.load_failures().end(),
+                               [](const auto& f) { return f.file.ends_with("/my_pcf.so"); });
+  ASSERT_NE(it, own.load_failures().end());
+  EXPECT_TRUE(has(it->message, "undefined symbol")) << it->message;
+  EXPECT_FALSE(has(it->message, "plugin API version")) << it->message;
 }
 
 TEST(PluginLoadFailures, ListWorksAndWarnsOncePerFailedModule) {
