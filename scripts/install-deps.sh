@@ -1,9 +1,15 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages shadowbench builds and tests with.
 # Skips everything already installed, so it is cheap to call twice.
+#   scripts/install-deps.sh            what building and running need
+#   scripts/install-deps.sh --test     that and what the tests need
+#   scripts/install-deps.sh --test-only  only what the tests need beyond
+#                                      building (test.sh installs it while
+#                                      the build runs)
 set -euo pipefail
 
-packages=(
+packages=()
+build_packages=(
   build-essential cmake pkg-config ninja-build
   libosmesa6-dev libegl-dev libegl1-mesa-dev libgl1-mesa-dri
   python3-glad python3-matplotlib
@@ -13,7 +19,8 @@ packages=(
   libbenchmark-dev libgtest-dev libgmock-dev
   libcli11-dev help2man
 )
-if [[ "${1:-}" == "--test" ]]; then
+if [[ "${1:-}" != "--test-only" ]]; then packages+=("${build_packages[@]}"); fi
+if [[ "${1:-}" == "--test" || "${1:-}" == "--test-only" ]]; then
   # Test oracles: scikit-image for SSIM; Google Benchmark's compare.py (and
   # the scipy it needs) reads our --benchmark-out JSON.
   packages+=(python3-skimage python3-numpy libbenchmark-tools python3-scipy)

@@ -7,37 +7,66 @@
 #      (every test without the label "gl").
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/install-deps.sh --test
-# The Khronos glTF validator for tests/gltf (skipped by the tests when absent).
-if command -v npm > /dev/null && [[ ! -f tools/gltf-validator/node_modules/gltf-validator/package.json ]]; then
-  npm install --prefix tools/gltf-validator --no-save --no-audit --no-fund gltf-validator@2.0.0-dev.3.10 ||
-    echo "warning: could not install gltf-validator; its test will be skipped"
-fi
+start=$SECONDS
+phase_start=$SECONDS
+# "== NAME" at each phase's start, and what the one before took, so that a
+# slow CI names its slow part.
+phase() {
+  if [[ -n ${phase_name:-} ]]; then
+    echo "== $phase_name took $((SECONDS - phase_start)) s"
+  fi
+  phase_name=$1
+  phase_start=$SECONDS
+  [[ -z $phase_name ]] || echo "== $phase_name"
+}
 
-echo "== clang-format"
+phase "install what building needs"
+scripts/install-deps.sh
+# What only the tests need (Chromium, Slurm, scipy, ...) installs while the
+# build runs: the first test starts after both.
+extras_log=$(mktemp)
+(
+  scripts/install-deps.sh --test-only
+  # The Khronos glTF validator for tests/gltf (skipped by the tests when absent).
+  if command -v npm > /dev/null && [[ ! -f tools/gltf-validator/node_modules/gltf-validator/package.json ]]; then
+    npm install --prefix tools/gltf-validator --no-save --no-audit --no-fund gltf-validator@2.0.0-dev.3.10 ||
+      echo "warning: could not install gltf-validator; its test will be skipped"
+  fi
+) > "$extras_log" 2>&1 &
+extras_pid=$!
+wait_for_extras() {
+  local rc=0
+  wait "$extras_pid" || rc=$?
+  echo "== what the tests need (installed during the build):"
+  cat "$extras_log"
+  if ((rc != 0)); then
+    echo "test.sh: installing what the tests need failed (exit code $rc)" >&2
+    exit "$rc"
+  fi
+}
+
+phase "clang-format"
 mapfile -t sources < <(git ls-files '*.cpp' '*.h' 2>/dev/null || find harness scenes techniques tests bench -name '*.cpp' -o -name '*.h')
 clang-format --dry-run -Werror "${sources[@]}"
 
 # Every test runs once: the ones that drive Mesa ("gl") in the Release build,
 # the others under ASan/UBSan below (with SHADOWBENCH_SKIP_SANITIZERS=1, all
-# in the Release build). The choice is made when build/ is first configured.
+# in the Release build; scripts/build.sh configures build/ accordingly).
 sanitize=1
 if [[ "${SHADOWBENCH_SKIP_SANITIZERS:-0}" == 1 ]]; then sanitize=0; fi
-echo "== Release build and tests"
-if [[ $sanitize == 1 ]]; then
-  scripts/build.sh -DSHADOWBENCH_NON_GL_TESTS=OFF
-else
-  scripts/build.sh -DSHADOWBENCH_NON_GL_TESTS=ON
-fi
+phase "Release build"
+scripts/build.sh
+wait_for_extras
+phase "Release tests"
 ctest --test-dir build --output-on-failure -j2
 
 # configs/ci.json against the committed baseline, as ratios to the control
 # job, so that it holds on any CPU (docs/ci.md, "The gate in this repository").
-echo "== performance gate"
+phase "performance gate"
 scripts/ci-gate.sh build
 
 if [[ $sanitize == 1 ]]; then
-  echo "== ASan/UBSan build, tests without the label 'gl'"
+  phase "ASan/UBSan build"
   generator=()
   if command -v ninja > /dev/null; then generator=(-G Ninja); fi
   if [[ ! -f build-asan/CMakeCache.txt ]]; then
@@ -51,6 +80,9 @@ if [[ $sanitize == 1 ]]; then
       -DSHADOWBENCH_SANITIZE=ON -DSHADOWBENCH_BUILD_BENCHMARKS=OFF
   fi
   cmake --build build-asan -j"$(nproc)"
+  phase "ASan/UBSan tests (those without the label 'gl')"
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     ctest --test-dir build-asan --output-on-failure -LE gl -j2
 fi
+phase ""
+echo "== test.sh: every phase passed in $((SECONDS - start)) s"
