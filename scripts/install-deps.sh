@@ -53,4 +53,9 @@ sudo_cmd=()
 if [[ $(id -u) -ne 0 ]]; then sudo_cmd=(sudo); fi
 export DEBIAN_FRONTEND=noninteractive
 "${sudo_cmd[@]}" apt-get update -q
-"${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+# --force-unsafe-io: dpkg skips its fsync of every unpacked file (as Debian's
+# own container images do). The 332 packages of a fresh install took 275 s
+# instead of 405 s (debootstrapped Debian 12, 2-core VM under load,
+# 2026-12-06); a machine that crashes mid-install is repaired by running this
+# again.
+"${sudo_cmd[@]}" apt-get install -o Dpkg::Options::=--force-unsafe-io -y -q --no-install-recommends "${missing[@]}"
