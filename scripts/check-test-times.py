@@ -8,22 +8,30 @@ Exit 0 when every entry that ran is within the limit, 1 when one is not
 (each named, with its time), 2 on bad input (no such file, not JUnit XML).
 
 The noise of a loaded machine: ctest's times are wall times of entries run
-side by side (-j2) on a shared VM, so one entry can take a third longer than
-alone. A slow entry is therefore run once more, alone, with the same
-environment (`ctest --test-dir DIR -R ^NAME$`), and only fails the check if
-it is over the limit again; the time it took alone is printed next to the
-first. A test that is really slow is slow alone too and is caught; one made
-slow by its neighbour is not blamed. Without --test-dir there is no retry
-(the self-test's case). Entries that failed are left to ctest, which has
-already failed the run; entries not run are ignored.
+side by side (-j2), on a VM that may be shared, so an entry can take a third
+longer beside its neighbour, or several times longer while other builds run.
+An entry over the limit is therefore run once more, alone, with the same
+environment (`ctest --test-dir DIR -R ^NAME$`), measuring its wall time and
+its CPU time (user + system of ctest and every process it waited for, from
+getrusage(RUSAGE_CHILDREN)). It fails the check only if both are over the
+limit again: a test that really is slow is slow alone too and burns that
+CPU, whatever else the machine runs; one made slow by its neighbour or by a
+loaded machine is not blamed, and each time is printed. What this misses: a
+test slow only because it waits (sleeps, time-outs) uses little CPU and is
+named in the list of the slowest, but does not fail the check. Without
+--test-dir there is no retry (the self-test's first cases). Entries that
+failed are left to ctest, which has already failed the run; entries not run
+are ignored.
 
 --self-test checks this script on made-up JUnit files: an entry of 31 s
-fails the check and is named, one of 29 s passes, and a retry that is fast
-alone passes while one that is slow alone fails.
+fails the check and is named, one of 29 s passes; after a retry, an entry
+slow alone in wall and CPU time fails, one fast alone, or slow alone but
+with little CPU (a loaded machine), passes.
 """
 import argparse
 import os
 import re
+import resource
 import subprocess
 import sys
 import tempfile
@@ -57,21 +65,24 @@ def read_times(path):
 
 
 def time_alone(ctest, test_dir, name):
-    """Runs one ctest entry alone; its time, or None if it did not pass."""
+    """Runs one ctest entry alone: (wall s, CPU s), or None if it did not pass."""
     with tempfile.TemporaryDirectory() as tmp:
         junit = os.path.join(tmp, "retry.xml")
         # ctest's regular expressions take a backslash before a special character.
         pattern = "^" + re.sub(r"([][.^$*+?(){}|\\])", r"\\\1", name) + "$"
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
         r = subprocess.run([ctest, "--test-dir", test_dir, "-R", pattern, "--output-junit", junit],
                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
         if r.returncode != 0 or not os.path.exists(junit):
             print(r.stdout[-2000:])
             return None
         times = [t for n, t, s in read_times(junit) if n == name and s == "run"]
-        return times[0] if times else None
+        return (times[0], cpu) if times else None
 
 
-def check(junit, limit, test_dir=None, ctest="ctest", out=sys.stdout):
+def check(junit, limit, test_dir=None, ctest="ctest", out=sys.stdout, alone=time_alone):
     cases = read_times(junit)
     ran = sorted((c for c in cases if c[2] in ("run", "fail")), key=lambda c: -c[1])
     print(f"check-test-times: the {min(SHOWN, len(ran))} slowest of {len(ran)} entries "
@@ -87,13 +98,16 @@ def check(junit, limit, test_dir=None, ctest="ctest", out=sys.stdout):
             continue
         print(f"check-test-times: {name} took {t:.1f} s; running it again alone", file=out)
         out.flush()
-        alone = time_alone(ctest, test_dir, name)
-        if alone is None:
+        again = alone(ctest, test_dir, name)
+        if again is None:
             slow.append(f"{name}: {t:.1f} s, and failed when run again alone")
-        elif alone > limit:
-            slow.append(f"{name}: {t:.1f} s, {alone:.1f} s alone")
+            continue
+        wall, cpu = again
+        times = f"{wall:.1f} s alone ({cpu:.1f} s of CPU)"
+        if wall > limit and cpu > limit:
+            slow.append(f"{name}: {t:.1f} s, {times}")
         else:
-            print(f"check-test-times: {name}: {alone:.1f} s alone, within {limit:g} s", file=out)
+            print(f"check-test-times: {name}: {times}, not both over {limit:g} s", file=out)
     for line in slow:
         print(f"check-test-times: slower than {limit:g} s: {line}", file=out)
     if slow:
@@ -135,23 +149,28 @@ def self_test():
         text = io.StringIO()
         expect("29 s passes", check(fine, LIMIT_S, out=text) == 0)
         expect("nothing named when none is slow", "slower than" not in text.getvalue())
-        # The retry, through a stand-in for ctest that writes the time it is told.
-        for alone, want in ((12.0, 0), (33.0, 1)):
-            fake = os.path.join(tmp, "ctest")
-            with open(fake, "w") as f:
-                f.write("#!/usr/bin/env python3\nimport sys\nargs = sys.argv[1:]\n"
-                        "name = args[args.index('-R') + 1].strip('^$').replace('\\\\', '')\n"
-                        "path = args[args.index('--output-junit') + 1]\n"
-                        f"open(path, 'w').write('<testsuite><testcase name=\"' + name + "
-                        f"'\" time=\"{alone}\" status=\"run\"/></testsuite>')\n")
-            os.chmod(fake, 0o755)
+        # The retry's verdict: (wall, CPU) alone.
+        for again, want in (((33.0, 32.0), 1), ((12.0, 11.0), 0), ((90.0, 8.0), 0)):
             text = io.StringIO()
-            code = check(slow, LIMIT_S, test_dir=tmp, ctest=fake, out=text)
-            expect(f"{alone} s alone gives exit {want} (got {code}: {text.getvalue()})",
+            code = check(slow, LIMIT_S, test_dir=tmp, out=text,
+                         alone=lambda ctest, test_dir, name, a=again: a)
+            expect(f"{again} alone gives exit {want} (got {code}: {text.getvalue()})",
                    code == want)
             if want:
-                expect("the retried entry is named with both times",
-                       f"test_slow/1: 31.0 s, {alone} s alone" in text.getvalue())
+                expect("the retried entry is named with its times",
+                       "test_slow/1: 31.0 s, 33.0 s alone (32.0 s of CPU)" in text.getvalue())
+        # The retry itself, through a stand-in for ctest that writes the time it is told.
+        fake = os.path.join(tmp, "ctest")
+        with open(fake, "w") as f:
+            f.write("#!/usr/bin/env python3\nimport sys\nargs = sys.argv[1:]\n"
+                    "name = args[args.index('-R') + 1].strip('^$').replace('\\\\', '')\n"
+                    "path = args[args.index('--output-junit') + 1]\n"
+                    "open(path, 'w').write('<testsuite><testcase name=\"' + name + "
+                    "'\" time=\"33.0\" status=\"run\"/></testsuite>')\n")
+        os.chmod(fake, 0o755)
+        again = time_alone(fake, tmp, "test_slow/1")
+        expect(f"the entry's time alone is read back (got {again})",
+               again is not None and again[0] == 33.0 and 0 <= again[1] < 30)
         bad = os.path.join(tmp, "bad.xml")
         with open(bad, "w") as f:
             f.write("not xml")
