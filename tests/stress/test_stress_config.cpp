@@ -9,9 +9,7 @@
 // jeep's error is the same at scales 1e-3, 1 and 1e4.
 // The config's 24 scenes run in six groups, one test each (a ctest shard
 // each, about a sixth of the two minutes all of them take); every scene is
-// in exactly one group (TheGroupsHoldEverySceneOnce). Each shard runs alone
-// (RUN_SERIAL): every core busy would make the timing tests that share the
-// machine noisy.
+// in exactly one group (TheGroupsHoldEverySceneOnce).
 #include <gtest/gtest.h>
 
 #include <algorithm>
