@@ -58,7 +58,10 @@ phase "Release build"
 scripts/build.sh
 wait_for_extras
 phase "Release tests"
-ctest --test-dir build --output-on-failure -j2
+ctest --test-dir build --output-on-failure -j2 --output-junit "$PWD/build/ctest-junit.xml"
+# Names every entry slower than 30 s (run again alone first: the script's
+# docstring says why), and prints the five slowest.
+scripts/check-test-times.py build/ctest-junit.xml --test-dir build
 
 # configs/ci.json against the committed baseline, as ratios to the control
 # job, so that it holds on any CPU (docs/ci.md, "The gate in this repository").
@@ -81,8 +84,10 @@ if [[ $sanitize == 1 ]]; then
   fi
   cmake --build build-asan -j"$(nproc)"
   phase "ASan/UBSan tests (those without the label 'gl')"
-  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-    ctest --test-dir build-asan --output-on-failure -LE gl -j2
+  export ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1
+  ctest --test-dir build-asan --output-on-failure -LE gl -j2 \
+    --output-junit "$PWD/build-asan/ctest-junit.xml"
+  scripts/check-test-times.py build-asan/ctest-junit.xml --test-dir build-asan
 fi
 phase ""
 echo "== test.sh: every phase passed in $((SECONDS - start)) s"

@@ -2,6 +2,7 @@
 // build installs), driven in bash as readline would: COMP_WORDS and
 // COMP_CWORD set, the completion function called, COMPREPLY read.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -18,8 +19,9 @@ class BashCompletion : public ::testing::Test {
   static void SetUpTestSuite() {
     const auto r = run_cli("completion bash");
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    script_ =
-        (std::filesystem::temp_directory_path() / "shadowbench_test_completion.bash").string();
+    script_ = (std::filesystem::temp_directory_path() /
+               ("shadowbench_test_completion-" + std::to_string(::getpid()) + ".bash"))
+                  .string();
     std::ofstream(script_) << r.output;
   }
 
@@ -27,7 +29,8 @@ class BashCompletion : public ::testing::Test {
   static std::vector<std::string> complete(const std::vector<std::string>& words) {
     std::string array;
     for (const auto& w : words) array += " '" + w + "'";
-    const std::string dir = std::filesystem::temp_directory_path() / "shadowbench_completion_cwd";
+    const std::string dir = std::filesystem::temp_directory_path() /
+                            ("shadowbench_completion_cwd-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir + "/runs/a");
     std::ofstream(dir + "/quick.json") << "{}";
     std::ofstream(dir + "/notes.txt") << "";

@@ -2,6 +2,8 @@
 // Synthetic run directories for the compare tests: whole records
 // (JobRecord, tests/record/sample_records.h) with the frame samples, passes
 // and errors that `compare` and the CI writers read, and a results.jsonl.
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -111,7 +113,9 @@ inline std::vector<record::JobRecord> against(std::vector<record::JobRecord> rec
 }
 
 inline std::filesystem::path temp_dir(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() / "shadowbench_test_compare" / name;
+  // The process id keeps the shards of test_compare, run side by side, apart.
+  auto dir = std::filesystem::temp_directory_path() /
+             ("shadowbench_test_compare-" + std::to_string(::getpid())) / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

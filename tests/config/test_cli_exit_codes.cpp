@@ -1,5 +1,6 @@
 // The driver's exit codes: 2 for bad input, with the message on stderr.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -11,8 +12,14 @@ namespace {
 
 using sb::test::run_cli;
 
+// A folder of this process's own: the shards of this executable run side by side.
+std::filesystem::path cli_dir() {
+  return std::filesystem::temp_directory_path() /
+         ("shadowbench_test_cli-" + std::to_string(::getpid()));
+}
+
 std::string write_temp(const std::string& name, const std::string& text) {
-  const auto dir = std::filesystem::temp_directory_path() / "shadowbench_test_cli";
+  const auto dir = cli_dir();
   std::filesystem::create_directories(dir);
   const auto path = dir / name;
   std::ofstream(path) << text;
@@ -26,7 +33,9 @@ TEST(Cli, BadConfigExitsWithTwo) {
   for (const char* command : {"validate", "run"}) {
     // validate takes no --out; run must not create it for a bad config.
     const std::string out = std::string(command) == "run" ? " --out " + path + ".out" : "";
-    const auto r = run_cli(std::string(command) + " " + path + out);
+    std::string args(command);
+    args.append(" ").append(path).append(out);
+    const auto r = run_cli(args);
     EXPECT_EQ(r.exit_code, 2) << r.output;
     const std::string at = R"({"k": 4})";
     const std::string line_col = ":1:" + std::to_string(config.find(at) + at.find('4') + 1);
@@ -41,7 +50,8 @@ TEST(Cli, BadConfigExitsWithTwo) {
 
 // (Running such a config is tested in tests/e2e: it needs GL.)
 TEST(Cli, BadSceneFileFailsValidation) {
-  const auto dir = std::filesystem::temp_directory_path() / "shadowbench_test_cli";
+  const auto dir = cli_dir();
+  std::filesystem::create_directories(dir);
   std::filesystem::copy_file(SHADOWBENCH_SOURCE_DIR "/tests/gltf/corpus/index_out_of_range.gltf",
                              dir / "bad.gltf", std::filesystem::copy_options::overwrite_existing);
   const std::string path =

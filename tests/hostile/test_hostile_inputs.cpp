@@ -11,13 +11,17 @@
 // (measured: `run` fails with "out of memory" under `ulimit -v 1048576`).
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <poll.h>
 #include <signal.h>
 #include <sys/resource.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -106,19 +110,31 @@ Outcome run_limited(const std::vector<std::string>& args, const std::string& log
   }
   int status = 0;
   rusage usage{};
-  while (true) {
-    const pid_t done = ::wait4(pid, &status, WNOHANG, &usage);
-    if (done == pid) {
+  // Woken by the child's exit (a pidfd turns readable), not by polling: a
+  // 20 ms poll cost about 10 ms a command, 2 s over the corpus.
+  const int pidfd = static_cast<int>(::syscall(SYS_pidfd_open, pid, 0));
+  while (pidfd >= 0) {
+    const auto left = std::chrono::seconds(kWallSeconds) - (std::chrono::steady_clock::now() - t0);
+    pollfd exited{pidfd, POLLIN, 0};
+    const int ready =
+        ::poll(&exited, 1,
+               int(std::max<std::int64_t>(
+                   0, std::chrono::duration_cast<std::chrono::milliseconds>(left).count())));
+    if (ready < 0 && errno == EINTR) continue;
+    o.finished = ready > 0;
+    break;
+  }
+  while (pidfd < 0) {  // a kernel without pidfd_open (before Linux 5.3)
+    if (::wait4(pid, &status, WNOHANG, &usage) == pid) {
       o.finished = true;
       break;
     }
-    if (std::chrono::steady_clock::now() - t0 > std::chrono::seconds(kWallSeconds)) {
-      ::kill(pid, SIGKILL);
-      ::wait4(pid, &status, 0, &usage);
-      break;
-    }
+    if (std::chrono::steady_clock::now() - t0 > std::chrono::seconds(kWallSeconds)) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
+  if (pidfd >= 0) ::close(pidfd);
+  if (!o.finished) ::kill(pid, SIGKILL);
+  if (pidfd >= 0 || !o.finished) ::wait4(pid, &status, 0, &usage);
   o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   o.max_rss_kib = usage.ru_maxrss;
   if (WIFEXITED(status)) o.exit_code = WEXITSTATUS(status);

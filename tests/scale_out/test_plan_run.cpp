@@ -1,6 +1,7 @@
 // `run` executes the plan `plan --json` prints: it writes the same plan as
 // plan.json, records every job of it with the planned outcome, runs exactly
-// its shard's jobs under --shard, and resumes by its job ids.
+// its shard's jobs under --shard, and resumes by its job ids (on
+// configs/quick.json's jobs, small_quick()).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -15,8 +16,6 @@ namespace {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
-
-const std::string kQuick = std::string(SHADOWBENCH_SOURCE_DIR) + "/configs/quick.json";
 
 // `plan ARGS --json`: its stdout alone (stderr says why a scene is bad), parsed.
 json plan_json(const std::string& args, int expected_exit = 0) {
@@ -58,12 +57,12 @@ void expect_records_follow_the_plan(const json& plan, const std::vector<json>& r
 
 TEST(PlanRun, QuickRecordsEveryPlannedJobAsPlannedWritesThePlanAndResumesByItsIds) {
   const fs::path dir = test_folder();
-  const json plan = plan_json(kQuick);
+  const json plan = plan_json(small_quick());
   ASSERT_TRUE(plan.is_object());
   ASSERT_EQ(plan["jobs"].size(), 20u);  // 1 scene × 2 resolutions × 10 technique variants
   const std::string out = (dir / "run").string();
-  const std::string args =
-      "run " + kQuick + " --out " + out + " --cache-dir " + (dir / "cache").string() + " --quiet";
+  const std::string args = "run " + small_quick() + " --out " + out + " --cache-dir " +
+                           (dir / "cache").string() + " --quiet";
   const CliRun r = run_shadowbench(args);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(read_json(fs::path(out) / "plan.json"), plan);
@@ -104,15 +103,15 @@ TEST(PlanRun, SkipsAndBadInputFailuresAreRecordedAsPlanned) {
 
 TEST(PlanRun, AShardRunsExactlyThePlansJobsOfThatShard) {
   const fs::path dir = test_folder();
-  const json plan = plan_json(kQuick + " --shards 3");
+  const json plan = plan_json(small_quick() + " --shards 3");
   ASSERT_TRUE(plan.is_object());
   std::vector<std::string> planned;  // shard 2's, in plan order
   for (const json& job : plan["jobs"])
     if (job["shard"] == 2) planned.push_back(job["id"]);
   ASSERT_FALSE(planned.empty());
   const std::string out = (dir / "shard-2").string();
-  const CliRun r = run_shadowbench("run " + kQuick + " --shard 2/3 --out " + out + " --cache-dir " +
-                                   (dir / "cache").string() + " --quiet");
+  const CliRun r = run_shadowbench("run " + small_quick() + " --shard 2/3 --out " + out +
+                                   " --cache-dir " + (dir / "cache").string() + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(read_json(fs::path(out) / "plan.json"), plan);
   std::vector<std::string> ran;

@@ -1,6 +1,8 @@
-// configs/quick.json in three shards, merged, gives the records one run
-// gives, timings aside; merge refuses what one comparison must not mix.
+// configs/quick.json's jobs (small_quick()) in three shards, merged, give the
+// records one run gives, timings aside; merge refuses what one comparison
+// must not mix.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <fstream>
 #include <iterator>
@@ -13,18 +15,16 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-const std::string kQuick = std::string(SHADOWBENCH_SOURCE_DIR) + "/configs/quick.json";
-
 TEST(ShardMerge, TheMergedShardsOfQuickEqualOneRunTimingsAside) {
   const auto dir = test_folder();
   const std::string cache = " --cache-dir " + (dir / "cache").string() + " --quiet";
   const CliRun whole =
-      run_shadowbench("run " + kQuick + " --out " + (dir / "whole").string() + cache);
+      run_shadowbench("run " + small_quick() + " --out " + (dir / "whole").string() + cache);
   ASSERT_EQ(whole.exit_code, 0) << whole.output;
   std::string shard_dirs;
   for (int k = 1; k <= 3; ++k) {
     const fs::path out = dir / ("shard-" + std::to_string(k));
-    std::string args = "run " + kQuick;
+    std::string args = "run " + small_quick();
     args += " --shard " + std::to_string(k) + "/3 --out " + out.string() + cache;
     const CliRun r = run_shadowbench(args);
     ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -64,21 +64,34 @@ TEST(ShardMerge, TheMergedShardsOfQuickEqualOneRunTimingsAside) {
   EXPECT_EQ(text(dir / "merged" / "plan.json"), text(dir / "shard-1" / "plan.json"));
 }
 
-// Two shards of a three-job config, for the refusals.
+// Two shards of a three-job config, for the refusals: run once per process,
+// on first use, and copied into `dir` for each test, which may alter them.
 fs::path two_shards(const fs::path& dir) {
-  const json config = {{"name", "two"},
-                       {"scenes", {{{"type", "sphere_grid"}, {"params", {{"grid", 2}}}}}},
-                       {"techniques", {"none", "shadow_map", "pcf_box"}},
-                       {"resolutions", {"64x48"}},
-                       {"frames", {{"warmup", 0}, {"timed", 2}, {"control", nullptr}}},
-                       {"reference", {{"spp", 4}}}};
-  std::ofstream(dir / "two.json") << config.dump();
-  for (int k = 1; k <= 2; ++k)
-    EXPECT_EQ(run_shadowbench("run " + (dir / "two.json").string() + " --shard " +
-                              std::to_string(k) + "/2 --out " +
-                              (dir / ("s" + std::to_string(k))).string() + " --no-cache --quiet")
-                  .exit_code,
-              0);
+  struct Shards {
+    fs::path folder;
+    std::vector<CliRun> runs;
+  };
+  static const Shards shards = [] {
+    Shards s;
+    s.folder =
+        fs::temp_directory_path() / ("sb_scale_out_two_shards-" + std::to_string(::getpid()));
+    fs::remove_all(s.folder);
+    fs::create_directories(s.folder);
+    const json config = {{"name", "two"},
+                         {"scenes", {{{"type", "sphere_grid"}, {"params", {{"grid", 2}}}}}},
+                         {"techniques", {"none", "shadow_map", "pcf_box"}},
+                         {"resolutions", {"64x48"}},
+                         {"frames", {{"warmup", 0}, {"timed", 2}, {"control", nullptr}}},
+                         {"reference", {{"spp", 4}}}};
+    std::ofstream(s.folder / "two.json") << config.dump();
+    for (int k = 1; k <= 2; ++k)
+      s.runs.push_back(run_shadowbench(
+          "run " + (s.folder / "two.json").string() + " --shard " + std::to_string(k) +
+          "/2 --out " + (s.folder / ("s" + std::to_string(k))).string() + " --no-cache --quiet"));
+    return s;
+  }();
+  for (const CliRun& r : shards.runs) EXPECT_EQ(r.exit_code, 0) << r.output;
+  fs::copy(shards.folder, dir, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
   return dir;
 }
 
