@@ -60,5 +60,31 @@ TEST(LazyLibraries, ARunLoadsTheBackendAndTheImageCodecWhenItNeedsThem) {
   EXPECT_EQ(v.height, 48);
 }
 
+// Planning a glTF scene decodes its textures in the parent, which loads
+// OpenImageIO there, and with it log4cplus's four idle threads: the parent
+// still forks its children (core::threads_started_by_lazy_libraries()).
+TEST(LazyLibraries, ThreadsOfALibraryLoadedBeforeTheChildrenDoNotStopIsolation) {
+  const fs::path dir = fresh_test_folder("lazy_libraries_textures");
+  const std::string glb = (dir / "leaves.glb").string();
+  const CliRun exported =
+      run_command(std::string(SHADOWBENCH_EXE) + " scene export foliage " + glb);
+  ASSERT_EQ(exported.exit_code, 0) << exported.output;
+  ASSERT_NE(exported.output.find("1 textures"), std::string::npos) << exported.output;
+  const json config = {{"name", "textures"},
+                       {"scenes", json::array({{{"type", "gltf"}, {"params", {{"file", glb}}}}})},
+                       {"techniques", json::array({"none"})},
+                       {"resolutions", json::array({json::array({64, 48})})},
+                       {"frames", {{"warmup", 0}, {"timed", 1}}},
+                       {"reference", {{"spp", 4}}}};
+  std::ofstream(dir / "textures.json") << config.dump();
+  const CliRun r =
+      run_command(std::string(SHADOWBENCH_EXE) + " run " + (dir / "textures.json").string() +
+                  " --out " + (dir / "run").string() + " --isolation group --no-cache --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto records = jsonl_records(dir / "run");
+  ASSERT_EQ(records.size(), 1u);
+  EXPECT_EQ(records[0]["status"], "ok") << records[0].dump();
+}
+
 }  // namespace
 }  // namespace sb::test
