@@ -1,6 +1,7 @@
 # Install rules and the Debian package. The layout (core/install_layout.h):
 #   bin/shadowbench                          RUNPATH $ORIGIN/../lib/shadowbench
-#   lib/shadowbench/lib*.so                  the driver's and the plugin API's libraries
+#   lib/shadowbench/lib*.so                  the driver's and the plugin API's libraries, and
+#                                            the image codec module the driver loads beside them
 #   lib/shadowbench/plugins/*.so             technique families, RUNPATH $ORIGIN/..
 #   share/shadowbench/                       plot_charts.py, configs/ (with models/)
 #   share/man/man1/shadowbench.1.gz, share/bash-completion/completions/shadowbench
@@ -18,6 +19,8 @@ set_target_properties(${_plugins} PROPERTIES INSTALL_RPATH "$ORIGIN/..")
 
 install(TARGETS shadowbench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS shadowbench_core LIBRARY DESTINATION ${SHADOWBENCH_INSTALL_LIB_DIR})
+# Loaded from libshadowbench_core.so's folder (core/image_codec.h).
+install(TARGETS shadowbench_image_codec LIBRARY DESTINATION ${SHADOWBENCH_INSTALL_LIB_DIR})
 install(TARGETS shadowbench_plugin_api EXPORT shadowbench-plugin-api
         LIBRARY DESTINATION ${SHADOWBENCH_INSTALL_LIB_DIR})
 # The shadow-map kit: a static library, linked into each plugin that uses it.
@@ -105,8 +108,10 @@ set(CPACK_STRIP_FILES ON)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3, python3-matplotlib")
-# EGL needs Mesa's EGL driver; OSMesa, the default backend, needs nothing more.
-set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "libegl-mesa0, libgl1-mesa-dri")
+# The GL backends' libraries are opened, not linked (gl/context_*.cpp), so
+# dpkg-shlibdeps cannot see them: OSMesa, the default backend, is named here.
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3, python3-matplotlib, libosmesa6")
+# EGL needs libglvnd's libEGL and Mesa's EGL driver.
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "libegl1, libegl-mesa0, libgl1-mesa-dri")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "openimageio-tools")
 include(CPack)

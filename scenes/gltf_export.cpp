@@ -1,8 +1,5 @@
 #include "scenes/gltf_export.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
 #include <cmath>
 #include <cstring>
 #include <glm/gtc/quaternion.hpp>
@@ -14,6 +11,7 @@
 #include <tuple>
 
 #include "core/atomic_file.h"
+#include "core/image_codec.h"
 
 namespace sb {
 
@@ -41,16 +39,10 @@ json vec(const glm::vec3& v) { return json::array({double(v.x), double(v.y), dou
 std::vector<unsigned char> encode_png(const TextureImage& t) {
   if (t.width <= 0 || t.height <= 0 || t.rgba.size() != size_t(t.width) * size_t(t.height) * 4)
     throw std::invalid_argument("texture '" + t.name + "': size does not match its pixels");
+  const core::Image8 img{t.width, t.height, 4, t.rgba};
   std::vector<unsigned char> out;
-  OIIO::Filesystem::IOVecOutput proxy(out);
-  auto o = OIIO::ImageOutput::create("png", &proxy);
-  if (!o) throw std::runtime_error("cannot create a PNG writer: " + OIIO::geterror());
-  OIIO::ImageSpec spec(t.width, t.height, 4, OIIO::TypeDesc::UINT8);
-  // The bytes are straight (unassociated) alpha already: write them as they are.
-  spec.attribute("oiio:UnassociatedAlpha", 1);
-  if (!o->open("texture.png", spec) || !o->write_image(OIIO::TypeDesc::UINT8, t.rgba.data()) ||
-      !o->close())
-    throw std::runtime_error("cannot encode texture '" + t.name + "' as PNG: " + o->geterror());
+  if (const std::string err = core::image_codec().encode_png(img, out); !err.empty())
+    throw std::runtime_error("cannot encode texture '" + t.name + "' as PNG: " + err);
   return out;
 }
 

@@ -1,11 +1,9 @@
 #include "scenes/gltf_images.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
 #include <array>
 #include <cstring>
 
+#include "core/image_codec.h"
 #include "scenes/gltf_import.h"
 
 namespace sb::gltf {
@@ -74,38 +72,33 @@ TextureImage ImageDecoder::decode(const tg::Image& img, size_t index) {
     fail(where, "is neither a PNG nor a JPEG image (mimeType " + quoted(img.mimeType) + ")");
   if (ext == "png")
     if (const std::string damage = png_damage(bytes); !damage.empty()) fail(where, "PNG " + damage);
-  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);  // glTF alpha is straight: keep rgb as stored
-  // With a config, readers take the proxy from it (OIIO 2.4), not from open()'s argument.
-  OIIO::Filesystem::IOProxy* proxy = &memory;
-  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-  auto in = OIIO::ImageInput::open("image." + ext, &config, &memory);
-  if (!in) fail(where, "cannot decode the " + ext + " image: " + first_line(OIIO::geterror()));
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width < 1 || spec.height < 1 || spec.width > kGltfMaxTextureSide ||
-      spec.height > kGltfMaxTextureSide || spec.depth != 1)
-    fail(where, "size " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-                    " is outside [1, " + std::to_string(kGltfMaxTextureSide) + "] per side");
-  const int channels = spec.nchannels;
-  if (channels < 1 || channels > 4)
-    fail(where, std::to_string(channels) + " channels (expected 1 to 4)");
-  const size_t texels = size_t(spec.width) * size_t(spec.height);
+  // Throws std::runtime_error, not bad input, when the codec module is missing.
+  const core::ImageCodec& codec = core::image_codec();
   // Checked on the header, before decoding: small files can unpack to gigabytes.
-  decoded_texels_ += texels;
-  if (decoded_texels_ > kGltfMaxDecodedTexels)
-    fail(where, "decoding it would bring the scene's textures to " + str(decoded_texels_) +
-                    " texels, over the limit of " + str(kGltfMaxDecodedTexels));
-  std::vector<uint8_t> raw(texels * size_t(channels));
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, raw.data()))
-    fail(where, "cannot decode the " + ext + " image: " + first_line(in->geterror()));
+  const auto check = [&](int width, int height, int depth, int channels) {
+    if (width < 1 || height < 1 || width > kGltfMaxTextureSide || height > kGltfMaxTextureSide ||
+        depth != 1)
+      fail(where, "size " + std::to_string(width) + "x" + std::to_string(height) +
+                      " is outside [1, " + std::to_string(kGltfMaxTextureSide) + "] per side");
+    if (channels < 1 || channels > 4)
+      fail(where, std::to_string(channels) + " channels (expected 1 to 4)");
+    decoded_texels_ += size_t(width) * size_t(height);
+    if (decoded_texels_ > kGltfMaxDecodedTexels)
+      fail(where, "decoding it would bring the scene's textures to " + str(decoded_texels_) +
+                      " texels, over the limit of " + str(kGltfMaxDecodedTexels));
+  };
+  core::Image8 raw;
+  if (const std::string err = codec.decode(bytes, ext, check, raw); !err.empty())
+    fail(where, "cannot decode the " + ext + " image: " + first_line(err));
+  const int channels = raw.channels;
+  const size_t texels = size_t(raw.width) * size_t(raw.height);
   TextureImage t;
   t.name = img.name.empty() ? "image" + str(index) : img.name;
-  t.width = spec.width;
-  t.height = spec.height;
+  t.width = raw.width;
+  t.height = raw.height;
   t.rgba.resize(texels * 4);
   for (size_t i = 0; i < texels; ++i) {
-    const uint8_t* s = &raw[i * size_t(channels)];
+    const uint8_t* s = &raw.data[i * size_t(channels)];
     uint8_t* d = &t.rgba[i * 4];
     const bool grey = channels <= 2;
     d[0] = s[0];

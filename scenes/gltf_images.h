@@ -4,8 +4,8 @@
 // kGltfMaxTextureSide texels per side; and all the images of one file
 // together at most kGltfMaxDecodedTexels, checked on the header before a
 // pixel is decoded (a small file can unpack to gigabytes). A PNG's chunks
-// and CRCs are checked before OpenImageIO sees it: libpng reports damage by
-// longjmp through OpenImageIO, which leaks.
+// and CRCs are checked before OpenImageIO (core/image_codec.h) sees it:
+// libpng reports damage by longjmp through OpenImageIO, which leaks.
 #include "core/scene.h"
 #include "scenes/gltf_common.h"
 

@@ -57,6 +57,8 @@ bool Context::is_software() const {
 
 std::unique_ptr<Context> create_osmesa_context();
 std::unique_ptr<Context> create_egl_context();
+void load_osmesa_library();
+void load_egl_library();
 
 bool backend_available(Backend backend) {
 #if defined(SHADOWBENCH_HAVE_OSMESA)
@@ -67,6 +69,20 @@ bool backend_available(Backend backend) {
 #endif
   (void)backend;
   return false;
+}
+
+bool load_backend_library(Backend backend) {
+  try {
+#if defined(SHADOWBENCH_HAVE_OSMESA)
+    if (backend == Backend::OSMesa) load_osmesa_library();
+#endif
+#if defined(SHADOWBENCH_HAVE_EGL)
+    if (backend == Backend::EGL) load_egl_library();
+#endif
+    return backend_available(backend);
+  } catch (const std::runtime_error&) {
+    return false;
+  }
 }
 
 namespace {

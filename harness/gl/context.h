@@ -42,4 +42,9 @@ std::unique_ptr<Context> create_context(Backend backend);
 // True when the backend was compiled in.
 bool backend_available(Backend backend);
 
+// Opens the backend's library (libOSMesa, libEGL) without making a context,
+// so that forked children which make one inherit it instead of each opening
+// it. False when it cannot be opened; create_context() then says why.
+bool load_backend_library(Backend backend);
+
 }  // namespace sb::gl

@@ -1,14 +1,38 @@
 // OSMesa backend. Kept in its own file: osmesa.h must not meet other GL headers.
+// libOSMesa is opened when the first context is created, not linked: it
+// brings in LLVM, ~60 ms at every process start. Four entry points, so
+// dlsym rather than a module of our own.
 #include <GL/osmesa.h>
 
 #include <memory>
 #include <stdexcept>
 #include <vector>
 
+#include "core/lazy_library.h"
 #include "gl/context.h"
 
 namespace sb::gl {
 namespace {
+
+struct OSMesaApi {
+  decltype(&OSMesaCreateContextAttribs) create_context_attribs;
+  decltype(&OSMesaMakeCurrent) make_current;
+  decltype(&OSMesaDestroyContext) destroy_context;
+  decltype(&OSMesaGetProcAddress) get_proc_address;
+};
+
+const OSMesaApi& osmesa() {
+  static const OSMesaApi api = [] {
+    // Debian's libosmesa6.
+    static core::LazyLibrary lib("libOSMesa.so.8", "the OSMesa backend's library");
+    return OSMesaApi{
+        lib.function<decltype(&OSMesaCreateContextAttribs)>("OSMesaCreateContextAttribs"),
+        lib.function<decltype(&OSMesaMakeCurrent)>("OSMesaMakeCurrent"),
+        lib.function<decltype(&OSMesaDestroyContext)>("OSMesaDestroyContext"),
+        lib.function<decltype(&OSMesaGetProcAddress)>("OSMesaGetProcAddress")};
+  }();
+  return api;
+}
 
 class OSMesaContextImpl final : public Context {
  public:
@@ -26,14 +50,15 @@ class OSMesaContextImpl final : public Context {
                            OSMESA_CONTEXT_MINOR_VERSION,
                            5,
                            0};
-    ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
+    ctx_ = osmesa().create_context_attribs(attribs, nullptr);
     if (ctx_ == nullptr)
       throw std::runtime_error("OSMesaCreateContextAttribs failed for GL 4.5 core");
     make_current();
-    load_gl([](const char* name) { return reinterpret_cast<void*>(OSMesaGetProcAddress(name)); });
+    load_gl(
+        [](const char* name) { return reinterpret_cast<void*>(osmesa().get_proc_address(name)); });
   }
   ~OSMesaContextImpl() override {
-    if (ctx_ != nullptr) OSMesaDestroyContext(ctx_);
+    if (ctx_ != nullptr) osmesa().destroy_context(ctx_);
   }
   OSMesaContextImpl(const OSMesaContextImpl&) = delete;
   OSMesaContextImpl& operator=(const OSMesaContextImpl&) = delete;
@@ -43,7 +68,7 @@ class OSMesaContextImpl final : public Context {
   void make_current() override {
     // OSMesa has no surfaceless make-current: bind a tiny buffer; all real
     // rendering goes to framebuffer objects.
-    if (OSMesaMakeCurrent(ctx_, dummy_.data(), 0x1401 /*GL_UNSIGNED_BYTE*/, 1, 1) == 0)
+    if (osmesa().make_current(ctx_, dummy_.data(), 0x1401 /*GL_UNSIGNED_BYTE*/, 1, 1) == 0)
       throw std::runtime_error("OSMesaMakeCurrent failed");
   }
 
@@ -55,5 +80,6 @@ class OSMesaContextImpl final : public Context {
 }  // namespace
 
 std::unique_ptr<Context> create_osmesa_context() { return std::make_unique<OSMesaContextImpl>(); }
+void load_osmesa_library() { osmesa(); }
 
 }  // namespace sb::gl

@@ -1,8 +1,10 @@
 #pragma once
 // Image files: float EXR and 8-bit PNG writers, and a reader for anything
-// OpenImageIO reads. Writers are atomic (temporary file in the target
-// directory, then rename), so readers never see a half-written image. All
-// failures throw sb::JobError naming the path and OpenImageIO's message.
+// OpenImageIO reads, through core/image_codec.h (OIIO loaded on first use).
+// Writers are atomic (temporary file in the target directory, then rename),
+// so readers never see a half-written image. All failures throw
+// sb::JobError naming the path and OpenImageIO's message (or why the codec
+// module could not be loaded).
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -15,6 +15,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "core/lazy_library.h"
+
 namespace sb::run {
 
 namespace {
@@ -96,13 +98,16 @@ size_t threads_at_load() { return kThreadsAtLoad; }
 }  // namespace
 
 ChildProcess ChildProcess::start(const std::function<int(int)>& body) {
-  if (const auto threads = thread_names(); threads.size() > threads_at_load()) {
+  // Libraries loaded on first use (core/lazy_library.h) may have started
+  // theirs since: OpenImageIO's, when the plan decoded a glTF texture.
+  const size_t not_ours = threads_at_load() + core::threads_started_by_lazy_libraries();
+  if (const auto threads = thread_names(); threads.size() > not_ours) {
     std::string list;
     for (const auto& t : threads) list += (list.empty() ? "" : ", ") + t;
     throw std::runtime_error(
         "cannot isolate jobs in child processes: this process runs " +
         std::to_string(threads.size()) + " threads (" + list + "), more than the " +
-        std::to_string(threads_at_load()) +
+        std::to_string(not_ours) +
         " its libraries started when loaded, and a forked child would inherit their state "
         "but not the threads; use --isolation none");
   }
