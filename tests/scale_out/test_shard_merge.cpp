@@ -13,18 +13,18 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-const std::string kQuick = std::string(SHADOWBENCH_SOURCE_DIR) + "/configs/quick.json";
+const std::string kQuickConfig = std::string(SHADOWBENCH_SOURCE_DIR) + "/configs/quick.json";
 
 TEST(ShardMerge, TheMergedShardsOfQuickEqualOneRunTimingsAside) {
   const auto dir = test_folder();
   const std::string cache = " --cache-dir " + (dir / "cache").string() + " --quiet";
   const CliRun whole =
-      run_shadowbench("run " + kQuick + " --out " + (dir / "whole").string() + cache);
+      run_shadowbench("run " + kQuickConfig + " --out " + (dir / "whole").string() + cache);
   ASSERT_EQ(whole.exit_code, 0) << whole.output;
   std::string shard_dirs;
   for (int k = 1; k <= 3; ++k) {
     const fs::path out = dir / ("shard-" + std::to_string(k));
-    std::string args = "run " + kQuick;
+    std::string args = "run " + kQuickConfig;
     args += " --shard " + std::to_string(k) + "/3 --out " + out.string() + cache;
     const CliRun r = run_shadowbench(args);
     ASSERT_EQ(r.exit_code, 0) << r.output;
