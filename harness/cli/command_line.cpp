@@ -256,12 +256,14 @@ std::vector<CLI::App*> all_commands(CLI::App& app) {
   return out;
 }
 
-std::unique_ptr<CLI::App> make_command_line(Args& a) {
-  auto app = std::make_unique<CLI::App>(
+void AppDeleter::operator()(CLI::App* app) const { delete app; }
+
+AppPtr make_command_line(Args& a) {
+  AppPtr app(new CLI::App(
       "shadowbench: a headless batch benchmark of shadow-rendering techniques. It renders every "
       "technique variant of a JSON experiment at every resolution, times each pass, and "
       "measures each one against a ray-traced reference.",
-      "shadowbench");
+      "shadowbench"));
   app->name("shadowbench");
   app->option_defaults()->always_capture_default();
   app->set_help_flag("-h,--help", "print this help and exit");

@@ -6,7 +6,6 @@
 // validate and plan, a plugin the config needs failed to load),
 // 4 (compare) a significant regression over threshold; compare exits 2 too
 // when it could not compare some job's time (other hosts, no control).
-#include <CLI/CLI.hpp>
 #include <cstdio>
 
 #include "cli/command_line.h"
@@ -17,7 +16,7 @@ int main(int argc, char** argv) {
   using namespace sb;
   using namespace sb::cli;
   Args a;
-  const std::unique_ptr<CLI::App> app = make_command_line(a);
+  const AppPtr app = make_command_line(a);
   try {
     if (const int code = parse_command_line(*app, argc, argv, a); code >= 0) return code;
     if (a.command == "run") return cmd_run(a);

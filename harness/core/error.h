@@ -42,12 +42,25 @@ class InputError : public std::runtime_error {
                             const std::string& what, const TextPosition& at) {
     std::string m = file.empty() ? std::string("<input>") : file;
     if (at.known()) {
-      m += ":" + std::to_string(at.line) + ":" + std::to_string(at.column);
-      if (!where.empty()) m += " (" + where + ")";
+      // Appended piece by piece: GCC 12 warns (-Wstringop-overflow, a false
+      // positive) on ":" + std::string when <string> comes from a precompiled
+      // header, which loses the pragma libstdc++ silences it with.
+      m += ':';
+      m += std::to_string(at.line);
+      m += ':';
+      m += std::to_string(at.column);
+      if (!where.empty()) {
+        m += " (";
+        m += where;
+        m += ')';
+      }
     } else if (!where.empty()) {
-      m += ": at " + where;
+      m += ": at ";
+      m += where;
     }
-    return m + ": " + what;
+    m += ": ";
+    m += what;
+    return m;
   }
   std::string file_;
   std::string where_;

@@ -121,7 +121,10 @@ inline std::string key_of(const char* key, const FieldInfo& info, const std::str
 
 // The suffix a described member's own suffixed keys take: its unit's.
 inline std::string suffix_of(const FieldInfo& info) {
-  return info.unit[0] == '\0' ? std::string() : "_" + std::string(info.unit);
+  if (info.unit[0] == '\0') return {};
+  std::string suffix = "_";  // not "_" + ...: see InputError::format (core/error.h)
+  suffix += info.unit;
+  return suffix;
 }
 
 }  // namespace sb::record

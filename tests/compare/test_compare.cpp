@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "../common/text.h"
 #include "core/error.h"
 #include "results/compare.h"
 #include "synthetic_run.h"
@@ -17,6 +18,7 @@ using sb::record::JobRecord;
 using sb::results::compare_runs;
 using sb::results::CompareOptions;
 using sb::results::Verdict;
+using sb::test::has;
 using sb::test::make_controlled_record;
 using sb::test::make_record;
 using sb::test::noisy_samples;
@@ -237,10 +239,6 @@ TEST(Compare, TableShowsTheVerdicts) {
 constexpr const char* kAmd = "AMD EPYC 7B13";
 constexpr const char* kIntel = "Intel Xeon Platinum 8481C";
 constexpr const char* kWide = "llvmpipe (LLVM 15.0.6, 512 bits)";
-
-bool has(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 TEST(CompareHosts, DifferentCpusRefuseAbsoluteTimes) {
   // Twice as slow on the other machine: not a regression, not compared.

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/text.h"
 #include "cli_runner.h"
 #include "results/compare.h"
 #include "synthetic_run.h"
@@ -21,13 +22,10 @@ using sb::results::compare_runs;
 using sb::results::CompareOptions;
 using sb::results::Verdict;
 using sb::test::against;
+using sb::test::has;
 using sb::test::make_record;
 using sb::test::mc_reference;
 using sb::test::noisy_samples;
-
-bool has(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 // Jobs "a" and "b": frames around `ms` (±3 %), visibility RMSE `rmse`.
 std::vector<sb::record::JobRecord> two_jobs(double ms, double rmse, uint32_t seed) {
@@ -61,7 +59,7 @@ TEST(ReferenceChange, ErrorsAgainstAnotherReferenceAreRefused) {
 
 // Each field alone is enough, and is the one named.
 TEST(ReferenceChange, EachFieldIsChecked) {
-  struct Case {
+  struct FieldCase {
     const char* field;
     void (*change)(sb::record::ReferenceRecord&);
     const char* values;

@@ -11,7 +11,7 @@
 #include "config_fixtures.h"
 #include "core/error.h"
 
-namespace sb {
+namespace sb::test_config_positions {
 
 using config::Experiment;
 using config::load_experiment;
@@ -212,4 +212,4 @@ TEST(ConfigPositions, AKeyTwiceBeforeDeepNestingIsPlacedByPointerAlone) {
 }
 
 }  // namespace
-}  // namespace sb
+}  // namespace sb::test_config_positions

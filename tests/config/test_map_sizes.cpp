@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "../common/text.h"
 #include "cli_runner.h"
 #include "config/map_sizes.h"
 #include "core/error.h"
@@ -27,10 +28,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
-
-bool has(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 json config_with(const json& techniques) {
   return {{"name", "map_sizes"},

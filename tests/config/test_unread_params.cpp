@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "../common/text.h"
 #include "cli_runner.h"
 #include "config/unread_params.h"
 #include "plugin/registry.h"
@@ -27,10 +28,6 @@ using plugin::TechniqueInfo;
 namespace {
 
 namespace fs = std::filesystem;
-
-bool has(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 nlohmann::json reads_half_config(const nlohmann::json& params) {
   return {{"name", "unread"},

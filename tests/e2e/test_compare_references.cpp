@@ -21,7 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string write_config(const fs::path& dir, int spp) {
+std::string write_spp_config(const fs::path& dir, int spp) {
   const nlohmann::json config = {{"name", "refs"},
                                  {"scenes", {small_scene(2.0)}},
                                  {"techniques", {"none"}},
@@ -35,7 +35,7 @@ std::string write_config(const fs::path& dir, int spp) {
 
 TEST(CompareReferences, RunsNameTheirReferenceAndCompareOnlyAgainstTheSame) {
   const fs::path dir = fresh_test_folder("compare_references_");
-  const std::string c16 = write_config(dir, 16), c64 = write_config(dir, 64);
+  const std::string c16 = write_spp_config(dir, 16), c64 = write_spp_config(dir, 64);
   const std::string plain = (dir / "plain").string(), cached = (dir / "cached").string(),
                     other = (dir / "other").string(), cache = (dir / "cache").string();
   ASSERT_EQ(run_cli("run " + c16 + " --out " + plain + " --no-cache --no-images --quiet").exit_code,

@@ -37,7 +37,7 @@ using json = nlohmann::json;
 // light at height kLightHeight: from a ground point at x it hides, of a
 // segment along x, the light's x in [x + (x0 − x)·k, −x·(k − 1)], k = 3.
 const Plate kPlate{-3.0f, 0.0f, -3.0f, 3.0f, 1.0f};
-constexpr int kMapSize = 1024;  // heidrich_linear's default
+constexpr int kHeidrichMapSize = 1024;  // heidrich_linear's default
 
 // The closed form at ground point (x, z) for a segment of length `length`
 // along x (`along_x`) or along z, centred under the light.
@@ -67,7 +67,7 @@ json experiment(const std::string& file, const json& size, const json& technique
           {"reference", {{"method", "exact"}}}};
 }
 
-// At its default map size, kMapSize.
+// At its default map size, kHeidrichMapSize.
 json heidrich() { return "heidrich_linear"; }
 
 // World size of 2 texels of a map from the segment's end, on the ground
@@ -78,7 +78,7 @@ float two_texels_on_ground(float length, bool along_x) {
   scene.light = make_area_light({0.0f, kLightHeight, 0.0f}, glm::vec3(0.0f),
                                 along_x ? 0.0f : length, along_x ? length : 0.0f);
   const shadow::LightFrustum f = shadow::fit_light_frustum(scene, scene.light.segment_end(0.0f));
-  return 2.0f * f.texel_per_distance(kMapSize) * kLightHeight;
+  return 2.0f * f.texel_per_distance(kHeidrichMapSize) * kLightHeight;
 }
 
 struct Agreement {

@@ -32,7 +32,8 @@ namespace {
 
 using json = nlohmann::json;
 
-json experiment(const json& scenes, const json& techniques, int spp, int width, int height) {
+json occlusion_experiment(const json& scenes, const json& techniques, int spp, int width,
+                          int height) {
   return {{"name", "occlusion_textures"},
           {"scenes", scenes},
           {"techniques", techniques},
@@ -67,7 +68,7 @@ TEST(OcclusionTextures, TheSummedAreaTableGivesTheExactBoxFilteredOcclusionOfAPl
   const float size = 1.0f;
   const int texels = 256;
   const auto out = run_config(
-      experiment(
+      occlusion_experiment(
           json::array({plate_scene(write_plates(dir.path, {plate}, {0.0f, 4.0f, 3.0f}), size)}),
           json::array({occlusion_textures(
               {{"size", texels}, {"slices", 4}, {"self_slab", "skip"}, {"lookup_plane", "far"}})}),
@@ -151,10 +152,11 @@ TEST(OcclusionTextures, ProbabilisticCombinationBeatsSumAndMaxWhereOccludersOver
   const std::vector<Plate> plates = overlapping_plates();
   const double size = kOverlapLightSize;
   const auto out = run_config(
-      experiment(json::array({plate_scene(write_plates(dir.path, plates, kOverlapEye), size)}),
-                 json::array({occlusion_textures(
-                     {{"combine", json::array({"probabilistic", "sum", "max"})}})}),
-                 256, 160, 120),
+      occlusion_experiment(
+          json::array({plate_scene(write_plates(dir.path, plates, kOverlapEye), size)}),
+          json::array(
+              {occlusion_textures({{"combine", json::array({"probabilistic", "sum", "max"})}})}),
+          256, 160, 120),
       "occlusion_overlap", gl::Backend::OSMesa, true, /*write_gbuffer=*/true);
   ASSERT_EQ(out.summary.ok, 3) << out.records.at(0).value("reason", "");
   const ImageF positions = out.gbuffer_positions();
@@ -215,7 +217,7 @@ TEST(OcclusionTextures, ThePapersThinOccluderFixStopsRaysSlippingBetweenSlicesAn
       glm::rotate(glm::translate(glm::mat4(1.0f), centre), angle, glm::vec3(0.0f, 0.0f, 1.0f));
   transform_mesh(slope, place);
   const auto out = run_config(
-      experiment(
+      occlusion_experiment(
           json::array({plate_scene(write_plates(dir.path, {}, {1.5f, 4.0f, 3.0f}, {slope}), size)}),
           json::array({occlusion_textures(
               {{"slices", 4}, {"thin_occluder_fix", json::array({false, true})}})}),
@@ -275,8 +277,8 @@ RunOutput run_on_plates(const std::vector<Plate>& plates, float size, const glm:
                         const json& params, int width, int height, const std::string& name) {
   TempDir dir;
   return run_config(
-      experiment(json::array({plate_scene(write_plates(dir.path, plates, eye), size)}),
-                 json::array({occlusion_textures(params)}), 4, width, height),
+      occlusion_experiment(json::array({plate_scene(write_plates(dir.path, plates, eye), size)}),
+                           json::array({occlusion_textures(params)}), 4, width, height),
       name, gl::Backend::OSMesa, true, /*write_gbuffer=*/true);
 }
 
@@ -395,7 +397,7 @@ TEST(OcclusionTextures, VisibilityStaysFiniteAtExtremeLightSizesAndOnSliceBounda
        occlusion_textures({{"size", 16}, {"filter", json::array({"mipmap", "nbuffers", "sat"})}})});
   for (const double light : {1e-4, 250.0}) {
     const auto out =
-        run_config(experiment(json::array({small_scene(light)}), techniques, 16, 64, 48),
+        run_config(occlusion_experiment(json::array({small_scene(light)}), techniques, 16, 64, 48),
                    "occlusion_extremes");
     EXPECT_EQ(out.summary.ok, 12) << "light " << light;
     for (const auto& r : out.records) {

@@ -19,7 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Folder {
+struct IsaFolder {
   fs::path dir = fresh_test_folder("shadowbench_test_isa_cli_");
   std::string config(const std::string& spp, const std::string& extra = "") const {
     const fs::path p = dir / ("avx_" + spp + ".json");
@@ -38,7 +38,7 @@ struct Folder {
 };
 
 TEST(ReferenceIsaCli, TheIssuesConfigRunsAndRecordsTheIsa) {
-  Folder f;
+  IsaFolder f;
   for (const char* spp : {"1", "4", "15", "17"}) {
     const std::string out = std::string("out_") + spp;
     const auto r = run_cli("run " + f.config(spp) + " --quiet --out " + (f.dir / out).string());
@@ -51,7 +51,7 @@ TEST(ReferenceIsaCli, TheIssuesConfigRunsAndRecordsTheIsa) {
 }
 
 TEST(ReferenceIsaCli, TheOptionOverridesTheExperiment) {
-  Folder f;
+  IsaFolder f;
   const auto r = run_cli("run " + f.config("4", R"(,"embree_config":"isa=sse4.2")") +
                          " --quiet --embree-config isa=sse2 --out " + (f.dir / "o").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -64,7 +64,7 @@ TEST(ReferenceIsaCli, AnIsaTheCpuLacksIsAnEnvironmentError) {
   for (const std::string& isa : reference::embree_isas())
     if (!reference::cpu_supports_isa(isa)) missing = isa;
   if (missing.empty()) GTEST_SKIP() << "this CPU runs every Embree ISA";
-  Folder f;
+  IsaFolder f;
   const auto r = run_cli("run " + f.config("4", R"(,"embree_config":"isa=)" + missing + "\"") +
                          " --quiet --out " + (f.dir / "o").string());
   EXPECT_EQ(r.exit_code, 3) << r.output;
@@ -75,7 +75,7 @@ TEST(ReferenceIsaCli, AnIsaTheCpuLacksIsAnEnvironmentError) {
 }
 
 TEST(ReferenceIsaCli, AMalformedChoiceIsBadInput) {
-  Folder f;
+  IsaFolder f;
   const auto r = run_cli("run " + f.config("4") + " --embree-config threads=2 --out " +
                          (f.dir / "o").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;

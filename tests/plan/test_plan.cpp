@@ -35,7 +35,7 @@ using plugin::TechniqueInfo;
 
 namespace {
 
-const std::string kScenes = std::string(SHADOWBENCH_SOURCE_DIR) + "/configs/scenes.json";
+const std::string kScenesConfig = std::string(SHADOWBENCH_SOURCE_DIR) + "/configs/scenes.json";
 
 const PlannedJob& job(const Experiment& e, const Plan& plan, const std::string& scene,
                       const std::string& technique) {
@@ -46,7 +46,7 @@ const PlannedJob& job(const Experiment& e, const Plan& plan, const std::string& 
 }
 
 TEST(PlanStage, ListsTheFoliageShadowVolumeSkipBeforeAnyGlContext) {
-  const Experiment e = load_experiment(kScenes, registry());
+  const Experiment e = load_experiment(kScenesConfig, registry());
   const Plan plan = make_plan(e);
   EXPECT_EQ(gl::contexts_created(), 0u);
   const PlannedJob& skipped = job(e, plan, "foliage", "shadow_volume");
@@ -173,10 +173,10 @@ TEST(PlanStage, ABadSceneFailsItsJobsAndTheRestArePlanned) {
 }
 
 TEST(PlanStage, ValidateAndPlanCountTheSkips) {
-  const auto v = run_cli("validate " + kScenes);
+  const auto v = run_cli("validate " + kScenesConfig);
   EXPECT_EQ(v.exit_code, 0) << v.output;
   EXPECT_NE(v.output.find("24 jobs (23 to run, 1 skipped"), std::string::npos) << v.output;
-  const auto p = run_cli("plan " + kScenes);
+  const auto p = run_cli("plan " + kScenesConfig);
   EXPECT_EQ(p.exit_code, 0) << p.output;
   EXPECT_NE(p.output.find("skip 800x600  shadow_volume/mode=zfail  (shadow_volume needs closed "
                           "casters: mesh 'leaves'"),

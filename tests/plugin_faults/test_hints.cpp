@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/text.h"
 #include "broken_plugins.h"
 #include "core/nearest_names.h"
 
@@ -16,10 +17,6 @@ using core::edit_distance;
 using core::nearest_names;
 
 namespace {
-
-bool has(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 TEST(Hints, EditDistanceCountsInsertionsDeletionsAndSubstitutions) {
   EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);  // 2 substitutions, 1 insertion

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <string>
 
+#include "../common/text.h"
 #include "broken_plugins.h"
 #include "plugin/registry.h"
 
@@ -14,10 +15,6 @@ namespace sb::test {
 using plugin::Registry;
 
 namespace {
-
-bool has(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 TEST(PluginLoadFailures, AreRecordedWithTheFileAndTheLoadersMessageNotThrown) {
   const auto dir = broken_plugin_folder();

@@ -29,8 +29,8 @@ namespace ref = sb::reference;
 using ref::Result;
 using ref::Settings;
 
-constexpr int kWidth = 160, kHeight = 120;
-constexpr int kSpp = 256;
+constexpr int kPartsWidth = 160, kPartsHeight = 120;
+constexpr int kPartsSpp = 256;
 
 // The same faces wound the other way.
 sb::core::Mesh inverted(sb::core::Mesh m) {
@@ -93,29 +93,29 @@ sb::core::Scene touching_and_interpenetrating_boxes() {
                 inverted(sb::make_box("pushed_in", {0.8f, 0.9f, -0.3f}, glm::vec3(0.25f)))}));
 }
 
-bool covered(const ref::GBuffer& g, size_t i) { return g.positions.data[i * 4 + 3] > 0.5f; }
+bool is_covered(const ref::GBuffer& g, size_t i) { return g.positions.data[i * 4 + 3] > 0.5f; }
 
 // The exact reference against 256-spp Monte Carlo, as test_exact_agreement.cpp
 // compares them (4 standard errors, one sample's weight where the stated
 // error is 0, on all but 0.1% of the covered pixels), and no pixel off by
 // more than 0.25, several times what 256 samples can stray.
 void expect_exact_agrees(const sb::core::Scene& scene, const std::string& label) {
-  const ref::GBuffer g = ref::trace_gbuffer(scene, kWidth, kHeight);
+  const ref::GBuffer g = ref::trace_gbuffer(scene, kPartsWidth, kPartsHeight);
   Settings exact_settings;
   exact_settings.exact = true;
   const Result exact = ref::compute(scene, g.positions, g.normals, exact_settings);
   ASSERT_EQ(exact.method, ref::kExactMethod) << exact.exact_fallback;
-  const Result mc = ref::compute(scene, g.positions, g.normals, {kSpp, 1});
+  const Result mc = ref::compute(scene, g.positions, g.normals, {kPartsSpp, 1});
   size_t covered_px = 0, outside = 0, far_off = 0, penumbra = 0;
   double worst = 0.0;
   for (size_t i = 0; i < g.positions.pixel_count(); ++i) {
-    if (!covered(g, i)) continue;
+    if (!is_covered(g, i)) continue;
     ++covered_px;
     const double e = exact.visibility.data[i], m = mc.visibility.data[i];
     const double d = std::abs(e - m);
     penumbra += m > 0.0 && m < 1.0;
     worst = std::max(worst, d);
-    outside += d > 4.0 * std::max(double(mc.std_error.data[i]), 1.0 / kSpp);
+    outside += d > 4.0 * std::max(double(mc.std_error.data[i]), 1.0 / kPartsSpp);
     far_off += d > 0.25;
   }
   std::printf(
@@ -133,9 +133,9 @@ void expect_exact_agrees(const sb::core::Scene& scene, const std::string& label)
 // hides_whole_light. Every pixel that stopped there with V = 1 or V = 0 must
 // have the full count's very value; both proofs must have stopped many.
 void expect_proofs_hold(const sb::core::Scene& scene, const std::string& label) {
-  const ref::GBuffer g = ref::trace_gbuffer(scene, kWidth, kHeight);
-  const Result full = ref::compute(scene, g.positions, g.normals, {kSpp, 1});
-  Settings s(kSpp, 1);
+  const ref::GBuffer g = ref::trace_gbuffer(scene, kPartsWidth, kPartsHeight);
+  const Result full = ref::compute(scene, g.positions, g.normals, {kPartsSpp, 1});
+  Settings s(kPartsSpp, 1);
   s.adaptive = true;
   s.pilot_spp = 4;
   s.target_std_error = 0.02;
@@ -144,11 +144,11 @@ void expect_proofs_hold(const sb::core::Scene& scene, const std::string& label) 
   size_t proven_lit = 0, proven_occluded = 0, wrong_lit = 0, wrong_occluded = 0, beyond = 0;
   double worst_occluded = 0.0;
   for (size_t i = 0; i < g.positions.pixel_count(); ++i) {
-    if (!covered(g, i)) continue;
+    if (!is_covered(g, i)) continue;
     const float av = a.visibility.data[i], fv = full.visibility.data[i];
     const double sa = a.std_error.data[i], sf = full.std_error.data[i];
     beyond += std::abs(double(av) - double(fv)) >
-              4.0 * std::max(std::sqrt(sa * sa + sf * sf), 1.0 / kSpp);
+              4.0 * std::max(std::sqrt(sa * sa + sf * sf), 1.0 / kPartsSpp);
     if (a.samples.data[i] != 4.0f) continue;
     if (av == 1.0f) {
       ++proven_lit;
@@ -253,7 +253,7 @@ TEST(ReferenceClosedParts, APointInsideOnePartBehindAnotherIsInItsUmbra) {
   Settings exact_settings;
   exact_settings.exact = true;
   const Result exact = ref::compute(scene, positions, normals, exact_settings);
-  const Result mc = ref::compute(scene, positions, normals, {kSpp, 1});
+  const Result mc = ref::compute(scene, positions, normals, {kPartsSpp, 1});
   const ref::ExactVisibility proofs(scene, {true});
   for (size_t i = 0; i < points.size(); ++i) {
     SCOPED_TRACE("point " + std::to_string(i));

@@ -19,7 +19,7 @@
 
 namespace {
 
-sb::core::Scene build(const std::string& type_name, nlohmann::json params) {
+sb::core::Scene build_scene(const std::string& type_name, nlohmann::json params) {
   const sb::core::SceneType* type = sb::core::find_scene_type(type_name);
   if (!type) throw std::runtime_error("no scene type " + type_name);
   for (const auto& p : type->params)
@@ -53,14 +53,17 @@ void expect_agreement(const sb::core::Scene& scene, const std::string& label) {
 }
 
 TEST(ReferenceExact, AgreesWithMonteCarloOnTheSphereGrid) {
-  expect_agreement(build("sphere_grid", {{"grid", 3}}), "sphere grid");
+  expect_agreement(build_scene("sphere_grid", {{"grid", 3}}), "sphere grid");
 }
 
-TEST(ReferenceExact, AgreesWithMonteCarloOnAJeep) { expect_agreement(build("jeep", {}), "jeep"); }
+TEST(ReferenceExact, AgreesWithMonteCarloOnAJeep) {
+  expect_agreement(build_scene("jeep", {}), "jeep");
+}
 
 TEST(ReferenceExact, AgreesWithMonteCarloOnAGltfFile) {
-  expect_agreement(build("gltf", {{"file", SHADOWBENCH_SOURCE_DIR "/configs/models/jeep.glb"}}),
-                   "configs/models/jeep.glb");
+  expect_agreement(
+      build_scene("gltf", {{"file", SHADOWBENCH_SOURCE_DIR "/configs/models/jeep.glb"}}),
+      "configs/models/jeep.glb");
 }
 
 }  // namespace

@@ -34,14 +34,14 @@ namespace ref = sb::reference;
 using sb::core::ImageF;
 
 constexpr int kPoints = 64;
-constexpr int kSpp = 256;
+constexpr int kWatertightSpp = 256;
 constexpr int kCells = 12;  // per side of the plate: edges at z = -3, -2.5, ..., 3
 
-struct EdgeScene {
+struct WatertightEdgeScene {
   sb::core::Scene scene;
   sb::core::ImageF positions{kPoints, 1, 4, 0.0f}, normals{kPoints, 1, 3, 0.0f};
 
-  EdgeScene() {
+  WatertightEdgeScene() {
     const glm::dmat4 turn =
         glm::rotate(glm::rotate(glm::rotate(glm::dmat4(1.0), 0.37, {1, 0, 0}), 1.1, {0, 1, 0}),
                     -0.59, {0, 0, 1});
@@ -92,46 +92,47 @@ std::vector<std::string> isas_to_test() {
 
 // Rays of the same samples that reach the light with Embree's default mode:
 // what the reference saw before it was robust.
-size_t leaks_without_robust_mode(const EdgeScene& e, const std::string& isa) {
+size_t leaks_without_robust_mode(const WatertightEdgeScene& e, const std::string& isa) {
   namespace d = ref::detail;
   d::Device device(isa);
   const d::FlatScene casters(
       device, e.scene, [](const sb::core::Mesh& m) { return m.casts_shadow; }, false,
       d::Traversal::Fast);
-  const d::Layout layout = d::make_layout(kSpp, d::Strata::AlongS);
+  const d::Layout layout = d::make_layout(kWatertightSpp, d::Strata::AlongS);
   const d::RaySetup setup(e.scene, casters, layout, e.positions, e.normals, 1);
   d::FtzDazScope ftz;
   d::PixelRays rays(setup);
-  std::vector<uint32_t> all(kSpp);
-  for (uint32_t i = 0; i < kSpp; ++i) all[i] = i;
-  std::vector<uint8_t> reached(kSpp);
+  std::vector<uint32_t> all(kWatertightSpp);
+  for (uint32_t i = 0; i < kWatertightSpp; ++i) all[i] = i;
+  std::vector<uint8_t> reached(kWatertightSpp);
   size_t leaks = 0;
   for (size_t pix = 0; pix < size_t(kPoints); ++pix) {
     rays.start(pix);
-    rays.trace(all.data(), kSpp, reached.data());
+    rays.trace(all.data(), kWatertightSpp, reached.data());
     for (const uint8_t r : reached) leaks += r;
   }
   return leaks;
 }
 
 TEST(referenceWatertight, RaysThroughSharedEdgesStayInTheUmbra) {
-  const EdgeScene e;
+  const WatertightEdgeScene e;
   ASSERT_TRUE(e.scene.light.is_segment());
   for (const std::string& isa : isas_to_test()) {
     SCOPED_TRACE("isa " + isa);
-    const ref::Result r = ref::compute(e.scene, e.positions, e.normals, {kSpp, 1, "isa=" + isa});
+    const ref::Result r =
+        ref::compute(e.scene, e.positions, e.normals, {kWatertightSpp, 1, "isa=" + isa});
     ASSERT_EQ(r.isa, isa);
     size_t lit = 0;
     for (int k = 0; k < kPoints; ++k) {
       EXPECT_EQ(r.visibility.data[size_t(k)], 0.0f) << "point " << k;
       EXPECT_EQ(r.std_error.data[size_t(k)], 0.0f) << "point " << k;
-      lit += size_t(std::lround(r.visibility.data[size_t(k)] * float(kSpp)));
+      lit += size_t(std::lround(r.visibility.data[size_t(k)] * float(kWatertightSpp)));
     }
     // The scene does probe the edges: Embree's default mode lets rays through.
     const size_t leaks = leaks_without_robust_mode(e, isa);
     EXPECT_GT(leaks, 0u);
     std::printf("%s: %zu of %d rays reach the light (without robust mode: %zu)\n", isa.c_str(), lit,
-                kPoints * kSpp, leaks);
+                kPoints * kWatertightSpp, leaks);
   }
 }
 
