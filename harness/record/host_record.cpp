@@ -54,7 +54,7 @@ std::string fingerprint_of(std::string_view what,
 }
 
 // A value as JSON text; "" (unset, unknown) as (none).
-std::string quoted(const std::string& s) {
+std::string as_json_or_none(const std::string& s) {
   return s.empty() ? "(none)" : json(s).dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
@@ -115,7 +115,8 @@ std::vector<std::string> field_differences(
   std::vector<std::string> out;
   for (size_t i = 0; i < a.size() && i < b.size(); ++i)
     if (a[i].second != b[i].second)
-      out.push_back(a[i].first + ": " + quoted(a[i].second) + " vs " + quoted(b[i].second));
+      out.push_back(a[i].first + ": " + as_json_or_none(a[i].second) + " vs " +
+                    as_json_or_none(b[i].second));
   return out;
 }
 

@@ -39,7 +39,7 @@ PlanRecord PlanRecord::from_json(const nlohmann::json& j) {
 
 namespace {
 
-std::string quoted(const std::string& s) { return "\"" + s + "\""; }
+std::string in_quotes(const std::string& s) { return "\"" + s + "\""; }
 
 std::string job_difference(const PlannedJobRecord& a, const PlannedJobRecord& b) {
   const std::string job = "job " + std::to_string(a.index) + " (" + a.id + ")";
@@ -57,7 +57,8 @@ std::string job_difference(const PlannedJobRecord& a, const PlannedJobRecord& b)
 }  // namespace
 
 std::string plan_difference(const PlanRecord& a, const PlanRecord& b) {
-  if (a.name != b.name) return "the experiment is " + quoted(a.name) + ", there " + quoted(b.name);
+  if (a.name != b.name)
+    return "the experiment is " + in_quotes(a.name) + ", there " + in_quotes(b.name);
   if (a.shard_count != b.shard_count)
     return std::to_string(a.shard_count) + " shards, there " + std::to_string(b.shard_count);
   if (a.jobs.size() != b.jobs.size())
@@ -68,7 +69,7 @@ std::string plan_difference(const PlanRecord& a, const PlanRecord& b) {
     return std::to_string(a.scenes.size()) + " scenes, there " + std::to_string(b.scenes.size());
   for (size_t i = 0; i < a.scenes.size(); ++i)
     if (!(a.scenes[i] == b.scenes[i]))
-      return "scene " + quoted(a.scenes[i].name) + " is planned otherwise (its log or error)";
+      return "scene " + in_quotes(a.scenes[i].name) + " is planned otherwise (its log or error)";
   return "";
 }
 
