@@ -13,7 +13,7 @@ build_packages=(
   build-essential cmake pkg-config ninja-build
   libosmesa6-dev libegl-dev libegl1-mesa-dev libgl1-mesa-dri
   python3-glad python3-matplotlib
-  libopenimageio-dev openimageio-tools
+  libopenimageio-dev
   libtinygltf-dev libglm-dev nlohmann-json3-dev
   libembree-dev libtbb-dev libpolyclipping-dev libboost-dev libssl-dev
   libbenchmark-dev libgtest-dev libgmock-dev
@@ -27,6 +27,8 @@ if [[ "${1:-}" == "--test" || "${1:-}" == "--test-only" ]]; then
   # OpenImageIO's Python bindings: tools/recompute_metrics.py recomputes every
   # record's errors from the run's files (tests/e2e/test_recomputable_metrics.cpp).
   packages+=(python3-openimageio)
+  # oiiotool reads the scaffold's EXR images back (tests/out_of_tree).
+  packages+=(openimageio-tools)
   # Headless Chromium opens the HTML report (tests/report).
   packages+=(chromium)
   # The Debian package's test (tests/install): CPack's DEB generator with
