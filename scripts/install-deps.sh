@@ -15,7 +15,7 @@ build_packages=(
   python3-glad python3-matplotlib
   libopenimageio-dev
   libtinygltf-dev libglm-dev nlohmann-json3-dev
-  libembree-dev libtbb-dev libpolyclipping-dev libboost-dev libssl-dev
+  libembree-dev libtbb-dev libpolyclipping-dev libboost-dev libssl-dev libsqlite3-dev
   libbenchmark-dev libgtest-dev libgmock-dev
   libcli11-dev help2man
 )

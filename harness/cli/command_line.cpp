@@ -429,6 +429,29 @@ AppPtr make_command_line(Args& a) {
                   "shadowbench scene info configs/models/jeep.glb");
   add_argument(scene_info, "SCENE", a.scene_spec, "a .glb or .gltf file, or a SCENE-SPEC");
 
+  CLI::App* history = add_command(
+      *app, "history",
+      "Keep runs across commits in one SQLite file, for a history of every job's time and "
+      "error.",
+      "shadowbench history add results/ci-20261206-120000");
+  history->require_subcommand(1);
+  CLI::App* history_add = add_command(
+      *history, "add",
+      "Store RUN_DIR's records at a commit: every job's times (absolute, and as a ratio to the "
+      "control job) and errors, with the host and build fingerprints. Adding a run again at "
+      "the same commit replaces it.",
+      "shadowbench history add results/ci-20261206-120000 --commit $(git rev-parse HEAD)");
+  add_argument(history_add, "RUN_DIR", a.run_dir, "a folder `run` or `merge` wrote");
+  history_add->get_option("RUN_DIR")->required();
+  history_add
+      ->add_option("--commit", a.commit,
+                   "the commit the run was built from (default: `git rev-parse HEAD` in the "
+                   "current folder)")
+      ->type_name("SHA");
+  history_add->add_option("--db", a.history_db, "the history file, created when absent")
+      ->type_name("FILE")
+      ->capture_default_str();
+
   CLI::App* new_technique = add_command(
       *app, "new-technique",
       "Write a plugin folder for a new technique NAME: its source (a working shadow map with PCF "

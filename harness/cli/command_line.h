@@ -20,7 +20,7 @@ namespace sb::cli {
 struct Args {
   std::string command;                // "run", ..., "scene export", "scene info"
   std::string config;                 // run, validate, plan, compare-builds
-  std::string run_dir;                // report
+  std::string run_dir;                // report, history add
   std::string base_dir, new_dir;      // compare
   std::vector<std::string> names;     // list: techniques or scene types; help: a command
   std::string scene_spec, scene_out;  // scene export / info
@@ -50,6 +50,10 @@ struct Args {
   std::string new_name;                 // new-technique: NAME
   std::string family = "plugin_api";    // new-technique: the template
   std::string dir;                      // new-technique: the folder (default: NAME)
+
+  // history add: the run's commit, and the history file.
+  std::string commit;
+  std::string history_db = "results/history.sqlite";
 };
 
 // The App is deleted in command_line.cpp, so that holding one needs no

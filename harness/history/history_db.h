@@ -1,0 +1,59 @@
+#pragma once
+// The history of many runs across commits (issue 44): one SQLite file
+// (Debian's libsqlite3, no server) that `shadowbench history add` fills
+// run by run and `history report` reads. Its tables, described in
+// docs/ci.md ("History across commits"):
+//   runs    one row per run: its id, its place in the history (run_order:
+//           the order runs were added, which CI makes commit order), the
+//           commit, dates, experiment, config hash, run folder, and the
+//           host and build fingerprints of its records (when all agree)
+//   jobs    one row per (run, job): its series, status and fingerprints
+//   points  one row per (run, job, quantity) with its value (run_points.h)
+// The file records its layout's version (PRAGMA user_version); a file of
+// another version, or one that is not a history, is refused naming it.
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace sb::history {
+
+// The layout of the tables above; a change to them changes it.
+inline constexpr int kHistorySchemaVersion = 1;
+
+struct AddedRun {
+  std::string run_id;
+  std::string commit;
+  std::int64_t run_order = 0;  // 1 for the history's first run
+  std::size_t jobs = 0, points = 0;
+  bool replaced = false;  // the run was there already (same commit): its rows were replaced
+};
+
+class HistoryDb {
+ public:
+  // Opens the history at `path`, creating it (and its folder) when absent.
+  // InputError naming the file when it is not a history of this version.
+  explicit HistoryDb(const std::string& path);
+  ~HistoryDb();
+  HistoryDb(const HistoryDb&) = delete;
+  HistoryDb& operator=(const HistoryDb&) = delete;
+
+  // Stores the records of the run folder `run_dir` (its results.jsonl, a
+  // merged run's included) at `commit`, in one transaction. Adding a run
+  // again at the same commit replaces its rows and keeps its place (so it
+  // is idempotent, and a resumed run's later add completes it); at another
+  // commit it is an InputError, as are records of another schema version
+  // (named by file, line and pointer) and a folder without records.
+  // The run's id is its records' run_id; the shards of a merged run each
+  // keep their own, and the run's id is theirs sorted and joined by "+".
+  AddedRun add_run(const std::string& run_dir, const std::string& commit);
+
+  std::int64_t run_count() const;
+  const std::string& path() const { return path_; }
+
+ private:
+  struct Connection;
+  std::string path_;
+  std::unique_ptr<Connection> db_;
+};
+
+}  // namespace sb::history

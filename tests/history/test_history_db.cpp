@@ -1,0 +1,250 @@
+// The history's SQLite store (history/history_db.h), checked against the
+// run's own results.jsonl read as plain JSON, and the file read back
+// through SQLite's C API: not through the store's own reader.
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "../common/cli_run.h"
+#include "core/error.h"
+#include "history/history_db.h"
+
+namespace sb::test {
+namespace {
+
+namespace fs = std::filesystem;
+using history::AddedRun;
+using history::HistoryDb;
+using nlohmann::json;
+
+const fs::path kBaseline = fs::path(SHADOWBENCH_SOURCE_DIR) / "results" / "baselines" / "ci";
+
+// A copy of the committed ci baseline's records, each changed by `edit`.
+fs::path run_folder(const fs::path& dir, const std::string& name,
+                    const std::function<void(json&)>& edit = {}) {
+  fs::path run = dir / name;
+  fs::create_directories(run);
+  std::ofstream out(run / "results.jsonl");
+  for (json j : jsonl_records(kBaseline)) {
+    if (edit) edit(j);
+    out << j.dump() << "\n";
+  }
+  return run;
+}
+
+// One value of the history file, by SQL, read with SQLite itself.
+std::optional<double> query_number(const fs::path& db_file, const std::string& sql) {
+  sqlite3* db = nullptr;
+  EXPECT_EQ(sqlite3_open_v2(db_file.c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  sqlite3_stmt* s = nullptr;
+  EXPECT_EQ(sqlite3_prepare_v2(db, sql.c_str(), -1, &s, nullptr), SQLITE_OK) << sqlite3_errmsg(db);
+  std::optional<double> v;
+  if (sqlite3_step(s) == SQLITE_ROW && sqlite3_column_type(s, 0) != SQLITE_NULL)
+    v = sqlite3_column_double(s, 0);
+  sqlite3_finalize(s);
+  sqlite3_close(db);
+  return v;
+}
+
+std::string query_text(const fs::path& db_file, const std::string& sql) {
+  sqlite3* db = nullptr;
+  EXPECT_EQ(sqlite3_open_v2(db_file.c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  sqlite3_stmt* s = nullptr;
+  EXPECT_EQ(sqlite3_prepare_v2(db, sql.c_str(), -1, &s, nullptr), SQLITE_OK) << sqlite3_errmsg(db);
+  std::string v;
+  if (sqlite3_step(s) == SQLITE_ROW && sqlite3_column_text(s, 0))
+    v = reinterpret_cast<const char*>(sqlite3_column_text(s, 0));
+  sqlite3_finalize(s);
+  sqlite3_close(db);
+  return v;
+}
+
+std::string point_sql(const std::string& run, const std::string& job, const std::string& quantity) {
+  return "SELECT value FROM points WHERE run_id = '" + run + "' AND job_id = '" + job +
+         "' AND quantity = '" + quantity + "'";
+}
+
+std::string message_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const core::InputError& e) {
+    return e.what();
+  }
+  return "(no InputError)";
+}
+
+TEST(HistoryDb, AddStoresEveryJobsTimesAndErrorsAsItsRecordsHoldThem) {
+  const fs::path dir = test_folder("sb_history_");
+  const fs::path file = dir / "h.sqlite";
+  const fs::path run = run_folder(dir, "run");
+  const std::vector<json> records = jsonl_records(run);
+  ASSERT_GE(records.size(), 2u);
+
+  const AddedRun added = HistoryDb(file.string()).add_run(run.string(), "c0ffee");
+  EXPECT_EQ(added.run_id, records[0]["run_id"].get<std::string>());
+  EXPECT_EQ(added.run_order, 1);
+  EXPECT_FALSE(added.replaced);
+  EXPECT_EQ(added.jobs, records.size());
+
+  EXPECT_EQ(query_text(file, "SELECT commit_sha FROM runs"), "c0ffee");
+  EXPECT_EQ(query_text(file, "SELECT host_fingerprint FROM runs"),
+            records[0]["host"]["fingerprint"].get<std::string>());
+  EXPECT_EQ(query_text(file, "SELECT build_fingerprint FROM runs"),
+            records[0]["build"]["fingerprint"].get<std::string>());
+  EXPECT_EQ(query_number(file, "SELECT count(*) FROM jobs"), double(records.size()));
+  EXPECT_EQ(query_number(file, "PRAGMA user_version"), double(history::kHistorySchemaVersion));
+
+  int timed = 0;
+  for (const json& j : records) {
+    const std::string id = j["job_id"];
+    const std::string run_id = j["run_id"];
+    EXPECT_EQ(query_text(file, "SELECT status FROM jobs WHERE job_id = '" + id + "'"),
+              j["status"].get<std::string>());
+    const json::json_pointer ratio("/timing/control/frame_ratio/median");
+    if (j.contains(ratio)) {
+      ++timed;
+      EXPECT_DOUBLE_EQ(*query_number(file, point_sql(run_id, id, "time.frame_ratio")),
+                       j[ratio].get<double>())
+          << id;
+    }
+    const json::json_pointer frame("/timing/frame/median_ms");
+    if (j.contains(frame)) {
+      EXPECT_DOUBLE_EQ(*query_number(file, point_sql(run_id, id, "time.frame_ms")),
+                       j[frame].get<double>());
+    }
+    const json::json_pointer technique("/timing/technique/median_ms");
+    if (j.contains(technique)) {
+      EXPECT_DOUBLE_EQ(*query_number(file, point_sql(run_id, id, "time.technique_ms")),
+                       j[technique].get<double>());
+    }
+    const json::json_pointer rmse("/metrics/visibility/all/rmse");
+    if (j.contains(rmse)) {
+      EXPECT_DOUBLE_EQ(*query_number(file, point_sql(run_id, id, "metrics.visibility.all.rmse")),
+                       j[rmse].get<double>());
+    }
+    // Every number under "metrics" is a point: count them in the JSON.
+    int numbers = 0;
+    std::function<void(const json&)> count = [&](const json& v) {
+      if (v.is_object())
+        for (const auto& item : v.items()) count(item.value());
+      else if (v.is_number())
+        ++numbers;
+    };
+    if (j.contains("metrics")) count(j["metrics"]);
+    EXPECT_EQ(query_number(file, "SELECT count(*) FROM points WHERE job_id = '" + id +
+                                     "' AND quantity LIKE 'metrics.%'"),
+              double(numbers))
+        << id;
+  }
+  EXPECT_GE(timed, 2) << "the baseline's jobs should be timed against the control";
+}
+
+TEST(HistoryDb, RunsTakeTheOrderTheyWereAddedInAndAddingOneAgainReplacesItInItsPlace) {
+  const fs::path dir = test_folder("sb_history_");
+  const std::string file = (dir / "h.sqlite").string();
+  const auto renamed = [](const std::string& id) { return [id](json& j) { j["run_id"] = id; }; };
+  const fs::path a = run_folder(dir, "a", renamed("a"));
+  const fs::path b = run_folder(dir, "b", renamed("b"));
+  {
+    HistoryDb db(file);
+    EXPECT_EQ(db.add_run(a.string(), "1111").run_order, 1);
+    EXPECT_EQ(db.add_run(b.string(), "2222").run_order, 2);
+  }
+  const double points = *query_number(dir / "h.sqlite", "SELECT count(*) FROM points");
+  HistoryDb db(file);  // reopened: the file is the history
+  const AddedRun again = db.add_run(a.string(), "1111");
+  EXPECT_TRUE(again.replaced);
+  EXPECT_EQ(again.run_order, 1);
+  EXPECT_EQ(db.run_count(), 2);
+  EXPECT_EQ(query_number(dir / "h.sqlite", "SELECT count(*) FROM points"), points);
+  EXPECT_EQ(query_text(dir / "h.sqlite", "SELECT run_id FROM runs ORDER BY run_order DESC"), "b");
+}
+
+TEST(HistoryDb, ARunAtAnotherCommitIsRefusedNamingBothAndTheHistoryKeepsIt) {
+  const fs::path dir = test_folder("sb_history_");
+  const std::string file = (dir / "h.sqlite").string();
+  const fs::path run = run_folder(dir, "run");
+  HistoryDb db(file);
+  db.add_run(run.string(), "aaaa");
+  const std::string m = message_of([&] { db.add_run(run.string(), "bbbb"); });
+  EXPECT_NE(m.find(file), std::string::npos) << m;
+  EXPECT_NE(m.find("at commit aaaa (not bbbb)"), std::string::npos) << m;
+  EXPECT_EQ(query_text(dir / "h.sqlite", "SELECT commit_sha FROM runs"), "aaaa");
+}
+
+TEST(HistoryDb, RecordsOfAnotherSchemaVersionAreRefusedByFileLineAndPointerAndAddNothing) {
+  const fs::path dir = test_folder("sb_history_");
+  const std::string file = (dir / "h.sqlite").string();
+  const fs::path run = run_folder(dir, "run", [](json& j) { j["schema_version"] = 2; });
+  HistoryDb db(file);
+  const std::string m = message_of([&] { db.add_run(run.string(), "aaaa"); });
+  EXPECT_NE(m.find((run / "results.jsonl").string()), std::string::npos) << m;
+  EXPECT_NE(m.find("line 1"), std::string::npos) << m;
+  EXPECT_NE(m.find("/schema_version"), std::string::npos) << m;
+  EXPECT_EQ(db.run_count(), 0);
+}
+
+TEST(HistoryDb, AFileThatIsNotAHistoryOfThisVersionIsRefusedNamingIt) {
+  const fs::path dir = test_folder("sb_history_");
+  const fs::path junk = dir / "junk.sqlite";
+  std::ofstream(junk) << "not a database, but long enough to be read as one's header....\n";
+  EXPECT_NE(message_of([&] {
+              HistoryDb d(junk.string());
+            }).find(junk.string() + ": is not a shadowbench history"),
+            std::string::npos);
+
+  for (const std::string& setup : {std::string("CREATE TABLE other(x); PRAGMA user_version = 0;"),
+                                   std::string("CREATE TABLE runs(x); PRAGMA user_version = 7;")}) {
+    const fs::path other = dir / "other.sqlite";
+    fs::remove(other);
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(other.c_str(), &db), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(db, setup.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
+    sqlite3_close(db);
+    const std::string m = message_of([&] { HistoryDb d(other.string()); });
+    EXPECT_NE(m.find(other.string()), std::string::npos) << m;
+    EXPECT_NE(m.find("this build reads and writes history version 1 only"), std::string::npos) << m;
+  }
+}
+
+TEST(HistoryDb, AMergedRunsShardsMakeOneRunNamedByTheirIds) {
+  const fs::path dir = test_folder("sb_history_");
+  int line = 0;
+  const fs::path run =
+      run_folder(dir, "merged", [&](json& j) { j["run_id"] = (line++ % 2) ? "ci-2" : "ci-1"; });
+  HistoryDb db((dir / "h.sqlite").string());
+  EXPECT_EQ(db.add_run(run.string(), "aaaa").run_id, "ci-1+ci-2");
+  EXPECT_EQ(db.run_count(), 1);
+}
+
+TEST(HistoryDb, AFolderWithoutRecordsIsRefused) {
+  const fs::path dir = test_folder("sb_history_");
+  fs::create_directories(dir / "empty");
+  std::ofstream(dir / "empty" / "results.jsonl") << "";
+  HistoryDb db((dir / "h.sqlite").string());
+  const std::string m = message_of([&] { db.add_run((dir / "empty").string(), "aaaa"); });
+  EXPECT_NE(m.find("holds no job record"), std::string::npos) << m;
+}
+
+TEST(HistoryCli, AddPrintsWhatItStoredAndABadHistoryExitsWithCode2) {
+  const fs::path dir = test_folder("sb_history_cli_");
+  const std::string exe = SHADOWBENCH_BINARY_DIR "/shadowbench";
+  const fs::path run = run_folder(dir, "run");
+  const std::string db = (dir / "h.sqlite").string();
+  CliRun r = run_command(exe + " history add " + run.string() + " --commit abc --db " + db);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("added run ci at commit abc"), std::string::npos) << r.output;
+  r = run_command(exe + " history add " + run.string() + " --commit def --db " + db);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(db), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace sb::test
