@@ -40,7 +40,7 @@ int cmd_history_add(const Args& a) {
   HistoryDb db(a.history_db);
   const AddedRun r = db.add_run(a.run_dir, commit);
   std::printf("%s run %s at commit %s: %zu jobs, %zu values; run %lld of %lld in %s\n",
-              r.replaced ? "replaced" : "added", r.run_id.c_str(), r.commit.c_str(), r.jobs,
+              r.replaced ? "replaced" : "added", r.run_key.c_str(), r.commit.c_str(), r.jobs,
               r.points, static_cast<long long>(r.run_order), static_cast<long long>(db.run_count()),
               db.path().c_str());
   return kExitOk;

@@ -25,7 +25,8 @@ namespace {
 
 constexpr const char* kCreateTables = R"sql(
 CREATE TABLE runs(
-  run_id TEXT PRIMARY KEY,
+  run_key TEXT PRIMARY KEY,
+  run_id TEXT NOT NULL,
   run_order INTEGER NOT NULL UNIQUE,
   commit_sha TEXT NOT NULL,
   added_at TEXT NOT NULL,
@@ -37,7 +38,7 @@ CREATE TABLE runs(
   build_fingerprint TEXT,
   record_schema_version INTEGER NOT NULL);
 CREATE TABLE jobs(
-  run_id TEXT NOT NULL REFERENCES runs(run_id) ON DELETE CASCADE,
+  run_key TEXT NOT NULL REFERENCES runs(run_key) ON DELETE CASCADE,
   job_id TEXT NOT NULL,
   series TEXT NOT NULL,
   scene_variant TEXT NOT NULL,
@@ -47,15 +48,15 @@ CREATE TABLE jobs(
   reason TEXT,
   host_fingerprint TEXT,
   build_fingerprint TEXT,
-  PRIMARY KEY(run_id, job_id));
+  PRIMARY KEY(run_key, job_id));
 CREATE TABLE points(
-  run_id TEXT NOT NULL,
+  run_key TEXT NOT NULL,
   job_id TEXT NOT NULL,
   quantity TEXT NOT NULL,
   value REAL NOT NULL,
-  PRIMARY KEY(run_id, job_id, quantity),
-  FOREIGN KEY(run_id, job_id) REFERENCES jobs(run_id, job_id) ON DELETE CASCADE);
-CREATE INDEX points_by_quantity ON points(quantity, run_id);
+  PRIMARY KEY(run_key, job_id, quantity),
+  FOREIGN KEY(run_key, job_id) REFERENCES jobs(run_key, job_id) ON DELETE CASCADE);
+CREATE INDEX points_by_quantity ON points(quantity, run_key);
 )sql";
 
 std::string utc_now() {
@@ -221,54 +222,57 @@ AddedRun HistoryDb::add_run(const std::string& run_dir, const std::string& commi
   for (const JobRecord& r : records) ids.insert(r.run_id);
   for (const std::string& id : ids) added.run_id += (added.run_id.empty() ? "" : "+") + id;
   added.commit = commit;
+  std::string started;
+  for (const JobRecord& r : records)
+    if (r.started_at && (started.empty() || *r.started_at < started)) started = *r.started_at;
+  added.run_key = started.empty() ? added.run_id : added.run_id + " " + started;
   const std::vector<JobPoints> jobs = run_points(records);
 
   db_->exec("BEGIN IMMEDIATE");
   try {
-    Statement existing(db_->db, "SELECT commit_sha, run_order FROM runs WHERE run_id = ?1", path_);
-    existing.text(1, added.run_id);
+    Statement existing(db_->db, "SELECT commit_sha, run_order FROM runs WHERE run_key = ?1", path_);
+    existing.text(1, added.run_key);
     if (existing.step()) {
       const std::string was = existing.column_text(0);
       if (was != commit)
-        throw InputError(path_, "run " + added.run_id,
+        throw InputError(path_, "run " + added.run_key,
                          "is in the history already, at commit " + was + " (not " + commit +
                              "): a run belongs to one commit");
       added.replaced = true;
       added.run_order = existing.column_integer(1);
-      Statement drop(db_->db, "DELETE FROM runs WHERE run_id = ?1", path_);
-      drop.text(1, added.run_id).step();
+      Statement drop(db_->db, "DELETE FROM runs WHERE run_key = ?1", path_);
+      drop.text(1, added.run_key).step();
     } else {
       added.run_order = db_->scalar("SELECT coalesce(max(run_order), 0) + 1 FROM runs");
     }
 
     const JobRecord& first = records.front();
-    Statement run(db_->db, "INSERT INTO runs VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)",
+    Statement run(db_->db,
+                  "INSERT INTO runs VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)",
                   path_);
-    std::string started;
-    for (const JobRecord& r : records)
-      if (r.started_at && (started.empty() || *r.started_at < started)) started = *r.started_at;
-    run.text(1, added.run_id)
-        .integer(2, added.run_order)
-        .text(3, commit)
-        .text(4, utc_now())
-        .text_or_null(5, started)
-        .text(6, first.experiment)
-        .text(7, first.config_hash)
-        .text(8, fs::absolute(run_dir).lexically_normal().string())
-        .text_or_null(
-            9, common_value(records,
-                            [](const JobRecord& r) { return r.host.fingerprint.value_or(""); }))
+    run.text(1, added.run_key)
+        .text(2, added.run_id)
+        .integer(3, added.run_order)
+        .text(4, commit)
+        .text(5, utc_now())
+        .text_or_null(6, started)
+        .text(7, first.experiment)
+        .text(8, first.config_hash)
+        .text(9, fs::absolute(run_dir).lexically_normal().string())
         .text_or_null(
             10, common_value(records,
+                             [](const JobRecord& r) { return r.host.fingerprint.value_or(""); }))
+        .text_or_null(
+            11, common_value(records,
                              [](const JobRecord& r) { return r.build.fingerprint.value_or(""); }))
-        .integer(11, first.schema_version)
+        .integer(12, first.schema_version)
         .step();
 
     Statement job(db_->db, "INSERT INTO jobs VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)",
                   path_);
     Statement point(db_->db, "INSERT INTO points VALUES (?1, ?2, ?3, ?4)", path_);
     for (const JobPoints& j : jobs) {
-      job.text(1, added.run_id)
+      job.text(1, added.run_key)
           .text(2, j.job_id)
           .text(3, j.series)
           .text(4, j.scene_variant)
@@ -281,7 +285,7 @@ AddedRun HistoryDb::add_run(const std::string& run_dir, const std::string& commi
           .step();
       job.reset();
       for (const auto& [quantity, value] : j.values) {
-        point.text(1, added.run_id).text(2, j.job_id).text(3, quantity).real(4, value).step();
+        point.text(1, added.run_key).text(2, j.job_id).text(3, quantity).real(4, value).step();
         point.reset();
         ++added.points;
       }

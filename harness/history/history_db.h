@@ -3,7 +3,10 @@
 // (Debian's libsqlite3, no server) that `shadowbench history add` fills
 // run by run and `history report` reads. Its tables, described in
 // docs/ci.md ("History across commits"):
-//   runs    one row per run: its id, its place in the history (run_order:
+//   runs    one row per run: its key (run_key: its records' run_id and
+//           the time its first job started, so that a CI job writing to
+//           the same --out folder at every commit adds a new run each
+//           time), its id, its place in the history (run_order:
 //           the order runs were added, which CI makes commit order), the
 //           commit, dates, experiment, config hash, run folder, and the
 //           host and build fingerprints of its records (when all agree)
@@ -22,6 +25,7 @@ inline constexpr int kHistorySchemaVersion = 1;
 
 struct AddedRun {
   std::string run_id;
+  std::string run_key;  // run_id and its first job's started_at: "ci 2026-12-06T10:00:00Z"
   std::string commit;
   std::int64_t run_order = 0;  // 1 for the history's first run
   std::size_t jobs = 0, points = 0;
@@ -39,7 +43,7 @@ class HistoryDb {
 
   // Stores the records of the run folder `run_dir` (its results.jsonl, a
   // merged run's included) at `commit`, in one transaction. Adding a run
-  // again at the same commit replaces its rows and keeps its place (so it
+  // (the same run_key) again at the same commit replaces its rows and keeps its place (so it
   // is idempotent, and a resumed run's later add completes it); at another
   // commit it is an InputError, as are records of another schema version
   // (named by file, line and pointer) and a folder without records.

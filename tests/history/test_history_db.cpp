@@ -66,9 +66,8 @@ std::string query_text(const fs::path& db_file, const std::string& sql) {
   return v;
 }
 
-std::string point_sql(const std::string& run, const std::string& job, const std::string& quantity) {
-  return "SELECT value FROM points WHERE run_id = '" + run + "' AND job_id = '" + job +
-         "' AND quantity = '" + quantity + "'";
+std::string point_sql(const std::string& job, const std::string& quantity) {
+  return "SELECT value FROM points WHERE job_id = '" + job + "' AND quantity = '" + quantity + "'";
 }
 
 std::string message_of(const std::function<void()>& f) {
@@ -94,6 +93,12 @@ TEST(HistoryDb, AddStoresEveryJobsTimesAndErrorsAsItsRecordsHoldThem) {
   EXPECT_EQ(added.jobs, records.size());
 
   EXPECT_EQ(query_text(file, "SELECT commit_sha FROM runs"), "c0ffee");
+  // The key: the run id and the first start of its jobs (ISO 8601 sorts as text).
+  std::string first_start = records[0]["started_at"];
+  for (const json& j : records)
+    first_start = std::min(first_start, j["started_at"].get<std::string>());
+  EXPECT_EQ(added.run_key, added.run_id + " " + first_start);
+  EXPECT_EQ(query_text(file, "SELECT run_key FROM runs"), added.run_key);
   EXPECT_EQ(query_text(file, "SELECT host_fingerprint FROM runs"),
             records[0]["host"]["fingerprint"].get<std::string>());
   EXPECT_EQ(query_text(file, "SELECT build_fingerprint FROM runs"),
@@ -104,29 +109,27 @@ TEST(HistoryDb, AddStoresEveryJobsTimesAndErrorsAsItsRecordsHoldThem) {
   int timed = 0;
   for (const json& j : records) {
     const std::string id = j["job_id"];
-    const std::string run_id = j["run_id"];
     EXPECT_EQ(query_text(file, "SELECT status FROM jobs WHERE job_id = '" + id + "'"),
               j["status"].get<std::string>());
     const json::json_pointer ratio("/timing/control/frame_ratio/median");
     if (j.contains(ratio)) {
       ++timed;
-      EXPECT_DOUBLE_EQ(*query_number(file, point_sql(run_id, id, "time.frame_ratio")),
+      EXPECT_DOUBLE_EQ(*query_number(file, point_sql(id, "time.frame_ratio")),
                        j[ratio].get<double>())
           << id;
     }
     const json::json_pointer frame("/timing/frame/median_ms");
     if (j.contains(frame)) {
-      EXPECT_DOUBLE_EQ(*query_number(file, point_sql(run_id, id, "time.frame_ms")),
-                       j[frame].get<double>());
+      EXPECT_DOUBLE_EQ(*query_number(file, point_sql(id, "time.frame_ms")), j[frame].get<double>());
     }
     const json::json_pointer technique("/timing/technique/median_ms");
     if (j.contains(technique)) {
-      EXPECT_DOUBLE_EQ(*query_number(file, point_sql(run_id, id, "time.technique_ms")),
+      EXPECT_DOUBLE_EQ(*query_number(file, point_sql(id, "time.technique_ms")),
                        j[technique].get<double>());
     }
     const json::json_pointer rmse("/metrics/visibility/all/rmse");
     if (j.contains(rmse)) {
-      EXPECT_DOUBLE_EQ(*query_number(file, point_sql(run_id, id, "metrics.visibility.all.rmse")),
+      EXPECT_DOUBLE_EQ(*query_number(file, point_sql(id, "metrics.visibility.all.rmse")),
                        j[rmse].get<double>());
     }
     // Every number under "metrics" is a point: count them in the JSON.
@@ -176,7 +179,24 @@ TEST(HistoryDb, ARunAtAnotherCommitIsRefusedNamingBothAndTheHistoryKeepsIt) {
   const std::string m = message_of([&] { db.add_run(run.string(), "bbbb"); });
   EXPECT_NE(m.find(file), std::string::npos) << m;
   EXPECT_NE(m.find("at commit aaaa (not bbbb)"), std::string::npos) << m;
+  EXPECT_NE(m.find("run ci "), std::string::npos) << m;
   EXPECT_EQ(query_text(dir / "h.sqlite", "SELECT commit_sha FROM runs"), "aaaa");
+}
+
+TEST(HistoryDb, TheSameOutFolderRunAgainAtTheNextCommitIsANewRun) {
+  const fs::path dir = test_folder("sb_history_");
+  HistoryDb db((dir / "h.sqlite").string());
+  db.add_run(run_folder(dir, "first").string(), "aaaa");
+  // The same run id ("ci", from --out results/ci), started a day later.
+  const fs::path next = run_folder(dir, "next", [](json& j) {
+    std::string t = j["started_at"];
+    t[9] = char(t[9] == '9' ? '0' : t[9] + 1);  // yyyy-mm-dD: another day
+    j["started_at"] = t;
+  });
+  const AddedRun added = db.add_run(next.string(), "bbbb");
+  EXPECT_FALSE(added.replaced);
+  EXPECT_EQ(added.run_order, 2);
+  EXPECT_EQ(db.run_count(), 2);
 }
 
 TEST(HistoryDb, RecordsOfAnotherSchemaVersionAreRefusedByFileLineAndPointerAndAddNothing) {
@@ -240,7 +260,8 @@ TEST(HistoryCli, AddPrintsWhatItStoredAndABadHistoryExitsWithCode2) {
   const std::string db = (dir / "h.sqlite").string();
   CliRun r = run_command(exe + " history add " + run.string() + " --commit abc --db " + db);
   EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("added run ci at commit abc"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.rfind("added run ci ", 0), 0u) << r.output;
+  EXPECT_NE(r.output.find(" at commit abc: "), std::string::npos) << r.output;
   r = run_command(exe + " history add " + run.string() + " --commit def --db " + db);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find(db), std::string::npos) << r.output;
