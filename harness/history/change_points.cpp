@@ -218,10 +218,6 @@ std::vector<ChangePoint> find_change_points(std::span<const double> values,
 
   // Segments [starts[k], starts[k + 1]) over the runs with a value; drop the
   // change point of smallest effect while any is below the minimum effect.
-  auto segment_median = [&](const std::vector<double>& v, size_t a, size_t b) {
-    return cp_median(std::vector<double>(v.begin() + static_cast<std::ptrdiff_t>(a),
-                                         v.begin() + static_cast<std::ptrdiff_t>(b)));
-  };
   auto below_minimum = [&](double before, double after) {
     const double rel = before == 0 ? (after == 0 ? 0.0 : std::numeric_limits<double>::infinity())
                                    : std::abs(after / before - 1);
@@ -235,11 +231,11 @@ std::vector<ChangePoint> find_change_points(std::span<const double> values,
     size_t weakest = bounds.size();
     double weakest_step = std::numeric_limits<double>::infinity();
     for (size_t k = 0; k < bounds.size(); ++k) {
-      const double before = segment_median(raw, starts[k], starts[k + 1]);
-      const double after = segment_median(raw, starts[k + 1], starts[k + 2]);
+      const double before = cp_median_of(raw, starts[k], starts[k + 1]);
+      const double after = cp_median_of(raw, starts[k + 1], starts[k + 2]);
       if (!below_minimum(before, after)) continue;
-      const double step = std::abs(segment_median(y, starts[k + 1], starts[k + 2]) -
-                                   segment_median(y, starts[k], starts[k + 1]));
+      const double step = std::abs(cp_median_of(y, starts[k + 1], starts[k + 2]) -
+                                   cp_median_of(y, starts[k], starts[k + 1]));
       if (step < weakest_step) {
         weakest_step = step;
         weakest = k;
@@ -256,14 +252,14 @@ std::vector<ChangePoint> find_change_points(std::span<const double> values,
   for (size_t k = 0; k < bounds.size(); ++k) {
     ChangePoint c;
     c.index = index[starts[k + 1]];
-    c.before = segment_median(raw, starts[k], starts[k + 1]);
-    c.after = segment_median(raw, starts[k + 1], starts[k + 2]);
+    c.before = cp_median_of(raw, starts[k], starts[k + 1]);
+    c.after = cp_median_of(raw, starts[k + 1], starts[k + 2]);
     if (c.before != 0)
       c.relative_change = c.after / c.before - 1;
     else if (c.after != 0)
       c.relative_change = std::copysign(std::numeric_limits<double>::infinity(), c.after);
-    c.step_over_sigma = std::abs(segment_median(y, starts[k + 1], starts[k + 2]) -
-                                 segment_median(y, starts[k], starts[k + 1])) /
+    c.step_over_sigma = std::abs(cp_median_of(y, starts[k + 1], starts[k + 2]) -
+                                 cp_median_of(y, starts[k], starts[k + 1])) /
                         sigma;
     c.runs_before = starts[k + 1] - starts[k];
     c.runs_after = starts[k + 2] - starts[k + 1];
