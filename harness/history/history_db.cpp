@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <stdexcept>
 #include <vector>
@@ -157,6 +159,7 @@ class Statement {
     return t ? reinterpret_cast<const char*>(t) : "";
   }
   std::int64_t column_integer(int i) const { return sqlite3_column_int64(s_, i); }
+  double column_real(int i) const { return sqlite3_column_double(s_, i); }
 
  private:
   void check(int rc) const {
@@ -208,6 +211,45 @@ HistoryDb::HistoryDb(const std::string& path) : path_(path), db_(std::make_uniqu
 HistoryDb::~HistoryDb() = default;
 
 std::int64_t HistoryDb::run_count() const { return db_->scalar("SELECT count(*) FROM runs"); }
+
+std::vector<HistoryRun> HistoryDb::runs() const {
+  Statement q(db_->db,
+              "SELECT run_key, run_id, commit_sha, coalesce(started_at, ''), run_dir, "
+              "coalesce(host_fingerprint, ''), run_order FROM runs ORDER BY run_order",
+              path_);
+  std::vector<HistoryRun> out;
+  while (q.step()) {
+    HistoryRun r;
+    r.run_key = q.column_text(0);
+    r.run_id = q.column_text(1);
+    r.commit = q.column_text(2);
+    r.started_at = q.column_text(3);
+    r.run_dir = q.column_text(4);
+    r.host_fingerprint = q.column_text(5);
+    r.run_order = q.column_integer(6);
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+std::vector<QuantitySeries> HistoryDb::series(const std::string& quantity) const {
+  const std::vector<HistoryRun> all = runs();
+  std::map<std::string, std::size_t> position;  // run_key -> index in run order
+  for (std::size_t i = 0; i < all.size(); ++i) position[all[i].run_key] = i;
+  Statement q(db_->db,
+              "SELECT j.series, p.run_key, p.value FROM points p "
+              "JOIN jobs j USING (run_key, job_id) WHERE p.quantity = ?1 ORDER BY j.series",
+              path_);
+  q.text(1, quantity);
+  std::vector<QuantitySeries> out;
+  while (q.step()) {
+    const std::string name = q.column_text(0);
+    if (out.empty() || out.back().series != name)
+      out.push_back({name, std::vector<double>(all.size(), std::nan(""))});
+    out.back().values[position.at(q.column_text(1))] = q.column_real(2);
+  }
+  return out;
+}
 
 AddedRun HistoryDb::add_run(const std::string& run_dir, const std::string& commit) {
   if (commit.empty()) throw InputError(run_dir, "--commit", "no commit to store the run at");

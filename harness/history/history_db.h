@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace sb::history {
 
@@ -30,6 +31,21 @@ struct AddedRun {
   std::int64_t run_order = 0;  // 1 for the history's first run
   std::size_t jobs = 0, points = 0;
   bool replaced = false;  // the run was there already (same commit): its rows were replaced
+};
+
+// One run of the history, as `runs` holds it.
+struct HistoryRun {
+  std::string run_key, run_id, commit, started_at, run_dir, host_fingerprint;
+  std::int64_t run_order = 0;
+};
+
+// One series' values of a quantity, one per run of the history in run
+// order: NaN where that run has no value (the job was not in it, skipped,
+// failed, or did not reach the number), so that position i is runs()[i]
+// for every series, as the change-point detector takes them.
+struct QuantitySeries {
+  std::string series;  // "scene @ resolution / technique"
+  std::vector<double> values;
 };
 
 class HistoryDb {
@@ -52,6 +68,10 @@ class HistoryDb {
   AddedRun add_run(const std::string& run_dir, const std::string& commit);
 
   std::int64_t run_count() const;
+  std::vector<HistoryRun> runs() const;  // in run order
+  // Every series with at least one value of `quantity` ("time.frame_ratio",
+  // "metrics.visibility.all.rmse", ...), by series name.
+  std::vector<QuantitySeries> series(const std::string& quantity) const;
   const std::string& path() const { return path_; }
 
  private:

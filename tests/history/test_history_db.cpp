@@ -4,16 +4,20 @@
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "../common/cli_run.h"
 #include "core/error.h"
+#include "history/change_points.h"
 #include "history/history_db.h"
 
 namespace sb::test {
@@ -251,6 +255,87 @@ TEST(HistoryDb, AFolderWithoutRecordsIsRefused) {
   HistoryDb db((dir / "h.sqlite").string());
   const std::string m = message_of([&] { db.add_run((dir / "empty").string(), "aaaa"); });
   EXPECT_NE(m.find("holds no job record"), std::string::npos) << m;
+}
+
+// The case at the store's level: ten runs of the ci baseline, 2 %
+// lognormal noise on every job's time ratio, and one job 30 % slower from
+// the sixth run on. The detector, fed the store's series, flags that job at
+// that run and nothing else.
+TEST(HistoryDb, TenRunsWithOneJobThirtyPercentSlowerFromTheSixthGiveThatStepAndNoOther) {
+  const fs::path dir = test_folder("sb_history_");
+  HistoryDb db((dir / "h.sqlite").string());
+  const json::json_pointer ratio("/timing/control/frame_ratio/median");
+  const std::string slowed = jsonl_records(kBaseline).at(2)["job_id"];
+  std::mt19937_64 rng(44);
+  std::normal_distribution<double> z(0.0, 1.0);
+  std::map<std::string, std::vector<double>> written;  // job_id -> ratios by run
+  for (int run = 0; run < 10; ++run) {
+    const fs::path folder = run_folder(dir, "run" + std::to_string(run), [&](json& j) {
+      std::string t = j["started_at"];
+      t[8] = char('0' + (run + 1) / 10);  // day run + 1 of the month: one run a day
+      t[9] = char('0' + (run + 1) % 10);
+      j["started_at"] = t;
+      if (!j.contains(ratio)) return;
+      double v = j[ratio].get<double>() * std::exp(0.02 * z(rng));
+      if (j["job_id"] == slowed && run >= 5) v *= 1.3;
+      j[ratio] = v;
+      written[j["job_id"]].push_back(v);
+    });
+    db.add_run(folder.string(), "commit" + std::to_string(run));
+  }
+  ASSERT_EQ(db.run_count(), 10);
+  ASSERT_EQ(written.count(slowed), 1u);
+  const std::vector<history::QuantitySeries> series = db.series("time.frame_ratio");
+  ASSERT_EQ(series.size(), written.size());
+  int steps = 0;
+  for (const history::QuantitySeries& s : series) {
+    ASSERT_EQ(s.values.size(), 10u);
+    const std::vector<history::ChangePoint> found = history::find_change_points(s.values);
+    steps += int(found.size());
+    if (s.series.find(jsonl_records(kBaseline).at(2)["technique_variant"].get<std::string>()) !=
+        std::string::npos) {
+      ASSERT_EQ(found.size(), 1u) << s.series;
+      EXPECT_EQ(found[0].index, 5u);
+      EXPECT_NEAR(found[0].relative_change, 0.3, 0.05);
+    }
+  }
+  EXPECT_EQ(steps, 1);
+  // The store's values are the records', run by run.
+  for (const history::QuantitySeries& s : series) {
+    bool matched = false;
+    for (const auto& [job, values] : written) {
+      if (values == s.values) matched = true;
+    }
+    EXPECT_TRUE(matched) << s.series;
+  }
+}
+
+TEST(HistoryDb, ARunWithoutAJobLeavesThatSeriesANaNAtItsPlace) {
+  const fs::path dir = test_folder("sb_history_");
+  HistoryDb db((dir / "h.sqlite").string());
+  const std::string dropped = jsonl_records(kBaseline).at(0)["job_id"];
+  db.add_run(run_folder(dir, "a", [](json& j) { j["run_id"] = "a"; }).string(), "1");
+  const fs::path b = dir / "b";
+  fs::create_directories(b);
+  {
+    std::ofstream out(b / "results.jsonl");
+    for (json j : jsonl_records(kBaseline)) {
+      j["run_id"] = "b";
+      if (j["job_id"] != dropped) out << j.dump() << "\n";
+    }
+  }
+  db.add_run(b.string(), "2");
+  const std::vector<history::HistoryRun> runs = db.runs();
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[0].run_id, "a");
+  EXPECT_EQ(runs[1].commit, "2");
+  int with_gap = 0;
+  for (const history::QuantitySeries& s : db.series("time.frame_ms")) {
+    ASSERT_EQ(s.values.size(), 2u);
+    EXPECT_FALSE(std::isnan(s.values[0])) << s.series;
+    if (std::isnan(s.values[1])) ++with_gap;
+  }
+  EXPECT_EQ(with_gap, 1);
 }
 
 TEST(HistoryCli, AddPrintsWhatItStoredAndABadHistoryExitsWithCode2) {
