@@ -89,6 +89,7 @@ double cp_residual_sigma(std::span<const double> y, const std::vector<size_t>& b
     }
     a = b;
   }
+  if (y.size() <= ends.size()) return 0;  // no degree of freedom left (segments of one run)
   return std::sqrt(squares / static_cast<double>(y.size() - ends.size()));
 }
 
@@ -224,10 +225,15 @@ std::vector<ChangePoint> find_change_points(std::span<const double> values,
     if (rel < options.min_relative_change) return true;
     return !relative && std::abs(after - before) < options.min_absolute_change;
   };
-  for (;;) {
+  // Every segment's first run, and n after the last.
+  const auto segment_starts = [&] {
     std::vector<size_t> starts{0};
     starts.insert(starts.end(), bounds.begin(), bounds.end());
     starts.push_back(n);
+    return starts;
+  };
+  for (;;) {
+    const std::vector<size_t> starts = segment_starts();
     size_t weakest = bounds.size();
     double weakest_step = std::numeric_limits<double>::infinity();
     for (size_t k = 0; k < bounds.size(); ++k) {
@@ -246,9 +252,7 @@ std::vector<ChangePoint> find_change_points(std::span<const double> values,
   }
 
   std::vector<ChangePoint> out;
-  std::vector<size_t> starts{0};
-  starts.insert(starts.end(), bounds.begin(), bounds.end());
-  starts.push_back(n);
+  const std::vector<size_t> starts = segment_starts();
   for (size_t k = 0; k < bounds.size(); ++k) {
     ChangePoint c;
     c.index = index[starts[k + 1]];

@@ -147,7 +147,7 @@ class Statement {
     const int rc = sqlite3_step(s_);
     if (rc == SQLITE_ROW) return true;
     if (rc != SQLITE_DONE)
-      throw InputError(path_, "", std::string("cannot write: ") + sqlite3_errmsg(db_));
+      throw InputError(path_, "", std::string("SQLite failed: ") + sqlite3_errmsg(db_));
     return false;
   }
   void reset() {
@@ -193,11 +193,15 @@ HistoryDb::HistoryDb(const std::string& path) : path_(path), db_(std::make_uniqu
   }
   db_->exec("PRAGMA foreign_keys = ON");
   if (tables == 0 && version == 0) {
+    // Made under the write lock, looked at again there: two CI jobs that
+    // open a new file at once make its tables once.
     db_->exec("BEGIN IMMEDIATE");
-    db_->exec(kCreateTables);
-    db_->exec(("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion)).c_str());
+    if (db_->scalar("SELECT count(*) FROM sqlite_master WHERE type = 'table'") == 0) {
+      db_->exec(kCreateTables);
+      db_->exec(("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion)).c_str());
+    }
     db_->exec("COMMIT");
-    return;
+    version = db_->scalar("PRAGMA user_version");
   }
   if (version != kHistorySchemaVersion)
     throw InputError(path, "PRAGMA user_version",
