@@ -34,7 +34,4 @@ void write_html_report(const std::vector<record::JobRecord>& records, const std:
                        const std::string& out_dir, const std::vector<ReportChart>& charts,
                        const std::string& title);
 
-// & < > " ' as character references: safe in text and in quoted attributes.
-std::string html_escape(const std::string& s);
-
 }  // namespace sb::results

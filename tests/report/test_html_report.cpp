@@ -12,6 +12,7 @@
 
 #include "../metrics/test_util.h"
 #include "report_fixture.h"
+#include "results/html_page.h"
 #include "results/html_report.h"
 #include "results/report.h"
 
