@@ -509,15 +509,26 @@ std::vector<ChartFile> write_charts(const std::vector<JobRecord>& records,
   passes_charts(ok, pass_colours, out_dir, charts);
   if (charts.empty()) return {};
 
+  fs::create_directories(out_dir);
+  std::vector<std::string> data_files;
+  for (const Chart& c : charts) {
+    data_files.push_back(fs::path(c.file.svg).replace_extension(".json").string());
+    write_file_atomically(data_files.back(), json_text(c.data, 1) + "\n");
+  }
+  draw_chart_data(data_files);
+
+  std::vector<ChartFile> out;
+  out.reserve(charts.size());
+  for (Chart& c : charts) out.push_back(std::move(c.file));
+  return out;
+}
+
+void draw_chart_data(const std::vector<std::string>& data_files) {
+  if (data_files.empty()) return;
   require_python();
   const std::string script = find_plot_script();
-  fs::create_directories(out_dir);
   std::vector<std::string> argv = {kPython, script};
-  for (const Chart& c : charts) {
-    const std::string data = fs::path(c.file.svg).replace_extension(".json").string();
-    write_file_atomically(data, json_text(c.data, 1) + "\n");
-    argv.push_back(data);
-  }
+  argv.insert(argv.end(), data_files.begin(), data_files.end());
   std::string output;
   const int rc = run_process(argv, &output);
   if (rc == kExitNoMatplotlib)
@@ -525,11 +536,6 @@ std::vector<ChartFile> write_charts(const std::vector<JobRecord>& records,
                              "\n" + output);
   if (rc != 0)
     throw std::runtime_error(script + " failed (exit " + std::to_string(rc) + "):\n" + output);
-
-  std::vector<ChartFile> out;
-  out.reserve(charts.size());
-  for (Chart& c : charts) out.push_back(std::move(c.file));
-  return out;
 }
 
 }  // namespace sb::results

@@ -49,6 +49,11 @@ struct ChartFile {
 std::vector<ChartFile> write_charts(const std::vector<record::JobRecord>& records,
                                     const std::string& out_dir, const ChartOptions& options = {});
 
+// Draws charts prepared elsewhere (the history report's): each file is one
+// chart's JSON data as plot_charts.py reads it (its "kind", and the "svg" and
+// "png" it writes), all in one python3 process. Throws as write_charts does.
+void draw_chart_data(const std::vector<std::string>& data_files);
+
 // Empty if /usr/bin/python3 can import matplotlib, else why not (and what to
 // install). Runs python3 once.
 std::string charts_unavailable_reason();

@@ -5,7 +5,8 @@ usage: plot_charts.py DATA.json...
 
 Each DATA.json is one chart prepared by harness/results/charts.cpp (kinds
 error_time, error_memory, time_triangles, error_triangles, time_resolution,
-passes); it names its own output files. Exit codes: 0 all drawn, 1 some chart failed (tracebacks on
+passes) or by harness/history/history_report.cpp (kind history); it names its
+own output files. Exit codes: 0 all drawn, 1 some chart failed (tracebacks on
 stderr, the other charts are still drawn), 2 usage, 3 matplotlib missing.
 No network is used; text stays text in the SVG (svg.fonttype none).
 """
@@ -199,6 +200,43 @@ def passes(fig, ax, d):
               borderaxespad=0, frameon=False, title="pass (median)", title_fontsize=7)
 
 
+def history(d):
+    """A series across runs: one panel per quantity against run order, a
+    marker per host, each segment's median as a line and each step as a
+    dashed red line between the last run before it and the first after."""
+    panels = d["panels"]
+    n = len(d["ticks"])
+    fig, axes = plt.subplots(len(panels), 1, figsize=(max(6.0, min(14.0, 2.5 + 0.28 * n)), 2.4 * len(panels)),
+                             sharex=True, squeeze=False)
+    xs = list(range(1, n + 1))
+    for ax, p in zip(axes[:, 0], panels):
+        pts = [(x, v, h) for x, v, h in zip(xs, p["values"], d["hosts"]) if v is not None]
+        ax.plot([x for x, _, _ in pts], [v for _, v, _ in pts], color="#9aa3b2", linewidth=0.8, zorder=1)
+        for h, label in enumerate(d["host_labels"]):
+            mine = [(x, v) for x, v, hh in pts if hh == h]
+            if mine:
+                colour, marker = style(h)
+                ax.scatter([x for x, _ in mine], [v for _, v in mine], s=16, color=colour, marker=marker,
+                           label=label, zorder=3)
+        for seg in p["segments"]:
+            ax.hlines(seg["level"], seg["from"] + 0.6, seg["to"] + 0.4, colors="#1d2330", linewidth=1.2, zorder=2)
+        for i, at in enumerate(p["steps"]):
+            ax.axvline(at + 0.5, color="#d0342c", linestyle="--", linewidth=1.0, zorder=2,
+                       label="step" if i == 0 else None)
+        ax.set_ylabel(p["ylabel"])
+        if len(d["host_labels"]) > 1 or p["steps"]:
+            ax.legend(loc="best")
+    axes[0, 0].set_title(d["title"])
+    bottom = axes[-1, 0]
+    every = max(1, math.ceil(n / 30))
+    bottom.set_xticks(xs[::every])
+    bottom.set_xticklabels([f"{x}\n{t}" for x, t in zip(xs, d["ticks"])][::every], fontsize=6)
+    bottom.set_xlim(0.5, n + 0.5)
+    bottom.set_xlabel(d["xlabel"])
+    fig.tight_layout()
+    return fig
+
+
 def save(fig, path, fmt, **kw):
     tmp = path + ".tmp"
     fig.savefig(tmp, format=fmt, bbox_inches="tight", **kw)
@@ -209,6 +247,14 @@ def draw(data_path):
     with open(data_path, encoding="utf-8") as f:
         d = json.load(f)
     kind = d["kind"]
+    if kind == "history":
+        fig = history(d)
+        try:
+            save(fig, d["svg"], "svg", metadata={"Date": None})
+            save(fig, d["png"], "png", dpi=150)
+        finally:
+            plt.close(fig)
+        return
     width = 7.5
     if kind == "passes":
         width = max(5.5, 2.5 + 0.45 * len(d["bars"]))
