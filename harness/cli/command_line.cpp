@@ -431,8 +431,8 @@ AppPtr make_command_line(Args& a) {
 
   CLI::App* history = add_command(
       *app, "history",
-      "Keep runs across commits in one SQLite file, for a history of every job's time and "
-      "error.",
+      "Keep runs across commits in one SQLite file (add), and report every job's time and "
+      "error across them with the commits where they stepped (report).",
       "shadowbench history add results/ci-20261206-120000");
   history->require_subcommand(1);
   CLI::App* history_add = add_command(
@@ -451,6 +451,22 @@ AppPtr make_command_line(Args& a) {
   history_add->add_option("--db", a.history_db, "the history file, created when absent")
       ->type_name("FILE")
       ->capture_default_str();
+  CLI::App* history_report = add_command(
+      *history, "report",
+      "Write a static, offline site of the history into --out: every series' latest time and "
+      "error with a sparkline, the steps found in them (change points, with the commit), and "
+      "a page per series with its charts and the runs on either side of each step; the steps "
+      "also as steps.json.",
+      "shadowbench history report --db results/history.sqlite --out results/history");
+  history_report->add_option("--db", a.history_db, "the history file")
+      ->type_name("FILE")
+      ->capture_default_str();
+  history_report->add_option("--out", a.out, "the site's folder (default: results/history)")
+      ->type_name("DIR");
+  add_choice(history_report, "--time", a.history_time, {"ratio", "frame_ms", "technique_ms"},
+             "the time plotted: the frame's time over the control's next to it (comparable "
+             "across hosts), or this host's milliseconds of the frame or the technique");
+  add_metric(history_report, a, "the error plotted: a path into a record's metrics");
 
   CLI::App* new_technique = add_command(
       *app, "new-technique",

@@ -51,9 +51,10 @@ struct Args {
   std::string family = "plugin_api";    // new-technique: the template
   std::string dir;                      // new-technique: the folder (default: NAME)
 
-  // history add: the run's commit, and the history file.
+  // history add, report: the run's commit, the history file, the time plotted.
   std::string commit;
   std::string history_db = "results/history.sqlite";
+  std::string history_time = "ratio";
 };
 
 // The App is deleted in command_line.cpp, so that holding one needs no

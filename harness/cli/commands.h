@@ -25,6 +25,7 @@ int cmd_help(const Args& a, CLI::App& app);
 int cmd_completion(const Args& a, CLI::App& app);
 int cmd_new_technique(const Args& a);
 int cmd_history_add(const Args& a);
+int cmd_history_report(const Args& a);
 
 // The plugins of --plugins (or the installed folder) and of
 // $SHADOWBENCH_PLUGIN_PATH; exits with code 3 when none load.

@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
     if (a.command == "scene export") return cmd_scene_export(a);
     if (a.command == "scene info") return cmd_scene_info(a);
     if (a.command == "history add") return cmd_history_add(a);
+    if (a.command == "history report") return cmd_history_report(a);
     if (a.command == "new-technique") return cmd_new_technique(a);
     if (a.command == "help") return cmd_help(a, *app);
     if (a.command == "completion") return cmd_completion(a, *app);

@@ -255,6 +255,27 @@ std::vector<QuantitySeries> HistoryDb::series(const std::string& quantity) const
   return out;
 }
 
+std::vector<SeriesJobs> HistoryDb::series_jobs() const {
+  const std::vector<HistoryRun> all = runs();
+  std::map<std::string, std::size_t> position;  // run_key -> index in run order
+  for (std::size_t i = 0; i < all.size(); ++i) position[all[i].run_key] = i;
+  Statement q(db_->db,
+              "SELECT series, scene_variant, resolution, technique_variant, run_key, job_id, "
+              "status, coalesce(reason, ''), coalesce(host_fingerprint, '') FROM jobs "
+              "ORDER BY series",
+              path_);
+  std::vector<SeriesJobs> out;
+  while (q.step()) {
+    const std::string name = q.column_text(0);
+    if (out.empty() || out.back().series != name)
+      out.push_back({name, q.column_text(1), q.column_text(2), q.column_text(3),
+                     std::vector<SeriesJob>(all.size())});
+    SeriesJob& job = out.back().runs[position.at(q.column_text(4))];
+    job = {true, q.column_text(5), q.column_text(6), q.column_text(7), q.column_text(8)};
+  }
+  return out;
+}
+
 AddedRun HistoryDb::add_run(const std::string& run_dir, const std::string& commit) {
   if (commit.empty()) throw InputError(run_dir, "--commit", "no commit to store the run at");
   // Refuses another schema_version, naming the file, line and pointer.

@@ -48,6 +48,19 @@ struct QuantitySeries {
   std::vector<double> values;
 };
 
+// One job of a series in one run of the history.
+struct SeriesJob {
+  bool present = false;  // the run had this series' job
+  std::string job_id, status, reason, host_fingerprint;
+};
+
+// A series and its job in each run, in run order (runs() by position).
+struct SeriesJobs {
+  std::string series;  // "scene @ resolution / technique"
+  std::string scene_variant, resolution, technique_variant;
+  std::vector<SeriesJob> runs;
+};
+
 class HistoryDb {
  public:
   // Opens the history at `path`, creating it (and its folder) when absent.
@@ -72,6 +85,8 @@ class HistoryDb {
   // Every series with at least one value of `quantity` ("time.frame_ratio",
   // "metrics.visibility.all.rmse", ...), by series name.
   std::vector<QuantitySeries> series(const std::string& quantity) const;
+  // Every series of the history, by name, with its job in each run.
+  std::vector<SeriesJobs> series_jobs() const;
   const std::string& path() const { return path_; }
 
  private:

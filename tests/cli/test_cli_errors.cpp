@@ -20,7 +20,8 @@ TEST(CliErrors, AnUnknownOptionExitsTwoAndNamesIt) {
       {"scene frobnicate", "unknown scene command 'frobnicate' (export, info)"},
       {"", "expected a command (run, validate"},
       {"report r --alpha 0.1", "--alpha goes with compare or compare-builds, not with report"},
-      {"plan x.json --out o", "--out goes with run, report or compare-builds, not with plan"},
+      {"plan x.json --out o",
+       "--out goes with run, report, compare-builds or history report, not with plan"},
       {"compare a b c", "unexpected argument 'c' for compare"},
   };
   for (const auto& c : cases) {

@@ -19,6 +19,7 @@
 #include "core/error.h"
 #include "history/change_points.h"
 #include "history/history_db.h"
+#include "history_fixture.h"
 
 namespace sb::test {
 namespace {
@@ -27,21 +28,6 @@ namespace fs = std::filesystem;
 using history::AddedRun;
 using history::HistoryDb;
 using nlohmann::json;
-
-const fs::path kBaseline = fs::path(SHADOWBENCH_SOURCE_DIR) / "results" / "baselines" / "ci";
-
-// A copy of the committed ci baseline's records, each changed by `edit`.
-fs::path run_folder(const fs::path& dir, const std::string& name,
-                    const std::function<void(json&)>& edit = {}) {
-  fs::path run = dir / name;
-  fs::create_directories(run);
-  std::ofstream out(run / "results.jsonl");
-  for (json j : jsonl_records(kBaseline)) {
-    if (edit) edit(j);
-    out << j.dump() << "\n";
-  }
-  return run;
-}
 
 // One value of the history file, by SQL, read with SQLite itself.
 std::optional<double> query_number(const fs::path& db_file, const std::string& sql) {
@@ -265,16 +251,13 @@ TEST(HistoryDb, TenRunsWithOneJobThirtyPercentSlowerFromTheSixthGiveThatStepAndN
   const fs::path dir = test_folder("sb_history_");
   HistoryDb db((dir / "h.sqlite").string());
   const json::json_pointer ratio("/timing/control/frame_ratio/median");
-  const std::string slowed = jsonl_records(kBaseline).at(2)["job_id"];
+  const std::string slowed = jsonl_records(kCiBaseline).at(2)["job_id"];
   std::mt19937_64 rng(44);
   std::normal_distribution<double> z(0.0, 1.0);
   std::map<std::string, std::vector<double>> written;  // job_id -> ratios by run
   for (int run = 0; run < 10; ++run) {
     const fs::path folder = run_folder(dir, "run" + std::to_string(run), [&](json& j) {
-      std::string t = j["started_at"];
-      t[8] = char('0' + (run + 1) / 10);  // day run + 1 of the month: one run a day
-      t[9] = char('0' + (run + 1) % 10);
-      j["started_at"] = t;
+      start_on_day(j, run + 1);
       if (!j.contains(ratio)) return;
       double v = j[ratio].get<double>() * std::exp(0.02 * z(rng));
       if (j["job_id"] == slowed && run >= 5) v *= 1.3;
@@ -292,7 +275,7 @@ TEST(HistoryDb, TenRunsWithOneJobThirtyPercentSlowerFromTheSixthGiveThatStepAndN
     ASSERT_EQ(s.values.size(), 10u);
     const std::vector<history::ChangePoint> found = history::find_change_points(s.values);
     steps += int(found.size());
-    if (s.series.find(jsonl_records(kBaseline).at(2)["technique_variant"].get<std::string>()) !=
+    if (s.series.find(jsonl_records(kCiBaseline).at(2)["technique_variant"].get<std::string>()) !=
         std::string::npos) {
       ASSERT_EQ(found.size(), 1u) << s.series;
       EXPECT_EQ(found[0].index, 5u);
@@ -313,13 +296,13 @@ TEST(HistoryDb, TenRunsWithOneJobThirtyPercentSlowerFromTheSixthGiveThatStepAndN
 TEST(HistoryDb, ARunWithoutAJobLeavesThatSeriesANaNAtItsPlace) {
   const fs::path dir = test_folder("sb_history_");
   HistoryDb db((dir / "h.sqlite").string());
-  const std::string dropped = jsonl_records(kBaseline).at(0)["job_id"];
+  const std::string dropped = jsonl_records(kCiBaseline).at(0)["job_id"];
   db.add_run(run_folder(dir, "a", [](json& j) { j["run_id"] = "a"; }).string(), "1");
   const fs::path b = dir / "b";
   fs::create_directories(b);
   {
     std::ofstream out(b / "results.jsonl");
-    for (json j : jsonl_records(kBaseline)) {
+    for (json j : jsonl_records(kCiBaseline)) {
       j["run_id"] = "b";
       if (j["job_id"] != dropped) out << j.dump() << "\n";
     }

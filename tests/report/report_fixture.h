@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/text.h"
 #include "../record/sample_records.h"
 #include "core/image.h"
 #include "metrics/image_io.h"
@@ -131,13 +132,6 @@ inline SyntheticRun make_synthetic_run(const std::filesystem::path& root,
 }
 
 // The whole of a file (empty when it cannot be read).
-inline std::string read_text(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 // The text between each `open` and the next `close` (no std::regex: GCC 12
 // warns inside it under the sanitizers).
 inline std::vector<std::string> between(const std::string& text, const std::string& open,

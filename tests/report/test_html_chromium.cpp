@@ -2,12 +2,7 @@
 // index.html from the file system (no network), runs its script, dumps the
 // DOM and takes a screenshot. Fails on console messages or images that did
 // not load; skipped where Chromium is not installed.
-//
-// Chromium 156 prints every console message of the page to stderr (with
-// --enable-logging=stderr) as `INFO:CONSOLE:<line>] "text", source: URL`,
-// console.error and uncaught exceptions included, with no level of its own.
-// The report logs nothing unless an image is missing, so any such line
-// counts as an error.
+// (How the console is read: tests/common/chromium.h.)
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -21,76 +16,22 @@
 #include <string>
 #include <vector>
 
+#include "../common/chromium.h"
 #include "../metrics/test_util.h"
 #include "report_fixture.h"
 
 namespace sb {
 
 using core::ImageF;
+using test::BrowserRun;
+using test::find_chromium;
+using test::joined;
+using test::run_chromium;
+using test::shell_quote;
 
 namespace {
 
 namespace fs = std::filesystem;
-
-// `chromium` on PATH, else /usr/bin/chromium; empty when neither exists.
-std::string find_chromium() {
-  if (const char* path = std::getenv("PATH")) {
-    std::stringstream dirs(path);
-    for (std::string d; std::getline(dirs, d, ':');) {
-      if (d.empty()) continue;
-      const fs::path p = fs::path(d) / "chromium";
-      if (::access(p.c_str(), X_OK) == 0) return p.string();
-    }
-  }
-  return ::access("/usr/bin/chromium", X_OK) == 0 ? "/usr/bin/chromium" : "";
-}
-
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-struct BrowserRun {
-  int exit_code = -1;
-  std::string dom;                   // --dump-dom output (empty for a screenshot)
-  std::vector<std::string> console;  // the page's console messages
-  std::string log;                   // the whole of stderr, for failure messages
-};
-
-// One headless Chromium run on `page` with `mode` (--dump-dom or
-// --screenshot=...). Everything that could reach a network is off, and host
-// names resolve to nothing.
-BrowserRun run_chromium(const std::string& chromium, const fs::path& work, const fs::path& page,
-                        const std::string& mode) {
-  const fs::path out = work / "chromium.out", err = work / "chromium.err";
-  const std::string cmd =
-      "timeout 120 " + shell_quote(chromium) +
-      " --headless --no-sandbox --disable-gpu --no-first-run --no-default-browser-check"
-      " --disable-extensions --disable-sync --disable-background-networking"
-      " --disable-component-update --disable-default-apps --disable-domain-reliability"
-      " --no-proxy-server --host-resolver-rules='MAP * ~NOTFOUND' --mute-audio"
-      " --user-data-dir=" +
-      shell_quote((work / "profile").string()) +
-      " --enable-logging=stderr --v=0 --virtual-time-budget=5000 " + mode + " " +
-      shell_quote("file://" + fs::absolute(page).string()) + " > " + shell_quote(out.string()) +
-      " 2> " + shell_quote(err.string()) + " < /dev/null";
-  BrowserRun r;
-  const int status = std::system(cmd.c_str());
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.dom = test::read_text(out);
-  r.log = test::read_text(err);
-  std::stringstream lines(r.log);
-  for (std::string line; std::getline(lines, line);)
-    if (line.find(":CONSOLE") != std::string::npos) r.console.push_back(line);
-  return r;
-}
-
-std::string joined(const std::vector<std::string>& lines) {
-  std::string s;
-  for (const auto& l : lines) s += l + "\n";
-  return s;
-}
 
 class report_chromium : public ::testing::Test {
  protected:

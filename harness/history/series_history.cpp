@@ -1,0 +1,74 @@
+#include "history/series_history.h"
+
+#include <cmath>
+#include <map>
+#include <string_view>
+
+#include "core/error.h"
+#include "record/metrics_record.h"
+
+namespace sb::history {
+
+using core::InputError;
+
+namespace {
+
+constexpr std::string_view kMetricsPrefix = "metrics.";
+
+void check_quantities(const HistoryQuantities& q) {
+  bool known_time = false;
+  for (const char* t : kTimeQuantities) known_time = known_time || q.time == t;
+  if (!known_time)
+    throw InputError("", "--time",
+                     "unknown time quantity \"" + q.time +
+                         "\": expected ratio (time.frame_ratio), frame_ms (time.frame_ms) or "
+                         "technique_ms (time.technique_ms)");
+  if (q.error.rfind(kMetricsPrefix, 0) != 0 ||
+      !record::MetricPath::parse(q.error.substr(kMetricsPrefix.size())))
+    throw InputError("", "--metric",
+                     "unknown error metric \"" + q.error +
+                         "\": expected a dotted path into a record's \"metrics\", such as "
+                         "visibility.geometry.rmse or shaded.penumbra.ssim");
+}
+
+std::map<std::string, std::vector<double>> by_series(std::vector<QuantitySeries> all) {
+  std::map<std::string, std::vector<double>> out;
+  for (QuantitySeries& s : all) out[s.series] = std::move(s.values);
+  return out;
+}
+
+// A relative-scale series needs values > 0; one that has a 0 (a time too
+// small to measure) is segmented on the absolute scale instead.
+bool all_positive(const std::vector<double>& values) {
+  for (double v : values)
+    if (!std::isnan(v) && v <= 0) return false;
+  return true;
+}
+
+}  // namespace
+
+std::vector<SeriesHistory> series_histories(const HistoryDb& db, const HistoryQuantities& q) {
+  check_quantities(q);
+  auto times = by_series(db.series(q.time));
+  auto errors = by_series(db.series(q.error));
+  const std::size_t runs = static_cast<std::size_t>(db.run_count());
+  std::vector<SeriesHistory> out;
+  for (SeriesJobs& jobs : db.series_jobs()) {
+    SeriesHistory s;
+    s.time.assign(runs, std::nan(""));
+    s.error.assign(runs, std::nan(""));
+    if (auto it = times.find(jobs.series); it != times.end()) s.time = std::move(it->second);
+    if (auto it = errors.find(jobs.series); it != errors.end()) s.error = std::move(it->second);
+    ChangePointOptions time_options;
+    time_options.scale = all_positive(s.time) ? Scale::kRelative : Scale::kAbsolute;
+    s.time_steps = find_change_points(s.time, time_options);
+    ChangePointOptions error_options;
+    error_options.scale = Scale::kAbsolute;
+    s.error_steps = find_change_points(s.error, error_options);
+    s.jobs = std::move(jobs);
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace sb::history
