@@ -44,21 +44,21 @@ using core::SceneType;
 
 namespace {
 
-constexpr float kFovY = 45.0f;        // degrees, vertical
-constexpr float kElevation = 50.0f;   // camera, degrees below the horizon
-constexpr float kFrameMargin = 1.3f;  // framed half-width over the shadow's half-length
+constexpr float kStandingFovY = 45.0f;  // degrees, vertical
+constexpr float kElevation = 50.0f;     // camera, degrees below the horizon
+constexpr float kFrameMargin = 1.3f;    // framed half-width over the shadow's half-length
 
-struct Setup {
+struct StandingSetup {
   float height, width, light_size, light_height, light_offset;
 };
 
-Setup read_setup(const Params& p) {
+StandingSetup read_standing_setup(const Params& p) {
   return {p.get_float("height"), p.get_float("width"), p.get_float("light_size"),
           p.get_float("light_height"), p.get_float("light_offset")};
 }
 
 std::pair<std::string, std::string> check_standing(const Params& p) {
-  const Setup d = read_setup(p);
+  const StandingSetup d = read_standing_setup(p);
   if (!(d.light_height > d.height)) {
     std::ostringstream s;
     s << "expected a number greater than the box's height (" << d.height << "), found "
@@ -71,7 +71,7 @@ std::pair<std::string, std::string> check_standing(const Params& p) {
 Scene build_standing(const Params& p) {
   if (const auto [param, problem] = check_standing(p); !problem.empty())
     throw InputError("", "/params/" + param, problem);
-  const Setup d = read_setup(p);
+  const StandingSetup d = read_standing_setup(p);
   Scene s;
   s.name = "standing";
   const float half = 0.5f * d.width;
@@ -90,10 +90,10 @@ Scene build_standing(const Params& p) {
   const float from = -half, to = tip + penumbra;
   const glm::vec3 center(0.5f * (from + to), 0.0f, 0.0f);
   const float half_width = kFrameMargin * 0.5f * (to - from);
-  const float tan_x = std::tan(glm::radians(0.5f * kFovY)) * 4.0f / 3.0f;
+  const float tan_x = std::tan(glm::radians(0.5f * kStandingFovY)) * 4.0f / 3.0f;
   const float distance = std::max(half_width / tan_x, 1.5f * d.height);
   const float elevation = glm::radians(kElevation);
-  s.camera.fov_y_degrees = kFovY;
+  s.camera.fov_y_degrees = kStandingFovY;
   s.camera.target = center;
   s.camera.eye = center + distance * glm::vec3(0.0f, std::sin(elevation), std::cos(elevation));
   s.camera.near_plane = 0.01f * distance;
