@@ -36,6 +36,7 @@ td.steps.none{font-weight:400;color:var(--muted)}
 .thumbs{display:grid;grid-template-columns:repeat(4,minmax(120px,1fr));gap:8px;margin:6px 0 14px}
 .thumbs figure{margin:0}.thumbs img{width:100%;height:auto;display:block;background:#e9ebef}
 .thumbs figcaption{font-size:12px;color:var(--muted)}
+figure.history-chart{max-width:960px}
 )css";
 
 std::string fmt(double v, const char* format = "%.4g") {
@@ -406,7 +407,7 @@ class Site {
     const fs::path from = (out_ / page(i)).parent_path();
     const std::string stem = fs::path(page(i)).stem().string();
     std::string h = page_head(s.jobs.series) + header(s.jobs.series, "../index.html");
-    h += "<figure class=\"chart\"><img src=\"" + html_escape(url_path(stem + ".svg")) +
+    h += "<figure class=\"chart history-chart\"><img src=\"" + html_escape(url_path(stem + ".svg")) +
          "\" alt=\"" + html_escape(s.jobs.series) +
          ": time and error by run\">"
          "<figcaption>time and error by run <a href=\"" +
