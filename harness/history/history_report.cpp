@@ -407,8 +407,8 @@ class Site {
     const fs::path from = (out_ / page(i)).parent_path();
     const std::string stem = fs::path(page(i)).stem().string();
     std::string h = page_head(s.jobs.series) + header(s.jobs.series, "../index.html");
-    h += "<figure class=\"chart history-chart\"><img src=\"" + html_escape(url_path(stem + ".svg")) +
-         "\" alt=\"" + html_escape(s.jobs.series) +
+    h += "<figure class=\"chart history-chart\"><img src=\"" +
+         html_escape(url_path(stem + ".svg")) + "\" alt=\"" + html_escape(s.jobs.series) +
          ": time and error by run\">"
          "<figcaption>time and error by run <a href=\"" +
          html_escape(url_path(stem + ".png")) +
