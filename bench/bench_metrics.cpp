@@ -2,7 +2,8 @@
 // figures, SSIM included) with one mask and with seven, as a job's
 // visibility is measured, and ssim() alone, 1 and 3 channels; and SSIM on
 // each of its vector widths (metrics/ssim_kernels.h) that this CPU runs,
-// 3 channels: BM_SsimOnPath/0 baseline (SSE2), /1 AVX2, /2 AVX-512.
+// 3 channels: BM_SsimOnPath/0 baseline (SSE2), /1 AVX2, /2 AVX-512; and
+// FLIP (metrics/flip.h) at its default 67 pixels per degree, RGB and grey.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "metrics/flip.h"
 #include "metrics/metrics.h"
 #include "metrics/ssim_kernels.h"
 
@@ -95,9 +97,16 @@ void BM_SsimOnPath(benchmark::State& state) {
 
 // Items are pixels; the argument is the channel count. Real time, since the
 // SSIM filter runs on all cores.
+void BM_Flip(benchmark::State& state) {
+  sb::core::ImageF test, ref;
+  make_pair(static_cast<int>(state.range(0)), test, ref);
+  for (auto _ : state) benchmark::DoNotOptimize(sb::metrics::flip(ref, test).mean);
+}
+
 BENCHMARK(BM_Compare)->Arg(1)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CompareSevenMasks)->Arg(1)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Ssim)->Arg(1)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Flip)->Arg(1)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SsimOnPath)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

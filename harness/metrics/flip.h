@@ -1,0 +1,48 @@
+#pragma once
+// LDR-FLIP (Andersson, Nilsson, Akenine-Möller, Oskarsson, Åström and
+// Fairchild 2020, "FLIP: A Difference Evaluator for Alternating Images"):
+// the difference an observer sees when flipping between a reference and a
+// test image, per pixel in [0, 1], at a viewing distance given as pixels
+// per degree of visual angle.
+//
+// As the paper, in the separable form of NVlabs' reference implementation
+// (its misc/separatedConvolutions.pdf), which is what its published values
+// come from:
+//  - colour: linear RGB to YCxCz (opponent space, D65); each channel low-pass
+//    filtered by the contrast sensitivity of its channel (a Gaussian for Y
+//    and Cx, a sum of two for Cz; edges clamped), back to linear RGB, clamped
+//    to [0, 1], to CIELAB with the Hunt adjustment (a*, b* scaled by
+//    0.01 L*), HyAB distance, raised to q_c = 0.7 and remapped so that p_c =
+//    0.4 of the largest distance (green to blue) maps to p_t = 0.95;
+//  - features: on the luminance, edges (first derivative of a Gaussian of
+//    sd 0.5 * 0.082 degrees) and points (second derivative); the larger of
+//    the two magnitude differences over sqrt(2), raised to q_f = 0.5;
+//  - FLIP = colour difference ^ (1 - feature difference).
+// The mean is the plain mean of the map (the paper's pooled value).
+#include "core/image.h"
+
+namespace sb::metrics {
+
+// The paper's default: a 0.7 m wide monitor of 3840 pixels seen from 0.7 m
+// (3840 * pi / 180 pixels per degree).
+inline constexpr double kFlipDefaultPixelsPerDegree = 67.02064327658226;
+
+struct FlipResult {
+  core::ImageF error;  // one channel, in [0, 1]
+  double mean = 0;
+};
+
+// FLIP of `test` against `reference`, both linear RGB (3 or 4 channels; a
+// 4th is ignored) or grey (1 channel, as R = G = B), the same size; values
+// are clamped to [0, 1] first, as the paper's LDR input is. Throws
+// std::invalid_argument for different sizes, other channel counts, an empty
+// image, or pixels_per_degree not in (0, 1000].
+FlipResult flip(const core::ImageF& reference, const core::ImageF& test,
+                double pixels_per_degree = kFlipDefaultPixelsPerDegree);
+
+// An sRGB-encoded image (an 8-bit PNG read as v / 255) decoded to linear
+// values (IEC 61966-2-1), as FLIP's LDR inputs are: every channel but a 4th
+// (alpha), which is kept.
+core::ImageF linear_from_srgb(const core::ImageF& encoded);
+
+}  // namespace sb::metrics
