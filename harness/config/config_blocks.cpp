@@ -204,6 +204,12 @@ ConfigBlock metrics_block() {
                   "`far_third`), for perspective aliasing; part of the jobs' spec"),
        [](Experiment& e, const json& v) { e.distance_thirds = v.get<bool>(); },
        [](const Experiment& e) { return json(e.distance_thirds); }},
+      {float_param("flip_pixels_per_degree", metrics::kFlipDefaultPixelsPerDegree, 1, 1000,
+                   "the viewing distance of the FLIP errors (`flip_mean`), in pixels per degree "
+                   "of visual angle; the default is the paper's (a 0.7 m wide 3840-pixel monitor "
+                   "seen from 0.7 m); part of the jobs' spec"),
+       [](Experiment& e, const json& v) { e.flip_pixels_per_degree = v.get<double>(); },
+       [](const Experiment& e) { return json(e.flip_pixels_per_degree); }},
   };
   return b;
 }

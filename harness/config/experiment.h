@@ -13,6 +13,7 @@
 #include "core/json_positions.h"
 #include "core/params.h"
 #include "core/scene_types.h"
+#include "metrics/flip.h"
 #include "plugin/registry.h"
 #include "reference/settings.h"
 
@@ -127,6 +128,9 @@ struct Experiment {
   // the near, middle and far third of the camera's distances
   // (metrics/distance_thirds.h), for perspective aliasing.
   bool distance_thirds = false;
+  // "metrics": {"flip_pixels_per_degree": 67.02}: the viewing distance of the
+  // FLIP errors (metrics/flip.h), by default the paper's.
+  double flip_pixels_per_degree = metrics::kFlipDefaultPixelsPerDegree;
   RunLimits limits;
   std::string content_hash;  // of the file's bytes
   // The registry the techniques came from: the planner finds the providers

@@ -3,7 +3,9 @@
 #include <cmath>
 #include <vector>
 
+#include "metrics/flip.h"
 #include "metrics/geometry_region.h"
+#include "metrics/image_io.h"
 #include "metrics/metrics.h"
 
 namespace sb::metrics {
@@ -74,6 +76,44 @@ ImageMetrics compare_images(const ImageF& test, const ImageF& ref, const Regions
   return m;
 }
 
+// The mean of a one-channel map over a mask (NaN over no pixel).
+double masked_mean(const ImageF& map, const std::vector<uint8_t>& mask) {
+  double sum = 0;
+  std::size_t n = 0;
+  for (std::size_t p = 0; p < mask.size(); ++p)
+    if (mask[p]) sum += map.data[p], ++n;
+  return n == 0 ? std::nan("") : sum / static_cast<double>(n);
+}
+
+// The FLIP map of test against ref (the unmeasured pixels from ref), and its
+// mean in each region of m.
+ImageF add_flip_means(ImageMetrics& m, const ImageF& test, const ImageF& ref,
+                      const Regions& regions, const std::vector<uint8_t>& soft_union,
+                      double pixels_per_degree) {
+  ImageF map =
+      flip(with_unmeasured_from(test, ref, regions.measured), ref, pixels_per_degree).error;
+  m.all.flip_mean = masked_mean(map, regions.measured);
+  m.penumbra.flip_mean = masked_mean(map, regions.penumbra);
+  m.soft_union.flip_mean = masked_mean(map, soft_union);
+  if (m.geometry) m.geometry->flip_mean = masked_mean(map, regions.geometry);
+  if (m.receivers) m.receivers->flip_mean = masked_mean(map, regions.receivers);
+  if (regions.distance_thirds) {
+    std::optional<RegionStats>* thirds[] = {&m.near_third, &m.middle_third, &m.far_third};
+    for (std::size_t i = 0; i < 3; ++i)
+      if (*thirds[i]) (*thirds[i])->flip_mean = masked_mean(map, (*regions.distance_thirds)[i]);
+  }
+  return map;
+}
+
+// The image as shaded.png holds it (8 bits a value), decoded from sRGB: what
+// FLIP's own tool reads from the file, so that the figure can be recomputed
+// from it.
+ImageF as_flip_reads_png(const ImageF& shaded) {
+  ImageF q = shaded;
+  for (float& v : q.data) v = static_cast<float>(io::png_byte(v)) / 255.0f;
+  return linear_from_srgb(q);
+}
+
 }  // namespace
 
 VisibilityCheckRecord check_visibility(const ImageF& visibility) {
@@ -91,7 +131,8 @@ VisibilityCheckRecord check_visibility(const ImageF& visibility) {
 }
 
 MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const ImageF& ref_visibility,
-                      const ImageF& ref_shaded, const Regions& regions) {
+                      const ImageF& ref_shaded, const Regions& regions,
+                      double flip_pixels_per_degree, FlipMaps* flip_maps) {
   const std::vector<uint8_t> soft_union =
       soft_union_of(visibility, ref_visibility, regions.measured);
   std::vector<const std::vector<uint8_t>*> thirds;
@@ -106,13 +147,22 @@ MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const Imag
     m.visibility.middle_third = third_stats[1];
     m.visibility.far_third = third_stats[2];
   }
+  ImageF vis_flip = add_flip_means(m.visibility, visibility, ref_visibility, regions, soft_union,
+                                   flip_pixels_per_degree);
+  ImageF shaded_flip =
+      add_flip_means(m.shaded, as_flip_reads_png(shaded), as_flip_reads_png(ref_shaded), regions,
+                     soft_union, flip_pixels_per_degree);
+  if (flip_maps != nullptr) *flip_maps = {std::move(vis_flip), std::move(shaded_flip)};
   return m;
 }
 
 ImageMetrics measure_visibility(const ImageF& visibility, const ImageF& ref_visibility,
-                                const Regions& regions) {
-  return compare_images(visibility, ref_visibility, regions,
-                        soft_union_of(visibility, ref_visibility, regions.measured));
+                                const Regions& regions, double flip_pixels_per_degree) {
+  const std::vector<uint8_t> soft_union =
+      soft_union_of(visibility, ref_visibility, regions.measured);
+  ImageMetrics m = compare_images(visibility, ref_visibility, regions, soft_union);
+  add_flip_means(m, visibility, ref_visibility, regions, soft_union, flip_pixels_per_degree);
+  return m;
 }
 
 std::optional<std::string> noise_warning(const MetricsRecord& m, double penumbra_rms_std_error) {

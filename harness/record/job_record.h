@@ -65,7 +65,7 @@ struct ImagesRecord {
       "ImagesRecord",
       "the images written (not with `--no-images`): paths relative to the run directory"};
 
-  std::optional<std::string> visibility, shaded, error_heatmap;
+  std::optional<std::string> visibility, shaded, error_heatmap, flip_shaded;
   std::optional<double> error_heatmap_full_scale;
   std::optional<std::string> reference_visibility, reference_std_error, reference_shaded;
   std::optional<std::string> gbuffer_positions, gbuffer_normals;  // run --gbuffer
@@ -82,6 +82,10 @@ struct ImagesRecord {
     v.field("error_heatmap", &I::error_heatmap, {"", "|V − reference| as colours (PNG)"});
     v.field("error_heatmap_full_scale", &I::error_heatmap_full_scale,
             {"", "the error shown as the brightest colour"});
+    v.field("flip_shaded", &I::flip_shaded,
+            {"",
+             "the shaded image's FLIP map (`metrics.shaded.*.flip_mean`) in the heat-map "
+             "colours, 0 to 1 (PNG); absent from older records"});
     v.field("reference_visibility", &I::reference_visibility, {"", "the reference's V"});
     v.field("reference_std_error", &I::reference_std_error, {"", "its standard error"});
     v.field("reference_shaded", &I::reference_shaded, {"", "shaded from it"});

@@ -21,8 +21,11 @@ class NumberOf {
 
   template <class M>
   void field(const char* key, M RegionStats::*member, const FieldInfo& /*info*/ = {}) {
-    if constexpr (std::is_arithmetic_v<M>)
+    if constexpr (std::is_arithmetic_v<M>) {
       if (key_ == key) value = static_cast<double>(s_.*member);
+    } else if constexpr (std::is_same_v<M, std::optional<double>>) {
+      if (key_ == key) value = (s_.*member).value_or(std::numeric_limits<double>::quiet_NaN());
+    }
   }
   template <class W, class R>
   void custom(const char*, const char*, const FieldInfo&, W&&, R&&) {}

@@ -23,6 +23,7 @@ struct RegionStats {
   double frac_over_001 = 0, frac_over_005 = 0, frac_over_01 = 0;  // "frac_over_0.01" ...
   std::int64_t nonfinite_count = 0;
   double mean_signed = 0;
+  std::optional<double> flip_mean;  // absent from records written before it existed
 
   template <class V>
   static void describe(V& v) {
@@ -44,6 +45,11 @@ struct RegionStats {
     v.field("frac_over_0.1", &R::frac_over_01, {"", "share of pixels with error over 0.1"});
     v.field("nonfinite_count", &R::nonfinite_count, {"px", "NaN or infinite pixels"});
     v.field("mean_signed", &R::mean_signed, {"", "mean of technique − reference"});
+    v.field("flip_mean", &R::flip_mean,
+            {"",
+             "mean LDR-FLIP (Andersson et al. 2020, metrics/flip.h) over the region, at "
+             "`metrics.flip_pixels_per_degree`: V as a grey image; the shaded image decoded "
+             "from sRGB, as FLIP's own tool reads shaded.png; absent from older records"});
   }
   static void read_max_pixel(RegionStats& s, const Fields& f);
 

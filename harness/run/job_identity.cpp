@@ -131,7 +131,9 @@ json job_spec(const Experiment& e, const RunOptions& o, const EmbreeChoice& embr
         {"pilot_spp", ref.settings.pilot_spp},
         {"target_std_error", ref.settings.target_std_error}}},
       {"second_reference", nullptr},
-      {"metrics", {{"distance_thirds", e.distance_thirds}}},
+      {"metrics",
+       {{"distance_thirds", e.distance_thirds},
+        {"flip_pixels_per_degree", e.flip_pixels_per_degree}}},
       {"stability", nullptr},
       {"backend", gl::to_string(o.backend)},
       // The toolchain, and the code of the libraries that render and

@@ -95,18 +95,21 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv, JobRecord& r, Phas
   metrics::apply_attached_shadow(b.regions.attached, visibility);
   // Shaded from the same V as the metrics, as the reference is: untimed.
   const ImageF shaded = shade(s.frame, visibility);
-  r.metrics = metrics::measure(visibility, shaded, b.ref.visibility, b.ref_shaded, b.regions);
+  metrics::FlipMaps flip_maps;
+  r.metrics = metrics::measure(visibility, shaded, b.ref.visibility, b.ref_shaded, b.regions,
+                               s.e.flip_pixels_per_degree, &flip_maps);
   if (b.second)
     r.second_reference = SecondReferenceRecord{
-        *b.second_record, metrics::measure_visibility(visibility, b.second->visibility, b.regions)};
+        *b.second_record, metrics::measure_visibility(visibility, b.second->visibility, b.regions,
+                                                      s.e.flip_pixels_per_degree)};
   r.classes =
       ClassesRecord{metrics::confusion_matrix(visibility, b.ref.visibility, b.regions.geometry)};
   if (auto warning = metrics::noise_warning(*r.metrics, b.ref.penumbra_rms_std_error))
     r.warnings.push_back(*warning);
   phases.measure = lap.seconds();
   if (s.o.write_images)
-    r.images =
-        write_job_images(s.o.run_dir, r.job_id, visibility, shaded, b.ref.visibility, b.regions);
+    r.images = write_job_images(s.o.run_dir, r.job_id, visibility, shaded, b.ref.visibility,
+                                b.regions, flip_maps);
   phases.images = lap.seconds();
   // Metrics and images are kept for inspection, but the job fails.
   if (check.nonfinite + check.below_0 + check.above_1 > 0)

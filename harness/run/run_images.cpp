@@ -59,13 +59,22 @@ ImagesRecord write_reference_images(const RunOptions& o, const std::string& rel,
   return images;
 }
 
+// A one-channel map in [0, 1] in the heat-map colours (full scale 1).
+ImageF heat_colours(const ImageF& map) {
+  ImageF out(map.width, map.height, 3);
+  for (std::size_t p = 0; p < map.pixel_count(); ++p)
+    metrics::heatmap_colour(map.data[p], &out.data[p * 3]);
+  return out;
+}
+
 ImagesRecord write_job_images(const std::string& run_dir, const std::string& job_id,
                               const ImageF& visibility, const ImageF& shaded,
-                              const ImageF& ref_visibility, const metrics::Regions& regions) {
+                              const ImageF& ref_visibility, const metrics::Regions& regions,
+                              const metrics::FlipMaps& flip_maps) {
   const std::string rel = "jobs/" + job_id;
   const fs::path dir = fs::path(run_dir) / rel;
   fs::create_directories(dir);
-  // Four files at once: no frame runs now, and one file's encoding keeps
+  // Five files at once: no frame runs now, and one file's encoding keeps
   // one core busy (zlib), so the job's images take about half the time.
   tbb::parallel_invoke(
       [&] {
@@ -82,12 +91,16 @@ ImagesRecord write_job_images(const std::string& run_dir, const std::string& job
             metrics::error_heatmap(
                 metrics::with_unmeasured_from(visibility, ref_visibility, regions.measured),
                 ref_visibility, kHeatmapFullScale));
+      },
+      [&] {
+        metrics::io::write_png((dir / "flip_shaded.png").string(), heat_colours(flip_maps.shaded));
       });
   ImagesRecord images;
   images.visibility = rel + "/visibility.exr";
   images.shaded = rel + "/shaded.png";
   images.error_heatmap = rel + "/error.png";
   images.error_heatmap_full_scale = kHeatmapFullScale;
+  images.flip_shaded = rel + "/flip_shaded.png";
   images.masks["soft_union"] = rel + "/mask_soft_union.png";
   return images;
 }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/image.h"
+#include "metrics/job_metrics.h"
 #include "metrics/regions.h"
 #include "record/job_record.h"
 #include "reference/reference.h"
@@ -27,6 +28,7 @@ record::ImagesRecord write_reference_images(const RunOptions& o, const std::stri
 record::ImagesRecord write_job_images(const std::string& run_dir, const std::string& job_id,
                                       const core::ImageF& visibility, const core::ImageF& shaded,
                                       const core::ImageF& ref_visibility,
-                                      const metrics::Regions& regions);
+                                      const metrics::Regions& regions,
+                                      const metrics::FlipMaps& flip_maps);
 
 }  // namespace sb::run

@@ -25,6 +25,7 @@ inline record::RegionStats region(double rmse) {
   s.frac_over_01 = 0.125;
   s.nonfinite_count = 2;
   s.mean_signed = -0.01;
+  s.flip_mean = rmse / 4;
   return s;
 }
 
@@ -81,6 +82,7 @@ inline record::JobRecord full_record() {
   r.images.shaded = "jobs/x/shaded.png";
   r.images.error_heatmap = "jobs/x/error.png";
   r.images.error_heatmap_full_scale = 0.25;
+  r.images.flip_shaded = "jobs/x/flip_shaded.png";
   r.images.reference_visibility = "reference/x/visibility.exr";
   r.images.reference_std_error = "reference/x/std_error.exr";
   r.images.reference_shaded = "reference/x/shaded.png";
