@@ -9,6 +9,7 @@
 #include <optional>
 #include <set>
 #include <string_view>
+#include <type_traits>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -122,14 +123,31 @@ bool file_name_safe(const std::string& id) {
   });
 }
 
+// Every path an images record names, from its description (so that an image
+// added to the record is merged without a list here to keep up): each
+// optional path, and each region's mask.
+class ImagePaths {
+ public:
+  explicit ImagePaths(const ImagesRecord& im) : im_(im) {}
+  std::vector<std::string> paths;
+
+  template <class M>
+  void field(const char* /*key*/, M ImagesRecord::*member, const record::FieldInfo& /*info*/ = {}) {
+    if constexpr (std::is_same_v<M, std::optional<std::string>>) {
+      if (im_.*member) paths.push_back(*(im_.*member));
+    } else if constexpr (std::is_same_v<M, std::map<std::string, std::string>>) {
+      for (const auto& [region, path] : im_.*member) paths.push_back(path);
+    }
+  }
+
+ private:
+  const ImagesRecord& im_;
+};
+
 std::vector<std::string> image_paths(const ImagesRecord& im) {
-  std::vector<std::string> out;
-  for (const auto* path :
-       {&im.visibility, &im.shaded, &im.error_heatmap, &im.reference_visibility,
-        &im.reference_std_error, &im.reference_shaded, &im.gbuffer_positions, &im.gbuffer_normals})
-    if (*path) out.push_back(**path);
-  for (const auto& [region, path] : im.masks) out.push_back(path);
-  return out;
+  ImagePaths collect(im);
+  ImagesRecord::describe(collect);
+  return std::move(collect.paths);
 }
 
 }  // namespace
