@@ -56,7 +56,10 @@ class Plane {
 // 2^y for y in [-126, 126]: 2^n by the exponent bits, 2^f (|f| <= 1/2) by
 // its Taylor series to the 7th power (error below 2e-7).
 [[gnu::always_inline]] inline float fast_exp2(float y) {
-  y = y < -126.0f ? -126.0f : y > 126.0f ? 126.0f : y;
+  // Written so that a NaN becomes -126 (a NaN's conversion to int would be
+  // undefined).
+  y = y > -126.0f ? y : -126.0f;
+  y = y < 126.0f ? y : 126.0f;
   const int n = static_cast<int>(y + 126.5f) - 126;  // round to nearest, as an int conversion
   const float t = (y - static_cast<float>(n)) * std::numbers::ln2_v<float>;
   const float series =
@@ -275,6 +278,11 @@ void filter_column(const Plane& in, int width, int height, int y, const std::vec
   }
 }
 
+// A value clamped to [0, 1], NaN read as 0: a technique's broken pixel is
+// black to FLIP (its other metrics count it as non-finite) and never
+// reaches the float-to-int conversions of the fast math.
+float unit(float v) { return v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f; }
+
 // One image as FLIP reads it: YCxCz planes and the luminance.
 struct Opponent {
   Plane y, cx, cz, luminance;
@@ -288,9 +296,9 @@ Opponent to_opponent(const ImageF& img) {
          i < static_cast<std::size_t>(y1) * img.width; ++i) {
       const float* p = &img.data[i * img.channels];
       const bool grey = img.channels == 1;
-      const float r = std::clamp(p[0], 0.0f, 1.0f);
-      const float g = grey ? r : std::clamp(p[1], 0.0f, 1.0f);
-      const float b = grey ? r : std::clamp(p[2], 0.0f, 1.0f);
+      const float r = unit(p[0]);
+      const float g = grey ? r : unit(p[1]);
+      const float b = grey ? r : unit(p[2]);
       const Colour xyz = rgb_to_xyz(r, g, b);
       const float xn = xyz.a / kWhite[0], yn = xyz.b, zn = xyz.c / kWhite[2];
       o.y[i] = 116.0f * yn - 16.0f;

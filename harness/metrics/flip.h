@@ -34,7 +34,8 @@ struct FlipResult {
 
 // FLIP of `test` against `reference`, both linear RGB (3 or 4 channels; a
 // 4th is ignored) or grey (1 channel, as R = G = B), the same size; values
-// are clamped to [0, 1] first, as the paper's LDR input is. Throws
+// are clamped to [0, 1] first, as the paper's LDR input is, and NaN is read
+// as 0. Throws
 // std::invalid_argument for different sizes, other channel counts, an empty
 // image, or pixels_per_degree not in (0, 1000].
 FlipResult flip(const core::ImageF& reference, const core::ImageF& test,

@@ -144,6 +144,20 @@ TEST(Flip, AGreyImageIsItsValueInEveryChannel) {
   EXPECT_EQ(flip(grey, other).error.data, flip(grey3, other).error.data);
 }
 
+TEST(Flip, ANonFinitePixelIsBlackAndOutOfRangeValuesAreClamped) {
+  const ImageF ref = decoded("render_reference.png");
+  ImageF broken = decoded("render_pcss.png"), fixed = broken;
+  const std::size_t nan_at = (40 * std::size_t(ref.width) + 50) * 3;
+  const std::size_t big_at = (90 * std::size_t(ref.width) + 120) * 3 + 1;
+  broken.data[nan_at] = std::nan("");
+  fixed.data[nan_at] = 0.0f;
+  broken.data[big_at] = 7.0f;
+  fixed.data[big_at] = 1.0f;
+  const FlipResult a = flip(ref, broken), b = flip(ref, fixed);
+  EXPECT_EQ(a.error.data, b.error.data);
+  EXPECT_TRUE(std::isfinite(a.mean));
+}
+
 TEST(Flip, RefusesMismatchedOrEmptyImagesAndAnImpossibleDistance) {
   const ImageF a(8, 8, 3), b(8, 9, 3), two(8, 8, 2);
   EXPECT_THROW(flip(a, b), std::invalid_argument);
