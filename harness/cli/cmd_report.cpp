@@ -45,7 +45,7 @@ int cmd_report(const Args& a) {
     charts.push_back({c.title, c.svg, c.png});
     std::printf("chart: %s (.png)\n", c.svg.c_str());
   }
-  write_html_report(records, run_dir, out, charts, title);
+  write_html_report(records, run_dir, out, charts, title, !a.no_viewer_data);
   std::printf("report: %s\n", (std::filesystem::path(out) / "index.html").string().c_str());
   write_ci_outputs(a, records);
   return kExitOk;

@@ -386,6 +386,9 @@ AppPtr make_command_line(Args& a) {
   report->add_option("--out", a.out, "where charts and index.html go (default: RUN_DIR/report)")
       ->type_name("DIR");
   add_metric(report, a, "the error on the charts' y axis");
+  report->add_flag("--no-viewer-data", a.no_viewer_data,
+                   "no data files for the image viewer (about 5.3 bytes per pixel per image): it "
+                   "then shows the PNGs, without V, error or pixel values");
   add_ci_outputs(report, a);
 
   CLI::App* compare = add_command(

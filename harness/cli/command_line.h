@@ -27,13 +27,14 @@ struct Args {
   std::string shell;                  // completion
   std::string out, backend = "osmesa", cache_dir = "results/cache", plugins;
   bool no_cache = false, no_images = false, gbuffer = false, quiet = false;
-  bool markdown = false;                                          // list, help
-  bool record_schema = false;                                     // list
-  bool plan_schema = false;                                       // list
-  bool names_only = false;                                        // list
-  std::string benchmark_out, bencher_out;                         // run, report: CI outputs
-  std::string embree_config;                                      // run: the reference's Embree ISA
-  std::string pass_timing = "coarse";                             // run
+  bool no_viewer_data = false;             // report: the image viewer without its data files
+  bool markdown = false;                   // list, help
+  bool record_schema = false;              // list
+  bool plan_schema = false;                // list
+  bool names_only = false;                 // list
+  std::string benchmark_out, bencher_out;  // run, report: CI outputs
+  std::string embree_config;               // run: the reference's Embree ISA
+  std::string pass_timing = "coarse";      // run
   double max_jobs = double(config::ExperimentLimits{}.max_jobs);  // run, validate, plan
   results::CompareOptions compare;                                // compare, compare-builds
   std::string builds_normalize = "control";                       // compare-builds' own default

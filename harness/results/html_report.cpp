@@ -15,6 +15,7 @@
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
 #include "results/html_page.h"
+#include "results/image_viewer.h"
 #include "results/mixed_hosts.h"
 #include "results/report_columns.h"
 #include "results/stability_table.h"
@@ -58,13 +59,14 @@ class Page {
  public:
   Page(const std::vector<JobRecord>& records, const fs::path& run_dir, const fs::path& out_dir,
        const fs::path& run_from_out, const std::vector<ReportChart>& charts,
-       const std::string& title)
+       const std::string& title, bool viewer_data)
       : records_(records),
         run_dir_(run_dir),
         out_dir_(out_dir),
         run_from_out_(run_from_out),
         charts_(charts),
-        title_(title) {
+        title_(title),
+        viewer_data_(viewer_data) {
     for (size_t i = 0; i < records.size(); ++i) {
       const std::string key = records[i].scene_variant + " @ " + records[i].resolution;
       if (!group_index_.count(key)) {
@@ -79,7 +81,7 @@ class Page {
     out_ = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
     out_ += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
     out_ += "<title>" + html_escape(title_) + "</title>\n<style>" + page_style() +
-            "</style>\n</head>\n";
+            image_viewer_style() + "</style>\n</head>\n";
     out_ += "<body data-images-ok=\"pending\" data-missing=\"\">\n";
     header();
     out_ += "<main>\n";
@@ -87,7 +89,8 @@ class Page {
     stability();
     charts();
     images();
-    out_ += "</main>\n<script>" + std::string(page_script()) + "</script>\n</body>\n</html>\n";
+    out_ += "</main>\n<script>" + std::string(page_script()) + image_viewer_script() +
+            "</script>\n</body>\n</html>\n";
     return out_;
   }
 
@@ -301,6 +304,9 @@ class Page {
         if (r.images.error_heatmap_full_scale) scales.insert(*r.images.error_heatmap_full_scale);
         if (!ref && r.images.reference_shaded) ref = &r;
       }
+      ViewerGroup viewer{static_cast<int>(g), groups_[g].key, {}};
+      for (size_t i : groups_[g].rows) viewer.jobs.push_back(&records_[i]);
+      out_ += image_viewer(viewer, run_dir_, out_dir_, run_from_out_, viewer_data_);
       for (double s : scales) legend(s);
       out_ += "<div class=\"grid\">\n";
       if (ref) {
@@ -351,6 +357,7 @@ class Page {
   fs::path run_from_out_;
   const std::vector<ReportChart>& charts_;
   std::string title_;
+  bool viewer_data_;
   std::vector<Group> groups_;
   std::map<std::string, size_t> group_index_;
   std::string out_;
@@ -360,14 +367,18 @@ class Page {
 
 void write_html_report(const std::vector<JobRecord>& records, const std::string& run_dir,
                        const std::string& out_dir, const std::vector<ReportChart>& charts,
-                       const std::string& title) {
+                       const std::string& title, bool viewer_data) {
   fs::create_directories(out_dir);
+  // The viewers' data files are this report's alone: none survives from an
+  // earlier report of more groups or jobs.
+  fs::remove_all(fs::path(out_dir) / kViewerDataDir);
   const fs::path out = fs::weakly_canonical(fs::absolute(out_dir));
   fs::path run_from_out = fs::weakly_canonical(fs::absolute(run_dir)).lexically_relative(out);
   if (run_from_out.empty()) run_from_out = fs::weakly_canonical(fs::absolute(run_dir));
   write_legend(fs::path(out_dir) / kHeatmapLegendFile);
-  write_file_atomically((fs::path(out_dir) / "index.html").string(),
-                        Page(records, run_dir, out, run_from_out, charts, title).render());
+  write_file_atomically(
+      (fs::path(out_dir) / "index.html").string(),
+      Page(records, run_dir, out, run_from_out, charts, title, viewer_data).render());
 }
 
 }  // namespace sb::results

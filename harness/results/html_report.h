@@ -29,9 +29,11 @@ inline constexpr const char* kHeatmapLegendFile = "heatmap_legend.png";
 // (results/report_columns.h). Images named by the records (paths relative to
 // run_dir) are linked relative to out_dir, not copied. After loading, the
 // page's script sets <body data-images-ok="true|false" data-missing="...">
-// and logs console.error for each image that did not load.
+// and logs console.error for each image that did not load. Each group gets an
+// interactive viewer (results/image_viewer.h) whose data files go to
+// out_dir/viewer (replaced), unless viewer_data is false.
 void write_html_report(const std::vector<record::JobRecord>& records, const std::string& run_dir,
                        const std::string& out_dir, const std::vector<ReportChart>& charts,
-                       const std::string& title);
+                       const std::string& title, bool viewer_data = true);
 
 }  // namespace sb::results

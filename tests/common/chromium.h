@@ -8,6 +8,7 @@
 // console.error and uncaught exceptions included, with no level of its own.
 // The pages log nothing unless an image is missing, so any such line
 // counts as an error.
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -81,5 +82,18 @@ inline std::string joined(const std::vector<std::string>& lines) {
   for (const auto& l : lines) s += l + "\n";
   return s;
 }
+
+// A test that needs Chromium: skipped, saying what to install, where there is
+// none (scripts/install-deps.sh --test installs it, so CI runs these).
+class ChromiumTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    chromium_ = find_chromium();
+    if (chromium_.empty())
+      GTEST_SKIP() << "no Chromium (neither `chromium` on PATH nor /usr/bin/chromium): "
+                      "install Debian's chromium package (scripts/install-deps.sh --test)";
+  }
+  std::string chromium_;
+};
 
 }  // namespace sb::test

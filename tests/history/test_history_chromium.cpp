@@ -26,16 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-class history_chromium : public ::testing::Test {
- protected:
-  void SetUp() override {
-    chromium_ = find_chromium();
-    if (chromium_.empty())
-      GTEST_SKIP() << "no Chromium (neither `chromium` on PATH nor /usr/bin/chromium): "
-                      "install Debian's chromium package (scripts/install-deps.sh --test)";
-  }
-  std::string chromium_;
-};
+using history_chromium = ChromiumTest;
 
 // Eight runs, one job 40 % slower from the fifth, its images in the runs
 // on both sides of the step.

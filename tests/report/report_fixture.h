@@ -16,6 +16,7 @@
 #include "core/image.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
+#include "metrics/regions.h"
 #include "results/html_report.h"
 
 namespace sb::test {
@@ -40,6 +41,24 @@ inline core::ImageF synthetic_image(int w, int h, float shift) {
       for (int c = 0; c < 3; ++c) img.at(x, y, c) = v * (0.8f + 0.1f * static_cast<float>(c));
     }
   }
+  return img;
+}
+
+// A one-channel V in [0.05, 0.53] that differs at every pixel (a slope in x
+// and y, steeper in x by `shift`, a darker disc moved by it), so a value read
+// from it names its pixel, and jobs differ from the reference by up to 0.08
+// (shift <= 0.15); the reference's standard error is 0.01 + 0.001 x.
+inline core::ImageF synthetic_visibility(int w, int h, float shift) {
+  core::ImageF img(w, h, 1);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float fx = static_cast<float>(x), fy = static_cast<float>(y);
+      const float dx = fx - static_cast<float>(w) * (0.3f + shift),
+                  dy = fy - static_cast<float>(h) * 0.5f;
+      const float disc = dx * dx + dy * dy < static_cast<float>(h * h) / 9.0f ? -0.05f : 0.0f;
+      img.at(x, y, 0) = 0.1f + (0.3f + 0.5f * shift) * fx / static_cast<float>(w) +
+                        0.05f * fy / static_cast<float>(h) + disc;
+    }
   return img;
 }
 
@@ -74,6 +93,17 @@ inline SyntheticRun make_synthetic_run(const std::filesystem::path& root,
     fs::create_directories(run.run_dir / ref_rel);
     const core::ImageF ref = synthetic_image(w, h, 0.0f);
     metrics::io::write_png((run.run_dir / ref_rel / "shaded.png").string(), ref);
+    const core::ImageF ref_v = synthetic_visibility(w, h, 0.0f);
+    metrics::io::write_exr((run.run_dir / ref_rel / "visibility.exr").string(), ref_v);
+    core::ImageF sigma(w, h, 1);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) sigma.at(x, y, 0) = 0.01f + 0.001f * static_cast<float>(x);
+    metrics::io::write_exr((run.run_dir / ref_rel / "std_error.exr").string(), sigma);
+    // The measured pixels (region "all"): all but the last 4 columns.
+    std::vector<uint8_t> measured(static_cast<size_t>(w * h));
+    for (size_t p = 0; p < measured.size(); ++p)
+      measured[p] = p % static_cast<size_t>(w) < size_t(w - 4);
+    metrics::io::write_mask_png((run.run_dir / ref_rel / "mask_all.png").string(), measured, w, h);
     float shift = 0.0f;
     for (const auto& j : jobs) {
       std::string safe = j.technique;
@@ -92,12 +122,21 @@ inline SyntheticRun make_synthetic_run(const std::filesystem::path& root,
         fs::create_directories(run.run_dir / rel);
         const core::ImageF test = synthetic_image(w, h, shift);
         metrics::io::write_png((run.run_dir / rel / "shaded.png").string(), test);
-        metrics::io::write_png((run.run_dir / rel / "error.png").string(),
-                               metrics::error_heatmap(test, ref, full_scale));
+        // The error heat map as the runner makes it: of V, over the measured pixels.
+        const core::ImageF v = synthetic_visibility(w, h, shift);
+        metrics::io::write_png(
+            (run.run_dir / rel / "error.png").string(),
+            metrics::error_heatmap(metrics::with_unmeasured_from(v, ref_v, measured), ref_v,
+                                   full_scale));
+        metrics::io::write_exr((run.run_dir / rel / "visibility.exr").string(), v);
+        r.images.visibility = rel + "/visibility.exr";
         r.images.shaded = rel + "/shaded.png";
         r.images.error_heatmap = rel + "/error.png";
         r.images.error_heatmap_full_scale = full_scale;
         r.images.reference_shaded = ref_rel + "/shaded.png";
+        r.images.reference_visibility = ref_rel + "/visibility.exr";
+        r.images.reference_std_error = ref_rel + "/std_error.exr";
+        r.images.masks["all"] = ref_rel + "/mask_all.png";
         r.timing = coarse_timing({j.frame_ms}, {0.5 + shift * 10.0});
         record::MetricsRecord m;
         m.visibility.all.rmse = 0.2 - shift;

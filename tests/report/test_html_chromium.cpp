@@ -33,17 +33,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class report_chromium : public ::testing::Test {
- protected:
-  void SetUp() override {
-    chromium_ = find_chromium();
-    if (chromium_.empty())
-      GTEST_SKIP() << "no Chromium (neither `chromium` on PATH nor /usr/bin/chromium): "
-                      "install Debian's chromium package (scripts/install-deps.sh --test) "
-                      "to check the HTML report in a browser";
-  }
-  std::string chromium_;
-};
+using report_chromium = test::ChromiumTest;
 
 TEST_F(report_chromium, PageLoadsEveryImageWithoutConsoleErrorsAndRenders) {
   test::TempDir dir("html_chromium");
