@@ -3,7 +3,8 @@
 // visibility is measured, and ssim() alone, 1 and 3 channels; and SSIM on
 // each of its vector widths (metrics/ssim_kernels.h) that this CPU runs,
 // 3 channels: BM_SsimOnPath/0 baseline (SSE2), /1 AVX2, /2 AVX-512; and
-// FLIP (metrics/flip.h) at its default 67 pixels per degree, RGB and grey.
+// FLIP (metrics/flip.h) at its default 67 pixels per degree, RGB and grey,
+// and RGB on each vector width: BM_FlipOnPath/0 baseline, /1 AVX2, /2 AVX-512.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -78,29 +79,44 @@ void BM_Ssim(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * int64_t{kW} * kH);
 }
 
-void BM_SsimOnPath(benchmark::State& state) {
-  using sb::metrics::detail::SimdPath;
-  const SimdPath path = static_cast<SimdPath>(state.range(0));
+// The vector width the benchmark's argument names, with the RGB pair to
+// measure on it; false (the benchmark skipped, saying why) where this CPU
+// does not run it.
+bool on_path(benchmark::State& state, sb::metrics::detail::SimdPath& path, sb::core::ImageF& test,
+             sb::core::ImageF& ref) {
+  path = static_cast<sb::metrics::detail::SimdPath>(state.range(0));
   if (!sb::metrics::detail::runs_here(path)) {
     state.SkipWithError(("this CPU has no " + sb::metrics::detail::to_string(path)).c_str());
-    return;
+    return false;
   }
-  sb::core::ImageF test, ref;
   make_pair(3, test, ref);
+  state.SetLabel(sb::metrics::detail::to_string(path));
+  return true;
+}
+
+void BM_SsimOnPath(benchmark::State& state) {
+  sb::metrics::detail::SimdPath path{};
+  sb::core::ImageF test, ref;
+  if (!on_path(state, path, test, ref)) return;
   for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
     std::vector<double> s = sb::metrics::detail::ssim_on(path, test, ref, 1.0, {nullptr});
     benchmark::DoNotOptimize(s.data());
   }
   state.SetItemsProcessed(state.iterations() * int64_t{kW} * kH);
-  state.SetLabel(sb::metrics::detail::to_string(path));
 }
 
-// Items are pixels; the argument is the channel count. Real time, since the
-// SSIM filter runs on all cores.
+// The argument is the channel count. Real time, since FLIP runs on all cores.
 void BM_Flip(benchmark::State& state) {
   sb::core::ImageF test, ref;
   make_pair(static_cast<int>(state.range(0)), test, ref);
   for (auto _ : state) benchmark::DoNotOptimize(sb::metrics::flip(ref, test).mean);
+}
+
+void BM_FlipOnPath(benchmark::State& state) {
+  sb::metrics::detail::SimdPath path{};
+  sb::core::ImageF test, ref;
+  if (!on_path(state, path, test, ref)) return;
+  for (auto _ : state) benchmark::DoNotOptimize(sb::metrics::detail::flip_on(path, ref, test).mean);
 }
 
 BENCHMARK(BM_Compare)->Arg(1)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -108,6 +124,7 @@ BENCHMARK(BM_CompareSevenMasks)->Arg(1)->Arg(3)->Unit(benchmark::kMillisecond)->
 BENCHMARK(BM_Ssim)->Arg(1)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Flip)->Arg(1)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SsimOnPath)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_FlipOnPath)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -1,38 +1,29 @@
 #include "metrics/flip.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <memory>
+#include <cstring>
 #include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "metrics/simd_path.h"
 
 namespace sb::metrics {
 
 using core::ImageF;
 
 namespace {
-
-// One channel of an image, row by row. Not zeroed when made: every pass
-// writes each value before it is read, and zeroing the planes (about 120 MB
-// at 1920x1080) took a quarter of the time.
-class Plane {
- public:
-  explicit Plane(std::size_t n) : values_(new float[n]) {}
-  float& operator[](std::size_t i) { return values_[i]; }
-  const float& operator[](std::size_t i) const { return values_[i]; }
-  const float* data() const { return values_.get(); }
-
- private:
-  std::unique_ptr<float[]> values_;
-};
 
 // ---------------------------------------------------------------- math
 //
@@ -233,128 +224,196 @@ FeatureFilters feature_filters(double ppd) {
 }
 
 // ---------------------------------------------------------------- passes
+//
+// The image is cut into tiles: bands of rows by columns, one task each. A
+// tile slides down its rows keeping, per image and per filtered quantity, a
+// ring of the 2 radius + 1 rows that the vertical filters of the current row
+// read, filtered horizontally as they enter. So no full-size intermediate
+// plane is made: a tile's rings (about 300 KB for 256 columns) stay in its
+// core's cache, where the planes (120 MB at 1920x1080) went to memory and
+// page faults. Every output value is computed as before, in the same order,
+// whatever the tiling, so the bits depend neither on it nor on the threads.
+//
+// Everything a band runs is inlined into it, and the band is compiled for
+// three vector widths (baseline x86-64, AVX2, AVX-512) and picked at run
+// time, as SSIM's kernels are (ssim_kernels.h); -ffp-contract=off keeps
+// their bits the same.
 
-// Runs body(y0, y1) over blocks of rows in parallel.
-template <class Body>
-void for_rows(int height, Body body) {
-  tbb::parallel_for(tbb::blocked_range<int>(0, height, 8),
-                    [&](const tbb::blocked_range<int>& r) { body(r.begin(), r.end()); });
-}
+// Per image: Y, Cx and the two parts of Cz (colour), the luminance's x
+// derivatives and Gaussian (features), all filtered horizontally.
+enum Quantity { kY, kCx, kCz1, kCz2, kDx, kDdx, kG, kQuantities };
 
-// A row with `radius` copies of its edge values on either side, so that a
-// filter over it needs no clamping.
-void pad_row(const float* in, int width, int radius, float* pad) {
-  std::fill(pad, pad + radius, in[0]);
-  std::copy(in, in + width, pad + radius);
-  std::fill(pad + radius + width, pad + 2 * radius + width, in[width - 1]);
-}
+struct Setup {
+  const ImageF* image[2];  // the reference, the test
+  int width, height;
+  SpatialFilters spatial;
+  FeatureFilters features;
+  int radius;  // the larger filter radius: the rings' half height
+  std::array<std::array<float, 3>, 3> xyz_to_rgb;
+  float knee, slope_below, slope_above, feature_norm;
+};
 
-// out[x] = sum_k taps[k] * in[clamp(x + k - radius)] for one row, from the
-// row padded by pad_row: one tap at a time over the whole row (a loop the
-// compiler vectorises).
-void filter_padded(const float* pad, int width, const std::vector<float>& taps, float* out) {
-  // The first tap sets, the others add (0 + a is a: the same sums as from 0).
-  for (int x = 0; x < width; ++x) out[x] = taps[0] * pad[x];
-  for (std::size_t k = 1; k < taps.size(); ++k) {
-    const float t = taps[k];
-    const float* p = pad + k;
-    for (int x = 0; x < width; ++x) out[x] += t * p[x];
+// A thread's rows, reused from tile to tile, `width` columns wide.
+class Scratch {
+ public:
+  Scratch(int width, int radius)
+      : width_(width),
+        slots_(2 * radius + 1),
+        padded_(static_cast<std::size_t>(width) + 2 * static_cast<std::size_t>(radius)),
+        rings_(2 * kQuantities * static_cast<std::size_t>(slots_) * width),
+        pads_(4 * padded_),
+        lines_(16 * static_cast<std::size_t>(width)),
+        sources_(static_cast<std::size_t>(slots_)) {}
+  int slots() const { return slots_; }
+  float* ring(int side, int quantity, int slot) {
+    return rings_.data() +
+           ((static_cast<std::size_t>(side) * kQuantities + quantity) * slots_ + slot) * width_;
   }
-}
+  // The padded opponent rows of the row being filtered: Y, Cx, Cz, luminance.
+  float* pad(int i) { return pads_.data() + static_cast<std::size_t>(i) * padded_; }
+  // The vertical pass's output: per side Y, Cx, Cz1, Cz2, dx, ddx, dy, ddy.
+  float* line(int i) { return lines_.data() + static_cast<std::size_t>(i) * width_; }
+  // A filter's source rows, one per tap.
+  const float** sources() { return sources_.data(); }
 
-// out row y = sum_k taps[k] * rows[clamp(y + k - radius)].
-void filter_column(const Plane& in, int width, int height, int y, const std::vector<float>& taps,
-                   float* out) {
-  const int radius = static_cast<int>(taps.size() / 2);
-  for (std::size_t k = 0; k < taps.size(); ++k) {
-    const int yy = std::clamp(y + static_cast<int>(k) - radius, 0, height - 1);
-    const float t = taps[k];
-    const float* p = in.data() + static_cast<std::size_t>(yy) * width;
-    if (k == 0) {  // the first tap sets, the others add, as in filter_padded
-      for (int x = 0; x < width; ++x) out[x] = t * p[x];
-    } else {
-      for (int x = 0; x < width; ++x) out[x] += t * p[x];
-    }
-  }
-}
+ private:
+  int width_, slots_;
+  std::size_t padded_;
+  std::vector<float> rings_, pads_, lines_;
+  std::vector<const float*> sources_;
+};
 
 // A value clamped to [0, 1], NaN read as 0: a technique's broken pixel is
 // black to FLIP (its other metrics count it as non-finite) and never
 // reaches the float-to-int conversions of the fast math.
-float unit(float v) { return v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f; }
-
-// One image as FLIP reads it: YCxCz planes and the luminance.
-struct Opponent {
-  Plane y, cx, cz, luminance;
-};
-
-Opponent to_opponent(const ImageF& img) {
-  const std::size_t n = img.pixel_count();
-  Opponent o{Plane(n), Plane(n), Plane(n), Plane(n)};
-  for_rows(img.height, [&](int y0, int y1) {
-    for (std::size_t i = static_cast<std::size_t>(y0) * img.width;
-         i < static_cast<std::size_t>(y1) * img.width; ++i) {
-      const float* p = &img.data[i * img.channels];
-      const bool grey = img.channels == 1;
-      const float r = unit(p[0]);
-      const float g = grey ? r : unit(p[1]);
-      const float b = grey ? r : unit(p[2]);
-      const Colour xyz = rgb_to_xyz(r, g, b);
-      const float xn = xyz.a / kWhite[0], yn = xyz.b, zn = xyz.c / kWhite[2];
-      o.y[i] = 116.0f * yn - 16.0f;
-      o.cx[i] = 500.0f * (xn - yn);
-      o.cz[i] = 200.0f * (yn - zn);
-      o.luminance[i] = yn;
-    }
-  });
-  return o;
+[[gnu::always_inline]] inline float unit(float v) {
+  return v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
 }
 
-// The colour pipeline's horizontal pass: Y and Cx by their filters, Cz by
-// each of its two.
-struct SpatialRows {
-  Plane y, cx, cz1, cz2;
+// `Lanes` floats as one value of GCC's generic vectors: one register of
+// the target (4 for SSE2, 8 for AVX2, 16 for AVX-512). Their functions are
+// always inlined, so that how such a value would be passed between
+// functions built for different targets (what -Wpsabi warns of) never
+// arises.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+template <int Lanes>
+struct Vector {
+  typedef float Type __attribute__((vector_size(Lanes * sizeof(float))));
+  static_assert(sizeof(Type) == Lanes * sizeof(float), "a vector, not a float");
+  [[gnu::always_inline]] static Type load(const float* p) {
+    Type v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+  }
+  [[gnu::always_inline]] static void store(float* p, const Type& v) {
+    std::memcpy(p, &v, sizeof v);
+  }
 };
 
-SpatialRows spatial_rows(const Opponent& o, int width, int height, const SpatialFilters& f) {
-  const std::size_t n = static_cast<std::size_t>(width) * height;
-  SpatialRows s{Plane(n), Plane(n), Plane(n), Plane(n)};
-  for_rows(height, [&](int y0, int y1) {
-    std::vector<float> pad(static_cast<std::size_t>(width) + 2 * f.radius);
-    for (int y = y0; y < y1; ++y) {
-      const std::size_t row = static_cast<std::size_t>(y) * width;
-      pad_row(&o.y[row], width, f.radius, pad.data());
-      filter_padded(pad.data(), width, f.y, &s.y[row]);
-      pad_row(&o.cx[row], width, f.radius, pad.data());
-      filter_padded(pad.data(), width, f.cx, &s.cx[row]);
-      pad_row(&o.cz[row], width, f.radius, pad.data());
-      filter_padded(pad.data(), width, f.cz1, &s.cz1[row]);
-      filter_padded(pad.data(), width, f.cz2, &s.cz2[row]);
+// out[i] = sum_k taps[k] * src[k][i] for i < n, each sum begun with tap 0
+// and added up in tap order (the bits of a loop over the taps). Four
+// registers of outputs at a time stay in registers over all the taps: only
+// the sources are loaded, where a loop of taps outside would load and store
+// the sums once per tap.
+template <int Lanes>
+[[gnu::always_inline]] inline void sum_of_taps(const float* const* src,
+                                               const std::vector<float>& taps, int n, float* out) {
+  using V = Vector<Lanes>;
+  const std::size_t count = taps.size();
+  int i = 0;
+  for (; i + 4 * Lanes <= n; i += 4 * Lanes) {
+    const float t0 = taps[0];
+    typename V::Type a0 = t0 * V::load(src[0] + i), a1 = t0 * V::load(src[0] + i + Lanes),
+                     a2 = t0 * V::load(src[0] + i + 2 * Lanes),
+                     a3 = t0 * V::load(src[0] + i + 3 * Lanes);
+    for (std::size_t k = 1; k < count; ++k) {
+      const float t = taps[k];
+      const float* p = src[k] + i;
+      a0 += t * V::load(p);
+      a1 += t * V::load(p + Lanes);
+      a2 += t * V::load(p + 2 * Lanes);
+      a3 += t * V::load(p + 3 * Lanes);
     }
-  });
-  return s;
+    V::store(out + i, a0);
+    V::store(out + i + Lanes, a1);
+    V::store(out + i + 2 * Lanes, a2);
+    V::store(out + i + 3 * Lanes, a3);
+  }
+  for (; i + Lanes <= n; i += Lanes) {
+    typename V::Type a = taps[0] * V::load(src[0] + i);
+    for (std::size_t k = 1; k < count; ++k) a += taps[k] * V::load(src[k] + i);
+    V::store(out + i, a);
+  }
+  for (; i < n; ++i) {
+    float a = taps[0] * src[0][i];
+    for (std::size_t k = 1; k < count; ++k) a += taps[k] * src[k][i];
+    out[i] = a;
+  }
+}
+#pragma GCC diagnostic pop
+
+// out[x] = sum_k taps[k] * pad[x + k].
+template <int Lanes>
+[[gnu::always_inline]] inline void filter_row(Scratch& sc, const float* pad, int width,
+                                              const std::vector<float>& taps, float* out) {
+  const float** src = sc.sources();
+  for (std::size_t k = 0; k < taps.size(); ++k) src[k] = pad + k;
+  sum_of_taps<Lanes>(src, taps, width, out);
 }
 
-// The feature pipeline's horizontal pass: first and second x-derivatives
-// and the Gaussian of the luminance.
-struct FeatureRows {
-  Plane dx, ddx, g;
-};
+// Columns [x0, x1) of image row `row` of one side, to YCxCz and luminance
+// (from `radius` columns before to `radius` after, the edge columns
+// repeated beyond the image), filtered horizontally into ring slot `slot`.
+template <int Lanes>
+[[gnu::always_inline]] inline void enter_row(const Setup& s, Scratch& sc, int side, int row,
+                                             int slot, int x0, int x1) {
+  const ImageF& img = *s.image[side];
+  const int w = x1 - x0, r = s.radius;
+  float *py = sc.pad(0), *pcx = sc.pad(1), *pcz = sc.pad(2), *plum = sc.pad(3);
+  const bool grey = img.channels == 1;
+  const std::size_t nc = static_cast<std::size_t>(img.channels);
+  const float* in = &img.data[static_cast<std::size_t>(row) * s.width * nc];
+  // The pixels into planes first (red, green, blue in the Y, Cx, Cz pads),
+  // so that the conversion below is a loop over planes, which vectorises.
+  const int n = w + 2 * r;
+  for (int i = 0; i < n; ++i) {
+    const int column = std::clamp(x0 - r + i, 0, s.width - 1);
+    const float* p = in + static_cast<std::size_t>(column) * nc;
+    py[i] = unit(p[0]);
+    pcx[i] = grey ? py[i] : unit(p[1]);
+    pcz[i] = grey ? py[i] : unit(p[2]);
+  }
+  for (int i = 0; i < n; ++i) {
+    const Colour xyz = rgb_to_xyz(py[i], pcx[i], pcz[i]);
+    const float xn = xyz.a / kWhite[0], yn = xyz.b, zn = xyz.c / kWhite[2];
+    py[i] = 116.0f * yn - 16.0f;
+    pcx[i] = 500.0f * (xn - yn);
+    pcz[i] = 200.0f * (yn - zn);
+    plum[i] = yn;
+  }
+  // A filter of radius q reads the pad from r - q.
+  const int qs = s.spatial.radius, qf = s.features.radius;
+  filter_row<Lanes>(sc, py + (r - qs), w, s.spatial.y, sc.ring(side, kY, slot));
+  filter_row<Lanes>(sc, pcx + (r - qs), w, s.spatial.cx, sc.ring(side, kCx, slot));
+  filter_row<Lanes>(sc, pcz + (r - qs), w, s.spatial.cz1, sc.ring(side, kCz1, slot));
+  filter_row<Lanes>(sc, pcz + (r - qs), w, s.spatial.cz2, sc.ring(side, kCz2, slot));
+  filter_row<Lanes>(sc, plum + (r - qf), w, s.features.dg, sc.ring(side, kDx, slot));
+  filter_row<Lanes>(sc, plum + (r - qf), w, s.features.ddg, sc.ring(side, kDdx, slot));
+  filter_row<Lanes>(sc, plum + (r - qf), w, s.features.g, sc.ring(side, kG, slot));
+}
 
-FeatureRows feature_rows(const Plane& luminance, int width, int height, const FeatureFilters& f) {
-  const std::size_t n = static_cast<std::size_t>(width) * height;
-  FeatureRows s{Plane(n), Plane(n), Plane(n)};
-  for_rows(height, [&](int y0, int y1) {
-    std::vector<float> pad(static_cast<std::size_t>(width) + 2 * f.radius);
-    for (int y = y0; y < y1; ++y) {
-      const std::size_t row = static_cast<std::size_t>(y) * width;
-      pad_row(&luminance[row], width, f.radius, pad.data());
-      filter_padded(pad.data(), width, f.dg, &s.dx[row]);
-      filter_padded(pad.data(), width, f.ddg, &s.ddx[row]);
-      filter_padded(pad.data(), width, f.g, &s.g[row]);
-    }
-  });
-  return s;
+// out = sum_k taps[k] * (the ring's row y + k - q, q the taps' radius),
+// the rows named by their place in the tile (`first` is slot 0's).
+template <int Lanes>
+[[gnu::always_inline]] inline void filter_column(Scratch& sc, int side, int quantity, int y,
+                                                 int first, const std::vector<float>& taps,
+                                                 int width, float* out) {
+  const int q = static_cast<int>(taps.size() / 2);
+  const float** src = sc.sources();
+  for (std::size_t k = 0; k < taps.size(); ++k)
+    src[k] = sc.ring(side, quantity, (y + static_cast<int>(k) - q - first) % sc.slots());
+  sum_of_taps<Lanes>(src, taps, width, out);
 }
 
 // A filtered YCxCz colour back to linear RGB, clamped to [0, 1], then to
@@ -370,6 +429,109 @@ FeatureRows feature_rows(const Plane& luminance, int width, int height, const Fe
   return xyz_to_hunt_lab(rgb_to_xyz(rgb[0], rgb[1], rgb[2]));
 }
 
+// FLIP of output row y from the rings: the vertical filters, each side's
+// Hunt L*a*b* and feature magnitudes, then the colour and feature
+// differences. Returns the row's sum.
+template <int Lanes>
+[[gnu::always_inline]] inline void flip_row(const Setup& s, Scratch& sc, int y, int first, int w,
+                                            float* out) {
+  for (int side = 0; side < 2; ++side) {
+    float* o = sc.line(side * 8);
+    filter_column<Lanes>(sc, side, kY, y, first, s.spatial.y, w, o);
+    filter_column<Lanes>(sc, side, kCx, y, first, s.spatial.cx, w, o + w);
+    filter_column<Lanes>(sc, side, kCz1, y, first, s.spatial.cz1, w, o + 2 * w);
+    filter_column<Lanes>(sc, side, kCz2, y, first, s.spatial.cz2, w, o + 3 * w);
+    filter_column<Lanes>(sc, side, kDx, y, first, s.features.g, w, o + 4 * w);
+    filter_column<Lanes>(sc, side, kDdx, y, first, s.features.g, w, o + 5 * w);
+    filter_column<Lanes>(sc, side, kG, y, first, s.features.dg, w, o + 6 * w);
+    filter_column<Lanes>(sc, side, kG, y, first, s.features.ddg, w, o + 7 * w);
+  }
+  // Each side's Hunt L*a*b* and feature magnitudes, over the row (loops the
+  // compiler vectorises), into the side's first six lines.
+  for (int side = 0; side < 2; ++side) {
+    float* o = sc.line(side * 8);
+    float *ly = o, *la = o + w, *lb = o + 2 * w, *edge = o + 4 * w, *point = o + 5 * w;
+    for (int x = 0; x < w; ++x) {
+      const Colour lab = filtered_to_hunt_lab(ly[x], la[x], lb[x] + o[3 * w + x], s.xyz_to_rgb);
+      ly[x] = lab.a, la[x] = lab.b, lb[x] = lab.c;
+    }
+    for (int x = 0; x < w; ++x) {
+      const float dx = edge[x], ddx = point[x], dy = o[6 * w + x], ddy = o[7 * w + x];
+      edge[x] = std::sqrt(dx * dx + dy * dy);
+      point[x] = std::sqrt(ddx * ddx + ddy * ddy);
+    }
+  }
+  const float *r = sc.line(0), *t = sc.line(8);
+  float* colour = sc.line(6);  // the reference's dy, no longer needed
+  // Locals, not references: a choice between values in registers is a
+  // select, one between loads is a branch.
+  const float knee = s.knee, slope_below = s.slope_below, slope_above = s.slope_above;
+  const float feature_norm = s.feature_norm;
+  for (int x = 0; x < w; ++x) {
+    const float dl = r[x] - t[x], da = r[w + x] - t[w + x], db = r[2 * w + x] - t[2 * w + x];
+    const float c = fast_pow(std::abs(dl) + std::sqrt(da * da + db * db), kQc);
+    colour[x] = c < knee ? c * slope_below : kPt + (c - knee) * slope_above;
+  }
+  for (int x = 0; x < w; ++x) {
+    // q_f = 0.5: the square root.
+    const float edge = std::abs(r[4 * w + x] - t[4 * w + x]);
+    const float point = std::abs(r[5 * w + x] - t[5 * w + x]);
+    const float feature = std::sqrt(feature_norm * (edge > point ? edge : point));
+    out[x] = fast_pow(colour[x], 1.0f - feature);
+  }
+}
+
+// A tile's rows and columns.
+struct Tile {
+  int y0, y1, x0, x1;
+};
+
+// Tile row v (an image row, or beyond the image its edge row) of both
+// images into the rings.
+template <int Lanes>
+[[gnu::always_inline]] inline void enter_rows(const Setup& s, Scratch& sc, const Tile& t, int v,
+                                              int first) {
+  const int row = std::clamp(v, 0, s.height - 1), slot = (v - first) % sc.slots();
+  enter_row<Lanes>(s, sc, 0, row, slot, t.x0, t.x1);
+  enter_row<Lanes>(s, sc, 1, row, slot, t.x0, t.x1);
+}
+
+// The ring first holds the rows y0 - radius ... y0 + radius - 1, then takes
+// one row per output row.
+template <int Lanes>
+[[gnu::always_inline]] inline void tile_body(const Setup& s, Scratch& sc, const Tile& t,
+                                             float* error) {
+  const int r = s.radius, first = t.y0 - r;
+  for (int v = t.y0 - r; v < t.y0 + r; ++v) enter_rows<Lanes>(s, sc, t, v, first);
+  for (int y = t.y0; y < t.y1; ++y) {
+    enter_rows<Lanes>(s, sc, t, y + r, first);
+    flip_row<Lanes>(s, sc, y, first, t.x1 - t.x0,
+                    error + static_cast<std::size_t>(y) * s.width + t.x0);
+  }
+}
+
+void tile_baseline(const Setup& s, Scratch& sc, const Tile& t, float* error) {
+  tile_body<4>(s, sc, t, error);
+}
+#if defined(__x86_64__)
+[[gnu::target("avx2")]] void tile_avx2(const Setup& s, Scratch& sc, const Tile& t, float* error) {
+  tile_body<8>(s, sc, t, error);
+}
+[[gnu::target("avx512f,prefer-vector-width=512")]] void tile_avx512(const Setup& s, Scratch& sc,
+                                                                    const Tile& t, float* error) {
+  tile_body<16>(s, sc, t, error);
+}
+#endif
+
+void tile_on(detail::SimdPath path, const Setup& s, Scratch& sc, const Tile& t, float* error) {
+#if defined(__x86_64__)
+  if (path == detail::SimdPath::Avx512) return tile_avx512(s, sc, t, error);
+  if (path == detail::SimdPath::Avx2) return tile_avx2(s, sc, t, error);
+#endif
+  (void)path;  // elsewhere every path is the baseline
+  tile_baseline(s, sc, t, error);
+}
+
 }  // namespace
 
 ImageF linear_from_srgb(const ImageF& encoded) {
@@ -382,7 +544,8 @@ ImageF linear_from_srgb(const ImageF& encoded) {
   return out;
 }
 
-FlipResult flip(const ImageF& reference, const ImageF& test, double pixels_per_degree) {
+FlipResult detail::flip_on(SimdPath path, const ImageF& reference, const ImageF& test,
+                           double pixels_per_degree) {
   auto channels_ok = [](const ImageF& i) {
     return i.channels == 1 || i.channels == 3 || i.channels == 4;
   };
@@ -394,84 +557,63 @@ FlipResult flip(const ImageF& reference, const ImageF& test, double pixels_per_d
   if (!(pixels_per_degree > 0 && pixels_per_degree <= 1000))
     throw std::invalid_argument("flip: pixels per degree must be in (0, 1000], not " +
                                 std::to_string(pixels_per_degree));
+  if (!runs_here(path)) throw std::invalid_argument("flip: this CPU has no " + to_string(path));
 
   const int w = reference.width, h = reference.height;
-  const SpatialFilters spatial = spatial_filters(pixels_per_degree);
-  const FeatureFilters features = feature_filters(pixels_per_degree);
-  const Opponent ref = to_opponent(reference), tst = to_opponent(test);
-  const SpatialRows ref_rows = spatial_rows(ref, w, h, spatial);
-  const SpatialRows tst_rows = spatial_rows(tst, w, h, spatial);
-  const FeatureRows ref_features = feature_rows(ref.luminance, w, h, features);
-  const FeatureRows tst_features = feature_rows(tst.luminance, w, h, features);
-
-  const auto xyz_to_rgb = inverse(kRgbToXyz);
+  Setup s{{&reference, &test},
+          w,
+          h,
+          spatial_filters(pixels_per_degree),
+          feature_filters(pixels_per_degree),
+          0,
+          inverse(kRgbToXyz),
+          0,
+          0,
+          0,
+          1.0f / std::sqrt(2.0f)};
+  s.radius = std::max(s.spatial.radius, s.features.radius);
   const float cmax = max_colour_distance(), pccmax = kPc * cmax;
-  const float feature_norm = 1.0f / std::sqrt(2.0f);
   // The remapping's two slopes: [0, p_c cmax) onto [0, p_t), the rest onto [p_t, 1].
-  const float below = kPt / pccmax, above = (1.0f - kPt) / (cmax - pccmax);
+  s.knee = pccmax;
+  s.slope_below = kPt / pccmax;
+  s.slope_above = (1.0f - kPt) / (cmax - pccmax);
+
   FlipResult result;
   result.error = ImageF(w, h, 1);
-  std::vector<double> row_sums(h, 0.0);
-  for_rows(h, [&](int y0, int y1) {
-    // Per side: Y, Cx, Cz (two parts), then dx, ddx, dy, ddy.
-    std::vector<float> buf(static_cast<std::size_t>(w) * 16);
-    auto line = [&](int i) { return buf.data() + static_cast<std::size_t>(i) * w; };
-    for (int y = y0; y < y1; ++y) {
-      for (int side = 0; side < 2; ++side) {
-        const SpatialRows& s = side == 0 ? ref_rows : tst_rows;
-        const FeatureRows& f = side == 0 ? ref_features : tst_features;
-        float* o = line(side * 8);
-        filter_column(s.y, w, h, y, spatial.y, o);
-        filter_column(s.cx, w, h, y, spatial.cx, o + w);
-        filter_column(s.cz1, w, h, y, spatial.cz1, o + 2 * w);
-        filter_column(s.cz2, w, h, y, spatial.cz2, o + 3 * w);
-        filter_column(f.dx, w, h, y, features.g, o + 4 * w);
-        filter_column(f.ddx, w, h, y, features.g, o + 5 * w);
-        filter_column(f.g, w, h, y, features.dg, o + 6 * w);
-        filter_column(f.g, w, h, y, features.ddg, o + 7 * w);
-      }
-      float* out = &result.error.data[static_cast<std::size_t>(y) * w];
-      // Each side's Hunt L*a*b* and feature magnitudes, over the row (loops
-      // the compiler vectorises), into the side's first six lines.
-      for (int side = 0; side < 2; ++side) {
-        float* o = line(side * 8);
-        float *ly = o, *la = o + w, *lb = o + 2 * w, *edge = o + 4 * w, *point = o + 5 * w;
-        for (int x = 0; x < w; ++x) {
-          const Colour lab = filtered_to_hunt_lab(ly[x], la[x], lb[x] + o[3 * w + x], xyz_to_rgb);
-          ly[x] = lab.a, la[x] = lab.b, lb[x] = lab.c;
+  // Tiles of 256 columns by 128 rows: the rings fit a core's L2 cache, and
+  // the first 2 radius rows each tile filters before its first output row
+  // cost a sixth more of the horizontal filtering.
+  constexpr int kTileColumns = 256, kTileRows = 128;
+  const int columns = (w + kTileColumns - 1) / kTileColumns;
+  const int tiles = columns * ((h + kTileRows - 1) / kTileRows);
+  tbb::enumerable_thread_specific<Scratch> scratch(std::min(w, kTileColumns), s.radius);
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, tiles, 1),
+      [&](const tbb::blocked_range<int>& r) {
+        Scratch& sc = scratch.local();
+        for (int i = r.begin(); i < r.end(); ++i) {
+          const int x0 = (i % columns) * kTileColumns, y0 = (i / columns) * kTileRows;
+          tile_on(path, s, sc,
+                  {y0, std::min(h, y0 + kTileRows), x0, std::min(w, x0 + kTileColumns)},
+                  result.error.data.data());
         }
-        for (int x = 0; x < w; ++x) {
-          const float dx = edge[x], ddx = point[x], dy = o[6 * w + x], ddy = o[7 * w + x];
-          edge[x] = std::sqrt(dx * dx + dy * dy);
-          point[x] = std::sqrt(ddx * ddx + ddy * ddy);
-        }
-      }
-      const float *r = line(0), *t = line(8);
-      float* colour = line(6);  // the reference's dy, no longer needed
-      // Locals, not the lambda's references: a choice between values in
-      // registers is a select, one between loads is a branch.
-      const float knee = pccmax, slope_below = below, slope_above = above;
-      for (int x = 0; x < w; ++x) {
-        const float dl = r[x] - t[x], da = r[w + x] - t[w + x], db = r[2 * w + x] - t[2 * w + x];
-        const float c = fast_pow(std::abs(dl) + std::sqrt(da * da + db * db), kQc);
-        colour[x] = c < knee ? c * slope_below : kPt + (c - knee) * slope_above;
-      }
-      for (int x = 0; x < w; ++x) {
-        // q_f = 0.5: the square root.
-        const float edge = std::abs(r[4 * w + x] - t[4 * w + x]);
-        const float point = std::abs(r[5 * w + x] - t[5 * w + x]);
-        const float feature = std::sqrt(feature_norm * (edge > point ? edge : point));
-        out[x] = fast_pow(colour[x], 1.0f - feature);
-      }
-      double sum = 0;
-      for (int x = 0; x < w; ++x) sum += out[x];
-      row_sums[y] = sum;
-    }
+      },
+      tbb::simple_partitioner());
+  std::vector<double> row_sums(static_cast<std::size_t>(h), 0.0);
+  tbb::parallel_for(0, h, [&](int y) {
+    const float* row = &result.error.data[static_cast<std::size_t>(y) * w];
+    double sum = 0;
+    for (int x = 0; x < w; ++x) sum += row[x];
+    row_sums[static_cast<std::size_t>(y)] = sum;
   });
   double total = 0;
-  for (double s : row_sums) total += s;  // in row order: the same sum on any thread count
+  for (double v : row_sums) total += v;  // in row order: the same sum on any thread count
   result.mean = total / static_cast<double>(reference.pixel_count());
   return result;
+}
+
+FlipResult flip(const ImageF& reference, const ImageF& test, double pixels_per_degree) {
+  return detail::flip_on(detail::widest_simd_path(), reference, test, pixels_per_degree);
 }
 
 }  // namespace sb::metrics

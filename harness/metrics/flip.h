@@ -20,6 +20,7 @@
 //  - FLIP = colour difference ^ (1 - feature difference).
 // The mean is the plain mean of the map (the paper's pooled value).
 #include "core/image.h"
+#include "metrics/simd_path.h"
 
 namespace sb::metrics {
 
@@ -45,5 +46,13 @@ FlipResult flip(const core::ImageF& reference, const core::ImageF& test,
 // values (IEC 61966-2-1), as FLIP's LDR inputs are: every channel but a 4th
 // (alpha), which is kept.
 core::ImageF linear_from_srgb(const core::ImageF& encoded);
+
+namespace detail {
+// flip() on a given vector width (it takes the widest this CPU runs); every
+// path gives the same bits. Throws std::invalid_argument for a path this CPU
+// does not run, as for flip()'s bad arguments.
+FlipResult flip_on(SimdPath path, const core::ImageF& reference, const core::ImageF& test,
+                   double pixels_per_degree = kFlipDefaultPixelsPerDegree);
+}  // namespace detail
 
 }  // namespace sb::metrics

@@ -102,43 +102,6 @@ void horizontal_baseline(ConstMoments in, size_t stride, const Weights& w, size_
 
 }  // namespace
 
-std::string to_string(SimdPath path) {
-  switch (path) {
-    case SimdPath::Avx2:
-      return "avx2";
-    case SimdPath::Avx512:
-      return "avx512";
-    case SimdPath::Baseline:
-      break;
-  }
-  return "baseline";
-}
-
-bool runs_here(SimdPath path) {
-  switch (path) {
-#if defined(__x86_64__)
-    case SimdPath::Avx2:
-      return __builtin_cpu_supports("avx2");
-    case SimdPath::Avx512:
-      return __builtin_cpu_supports("avx512f");
-#else
-    case SimdPath::Avx2:
-    case SimdPath::Avx512:
-      return false;
-#endif
-    case SimdPath::Baseline:
-      break;
-  }
-  return true;
-}
-
-SimdPath widest_simd_path() {
-  static const SimdPath widest = runs_here(SimdPath::Avx512) ? SimdPath::Avx512
-                                 : runs_here(SimdPath::Avx2) ? SimdPath::Avx2
-                                                             : SimdPath::Baseline;
-  return widest;
-}
-
 void vertical_moments(SimdPath path, const std::array<const float*, kSsimTaps>& rows_a,
                       const std::array<const float*, kSsimTaps>& rows_b,
                       const std::array<double, kSsimTaps>& w, size_t n, Moments out) {

@@ -15,18 +15,9 @@
 #include <vector>
 
 #include "core/image.h"
+#include "metrics/simd_path.h"
 
 namespace sb::metrics::detail {
-
-enum class SimdPath { Baseline, Avx2, Avx512 };
-
-std::string to_string(SimdPath path);
-// Whether this CPU can run the path (Baseline: always; the others only on
-// x86-64, where they are built). Asking a kernel for a path that does not
-// run here is the caller's error.
-bool runs_here(SimdPath path);
-// The widest path this CPU runs: what ssim() and ssim_map() use.
-SimdPath widest_simd_path();
 
 // metrics::ssim() and ssim_map() on a given path (they take the widest).
 std::vector<double> ssim_on(SimdPath path, const core::ImageF& a, const core::ImageF& b,

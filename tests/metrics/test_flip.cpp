@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -156,6 +157,47 @@ TEST(Flip, ANonFinitePixelIsBlackAndOutOfRangeValuesAreClamped) {
   const FlipResult a = flip(ref, broken), b = flip(ref, fixed);
   EXPECT_EQ(a.error.data, b.error.data);
   EXPECT_TRUE(std::isfinite(a.mean));
+}
+
+// Every vector width this CPU runs (metrics/simd_path.h) gives the bits of
+// the baseline, on the oracle's pairs at both distances, and on an image
+// whose width is not a multiple of any vector or tile (the remainders' loops)
+// and narrower than a filter (edge columns repeated past both sides).
+TEST(Flip, EveryVectorWidthGivesTheBaselinesBits) {
+  using detail::SimdPath;
+  ImageF odd_ref(300, 37, 3), odd_test(300, 37, 3), narrow_ref(5, 70, 1), narrow_test(5, 70, 1);
+  for (std::size_t i = 0; i < odd_ref.data.size(); ++i) {
+    odd_ref.data[i] = static_cast<float>((i * 7919) % 997) / 996.0f;
+    odd_test.data[i] = static_cast<float>((i * 104729) % 991) / 990.0f;
+  }
+  for (std::size_t i = 0; i < narrow_ref.data.size(); ++i) {
+    narrow_ref.data[i] = static_cast<float>(i % 5) / 4.0f;
+    narrow_test.data[i] = static_cast<float>(i % 7) / 6.0f;
+  }
+  const ImageF render_ref = decoded("render_reference.png"), render = decoded("render_pcss.png");
+  const struct {
+    const char* name;
+    const ImageF &ref, &test;
+    double ppd;
+  } cases[] = {{"render 67", render_ref, render, 67.020645},
+               {"render 30", render_ref, render, 30.0},
+               {"300x37", odd_ref, odd_test, kFlipDefaultPixelsPerDegree},
+               {"5x70 grey", narrow_ref, narrow_test, kFlipDefaultPixelsPerDegree}};
+  int paths = 0;
+  for (const SimdPath path : {SimdPath::Avx2, SimdPath::Avx512}) {
+    if (!detail::runs_here(path)) continue;
+    ++paths;
+    for (const auto& c : cases) {
+      SCOPED_TRACE(detail::to_string(path) + " on " + c.name);
+      const FlipResult base = detail::flip_on(SimdPath::Baseline, c.ref, c.test, c.ppd);
+      const FlipResult wide = detail::flip_on(path, c.ref, c.test, c.ppd);
+      EXPECT_EQ(wide.error.data, base.error.data);
+      EXPECT_EQ(wide.mean, base.mean);
+    }
+  }
+  std::printf("compared %d wider path(s) with the baseline\n", paths);
+  EXPECT_EQ(detail::flip_on(detail::widest_simd_path(), render_ref, render).error.data,
+            flip(render_ref, render).error.data);
 }
 
 TEST(Flip, RefusesMismatchedOrEmptyImagesAndAnImpossibleDistance) {
