@@ -31,6 +31,12 @@ if [[ "${1:-}" == "--test" || "${1:-}" == "--test-only" ]]; then
   packages+=(openimageio-tools)
   # Headless Chromium opens the HTML report (tests/report).
   packages+=(chromium)
+  # pdflatex compiles `report --latex`'s tables and pgfplots figures, and
+  # poppler renders and reads the PDFs (tests/report/test_latex_pdflatex.cpp):
+  # booktabs is in texlive-latex-recommended, pgfplots in texlive-pictures.
+  # 19 packages, 230 MB installed, 39 s with --no-install-recommends (2-core
+  # VM while a build ran, 2026-12-06).
+  packages+=(texlive-latex-base texlive-latex-recommended texlive-pictures poppler-utils)
   # The Debian package's test (tests/install): CPack's DEB generator with
   # dpkg-shlibdeps (dpkg-dev, file), readelf (binutils) and man for the page.
   packages+=(dpkg-dev file binutils man-db)

@@ -9,6 +9,8 @@
 #include "core/error.h"
 #include "results/charts.h"
 #include "results/html_report.h"
+#include "results/latex_export.h"
+#include "results/latex_tables.h"
 #include "results/report.h"
 #include "results/store.h"
 
@@ -18,11 +20,15 @@ using core::InputError;
 using core::kExitOk;
 using results::ChartFile;
 using results::ChartOptions;
+using results::latex_columns;
+using results::LatexFiles;
+using results::LatexOptions;
 using results::make_markdown;
 using results::read_job_records;
 using results::ReportChart;
 using results::write_charts;
 using results::write_html_report;
+using results::write_latex;
 using results::write_reports;
 
 int cmd_report(const Args& a) {
@@ -32,6 +38,7 @@ int cmd_report(const Args& a) {
   const auto records = read_job_records(run_dir);
   const std::string title =
       records.empty() ? "shadowbench" : records[0].experiment + " (" + records[0].run_id + ")";
+  if (a.latex) latex_columns(a.latex_columns, records);  // an unknown column before any output
   write_reports(run_dir, records, title);
   std::printf("%s", make_markdown(records, title).c_str());
   // Charts and index.html go to --out, by default RUN_DIR/report.
@@ -40,10 +47,22 @@ int cmd_report(const Args& a) {
   std::filesystem::create_directories(out);
   ChartOptions chart_options;
   chart_options.error_metric = a.compare.metric;
+  chart_options.style = a.chart_style;
   std::vector<ReportChart> charts;
   for (const ChartFile& c : write_charts(records, out, chart_options)) {
     charts.push_back({c.title, c.svg, c.png});
-    std::printf("chart: %s (.png)\n", c.svg.c_str());
+    std::printf("chart: %s (.png%s)\n", c.svg.c_str(), c.pdf.empty() ? "" : ", .pdf");
+  }
+  if (a.latex) {
+    LatexOptions latex;
+    latex.columns = a.latex_columns;
+    latex.error_metric = a.compare.metric;
+    latex.title = title;
+    const LatexFiles files =
+        write_latex(records, (std::filesystem::path(out) / "latex").string(), latex);
+    for (size_t i = 0; i < files.tables.size(); ++i)
+      std::printf("latex: %s, %s\n", files.tables[i].c_str(), files.csvs[i].c_str());
+    std::printf("latex: %s (pdflatex tables.tex)\n", files.document.c_str());
   }
   write_html_report(records, run_dir, out, charts, title, !a.no_viewer_data);
   std::printf("report: %s\n", (std::filesystem::path(out) / "index.html").string().c_str());

@@ -389,6 +389,20 @@ AppPtr make_command_line(Args& a) {
   report->add_flag("--no-viewer-data", a.no_viewer_data,
                    "no data files for the image viewer (about 5.3 bytes per pixel per image): it "
                    "then shows the PNGs, without V, error or pixel values");
+  CLI::Option* latex = report->add_flag(
+      "--latex", a.latex,
+      "also write booktabs tables and pgfplots CSVs of error against time into OUT/latex, "
+      "with tables.tex showing them all (docs/paper.md)");
+  report
+      ->add_option("--latex-columns", a.latex_columns,
+                   "the tables' columns after the technique, comma-separated report columns "
+                   "(default: frame_ms,x_control,rmse,penumbra_rmse,ssim)")
+      ->type_name("COLS")
+      ->delimiter(',')
+      ->default_str("")  // not "[]"
+      ->needs(latex);
+  add_choice(report, "--style", a.chart_style, {"default", "paper"},
+             "the charts' style: paper draws them 3.3 in wide in Computer Modern, as PDF too");
   add_ci_outputs(report, a);
 
   CLI::App* compare = add_command(

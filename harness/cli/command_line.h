@@ -33,6 +33,9 @@ struct Args {
   bool plan_schema = false;                // list
   bool names_only = false;                 // list
   std::string benchmark_out, bencher_out;  // run, report: CI outputs
+  bool latex = false;                      // report: paper tables
+  std::vector<std::string> latex_columns;  // report: their columns
+  std::string chart_style = "default";     // report: default or paper
   std::string embree_config;               // run: the reference's Embree ISA
   std::string pass_timing = "coarse";      // run
   double max_jobs = double(config::ExperimentLimits{}.max_jobs);  // run, validate, plan

@@ -497,6 +497,9 @@ std::vector<ChartFile> write_charts(const std::vector<JobRecord>& records,
   for (const JobRecord& r : records)
     if (r.status == JobStatus::Ok) ok.push_back(&r);
   metric_path(options.error_metric);  // an unknown metric is bad input, drawn or not
+  if (options.style != "default" && options.style != "paper")
+    throw InputError("", "--style",
+                     "unknown chart style \"" + options.style + "\": expected default or paper");
 
   Palette styles, pass_colours;  // in plan order, failed jobs included: stable across reruns
   for (const JobRecord& r : records) styles(r.technique_variant);
@@ -508,6 +511,12 @@ std::vector<ChartFile> write_charts(const std::vector<JobRecord>& records,
   time_resolution_charts(ok, styles, out_dir, charts);
   passes_charts(ok, pass_colours, out_dir, charts);
   if (charts.empty()) return {};
+
+  if (options.style == "paper")
+    for (Chart& c : charts) {
+      c.file.pdf = fs::path(c.file.svg).replace_extension(".pdf").string();
+      c.data.update({{"style", "paper"}, {"pdf", c.file.pdf}});
+    }
 
   fs::create_directories(out_dir);
   std::vector<std::string> data_files;

@@ -30,6 +30,10 @@ struct ChartOptions {
   // geometry, does not change with framing (docs/results.md, "Regions").
   // For psnr and ssim higher is better, and the Pareto front follows that.
   std::string error_metric = "visibility.geometry.rmse";
+  // "default", or "paper": each chart also as vector PDF, 3.3 in wide (a
+  // two-column paper's column), 8 pt Computer Modern (matplotlib's mathtext
+  // fonts), no title (the caption says it), the legend below the axes.
+  std::string style = "default";
 };
 
 struct ChartFile {
@@ -37,6 +41,7 @@ struct ChartFile {
   std::string title;  // as drawn above the chart
   std::string svg;    // paths of the written files (out_dir/<name>.svg, .png)
   std::string png;
+  std::string pdf;                  // style "paper" only, else empty
   std::vector<std::string> series;  // technique variants drawn (legend or bar labels)
   std::vector<std::string> pareto;  // error_time only: the labelled front, by time
 };

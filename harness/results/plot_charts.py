@@ -6,15 +6,18 @@ usage: plot_charts.py DATA.json...
 Each DATA.json is one chart prepared by harness/results/charts.cpp (kinds
 error_time, error_memory, time_triangles, error_triangles, time_resolution,
 passes) or by harness/history/history_report.cpp (kind history); it names its
-own output files. Exit codes: 0 all drawn, 1 some chart failed (tracebacks on
+own output files. "style": "paper" draws a chart for a paper (PAPER_RC), as
+PDF too ("pdf"). Exit codes: 0 all drawn, 1 some chart failed (tracebacks on
 stderr, the other charts are still drawn), 2 usage, 3 matplotlib missing.
 No network is used; text stays text in the SVG (svg.fonttype none).
 """
 import json
 import math
 import os
+import re
 import sys
 import traceback
+import warnings
 
 try:
     import matplotlib
@@ -42,6 +45,91 @@ matplotlib.rcParams.update({
     "grid.alpha": 0.3,
     "grid.linewidth": 0.5,
 })
+
+# --style paper (a chart's "style": "paper"): a two-column paper's column
+# width, 8 pt Computer Modern from matplotlib's own mathtext fonts (no TeX
+# needed), TrueType fonts in the PDF (no Type 3, which publishers refuse), no
+# title (the caption says it) and the legend under the axes, so that the page
+# is exactly PAPER_WIDTH wide.
+PAPER_WIDTH = 3.3  # inches
+PAPER_RC = {
+    "font.family": "serif",
+    "font.serif": ["cmr10"],
+    "font.monospace": ["cmtt10"],  # technique names: cmr10 has no '_', '<', '>' or '|'
+    "mathtext.fontset": "cm",
+    "axes.unicode_minus": False,  # cmr10 has no U+2212
+    # (axes.formatter.use_mathtext would print "$\\mathdefault{...}$": text.parse_math
+    # is off, so that a '$' in a name stays a '$'; plain tick labels are cmr10 all the same,
+    # and matplotlib's warning that says otherwise is silenced in draw_paper.)
+    "font.size": 8,
+    "axes.labelsize": 8,
+    "xtick.labelsize": 7,
+    "ytick.labelsize": 7,
+    "legend.fontsize": 6.5,
+    "axes.linewidth": 0.6,
+    "lines.linewidth": 0.9,
+    "pdf.fonttype": 42,
+    "svg.fonttype": "path",  # the SVG looks as the PDF does where cmr10 is not installed
+}
+
+
+def paper_label(text):
+    """An axis label shortened for a 3.3 in figure: no "(lower is better)",
+    no "; bars p10-p90" (the bars are still drawn)."""
+    text = re.sub(r" \((lower|higher) is better\)$", "", text)
+    return re.sub(r"; bars p10.p90\)", ")", text).replace("\u2013", "-").replace("\u00d7", "x")
+
+
+def move_legend_below(ax, lax, reverse=False):
+    handles, labels = ax.get_legend_handles_labels()
+    if ax.get_legend() is not None:
+        ax.get_legend().remove()
+    if reverse:
+        handles, labels = handles[::-1], labels[::-1]
+    lax.axis("off")
+    if handles:
+        lax.legend(handles, labels, loc="upper center", ncol=legend_columns(labels), frameon=False,
+                   borderaxespad=0, handletextpad=0.4, columnspacing=1.0,
+                   prop={"family": "monospace", "size": PAPER_RC["legend.fontsize"]})
+
+
+def legend_columns(labels):
+    """Two legend columns while the longest name fits in half of PAPER_WIDTH
+    (cmtt10 at 6.5 pt: 3.4 pt a character), else one."""
+    return 2 if max((len(x) for x in labels), default=0) <= 26 else 1
+
+
+def draw_paper(d, kind, draw_kind):
+    """One chart in the paper style: PDF (vector), SVG and PNG of the same page."""
+    entries = len(d.get("points") or d.get("series") or d.get("bars") or [])
+    if kind == "passes":
+        entries = len({s["name"] for b in d["bars"] for s in b["segments"]})
+    names = [p["label"] for p in d.get("points", [])] + [s["label"] for s in d.get("series", [])]
+    names += [s["name"] for b in d.get("bars", []) for s in b["segments"]]
+    legend_rows = math.ceil((entries + 1) / legend_columns(names))  # + 1: "Pareto front"
+    plot_height = 2.3 if kind != "passes" else 2.3 + 0.05 * max(len(b["label"]) for b in d["bars"])
+    legend_height = 0.05 + 0.12 * legend_rows
+    with matplotlib.rc_context(PAPER_RC), warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message="cmr10 font should ideally be used with mathtext")
+        fig = plt.figure(figsize=(PAPER_WIDTH, plot_height + legend_height), layout="constrained")
+        try:
+            grid = fig.add_gridspec(2, 1, height_ratios=[plot_height, legend_height])
+            ax = fig.add_subplot(grid[0])
+            lax = fig.add_subplot(grid[1])
+            draw_kind(fig, ax, d)
+            if "xlabel" in d:
+                ax.set_xlabel(paper_label(d["xlabel"]))
+            ax.set_ylabel(paper_label(d["ylabel"]))
+            move_legend_below(ax, lax, reverse=kind == "passes")
+            if kind == "passes":  # technique names under the bars
+                for label in ax.get_xticklabels():
+                    label.set_family("monospace")
+            save(fig, d["pdf"], "pdf", tight=False, metadata={"CreationDate": None})
+            save(fig, d["svg"], "svg", tight=False, metadata={"Date": None})
+            save(fig, d["png"], "png", tight=False, dpi=300)
+        finally:
+            plt.close(fig)
+
 
 # tab10 without its grey (grey means "shared pass"); colours and markers cycle together.
 COLOURS = [c for i, c in enumerate(plt.get_cmap("tab10").colors) if i != 7]
@@ -146,6 +234,8 @@ def error_cost(fig, ax, d):
     if d["xlog"]:
         log_scale(ax, "x")
     ax.margins(x=0.08, y=0.1)
+    if d.get("style") == "paper":  # the legend names the points; no room for labels
+        return
     if d["missing"]:
         fig.text(0.01, -0.02, "not drawn (no finite time or error): " + ", ".join(d["missing"]),
                  fontsize=6.5, ha="left", va="top")
@@ -237,9 +327,9 @@ def history(d):
     return fig
 
 
-def save(fig, path, fmt, **kw):
+def save(fig, path, fmt, tight=True, **kw):
     tmp = path + ".tmp"
-    fig.savefig(tmp, format=fmt, bbox_inches="tight", **kw)
+    fig.savefig(tmp, format=fmt, bbox_inches="tight" if tight else None, **kw)
     os.replace(tmp, path)
 
 
@@ -255,6 +345,11 @@ def draw(data_path):
         finally:
             plt.close(fig)
         return
+    draw_kind = {"error_time": error_cost, "error_memory": error_cost, "time_triangles": time_lines,
+                 "error_triangles": time_lines, "time_resolution": time_lines, "passes": passes}[kind]
+    if d.get("style") == "paper":
+        draw_paper(d, kind, draw_kind)
+        return
     width = 7.5
     if kind == "passes":
         width = max(5.5, 2.5 + 0.45 * len(d["bars"]))
@@ -263,8 +358,7 @@ def draw(data_path):
         height += 0.12 * max(0, len(d["front"]) - 6)
     fig, ax = plt.subplots(figsize=(width, height))
     try:
-        {"error_time": error_cost, "error_memory": error_cost, "time_triangles": time_lines, "error_triangles": time_lines, "time_resolution": time_lines,
-         "passes": passes}[kind](fig, ax, d)
+        draw_kind(fig, ax, d)
         ax.set_title(d["title"])
         if "xlabel" in d:
             ax.set_xlabel(d["xlabel"])

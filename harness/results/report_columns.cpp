@@ -104,17 +104,22 @@ std::vector<ReportColumn> make_columns() {
   using S = RegionStats;
   auto text = [](const char* name, std::string (*get)(const JobRecord&), bool per_group = false) {
     ReportColumn c;
-    c.name = c.header = name;
+    c.name = c.header = c.label = name;
     c.per_group = per_group;
     c.text = get;
     return c;
   };
+  // Lower is better unless said otherwise: times, memory and errors.
   auto number = [](const char* name, std::optional<double> (*get)(const JobRecord&),
-                   const char* format) {
+                   const char* format, const char* label, const char* unit = "",
+                   Better better = Better::Lower) {
     ReportColumn c;
     c.name = c.header = name;
     c.number = get;
     c.format = format;
+    c.label = label;
+    c.unit = unit;
+    c.better = better;
     return c;
   };
   auto optional = [](ReportColumn c) {
@@ -128,25 +133,27 @@ std::vector<ReportColumn> make_columns() {
           "resolution", [](const JobRecord& r) { return r.resolution; }, true),
       text("technique", [](const JobRecord& r) { return r.technique_variant; }),
       text("status", [](const JobRecord& r) { return std::string(to_string(r.status)); }),
-      number("frame_ms", median_ms<&TimingRecord::frame>, "%.3f"),
-      number("technique_ms", median_ms<&TimingRecord::technique>, "%.3f"),
-      number("x_control", ratio_to_control, "%.3f"),
-      optional(number("gpu_mib", gpu_mib, "%.2f")),
-      number("rmse", geometry<&S::rmse>, "%.5f"),
-      number("mae", geometry<&S::mae>, "%.5f"),
-      number("max_error", geometry<&S::max_error>, "%.4f"),
-      number("psnr", geometry<&S::psnr>, "%.2f"),
-      number("ssim", geometry<&S::ssim>, "%.4f"),
-      number("frac_over_0.05", geometry<&S::frac_over_005>, "%.4f"),
-      number("penumbra_rmse", visibility<&I::penumbra, &S::rmse>, "%.5f"),
-      optional(number("near_rmse", third_rmse<&I::near_third>, "%.5f")),
-      optional(number("middle_rmse", third_rmse<&I::middle_third>, "%.5f")),
-      optional(number("far_rmse", third_rmse<&I::far_third>, "%.5f")),
-      optional(number("penumbra_missed", penumbra_missed, "%.3f")),
-      optional(number("penumbra_invented", penumbra_invented, "%.3f")),
-      optional(number("second_rmse", second_geometry_rmse, "%.5f")),
-      optional(number("second_penumbra_rmse", second<&I::penumbra, &S::rmse>, "%.5f")),
-      optional(number("mc_noise_share", mc_noise_share, "%.3f")),
+      number("frame_ms", median_ms<&TimingRecord::frame>, "%.3f", "Frame", "ms"),
+      number("technique_ms", median_ms<&TimingRecord::technique>, "%.3f", "Technique", "ms"),
+      number("x_control", ratio_to_control, "%.3f", "Frame / control"),
+      optional(number("gpu_mib", gpu_mib, "%.2f", "GPU memory", "MiB")),
+      number("rmse", geometry<&S::rmse>, "%.5f", "RMSE"),
+      number("mae", geometry<&S::mae>, "%.5f", "MAE"),
+      number("max_error", geometry<&S::max_error>, "%.4f", "Max error"),
+      number("psnr", geometry<&S::psnr>, "%.2f", "PSNR", "dB", Better::Higher),
+      number("ssim", geometry<&S::ssim>, "%.4f", "SSIM", "", Better::Higher),
+      number("frac_over_0.05", geometry<&S::frac_over_005>, "%.4f", "Error > 0.05"),
+      number("penumbra_rmse", visibility<&I::penumbra, &S::rmse>, "%.5f", "Penumbra RMSE"),
+      optional(number("near_rmse", third_rmse<&I::near_third>, "%.5f", "Near RMSE")),
+      optional(number("middle_rmse", third_rmse<&I::middle_third>, "%.5f", "Middle RMSE")),
+      optional(number("far_rmse", third_rmse<&I::far_third>, "%.5f", "Far RMSE")),
+      optional(number("penumbra_missed", penumbra_missed, "%.3f", "Penumbra missed")),
+      optional(number("penumbra_invented", penumbra_invented, "%.3f", "Penumbra invented")),
+      optional(number("second_rmse", second_geometry_rmse, "%.5f", "RMSE (2nd ref.)")),
+      optional(number("second_penumbra_rmse", second<&I::penumbra, &S::rmse>, "%.5f",
+                      "Penumbra RMSE (2nd ref.)")),
+      optional(
+          number("mc_noise_share", mc_noise_share, "%.3f", "MC noise share", "", Better::Neither)),
       text("reason", [](const JobRecord& r) { return r.reason.value_or(""); }),
   };
 }

@@ -10,9 +10,18 @@
 
 namespace sb::results {
 
+// Which way a figure improves: the paper tables (results/latex_tables.h)
+// set the best value of a column in bold.
+enum class Better { Neither, Lower, Higher };
+
 struct ReportColumn {
   const char* name = "";    // how code refers to the column ("frame_ms")
   const char* header = "";  // what the tables show above it
+  // For a paper's table: the figure in words ("Frame", "RMSE") and its unit
+  // ("ms"; "" for a ratio or a fraction), and which way it improves.
+  const char* label = "";
+  const char* unit = "";
+  Better better = Better::Neither;
   // Scene and resolution: the Markdown and HTML tables are one per (scene,
   // resolution) and leave these out; the CSV, one table, keeps them.
   bool per_group = false;

@@ -1,0 +1,134 @@
+#include "results/latex_export.h"
+
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "core/atomic_file.h"
+#include "results/latex_tables.h"
+#include "results/pgf_csv.h"
+
+namespace sb::results {
+
+using core::write_file_atomically;
+using record::JobRecord;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A name that \input and pgfplots take as it is: letters, digits and '-'.
+std::string latex_file_stem(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+    if (keep)
+      out += c;
+    else if (!out.empty() && out.back() != '-')
+      out += '-';
+  }
+  while (!out.empty() && out.back() == '-') out.pop_back();
+  return out.empty() ? "group" : out;
+}
+
+struct LatexGroup {
+  std::string name;  // "scene @ WxH"
+  std::string stem;  // unique among the groups
+  std::vector<const JobRecord*> records;
+};
+
+std::vector<LatexGroup> latex_groups(const std::vector<JobRecord>& records) {
+  std::vector<LatexGroup> groups;
+  std::map<std::string, size_t> index;
+  std::set<std::string> stems;
+  for (const JobRecord& r : records) {
+    const std::string key = r.scene_variant + "\n" + r.resolution;
+    auto [it, added] = index.emplace(key, groups.size());
+    if (added) {
+      LatexGroup g;
+      g.name = r.scene_variant + " @ " + r.resolution;
+      const std::string base = latex_file_stem(r.scene_variant + "-" + r.resolution);
+      g.stem = base;
+      for (int n = 2; !stems.insert(g.stem).second; ++n) g.stem = base + "-" + std::to_string(n);
+      groups.push_back(std::move(g));
+    }
+    groups[it->second].records.push_back(&r);
+  }
+  return groups;
+}
+
+// tables.tex's pgfplots figure of one group's CSV: the points labelled with
+// their technique, and the Pareto front as a step line.
+std::string latex_figure(const std::string& csv, const std::string& metric,
+                         const std::string& group) {
+  std::string out = "\n\\begin{figure}[htbp]\n\\centering\n\\begin{tikzpicture}\n";
+  out += "\\begin{axis}[width=0.8\\textwidth, height=0.5\\textwidth, xlabel={Frame time (ms)},\n";
+  out += "  ylabel={" + latex_text(metric) + "},\n";
+  out += "  scaled y ticks=false, yticklabel style={/pgf/number format/fixed},\n";
+  out += "  nodes near coords style={font=\\tiny}]\n";
+  out += "\\addplot+[only marks, nodes near coords, point meta=explicit symbolic]\n";
+  out += "  table[x=time_ms, y=error, meta=technique, col sep=comma] {" + csv + "};\n";
+  out += "\\addplot[const plot, black, restrict expr to domain={\\thisrow{pareto}}{1:1}]\n";
+  out += "  table[x=time_ms, y=error, col sep=comma] {" + csv + "};\n";
+  out += "\\end{axis}\n\\end{tikzpicture}\n";
+  out += "\\caption{" + latex_text(metric + " against frame time: " + group);
+  out += " (the line: the Pareto front)}\n\\end{figure}\n";
+  return out;
+}
+
+}  // namespace
+
+LatexFiles write_latex(const std::vector<JobRecord>& records, const std::string& out_dir,
+                       const LatexOptions& options) {
+  const std::vector<const ReportColumn*> columns = latex_columns(options.columns, records);
+  struct Texts {
+    std::string table, csv;
+    bool plotted = false;
+  };
+  const std::vector<LatexGroup> groups = latex_groups(records);
+  std::vector<Texts> texts;
+  for (const LatexGroup& g : groups) {  // everything made, and checked, before a file is written
+    Texts t{make_latex_table(g.records, columns, options.digits),
+            make_error_time_csv(g.records, options.error_metric)};
+    t.plotted = t.csv.find('\n') + 1 < t.csv.size();  // a row beyond the header
+    texts.push_back(std::move(t));
+  }
+
+  fs::create_directories(out_dir);
+  LatexFiles files;
+  std::string doc =
+      "% shadowbench report --latex: every table and error-against-time plot of the run.\n"
+      "% Build with: pdflatex tables.tex\n"
+      "\\documentclass{article}\n"
+      "\\usepackage[margin=2cm]{geometry}\n"
+      "\\usepackage{booktabs}\n"
+      "\\usepackage{pgfplots}\n"
+      "\\pgfplotsset{compat=1.18}\n"
+      "\\begin{document}\n"
+      "\\section*{" +
+      latex_text(options.title) + "}\n";
+  for (size_t i = 0; i < groups.size(); ++i) {
+    const LatexGroup& g = groups[i];
+    const std::string table = "table-" + g.stem + ".tex", csv = "error-time-" + g.stem + ".csv";
+    files.tables.push_back((fs::path(out_dir) / table).string());
+    files.csvs.push_back((fs::path(out_dir) / csv).string());
+    write_file_atomically(files.tables.back(), texts[i].table);
+    write_file_atomically(files.csvs.back(), texts[i].csv);
+    doc += "\n\\begin{table}[htbp]\n\\centering\n\\caption{" + latex_text(g.name) +
+           "}\n\\small\n\\input{" + table + "}\n\\end{table}\n";
+    // A page now and then: LaTeX holds at most 18 floats in waiting.
+    const std::string page_break = (i + 1) % 4 == 0 ? "\\clearpage\n" : "";
+    if (!texts[i].plotted) {
+      doc += page_break;
+      continue;
+    }
+    doc += latex_figure(csv, options.error_metric, g.name);
+    doc += page_break;
+  }
+  doc += "\n\\end{document}\n";
+  files.document = (fs::path(out_dir) / "tables.tex").string();
+  write_file_atomically(files.document, doc);
+  return files;
+}
+
+}  // namespace sb::results

@@ -1,0 +1,145 @@
+// `report --latex` as a paper's author uses it: pdflatex compiles tables.tex
+// (every table and pgfplots figure), poppler renders the page and reads its
+// text back; and `report --style paper` draws charts as vector PDFs one
+// column (3.3 in) wide.
+//
+// These tests FAIL, not skip, without their oracles (pdflatex with
+// booktabs and pgfplots, poppler-utils): "report --latex output compiles
+// with pdflatex" is what they stand for, and a test that passes without
+// checking it would say so falsely. scripts/install-deps.sh --test installs
+// them (texlive-latex-base, texlive-latex-recommended, texlive-pictures,
+// poppler-utils).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "../common/cli_run.h"
+#include "../common/text.h"
+#include "core/image.h"
+#include "latex_fixture.h"
+#include "metrics/image_io.h"
+#include "results/charts.h"
+#include "results/latex_export.h"
+
+namespace sb {
+
+using test::CliRun;
+using test::run_command;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kInstall = "install TeX Live and poppler: scripts/install-deps.sh --test";
+
+// Fails the test when `tool` is not on PATH.
+::testing::AssertionResult on_path(const std::string& tool) {
+  if (run_command("command -v " + tool).exit_code == 0) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << tool << " is missing: " << kInstall;
+}
+
+// Pixels of an image darker than near-white.
+long inked_pixels(const core::ImageF& img) {
+  long n = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      if (img.at(x, y, 0) < 0.8f || img.at(x, y, 1) < 0.8f || img.at(x, y, 2) < 0.8f) ++n;
+  return n;
+}
+
+// "Page size:       237.6 x 203.76 pts" of pdfinfo: the width in points.
+double page_width_pt(const CliRun& info) {
+  const size_t at = info.output.find("Page size:");
+  if (at == std::string::npos) return 0.0;
+  return std::stod(info.output.substr(info.output.find_first_of("0123456789", at)));
+}
+
+}  // namespace
+
+TEST(LatexPdflatex, TablesAndPlotsCompileAndTheFirstPageRenders) {
+  ASSERT_TRUE(on_path("pdflatex"));
+  ASSERT_TRUE(on_path("pdftoppm"));
+  ASSERT_TRUE(on_path("pdftotext"));
+  const fs::path dir = test::test_folder("sb_latex_pdflatex_");
+  auto records = test::latex_records("plates/layout=edge", "64x48");
+  for (const auto& r : test::latex_records("jeep/count=1", "96x72")) records.push_back(r);
+  results::LatexOptions options;
+  options.columns = {"frame_ms", "rmse", "penumbra_rmse", "psnr", "ssim"};
+  options.title = "synthetic_run & co";
+  const auto files = results::write_latex(records, (dir / "latex").string(), options);
+
+  const CliRun tex = run_command("cd '" + (dir / "latex").string() +
+                                 "' && pdflatex -interaction=nonstopmode -halt-on-error "
+                                 "tables.tex");
+  ASSERT_EQ(tex.exit_code, 0) << tex.output;
+  const fs::path pdf = dir / "latex" / "tables.pdf";
+  ASSERT_TRUE(fs::exists(pdf));
+
+  const CliRun png = run_command("pdftoppm -r 50 -png -f 1 -l 1 '" + pdf.string() + "' '" +
+                                 (dir / "page").string() + "'");
+  ASSERT_EQ(png.exit_code, 0) << png.output;
+  fs::path page;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().rfind("page", 0) == 0) page = e.path();
+  ASSERT_FALSE(page.empty()) << "pdftoppm wrote no page";
+  const core::ImageF img = metrics::io::read_image(page.string());
+  // A4 at 50 dpi is 413 x 585 px; two tables and a plot ink thousands.
+  EXPECT_GT(inked_pixels(img), 2000) << "page 1 is (nearly) blank: " << page;
+
+  const CliRun text = run_command("pdftotext -layout '" + pdf.string() + "' -");
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("Technique"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("vsm/k=9,prefilter=gauss"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("Frame (ms)"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("plates/layout=edge @ 64x48"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("a&b=50%,c#d={x}"), std::string::npos)  // the nasty name, as itself
+      << text.output;
+  // The bold cells are in the tables that were compiled.
+  EXPECT_NE(test::read_text(files.tables[0]).find("\\textbf{2.50}"), std::string::npos);
+  // Bold Computer Modern at the tables' \small size is in the PDF: the best
+  // values were set; and no bitmap (Type 3) font stands in for a character.
+  const CliRun fonts = run_command("pdffonts '" + pdf.string() + "'");
+  EXPECT_NE(fonts.output.find("CMBX9"), std::string::npos) << fonts.output;
+  EXPECT_EQ(fonts.output.find("Type 3"), std::string::npos) << fonts.output;
+  fs::remove_all(dir);
+}
+
+TEST(LatexPdflatex, PaperStyleChartsAreVectorPdfsOneColumnWide) {
+  ASSERT_TRUE(on_path("pdfinfo"));
+  if (const std::string why = results::charts_unavailable_reason(); !why.empty())
+    FAIL() << "charts cannot be drawn here: " << why;
+  const fs::path dir = test::test_folder("sb_latex_paper_");
+  results::ChartOptions options;
+  options.style = "paper";
+  const auto charts = results::write_charts(test::latex_records(), (dir / "out").string(), options);
+  ASSERT_FALSE(charts.empty());
+  for (const auto& c : charts) {
+    ASSERT_FALSE(c.pdf.empty()) << c.kind;
+    ASSERT_TRUE(fs::exists(c.pdf)) << c.pdf;
+    EXPECT_TRUE(fs::exists(c.svg) && fs::exists(c.png)) << c.svg;
+    const CliRun info = run_command("pdfinfo '" + c.pdf + "'");
+    ASSERT_EQ(info.exit_code, 0) << info.output;
+    EXPECT_NEAR(page_width_pt(info), 3.3 * 72.0, 0.5) << c.pdf << "\n" << info.output;
+    // Vector: no raster image anywhere in the file, and the fonts embedded
+    // as TrueType (no Type 3), Computer Modern among them.
+    const std::string bytes = test::read_text(c.pdf);
+    EXPECT_EQ(bytes.find("/Subtype /Image"), std::string::npos)
+        << c.pdf << " embeds a raster image";
+    if (c.kind == "error_time") {  // its markers are vector forms
+      EXPECT_NE(bytes.find("/Subtype /Form"), std::string::npos) << c.pdf;
+    }
+    const CliRun fonts = run_command("pdffonts '" + c.pdf + "'");
+    EXPECT_NE(fonts.output.find("Cmr10"), std::string::npos) << fonts.output;
+    EXPECT_EQ(fonts.output.find("Type 3"), std::string::npos) << fonts.output;
+  }
+  // The default style writes no PDF.
+  const auto plain = results::write_charts(test::latex_records(), (dir / "plain").string(), {});
+  ASSERT_FALSE(plain.empty());
+  EXPECT_TRUE(plain[0].pdf.empty());
+  EXPECT_FALSE(fs::exists(fs::path(plain[0].svg).replace_extension(".pdf")));
+  fs::remove_all(dir);
+}
+
+}  // namespace sb
