@@ -62,13 +62,20 @@ std::vector<LatexGroup> latex_groups(const std::vector<JobRecord>& records) {
 std::string latex_figure(const std::string& csv, const std::string& metric,
                          const std::string& group) {
   std::string out = "\n\\begin{figure}[htbp]\n\\centering\n\\begin{tikzpicture}\n";
+  // Times span orders of magnitude (a shadow map to an accumulation
+  // reference), so the time axis is logarithmic, as on the report's chart.
   out += "\\begin{axis}[width=0.8\\textwidth, height=0.5\\textwidth, xlabel={Frame time (ms)},\n";
+  out += "  xmode=log, log ticks with fixed point,\n";
   out += "  ylabel={" + latex_text(metric) + "},\n";
   out += "  scaled y ticks=false, yticklabel style={/pgf/number format/fixed},\n";
   out += "  nodes near coords style={font=\\tiny}]\n";
   out += "\\addplot+[only marks, nodes near coords, point meta=explicit symbolic]\n";
   out += "  table[x=time_ms, y=error, meta=technique, col sep=comma] {" + csv + "};\n";
-  out += "\\addplot[const plot, black, restrict expr to domain={\\thisrow{pareto}}{1:1}]\n";
+  // The front's rows only: the others' y becomes NaN, which pgfplots drops
+  // (restrict expr to domain made them unbounded, and the step line ran
+  // down to the axis at the first of them).
+  out += "\\addplot[const plot, black, unbounded coords=discard,\n";
+  out += "  y filter/.expression={\\thisrow{pareto} == 1 ? y : nan}]\n";
   out += "  table[x=time_ms, y=error, col sep=comma] {" + csv + "};\n";
   out += "\\end{axis}\n\\end{tikzpicture}\n";
   out += "\\caption{" + latex_text(metric + " against frame time: " + group);
