@@ -396,7 +396,7 @@ AppPtr make_command_line(Args& a) {
   report
       ->add_option("--latex-columns", a.latex_columns,
                    "the tables' columns after the technique, comma-separated report columns "
-                   "(default: frame_ms,x_control,rmse,penumbra_rmse,ssim)")
+                   "(default: frame_ms,x_control,rmse,penumbra_rmse,ssim,flip, those with values)")
       ->type_name("COLS")
       ->delimiter(',')
       ->default_str("")  // not "[]"

@@ -64,8 +64,8 @@ std::optional<double> latex_best(const std::vector<const JobRecord*>& group, con
 }  // namespace
 
 const std::vector<std::string>& default_latex_columns() {
-  static const std::vector<std::string> names = {"frame_ms", "x_control", "rmse", "penumbra_rmse",
-                                                 "ssim"};
+  static const std::vector<std::string> names = {"frame_ms",      "x_control", "rmse",
+                                                 "penumbra_rmse", "ssim",      "flip"};
   return names;
 }
 

@@ -36,6 +36,13 @@ std::optional<double> geometry(const JobRecord& r) {
   return *r.metrics->visibility.geometry.*Value;
 }
 
+// FLIP of the shaded image over the geometry region (absent from records
+// written before FLIP was measured).
+std::optional<double> shaded_flip(const JobRecord& r) {
+  if (!r.metrics || !r.metrics->shaded.geometry) return std::nullopt;
+  return r.metrics->shaded.geometry->flip_mean;
+}
+
 template <Series TimingRecord::*Member>
 std::optional<double> median_ms(const JobRecord& r) {
   if (!r.timing) return std::nullopt;
@@ -143,6 +150,7 @@ std::vector<ReportColumn> make_columns() {
       number("psnr", geometry<&S::psnr>, "%.2f", "PSNR", "dB", Better::Higher),
       number("ssim", geometry<&S::ssim>, "%.4f", "SSIM", "", Better::Higher),
       number("frac_over_0.05", geometry<&S::frac_over_005>, "%.4f", "Error > 0.05"),
+      optional(number("flip", shaded_flip, "%.4f", "FLIP")),
       number("penumbra_rmse", visibility<&I::penumbra, &S::rmse>, "%.5f", "Penumbra RMSE"),
       optional(number("near_rmse", third_rmse<&I::near_third>, "%.5f", "Near RMSE")),
       optional(number("middle_rmse", third_rmse<&I::middle_third>, "%.5f", "Middle RMSE")),
