@@ -117,10 +117,12 @@ constexpr const char* kViewerScript = R"js(
       return !pending;
     }
     // V (grey, or RGB from its first three channels) or the error, drawn from
-    // the data at the exposure; null when the data are missing.
+    // the data at the exposure; null when the data are missing. One drawing
+    // per item and mode is kept, at the last exposure asked for (a drawing per
+    // exposure would pile up 8 MB canvases at 1080p as the slider moves).
     function computed(i, mode) {
-      var item = items[i], key = i + ':' + mode + ':' + st.ev;
-      if (cache[key]) return cache[key];
+      var item = items[i], key = i + ':' + mode;
+      if (cache[key] && cache[key].ev === st.ev) return cache[key].canvas;
       var d = data[item.data], r = ref() ? data[ref().data] : null;
       if (!d) return null;
       var isRef = i === cfg.reference, gain = Math.pow(2, st.ev), n = d.width * d.height;
@@ -151,7 +153,8 @@ constexpr const char* kViewerScript = R"js(
         }
       }
       cx.putImageData(img, 0, 0);
-      return (cache[key] = c);
+      cache[key] = {ev: st.ev, canvas: c};
+      return c;
     }
     // What item i shows in the current mode: a drawable, or a note why not.
     function source(i) {

@@ -40,6 +40,15 @@ double latex_rounded(double v, int digits) {
   return std::strtod(buf, nullptr);
 }
 
+// Whether `r` is the timing control of a job of `group` (config
+// `frames.control`, "none" by default): a baseline, not a competitor.
+bool is_control(const std::vector<const JobRecord*>& group, const JobRecord& r) {
+  return std::any_of(group.begin(), group.end(), [&](const JobRecord* other) {
+    return other->timing && other->timing->control &&
+           other->timing->control->technique == r.technique_variant;
+  });
+}
+
 // The value of `c` that is set in bold in `group`, compared as printed, or
 // none (see latex_tables.h).
 std::optional<double> latex_best(const std::vector<const JobRecord*>& group, const ReportColumn& c,
@@ -49,7 +58,7 @@ std::optional<double> latex_best(const std::vector<const JobRecord*>& group, con
   std::optional<double> best;
   int candidates = 0;
   for (const JobRecord* r : group) {
-    if (r->status != JobStatus::Ok) continue;
+    if (r->status != JobStatus::Ok || is_control(group, *r)) continue;
     const std::optional<double> v = c.number(*r);
     if (!v || std::isnan(*v)) continue;
     ++candidates;
@@ -193,6 +202,7 @@ std::string make_latex_table(const std::vector<const JobRecord*>& group,
   for (const ReportColumn* c : columns) best.push_back(latex_best(group, *c, digits));
   for (const JobRecord* r : group) {
     out += latex_text(r->technique_variant);
+    if (is_control(group, *r)) out += " \\emph{(control)}";
     if (r->status != JobStatus::Ok && !columns.empty()) {
       out += " & \\multicolumn{" + std::to_string(columns.size()) + "}{l}{\\emph{" +
              latex_text(record::to_string(r->status)) + "}}";

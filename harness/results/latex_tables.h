@@ -13,7 +13,10 @@
 //    Values are compared as printed, so every row that prints the best value
 //    is bold (ties). Only ok jobs compete, only finite values win, except
 //    +inf where higher is better (an exact match's PSNR). A column with a
-//    value in fewer than two rows has no bold.
+//    value in fewer than two rows has no bold. The timing control (config
+//    `frames.control`, "none" by default, named by the jobs' records) is a
+//    baseline, not a competitor: its row is marked "(control)" and never
+//    bold, although it is the fastest.
 //  - A job that was not ok shows its status across the figures (no bold).
 //  - Text from records is escaped: every LaTeX special character prints as
 //    itself (latex_text).

@@ -72,6 +72,23 @@ TEST(LatexTables, BestValuePerColumnIsBoldWithTiesAndDirection) {
   EXPECT_EQ(rows[4], "vsm/k=9,prefilter=gauss & \\multicolumn{4}{l}{\\emph{failed}} \\\\");
 }
 
+// With `none` the jobs' timing control, as in a run: it is marked, and the
+// fastest competitor is bold, not the control.
+TEST(LatexTables, TheTimingControlIsMarkedAndNeverBold) {
+  auto records = test::latex_records();
+  for (auto& r : records) {
+    if (!r.timing) continue;
+    r.timing->control = record::ControlTiming{};
+    r.timing->control->technique = "none";
+    r.timing->control->frame = r.timing->frame;
+    r.timing->control->frame_ratio = r.timing->frame;  // any ratio: this test reads frame_ms
+  }
+  const auto rows = body_rows(table_of(records, {"frame_ms", "rmse"}));
+  ASSERT_EQ(rows.size(), 5U);
+  EXPECT_EQ(rows[0], "none \\emph{(control)} & 2.50 & 0.250 \\\\");
+  EXPECT_EQ(rows[1], "pcf\\_box/k=3,size=1024 & \\textbf{9.00} & \\textbf{0.0123} \\\\");
+}
+
 TEST(LatexTables, InfinitePsnrIsBestAndPrintedAsInfinity) {
   const auto records = test::latex_records();
   const auto rows = body_rows(table_of(records, {"psnr", "status"}));
