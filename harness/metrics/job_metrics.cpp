@@ -133,8 +133,7 @@ VisibilityCheckRecord check_visibility(const ImageF& visibility) {
 MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const ImageF& ref_visibility,
                       const ImageF& ref_shaded, const Regions& regions,
                       double flip_pixels_per_degree, FlipMaps* flip_maps) {
-  const std::vector<uint8_t> soft_union =
-      soft_union_of(visibility, ref_visibility, regions.measured);
+  const std::vector<uint8_t> soft_union = soft_union_of(visibility, regions);
   std::vector<const std::vector<uint8_t>*> thirds;
   if (regions.distance_thirds)
     for (const auto& third : *regions.distance_thirds) thirds.push_back(&third);
@@ -158,8 +157,7 @@ MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const Imag
 
 ImageMetrics measure_visibility(const ImageF& visibility, const ImageF& ref_visibility,
                                 const Regions& regions, double flip_pixels_per_degree) {
-  const std::vector<uint8_t> soft_union =
-      soft_union_of(visibility, ref_visibility, regions.measured);
+  const std::vector<uint8_t> soft_union = soft_union_of(visibility, regions);
   ImageMetrics m = compare_images(visibility, ref_visibility, regions, soft_union);
   add_flip_means(m, visibility, ref_visibility, regions, soft_union, flip_pixels_per_degree);
   return m;

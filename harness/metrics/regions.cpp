@@ -33,9 +33,10 @@ ImageF with_unmeasured_from(const ImageF& test, const ImageF& ref,
   return out;
 }
 
-std::vector<uint8_t> soft_union_of(const ImageF& visibility, const ImageF& ref,
-                                   const std::vector<uint8_t>& measured) {
-  return mask_and(soft_union_mask(visibility, ref), measured);
+std::vector<uint8_t> soft_union_of(const ImageF& visibility, const Regions& regions) {
+  std::vector<uint8_t> mask = penumbra_mask(visibility);
+  for (size_t i = 0; i < mask.size(); ++i) mask[i] = uint8_t(mask[i] | regions.penumbra[i]);
+  return mask_and(std::move(mask), regions.measured);
 }
 
 }  // namespace sb::metrics

@@ -11,8 +11,10 @@
 namespace sb::metrics {
 
 struct Regions {
-  std::vector<uint8_t> measured;   // all but the pixels whose tangent plane cuts the light
-  std::vector<uint8_t> penumbra;   // the reference's soft pixels, measured ones only
+  std::vector<uint8_t> measured;  // all but the pixels whose tangent plane cuts the light
+  // The reference's penumbra (reference.h: Result::penumbra, the light
+  // partly seen, decided exactly where the scene allows), measured ones only.
+  std::vector<uint8_t> penumbra;
   std::vector<uint8_t> attached;   // the light wholly below the tangent plane: V = 0
   std::vector<uint8_t> receivers;  // measured pixels on meshes that cast no shadow
   std::vector<uint8_t> geometry;   // measured surface outside attached shadow; record "classes"
@@ -36,9 +38,9 @@ void apply_attached_shadow(const std::vector<uint8_t>& attached, core::ImageF& v
 core::ImageF with_unmeasured_from(const core::ImageF& test, const core::ImageF& ref,
                                   const std::vector<uint8_t>& measured);
 
-// The `soft_union` region of one job: the soft pixels of its V or the
-// reference's, measured ones only.
-std::vector<uint8_t> soft_union_of(const core::ImageF& visibility, const core::ImageF& ref,
-                                   const std::vector<uint8_t>& measured);
+// The `soft_union` region of one job: the soft pixels of its V, or the
+// reference's penumbra (`regions.penumbra`, which sampling noise does not
+// move), measured ones only.
+std::vector<uint8_t> soft_union_of(const core::ImageF& visibility, const Regions& regions);
 
 }  // namespace sb::metrics

@@ -27,8 +27,9 @@ struct ClassesRecord {
   static constexpr RecordDoc kSchema{
       "ClassesRecord",
       "the job's lit / penumbra / umbra classes against the reference's, over the measured "
-      "geometry pixels outside attached shadow (V ≤ 1e-6 umbra, V ≥ 1 − 1e-6 lit, the rest "
-      "penumbra); for `two_map_bound` its classification's confusion matrix"};
+      "geometry pixels outside attached shadow (the job's: V ≤ 1e-6 umbra, V ≥ 1 − 1e-6 lit, "
+      "the rest penumbra; the reference's: the `penumbra` region, the rest lit or umbra); for "
+      "`two_map_bound` its classification's confusion matrix"};
 
   std::array<std::array<std::int64_t, 3>, 3>
       counts{};  // [reference][technique]: lit, penumbra, umbra

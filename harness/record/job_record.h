@@ -68,6 +68,7 @@ struct ImagesRecord {
   std::optional<std::string> visibility, shaded, error_heatmap, flip_shaded;
   std::optional<double> error_heatmap_full_scale;
   std::optional<std::string> reference_visibility, reference_std_error, reference_shaded;
+  std::optional<std::string> reference_stop_bound;
   std::optional<std::string> gbuffer_positions, gbuffer_normals;  // run --gbuffer
   // The pixels each metrics.visibility region measured, by region name (an
   // 8-bit PNG, 255 = measured): what recomputes the record's errors from
@@ -87,7 +88,12 @@ struct ImagesRecord {
              "the shaded image's FLIP map (`metrics.shaded.*.flip_mean`) in the heat-map "
              "colours, 0 to 1 (PNG); absent from older records"});
     v.field("reference_visibility", &I::reference_visibility, {"", "the reference's V"});
-    v.field("reference_std_error", &I::reference_std_error, {"", "its standard error"});
+    v.field("reference_std_error", &I::reference_std_error,
+            {"", "its standard error σ, 0 where the samples all agreed"});
+    v.field("reference_stop_bound", &I::reference_stop_bound,
+            {"",
+             "its stop bound where the samples all agreed with no proof (`reference."
+             "stopped_pixels`), 0 elsewhere (EXR); absent from older records"});
     v.field("reference_shaded", &I::reference_shaded, {"", "shaded from it"});
     v.field("gbuffer_positions", &I::gbuffer_positions, {"", "with `run --gbuffer`"});
     v.field("gbuffer_normals", &I::gbuffer_normals, {"", "with `run --gbuffer`"});

@@ -64,6 +64,10 @@ struct ReferenceRecord {
   std::string embree_isa;     // the ISA that traced it
   std::string embree_config;  // as chosen: option, experiment or environment
   double mean_std_error = 0;
+  // Absent from records before reference method version 7.
+  std::optional<std::int64_t> estimate_pixels, stopped_pixels;
+  std::optional<double> mean_stop_bound;
+  std::optional<std::string> penumbra_source;
   double penumbra_mean_std_error = 0;
   double penumbra_rms_std_error = 0;
   std::int64_t penumbra_pixels = 0;  // measured ones only
@@ -88,14 +92,39 @@ struct ReferenceRecord {
     v.field("embree_isa", &R::embree_isa, {"", "the ISA that traced it"});
     v.field("embree_config", &R::embree_config,
             {"", "as chosen: option, experiment or environment"});
-    v.field("mean_std_error", &R::mean_std_error, {"", "mean standard error over the pixels"});
+    v.field("mean_std_error", &R::mean_std_error,
+            {"",
+             "mean σ over the estimates strictly between 0 and 1 (before reference method "
+             "version 7: over every covered pixel, an agreeing pixel's bound counted as its σ)"});
+    v.field("estimate_pixels", &R::estimate_pixels,
+            {"px",
+             "covered pixels whose estimate lies strictly between 0 and 1, each with σ > 0; "
+             "absent before reference method version 7"});
+    v.field("stopped_pixels", &R::stopped_pixels,
+            {"px",
+             "covered pixels whose samples all agreed with no proof that none could differ "
+             "(σ 0, a stop bound beside it: `images.reference_stop_bound`); absent before "
+             "reference method version 7"});
+    v.field("mean_stop_bound", &R::mean_stop_bound,
+            {"",
+             "the mean of their stop bounds, max_p p(1-p)^(n/2) for n agreeing samples: the "
+             "most root mean square error such a pixel can hide; absent before reference method "
+             "version 7"});
+    v.field("penumbra_source", &R::penumbra_source,
+            {"",
+             "how the penumbra was decided: `exact` (the light partly seen, by the exact "
+             "visibility wherever the samples all agreed; the same at any spp) or `sampled` "
+             "(the estimates strictly between 0 and 1, for scenes with no exact form: it "
+             "misses soft pixels whose samples agreed); absent before reference method "
+             "version 7 (`sampled`)"});
     v.field("penumbra_mean_std_error", &R::penumbra_mean_std_error,
-            {"", "mean standard error over its penumbra"});
+            {"", "mean noise over its penumbra: σ, or the stop bound where the samples agreed"});
     v.field("penumbra_rms_std_error", &R::penumbra_rms_std_error,
             {"",
-             "sqrt of the mean σ² over its penumbra: what the noise warning compares with "
-             "the penumbra RMSE"});
-    v.field("penumbra_pixels", &R::penumbra_pixels, {"px", "measured ones only"});
+             "sqrt of the mean squared noise over its penumbra (σ, or the stop bound where the "
+             "samples agreed): what the noise warning compares with the penumbra RMSE"});
+    v.field("penumbra_pixels", &R::penumbra_pixels,
+            {"px", "the penumbra's measured pixels: the size of the `penumbra` region"});
     v.field("attached_shadow_pixels", &R::attached_shadow_pixels,
             {"px",
              "pixels facing away from all of the light, where V is 0 for every technique and the "

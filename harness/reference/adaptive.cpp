@@ -98,8 +98,10 @@ class LevelSample {
     return n != 0 && n != value_.size();
   }
   double mean() const { return double(reached()) / double(count()); }
-  // The collapsed-strata variance (reference.h) over this level's grid.
-  double variance() const { return stratified_variance(value_.data(), l_.layouts[size_t(level_)]); }
+  // σ over this level's grid (stratify.h): 0 when every sample agrees.
+  double standard_error() const {
+    return detail::standard_error(value_.data(), l_.layouts[size_t(level_)]);
+  }
 
  private:
   // A fine cell of level-k cell (row, col), at random.
@@ -128,13 +130,10 @@ constexpr int kTile = 8;  // pixels a side
 constexpr double kErrorFallPerLevel = 2.83;
 
 // The level a disagreeing pilot sends its pixel's estimate to: where its
-// error, falling kErrorFallPerLevel a level, reaches the target. An error of
-// 0 (every pair agrees, the pairs do not) is not trusted: the unstratified
-// binomial error, which a stratified sample's does not exceed on average,
-// stands in.
+// error (stratify.h: standard_error, never 0 for disagreeing samples),
+// falling kErrorFallPerLevel a level, reaches the target.
 int planned_level(const LevelSample& pilot, int top, double target) {
-  double error = std::sqrt(pilot.variance());
-  if (error == 0.0) error = std::sqrt(pilot.mean() * (1.0 - pilot.mean()) / double(pilot.count()));
+  const double error = pilot.standard_error();
   if (error <= target) return 0;
   const double levels = std::ceil(std::log(error / target) / std::log(kErrorFallPerLevel));
   return levels >= double(top) ? top : int(levels);
@@ -142,20 +141,10 @@ int planned_level(const LevelSample& pilot, int top, double target) {
 
 }  // namespace
 
-double stop_bias_bound(int n) {
-  const double m = double(n);
-  return std::pow(m / (m + 1.0), m) / (m + 1.0);  // p (1 - p)^n at p = 1/(n + 1)
-}
-
-double stop_rms_bound(int n) {
-  const double h = 0.5 * double(n);
-  return std::pow(h / (h + 1.0), h) / (h + 1.0);  // p (1 - p)^(n/2) at p = 1/(n/2 + 1)
-}
-
-size_t unproven_stops(const ImageF& samples, const ImageF& std_error, int pilot_spp) {
+size_t unproven_stops(const ImageF& samples, const ImageF& stop_bound, int pilot_spp) {
   size_t n = 0;
   for (size_t i = 0; i < samples.data.size(); ++i)
-    n += samples.data[i] == float(pilot_spp) && std_error.data[i] > 0.0f ? 1 : 0;
+    n += samples.data[i] == float(pilot_spp) && stop_bound.data[i] > 0.0f ? 1 : 0;
   return n;
 }
 
@@ -185,7 +174,7 @@ AdaptiveImages trace_adaptive(const RaySetup& setup, Strata strata, int pilot_sp
   const ImageF& positions = setup.positions;
   const int width = positions.width, height = positions.height;
   AdaptiveImages out{ImageF(width, height, 1, 1.0f), ImageF(width, height, 1, 0.0f),
-                     ImageF(width, height, 1, 0.0f)};
+                     ImageF(width, height, 1, 0.0f), ImageF(width, height, 1, 0.0f)};
   const size_t pixels = positions.pixel_count();
   std::vector<Pilot> pilot(pixels, Pilot::None);
   // The level each pixel's estimate takes; -1: it stops at its pilot.
@@ -223,7 +212,7 @@ AdaptiveImages trace_adaptive(const RaySetup& setup, Strata strata, int pilot_sp
                                     : whole_light->hides_whole_light(surface, origin, normal);
                           }
                           // A stop without proof reports the error such stops can hide.
-                          out.std_error.data[pix] = proven[pix] ? 0.0f : unproven_error;
+                          out.stop_bound.data[pix] = proven[pix] ? 0.0f : unproven_error;
                         }
                     });
 
@@ -274,9 +263,9 @@ AdaptiveImages trace_adaptive(const RaySetup& setup, Strata strata, int pilot_sp
                           const size_t pix = work[w];
                           s.trace(pix, setup.seed, level[pix], Stream::Estimate);
                           out.visibility.data[pix] = float(s.mean());
-                          const bool bounded = s.level() < top && !s.mixed();
-                          out.std_error.data[pix] = float(bounded ? stop_rms_bound(int(s.count()))
-                                                                  : std::sqrt(s.variance()));
+                          out.std_error.data[pix] = float(s.standard_error());
+                          out.stop_bound.data[pix] =
+                              s.mixed() ? 0.0f : float(stop_rms_bound(int(s.count())));
                           out.samples.data[pix] = float(pilot_spp) + float(s.count());
                           turned_mixed[w] = pilot[pix] != Pilot::Mixed && s.mixed() ? 1 : 0;
                         }

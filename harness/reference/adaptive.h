@@ -43,17 +43,12 @@
 // occluded alike; otherwise it goes to level K, and if that turns out mixed
 // it sends its own agreeing neighbours to level K in turn, until no more do.
 //
-// What a stop without proof costs. n stratified samples all come out lit
-// with probability at most (1 - p)^n when a fraction p of the light is
-// hidden (the product of the strata's chances is at most their mean's
-// power), and the stop is then wrong by p. So at any pixel, whatever its V,
-// the window rule's bias is at most max_p p (1 - p)^n (stop_bias_bound) and
-// the root mean square error its stops add at most max_p p (1 - p)^(n/2)
-// (stop_rms_bound): the standard error such a pixel reports, instead of
-// the 0 its agreeing samples would give. The same bound is the standard
-// error of an estimate below level K whose samples all agree (unbiased, but
-// its own collapsed-strata error is 0); at level K the uniform reference's
-// definition is kept.
+// What a stop without proof costs. A pixel whose samples all agree has no
+// spread to estimate: its σ is 0 and it reports the stop bound of its sample
+// count instead (stratify.h: stop_bias_bound, stop_rms_bound), whether the
+// window rule stopped it at its pilot or its estimate's samples, at any
+// level, all agreed. A proven pixel is exact: σ and bound 0. An estimate
+// whose samples disagree reports its σ (stratify.h: standard_error).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -76,21 +71,19 @@ inline constexpr int kNeighbourhood = 2;
 // pilot_spp * 4^K for K >= 0), else why not.
 std::string adaptive_layout_problem(int spp, int pilot_spp);
 
-// The bounds above for n agreeing samples (n >= 1): the most a stop can be
-// off on average, and its root mean square error.
-double stop_bias_bound(int n);
-double stop_rms_bound(int n);
-
 struct AdaptiveImages {
   core::ImageF visibility, std_error;
+  // The stop bound of each pixel whose samples all agreed without a proof
+  // (0 elsewhere).
+  core::ImageF stop_bound;
   // Light samples traced per pixel, pilot included (0 off the surfaces): at
   // most spp + pilot_spp.
   core::ImageF samples;
 };
 
 // Pixels stopped at their pilot without a proof (the window rule), as the
-// images tell them: the pilot's samples only, and a standard error above 0.
-size_t unproven_stops(const core::ImageF& samples, const core::ImageF& std_error, int pilot_spp);
+// images tell them: the pilot's samples only, and a stop bound above 0.
+size_t unproven_stops(const core::ImageF& samples, const core::ImageF& stop_bound, int pilot_spp);
 
 // The setup's layout must be make_layout(spp, strata) with spp and
 // pilot_spp as adaptive_layout_problem() accepts. `whole_light`, when given,

@@ -16,7 +16,8 @@ using core::ImageF;
 namespace {
 
 constexpr char kMagic[8] = {'S', 'B', 'R', 'E', 'F', '\r', '\n', '\x1a'};
-constexpr uint32_t kFileVersion = 1;
+// 2: the stop bounds, the penumbra and its source after the standard errors.
+constexpr uint32_t kFileVersion = 2;
 
 template <typename T>
 void put(std::string& out, const T& v) {
@@ -37,6 +38,12 @@ class Reader {
     uint32_t n = 0;
     if (!get(n) || n > max_len || bytes_.size() - pos_ < n) return false;
     s.assign(bytes_.data() + pos_, n);
+    pos_ += n;
+    return true;
+  }
+  bool get(std::vector<uint8_t>& v, size_t n) {
+    if (bytes_.size() - pos_ < n) return false;
+    v.assign(bytes_.data() + pos_, bytes_.data() + pos_ + n);
     pos_ += n;
     return true;
   }
@@ -71,6 +78,11 @@ std::string encode_cache_file(const Result& r) {
              r.visibility.data.size() * sizeof(float));
   out.append(reinterpret_cast<const char*>(r.std_error.data.data()),
              r.std_error.data.size() * sizeof(float));
+  out.append(reinterpret_cast<const char*>(r.stop_bound.data.data()),
+             r.stop_bound.data.size() * sizeof(float));
+  out.append(reinterpret_cast<const char*>(r.penumbra.data()), r.penumbra.size());
+  put(out, uint32_t(r.penumbra_source.size()));
+  out += r.penumbra_source;
   if (r.method == kAdaptiveMethod)  // uniform files stay as they were
     out.append(reinterpret_cast<const char*>(r.samples.data.data()),
                r.samples.data.size() * sizeof(float));
@@ -99,8 +111,13 @@ bool decode_cache_file(const std::string& bytes, const CacheFileExpectation& exp
       method != expected.method || stored_key != expected.key)
     return false;
   const size_t n = size_t(w) * size_t(h);
-  ImageF vis(w, h, 1), se(w, h, 1), samples;
-  if (!in.get(vis.data, n) || !in.get(se.data, n)) return false;
+  ImageF vis(w, h, 1), se(w, h, 1), bound(w, h, 1), samples;
+  std::vector<uint8_t> penumbra;
+  std::string penumbra_source;
+  if (!in.get(vis.data, n) || !in.get(se.data, n) || !in.get(bound.data, n) ||
+      !in.get(penumbra, n) || !in.get(penumbra_source, 16))
+    return false;
+  if (penumbra_source != kPenumbraExact && penumbra_source != kPenumbraSampled) return false;
   if (expected.max_samples) {
     samples = ImageF(w, h, 1);
     if (!in.get(samples.data, n)) return false;
@@ -109,10 +126,14 @@ bool decode_cache_file(const std::string& bytes, const CacheFileExpectation& exp
   }
   if (in.pos() + sizeof(uint64_t) != bytes.size()) return false;
   for (size_t i = 0; i < n; ++i)
-    if (!(vis.data[i] >= 0.0f && vis.data[i] <= 1.0f && se.data[i] >= 0.0f && se.data[i] <= 1.0f))
+    if (!(vis.data[i] >= 0.0f && vis.data[i] <= 1.0f && se.data[i] >= 0.0f && se.data[i] <= 1.0f &&
+          bound.data[i] >= 0.0f && bound.data[i] <= 1.0f && penumbra[i] <= 1))
       return false;
   r.visibility = std::move(vis);
   r.std_error = std::move(se);
+  r.stop_bound = std::move(bound);
+  r.penumbra = std::move(penumbra);
+  r.penumbra_source = std::move(penumbra_source);
   if (expected.max_samples) r.samples = std::move(samples);
   return true;
 }

@@ -1,8 +1,9 @@
 #pragma once
 // The reference cache's file, <key>.sbref (reference.h: get()), in the
 // host's byte order: an 8-byte magic, the file version, width, height, spp
-// and seed, the method and the key (each length-prefixed), the visibility
-// and standard-error images, the adaptive reference's sample counts (no
+// and seed, the method and the key (each length-prefixed), the visibility,
+// standard-error and stop-bound images, the penumbra (a byte a pixel) and
+// its source (length-prefixed), the adaptive reference's sample counts (no
 // other method stores them), and an FNV-1a 64 checksum of all before it.
 #include <filesystem>
 #include <optional>
@@ -28,7 +29,8 @@ struct CacheFileExpectation {
 // r's file: header from r's shape, spp, seed, method and cache_key.
 std::string encode_cache_file(const Result& r);
 
-// Fills r.visibility, r.std_error and, for the adaptive reference,
+// Fills r.visibility, r.std_error, r.stop_bound, r.penumbra,
+// r.penumbra_source and, for the adaptive reference,
 // r.samples from `bytes`. Returns false, leaving r as it was, for anything
 // that is not exactly the file encode_cache_file() writes for `expected`
 // (torn, corrupt, another version, key, method, shape or setting, values

@@ -83,6 +83,15 @@ double ExactVisibility::visibility(const glm::dvec3& p, const glm::dvec3& n) con
   return std::clamp(1.0 - union_area(polygons, f.hw, f.hh) / (4.0 * f.hw * f.hh), 0.0, 1.0);
 }
 
+bool ExactVisibility::partly_lit(const glm::dvec3& p, const glm::dvec3& n) const {
+  if (!light_.is_segment() && !light_.is_point()) {
+    const glm::dvec3 origin = viewpoint(p, n);
+    if (sees_whole_light(p, origin, n) || hides_whole_light(p, origin, n)) return false;
+  }
+  const double v = visibility(p, n);
+  return v > kPartlyLitMargin && v < 1.0 - kPartlyLitMargin;
+}
+
 ImageF ExactVisibility::image(const ImageF& positions, const ImageF& normals) const {
   ImageF out(positions.width, positions.height, 1, 1.0f);
   tbb::parallel_for(0, positions.height, [&](int y) {

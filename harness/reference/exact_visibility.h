@@ -74,6 +74,10 @@
 
 namespace sb::reference {
 
+// How far from 0 and 1 an exact V must be to be soft: far above Clipper's
+// rounding (1e-8 of the light's area), far below one sample's share.
+inline constexpr double kPartlyLitMargin = 1e-6;
+
 class ExactVisibility {
  public:
   // `closed`: per mesh of `scene`, whether it is a closed caster (empty: none
@@ -120,6 +124,13 @@ class ExactVisibility {
   // where it proves nothing.
   bool hides_whole_light(const glm::dvec3& surface, const glm::dvec3& origin,
                          const glm::dvec3& n) const;
+
+  // Whether the light is partly seen from p (geometric normal n): V strictly
+  // between kPartlyLitMargin and 1 − kPartlyLitMargin, the penumbra's own
+  // definition (reference.h: Result::penumbra). Either proof above settles
+  // it where it holds (the usual case for a lit or an umbra point); V itself
+  // only where neither does.
+  bool partly_lit(const glm::dvec3& p, const glm::dvec3& n) const;
 
   // The polygons whose union hides a rectangular light from p, in the light's
   // plane (coordinates along half_u and half_v, the light spanning ±half

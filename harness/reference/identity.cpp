@@ -32,8 +32,10 @@ using detail::method_of;
 // offset's radius of their own bounds (ray_offset.h), not whatever Embree's
 // leaves visited, so that the exact reference applies the same test; and
 // Embree's robust mode (rays through shared edges no longer slip between the
-// triangles, embree_scene.h).
-constexpr uint32_t kMethodVersion = 6;
+// triangles, embree_scene.h); 7: no σ of 0 for a soft estimate (the binomial
+// error where every pair agrees), the stop bound of agreeing samples beside
+// σ, and the penumbra decided exactly where the scene has an exact form.
+constexpr uint32_t kMethodVersion = 7;
 // Bumped whenever the exact reference's answer may change. 2: a point inside
 // a closed caster is in its umbra; 3: the same by a segment test, closed
 // casters keeping their near side again; 4: the viewpoint offset by Monte
@@ -52,8 +54,10 @@ constexpr uint32_t kExactMethodVersion = 5;
 // pilot only decides, from a stream of its own, and the estimate is fresh
 // samples at the level decided (adaptive.h: unbiased), stops without proof
 // report the error such stops can hide, and samples count the pilot's; 5:
-// the proofs also with alpha-masked casters, each masked triangle whole.
-constexpr uint32_t kAdaptiveVersion = 5;
+// the proofs also with alpha-masked casters, each masked triangle whole; 6:
+// the bound of a stop, or of an estimate whose samples all agree, reported
+// as its stop bound, not as σ (kMethodVersion 7).
+constexpr uint32_t kAdaptiveVersion = 6;
 
 void hash_image(Hasher& h, const ImageF& img) {
   h.add(int32_t(img.width)).add(int32_t(img.height)).add(int32_t(img.channels));

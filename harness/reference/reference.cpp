@@ -70,33 +70,44 @@ void check_inputs(const ImageF& positions, const ImageF& normals, const Settings
 using detail::covered;
 
 void summarise(Result& r, const ImageF& positions, const Settings& s) {
-  double sum = 0, psum = 0, psum2 = 0;
-  size_t count = 0, pcount = 0;
+  double sum = 0, stop_sum = 0, psum = 0, psum2 = 0;
+  int64_t estimates = 0, stops = 0, pcount = 0;
   for (size_t i = 0; i < positions.pixel_count(); ++i) {
     if (!covered(positions, i)) continue;
-    sum += r.std_error.data[i];
-    ++count;
     const float v = r.visibility.data[i];
     if (v > 0.0f && v < 1.0f) {
-      psum += r.std_error.data[i];
-      psum2 += double(r.std_error.data[i]) * double(r.std_error.data[i]);
+      sum += r.std_error.data[i];
+      ++estimates;
+    } else if (r.stop_bound.data[i] > 0.0f) {
+      stop_sum += r.stop_bound.data[i];
+      ++stops;
+    }
+    if (r.penumbra[i]) {
+      const double noise = std::max(r.std_error.data[i], r.stop_bound.data[i]);
+      psum += noise;
+      psum2 += noise * noise;
       ++pcount;
     }
   }
-  r.mean_std_error = count ? sum / double(count) : 0.0;
+  r.mean_std_error = estimates ? sum / double(estimates) : 0.0;
+  r.estimate_pixels = estimates;
+  r.stopped_pixels = stops;
+  r.mean_stop_bound = stops ? stop_sum / double(stops) : 0.0;
   r.penumbra_mean_std_error = pcount ? psum / double(pcount) : 0.0;
   r.penumbra_rms_std_error = pcount ? std::sqrt(psum2 / double(pcount)) : 0.0;
   double samples = 0;
   float most = 0;
+  int64_t count = 0;
   for (size_t i = 0; i < positions.pixel_count() && !r.samples.data.empty(); ++i) {
     if (!covered(positions, i)) continue;
     samples += r.samples.data[i];
     most = std::max(most, r.samples.data[i]);
+    ++count;
   }
   r.mean_spp = count ? samples / double(count) : 0.0;
   r.max_spp = int(most);
   if (r.method == kAdaptiveMethod) {
-    r.unproven_stops = int64_t(detail::unproven_stops(r.samples, r.std_error, s.pilot_spp));
+    r.unproven_stops = int64_t(detail::unproven_stops(r.samples, r.stop_bound, s.pilot_spp));
     r.stop_bias_bound = r.unproven_stops > 0 ? detail::stop_bias_bound(s.pilot_spp) : 0.0;
   }
 }
@@ -125,6 +136,7 @@ void trace(const detail::RaySetup& setup, Result& r) {
   const size_t spp = size_t(layout.spp);
   std::vector<uint32_t> all(spp);
   for (size_t i = 0; i < spp; ++i) all[i] = uint32_t(i);
+  const float stop_bound = float(detail::stop_rms_bound(layout.spp));
 
   tbb::parallel_for(tbb::blocked_range2d<int>(0, positions.height, 8, 0, width, 8),
                     [&](const tbb::blocked_range2d<int>& tile) {
@@ -144,7 +156,8 @@ void trace(const detail::RaySetup& setup, Result& r) {
                           }
                           r.visibility.data[pix] = float(double(count) / double(spp));
                           r.std_error.data[pix] =
-                              float(std::sqrt(detail::stratified_variance(visible.data(), layout)));
+                              float(detail::standard_error(visible.data(), layout));
+                          if (count == 0 || count == spp) r.stop_bound.data[pix] = stop_bound;
                         }
                     });
 }
@@ -186,6 +199,32 @@ bool proofs_hold(const Scene& scene) {
   });
 }
 
+// Result::penumbra of a Monte Carlo estimate (reference.h): a soft estimate
+// proves a pixel soft; one whose samples all agreed asks `exact` (null: the
+// scene has no exact form, and the soft estimates are the region).
+void find_penumbra(const ImageF& positions, const ImageF& normals, const ExactVisibility* exact,
+                   Result& r) {
+  const size_t n = positions.pixel_count();
+  r.penumbra.assign(n, 0);
+  r.penumbra_source = exact != nullptr ? kPenumbraExact : kPenumbraSampled;
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& b) {
+        for (size_t i = b.begin(); i < b.end(); ++i) {
+          if (!covered(positions, i)) continue;
+          const float v = r.visibility.data[i];
+          if (v > 0.0f && v < 1.0f) {
+            r.penumbra[i] = 1;
+          } else if (exact != nullptr) {
+            const float* p = &positions.data[i * 4];
+            const float* q = &normals.data[i * size_t(normals.channels)];
+            r.penumbra[i] =
+                exact->partly_lit(glm::dvec3(p[0], p[1], p[2]), glm::dvec3(q[0], q[1], q[2])) ? 1
+                                                                                              : 0;
+          }
+        }
+      });
+}
+
 }  // namespace
 
 Result compute(const Scene& scene, const ImageF& positions, const ImageF& geometric_normals,
@@ -221,7 +260,14 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
     r.visibility = exact.image(positions, geometric_normals);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     r.std_error = ImageF(positions.width, positions.height, 1, 0.0f);
-    r.samples = ImageF(positions.width, positions.height, 1, 0.0f);
+    r.stop_bound = r.std_error;
+    r.samples = r.std_error;
+    r.penumbra.assign(positions.pixel_count(), 0);
+    r.penumbra_source = kPenumbraExact;
+    for (size_t i = 0; i < positions.pixel_count(); ++i) {
+      const double v = r.visibility.data[i];
+      r.penumbra[i] = covered(positions, i) && v > kPartlyLitMargin && v < 1.0 - kPartlyLitMargin;
+    }
     summarise(r, positions, s);
     return r;
   }
@@ -229,12 +275,18 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
   Result r;
   r.visibility = ImageF(positions.width, positions.height, 1, 1.0f);
   r.std_error = ImageF(positions.width, positions.height, 1, 0.0f);
+  r.stop_bound = r.std_error;
   r.spp = s.spp;
   r.seed = s.seed;
   r.method = kStratifiedMethod;
   r.isa = resolve_isa(embree_config_of(s));
 
   const auto t0 = std::chrono::steady_clock::now();
+  // The exact visibility decides the penumbra (and proves the adaptive
+  // reference's agreeing pilots) where the scene has an exact form.
+  std::optional<ExactVisibility> exact;
+  if (ExactVisibility::unsupported_reason(scene).empty() || (s.adaptive && proofs_hold(scene)))
+    exact.emplace(scene, closed_casters(scene));
   {
     Device device(r.isa);
     FlatScene casters(
@@ -245,12 +297,12 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
     if (s.adaptive) {
       // The proofs that an agreeing pilot missed nothing; the one for
       // occluded pilots needs to know which casters are closed.
-      std::optional<ExactVisibility> whole_light;
-      if (proofs_hold(scene)) whole_light.emplace(scene, closed_casters(scene));
-      detail::AdaptiveImages a = detail::trace_adaptive(
-          setup, strata, s.pilot_spp, s.target_std_error, whole_light ? &*whole_light : nullptr);
+      const ExactVisibility* whole_light = proofs_hold(scene) && exact ? &*exact : nullptr;
+      detail::AdaptiveImages a =
+          detail::trace_adaptive(setup, strata, s.pilot_spp, s.target_std_error, whole_light);
       r.visibility = std::move(a.visibility);
       r.std_error = std::move(a.std_error);
+      r.stop_bound = std::move(a.stop_bound);
       r.samples = std::move(a.samples);
       r.method = kAdaptiveMethod;
     } else {
@@ -259,6 +311,8 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
     }
     device.check("rtcOccluded16");
   }
+  find_penumbra(positions, geometric_normals,
+                exact && exact->unsupported().empty() ? &*exact : nullptr, r);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   summarise(r, positions, s);
   return r;

@@ -51,10 +51,27 @@
 // unbiased for the within-stratum variance plus a non-negative term from the
 // difference of neighbouring strata's means, so it is conservative, but far
 // tighter than the Bernoulli sqrt(p(1-p)/(N-1)) (it falls as ~N^-0.75 in
-// penumbrae like the true error, not N^-0.5). Measured in the tests: the
-// true penumbra RMSE is 0.6-0.7× the RMS of the stated error at 16-256 spp.
+// penumbrae like the true error, not N^-0.5). σ averages it over two
+// groupings, the pairs above and pairs shifted by one cell, so that an edge
+// along the pairs' boundaries, where every pair agrees, still shows; other
+// groupings, then the binomial error, stand in where both say 0
+// (stratify.h: standard_error): no estimate strictly between 0 and 1
+// reports σ = 0. A pixel whose samples all agree has
+// no spread to estimate: σ 0, and its stop bound (stratify.h: stop_rms_bound
+// of its sample count) beside it, unless a proof (the exact reference, the
+// adaptive reference's proofs) says it is exact.
+//
+// The penumbra (Result::penumbra): the covered pixels that see part of the
+// light, 0 < V < 1. Where the exact reference can do the scene's casters and
+// light, membership is decided exactly whatever the sample count: an
+// estimate strictly between 0 and 1 proves it (one ray reached the light and
+// one did not); a pixel whose samples all agreed is asked of the exact
+// visibility (exact_visibility.h: partly_lit). Otherwise (alpha-masked or
+// analytic casters, a point light) it is the soft estimates, which miss soft
+// pixels whose samples happened to agree: Result::penumbra_source says which.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 #include "core/scene.h"
@@ -81,13 +98,30 @@ inline constexpr const char* kExactMethod = "exact_clipper";
 // since a scene the exact reference cannot do gets Monte Carlo instead.
 std::string method_id(const Settings& s);
 
+// Where Result::penumbra comes from.
+inline constexpr const char* kPenumbraExact = "exact";      // decided exactly
+inline constexpr const char* kPenumbraSampled = "sampled";  // the soft estimates
+
 struct Result {
-  core::ImageF visibility;             // 1 channel
-  core::ImageF std_error;              // 1 channel, per-pixel standard error of the estimate
-  double mean_std_error = 0;           // over covered pixels
-  double penumbra_mean_std_error = 0;  // over pixels with 0<V<1
-  // sqrt(mean of std_error²) over pixels with 0<V<1: the noise's RMS, the
-  // figure an RMSE is comparable with (the mean of σ understates it).
+  core::ImageF visibility;  // 1 channel
+  // 1 channel, per pixel: σ, the standard error of an estimate strictly
+  // between 0 and 1 (0 elsewhere), and the stop bound of a pixel whose
+  // samples all agreed without a proof (0 elsewhere).
+  core::ImageF std_error, stop_bound;
+  // The covered pixels that see part of the light (1), and how that was
+  // decided (kPenumbraExact or kPenumbraSampled).
+  std::vector<uint8_t> penumbra;
+  std::string penumbra_source;
+  double mean_std_error = 0;    // σ over the estimates strictly between 0 and 1
+  int64_t estimate_pixels = 0;  // how many those are
+  // The covered pixels whose samples all agreed without a proof, and the
+  // mean of their stop bounds.
+  int64_t stopped_pixels = 0;
+  double mean_stop_bound = 0;
+  // Over the penumbra, each pixel's noise: its σ, or its stop bound where its
+  // samples agreed. The mean, and sqrt(mean of squares): the noise's RMS,
+  // the figure an RMSE is comparable with (the mean understates it).
+  double penumbra_mean_std_error = 0;
   double penumbra_rms_std_error = 0;
   int spp = 0;
   uint64_t seed = 0;

@@ -86,4 +86,78 @@ double stratified_variance(const uint8_t* visible, const Layout& layout) {
   return 0.5 * double(sum) / (n * n);
 }
 
+namespace {
+
+// Σ m(g − m)/(g − 1) over the groups of one line of `count` cells (`first`,
+// `first` + `step`, ...), paired from the line's cell `offset` (0 or 1); a
+// cell left over at either end joins the pair next to it (a triple): the
+// collapsed-strata sum of that grouping, times N² the variance.
+double line_groups(const uint8_t* visible, int first, int step, int count, int offset) {
+  if (count < 2) return 0.0;
+  std::vector<int> bounds = {0};
+  for (int b = offset == 0 ? 2 : 1; b < count; b += 2) bounds.push_back(b);
+  bounds.push_back(count);
+  if (bounds.size() > 2 && bounds[1] - bounds[0] == 1) bounds.erase(bounds.begin() + 1);
+  if (bounds.size() > 2 && bounds[bounds.size() - 1] - bounds[bounds.size() - 2] == 1)
+    bounds.erase(bounds.end() - 2);
+  double sum = 0.0;
+  for (size_t g = 0; g + 1 < bounds.size(); ++g) {
+    const int size = bounds[g + 1] - bounds[g];
+    int m = 0;
+    for (int i = bounds[g]; i < bounds[g + 1]; ++i) m += visible[first + i * step];
+    sum += double(m) * double(size - m) / double(size - 1);
+  }
+  return sum;
+}
+
+// The collapsed-strata variance over pairs along each row shifted by one
+// cell (the layout's own groups start at each row's first cell).
+double shifted_rows_variance(const uint8_t* visible, const Layout& layout) {
+  double sum = 0.0;
+  for (int r = 0; r < layout.rows; ++r) {
+    const int begin = layout.row_start[size_t(r)];
+    sum += line_groups(visible, begin, 1, layout.row_start[size_t(r) + 1] - begin, 1);
+  }
+  const double n = layout.spp;
+  return sum / (n * n);
+}
+
+// The mean of the collapsed-strata variances over pairs down each column,
+// from the first row and from the second; 0 unless every row has as many
+// cells (a square grid) and there are two rows.
+double columns_variance(const uint8_t* visible, const Layout& layout) {
+  const int width = layout.row_start[1];
+  if (layout.rows < 2 || width * layout.rows != layout.spp) return 0.0;
+  double sum = 0.0;
+  for (int offset : {0, 1})
+    for (int c = 0; c < width; ++c) sum += line_groups(visible, c, width, layout.rows, offset);
+  const double n = layout.spp;
+  return 0.5 * sum / (n * n);
+}
+
+}  // namespace
+
+double standard_error(const uint8_t* visible, const Layout& layout) {
+  int64_t reached = 0;
+  for (int i = 0; i < layout.spp; ++i) reached += visible[i];
+  if (reached == 0 || reached == layout.spp) return 0.0;
+  const double rows =
+      0.5 * (stratified_variance(visible, layout) + shifted_rows_variance(visible, layout));
+  if (rows > 0.0) return std::sqrt(rows);
+  if (const double columns = columns_variance(visible, layout); columns > 0.0)
+    return std::sqrt(columns);
+  const double p = double(reached) / double(layout.spp);
+  return std::sqrt(p * (1.0 - p) / double(layout.spp));
+}
+
+double stop_bias_bound(int n) {
+  const double m = double(n);
+  return std::pow(m / (m + 1.0), m) / (m + 1.0);  // p (1 - p)^n at p = 1/(n + 1)
+}
+
+double stop_rms_bound(int n) {
+  const double h = 0.5 * double(n);
+  return std::pow(h / (h + 1.0), h) / (h + 1.0);  // p (1 - p)^(n/2) at p = 1/(n/2 + 1)
+}
+
 }  // namespace sb::reference::detail

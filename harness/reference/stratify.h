@@ -71,4 +71,29 @@ inline void sample_uv(uint64_t key, uint32_t i, float& u, float& v) {
 // (no pair) it is 1/4, the largest variance of one 0/1 sample.
 double stratified_variance(const uint8_t* visible, const Layout& layout);
 
+// The standard error σ of an estimate from one sample per cell: 0 when the
+// samples all agree (then there is no spread to estimate: the pixel carries
+// a stop bound instead, below). Else the square root of the mean of two
+// collapsed-strata variances, one over the layout's own groups and one over
+// pairs shifted by one cell along each row: each is conservative in
+// expectation (reference.h), so their mean is, and it is 0 only where every
+// row is all lit or all occluded. There the same mean over pairs down the
+// columns of a square grid stands in, and where that is 0 too (only rows of
+// unequal length), the unstratified binomial sqrt(p(1-p)/N). So no estimate
+// strictly between 0 and 1 reports σ = 0. On a segment light's single row,
+// an edge between two strata makes exactly one of the two groupings
+// disagree: σ = 1/(√2 N) for every soft pixel, where the layout's own
+// groups alone gave 1/N or 0.
+double standard_error(const uint8_t* visible, const Layout& layout);
+
+// n stratified samples all agree with probability at most (1 - p)^n when a
+// fraction p of the light is hidden (or, alike, seen), and the agreeing
+// estimate is then wrong by p. Whatever the pixel's V, the most such an
+// estimate can be off on average is max_p p (1 - p)^n (stop_bias_bound),
+// and its root mean square error at most max_p p (1 - p)^(n/2)
+// (stop_rms_bound): the stop bound a pixel whose samples all agreed, with no
+// proof that they could not disagree, reports beside its σ of 0. n >= 1.
+double stop_bias_bound(int n);
+double stop_rms_bound(int n);
+
 }  // namespace sb::reference::detail

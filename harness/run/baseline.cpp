@@ -25,7 +25,7 @@ using record::ReferenceRecord;
 namespace {
 
 // The reference's part of every record of one (scene, resolution).
-// `penumbra`: the reference's own soft pixels.
+// `penumbra`: the reference's penumbra, measured pixels only.
 ReferenceRecord reference_record(const reference::Result& ref, const ReferenceConfig& config,
                                  const EmbreeChoice& embree, const metrics::Regions& regions,
                                  const std::vector<uint8_t>& penumbra) {
@@ -37,6 +37,10 @@ ReferenceRecord reference_record(const reference::Result& ref, const ReferenceCo
   r.embree_isa = ref.isa;
   r.embree_config = embree.config;
   r.mean_std_error = ref.mean_std_error;
+  r.estimate_pixels = ref.estimate_pixels;
+  r.stopped_pixels = ref.stopped_pixels;
+  r.mean_stop_bound = ref.mean_stop_bound;
+  r.penumbra_source = ref.penumbra_source;
   r.penumbra_mean_std_error = ref.penumbra_mean_std_error;
   r.penumbra_rms_std_error = ref.penumbra_rms_std_error;
   r.penumbra_pixels = metrics::count_ones(penumbra);
@@ -138,12 +142,11 @@ Baseline make_baseline(const Experiment& e, const RunOptions& o, const EmbreeCho
   b.regions = regions_of(b, scene, e.distance_thirds, targets);
   metrics::Regions& regions = b.regions;
   metrics::apply_attached_shadow(regions.attached, b.ref.visibility);
-  regions.penumbra = metrics::mask_and(metrics::penumbra_mask(b.ref.visibility), regions.measured);
+  regions.penumbra = metrics::mask_and(b.ref.penumbra, regions.measured);
   if (b.second) {
     metrics::apply_attached_shadow(regions.attached, b.second->visibility);
-    b.second_record = reference_record(
-        *b.second, e.reference, embree, regions,
-        metrics::mask_and(metrics::penumbra_mask(b.second->visibility), regions.measured));
+    b.second_record = reference_record(*b.second, e.reference, embree, regions,
+                                       metrics::mask_and(b.second->penumbra, regions.measured));
   }
   b.ref_shaded = [&] {
     targets.upload_visibility(b.ref.visibility);

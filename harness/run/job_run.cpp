@@ -102,8 +102,8 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv, JobRecord& r, Phas
     r.second_reference = SecondReferenceRecord{
         *b.second_record, metrics::measure_visibility(visibility, b.second->visibility, b.regions,
                                                       s.e.flip_pixels_per_degree)};
-  r.classes =
-      ClassesRecord{metrics::confusion_matrix(visibility, b.ref.visibility, b.regions.geometry)};
+  r.classes = ClassesRecord{metrics::confusion_matrix(
+      visibility, b.ref.visibility, b.regions.geometry, 1e-6f, &b.regions.penumbra)};
   if (auto warning = metrics::noise_warning(*r.metrics, b.ref.penumbra_rms_std_error))
     r.warnings.push_back(*warning);
   phases.measure = lap.seconds();

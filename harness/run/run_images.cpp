@@ -32,9 +32,11 @@ ImagesRecord write_reference_images(const RunOptions& o, const std::string& rel,
   fs::create_directories(dir);
   metrics::io::write_exr((dir / "visibility.exr").string(), ref.visibility);
   metrics::io::write_exr((dir / "std_error.exr").string(), ref.std_error);
+  metrics::io::write_exr((dir / "stop_bound.exr").string(), ref.stop_bound);
   metrics::io::write_png((dir / "shaded.png").string(), ref_shaded);
   images.reference_visibility = rel + "/visibility.exr";
   images.reference_std_error = rel + "/std_error.exr";
+  images.reference_stop_bound = rel + "/stop_bound.exr";
   images.reference_shaded = rel + "/shaded.png";
   // Named as the record's metrics.visibility regions; soft_union is each job's own.
   std::vector<std::pair<std::string, const std::vector<uint8_t>*>> masks = {
@@ -78,10 +80,9 @@ ImagesRecord write_job_images(const std::string& run_dir, const std::string& job
   // one core busy (zlib), so the job's images take about half the time.
   tbb::parallel_invoke(
       [&] {
-        metrics::io::write_mask_png(
-            (dir / "mask_soft_union.png").string(),
-            metrics::soft_union_of(visibility, ref_visibility, regions.measured), visibility.width,
-            visibility.height);
+        metrics::io::write_mask_png((dir / "mask_soft_union.png").string(),
+                                    metrics::soft_union_of(visibility, regions), visibility.width,
+                                    visibility.height);
       },
       [&] { metrics::io::write_exr((dir / "visibility.exr").string(), visibility); },
       [&] { metrics::io::write_png((dir / "shaded.png").string(), shaded); },

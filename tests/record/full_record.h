@@ -61,6 +61,10 @@ inline record::JobRecord full_record() {
   ref.seed = std::numeric_limits<std::uint64_t>::max();
   ref.embree_isa = "avx2";
   ref.mean_std_error = 0.003;
+  ref.estimate_pixels = 700;
+  ref.stopped_pixels = 9000;
+  ref.mean_stop_bound = 0.0028;
+  ref.penumbra_source = "exact";
   ref.penumbra_pixels = 800;
   ref.attached_shadow_pixels = 90;
   ref.horizon_cut_pixels = 40;
@@ -85,6 +89,7 @@ inline record::JobRecord full_record() {
   r.images.flip_shaded = "jobs/x/flip_shaded.png";
   r.images.reference_visibility = "reference/x/visibility.exr";
   r.images.reference_std_error = "reference/x/std_error.exr";
+  r.images.reference_stop_bound = "reference/x/stop_bound.exr";
   r.images.reference_shaded = "reference/x/shaded.png";
   r.images.gbuffer_positions = "reference/x/positions.exr";
   r.images.gbuffer_normals = "reference/x/normals.exr";

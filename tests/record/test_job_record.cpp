@@ -59,7 +59,7 @@ TEST(JobRecord, FullRecordRoundTrips) {
   EXPECT_EQ(j["reference"]["seed"], std::numeric_limits<std::uint64_t>::max());
   EXPECT_EQ(j["host"]["lp_num_threads"], "2");
   EXPECT_EQ(j["build"]["version"], "0.1.0");
-  EXPECT_EQ(j["images"].size(), 11u);  // nine paths, the full scale and the masks
+  EXPECT_EQ(j["images"].size(), 12u);  // ten paths, the full scale and the masks
   EXPECT_EQ(j["images"]["masks"]["soft_union"], "jobs/x/mask_soft_union.png");
   EXPECT_EQ(back.images.masks.size(), 2u);
   EXPECT_TRUE(std::isnan(back.metrics->shaded.penumbra.ssim));

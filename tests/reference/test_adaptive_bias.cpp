@@ -180,7 +180,9 @@ TEST(ReferenceAdaptiveBias, AWindowStopReportsAndStaysWithinItsBounds) {
     if (a.samples.data[centre] == 4.0f) {
       ++stops;
       EXPECT_EQ(av, 1.0) << "seed " << seed;
-      EXPECT_FLOAT_EQ(a.std_error.data[centre], float(rms_bound)) << "seed " << seed;
+      // No spread to estimate: σ 0, and the bound beside it.
+      EXPECT_EQ(a.std_error.data[centre], 0.0f) << "seed " << seed;
+      EXPECT_FLOAT_EQ(a.stop_bound.data[centre], float(rms_bound)) << "seed " << seed;
       stop_err2 += (av - v) * (av - v);
     } else {
       EXPECT_EQ(a.samples.data[centre], 4.0f + 256.0f) << "seed " << seed;

@@ -1,10 +1,10 @@
 // The exact reference against the Monte Carlo one (256 spp) on the sphere
 // grid, a jeep and a glTF file, at G-buffers made by primary rays: on at
 // least 99.9% of the covered pixels they differ by at most four of the
-// Monte Carlo reference's standard errors. Its collapsed-strata estimate
-// (reference.h) is 0 wherever paired strata agree, which happens in a
-// penumbra thinner than a stratum (exact 0.9993, sampled 1); there the
-// error is taken as one sample's weight, 1/spp, the estimate's resolution.
+// Monte Carlo reference's standard errors. σ (reference.h) is 0 where the
+// samples all agree, which happens in a penumbra thinner than a stratum
+// (exact 0.9993, sampled 1); there the error is taken as one sample's
+// weight, 1/spp, the estimate's resolution.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,19 +13,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/params.h"
-#include "core/scene_types.h"
+#include "../common/scene_of_type.h"
 #include "reference/reference.h"
 
 namespace {
-
-sb::core::Scene build_scene(const std::string& type_name, nlohmann::json params) {
-  const sb::core::SceneType* type = sb::core::find_scene_type(type_name);
-  if (!type) throw std::runtime_error("no scene type " + type_name);
-  for (const auto& p : type->params)
-    if (!params.contains(p.name) && !p.default_value.is_null()) params[p.name] = p.default_value;
-  return type->build(sb::core::Params(params));
-}
 
 void expect_agreement(const sb::core::Scene& scene, const std::string& label) {
   const sb::reference::GBuffer g = sb::reference::trace_gbuffer(scene, 160, 120);
@@ -53,17 +44,17 @@ void expect_agreement(const sb::core::Scene& scene, const std::string& label) {
 }
 
 TEST(ReferenceExact, AgreesWithMonteCarloOnTheSphereGrid) {
-  expect_agreement(build_scene("sphere_grid", {{"grid", 3}}), "sphere grid");
+  expect_agreement(sb::test::scene_of_type("sphere_grid", {{"grid", 3}}), "sphere grid");
 }
 
 TEST(ReferenceExact, AgreesWithMonteCarloOnAJeep) {
-  expect_agreement(build_scene("jeep", {}), "jeep");
+  expect_agreement(sb::test::scene_of_type("jeep", {}), "jeep");
 }
 
 TEST(ReferenceExact, AgreesWithMonteCarloOnAGltfFile) {
-  expect_agreement(
-      build_scene("gltf", {{"file", SHADOWBENCH_SOURCE_DIR "/configs/models/jeep.glb"}}),
-      "configs/models/jeep.glb");
+  expect_agreement(sb::test::scene_of_type(
+                       "gltf", {{"file", SHADOWBENCH_SOURCE_DIR "/configs/models/jeep.glb"}}),
+                   "configs/models/jeep.glb");
 }
 
 }  // namespace

@@ -14,8 +14,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/params.h"
-#include "core/scene_types.h"
+#include "../common/scene_of_type.h"
 #include "reference/adaptive.h"
 #include "reference/reference.h"
 #include "test_scenes.h"
@@ -26,15 +25,6 @@ using sb::reference::Result;
 using sb::reference::Settings;
 
 constexpr int kWidth = 160, kHeight = 120;
-
-sb::core::Scene build(const std::string& type_name,
-                      nlohmann::json params = nlohmann::json::object()) {
-  const sb::core::SceneType* type = sb::core::find_scene_type(type_name);
-  if (!type) throw std::runtime_error("no scene type " + type_name);
-  for (const auto& p : type->params)
-    if (!params.contains(p.name) && !p.default_value.is_null()) params[p.name] = p.default_value;
-  return type->build(sb::core::Params(params));
-}
 
 Settings adaptive(int spp, double target, int pilot = 16) {
   Settings s(spp, 1);
@@ -99,15 +89,15 @@ void expect_agreement_with_full(const sb::core::Scene& scene, const std::string&
 }
 
 TEST(ReferenceAdaptive, AgreesWithTheFullCountOnTheSphereGrid) {
-  expect_agreement_with_full(build("sphere_grid", {{"grid", 4}}), "sphere grid");
+  expect_agreement_with_full(sb::test::scene_of_type("sphere_grid", {{"grid", 4}}), "sphere grid");
 }
 
 TEST(ReferenceAdaptive, AgreesWithTheFullCountOnAJeep) {
-  expect_agreement_with_full(build("jeep"), "jeep");
+  expect_agreement_with_full(sb::test::scene_of_type("jeep"), "jeep");
 }
 
 TEST(ReferenceAdaptive, AgreesWithTheFullCountOnFoliage) {
-  expect_agreement_with_full(build("foliage"), "foliage");
+  expect_agreement_with_full(sb::test::scene_of_type("foliage"), "foliage");
 }
 
 // Foliage's leaves are alpha-masked: the proofs take each leaf as its
@@ -116,7 +106,7 @@ TEST(ReferenceAdaptive, AgreesWithTheFullCountOnFoliage) {
 // closed, prove no pilot occluded. Every proven pixel (its pilot's samples
 // only, standard error 0) has the full count's value, on five seeds.
 TEST(ReferenceAdaptive, ProvesPilotsAmongAlphaMaskedCastersOnlyWhereTheFullCountAgrees) {
-  const sb::core::Scene scene = build("foliage");
+  const sb::core::Scene scene = sb::test::scene_of_type("foliage");
   ASSERT_TRUE(std::any_of(scene.meshes.begin(), scene.meshes.end(), [](const sb::core::Mesh& m) {
     return m.casts_shadow && m.alpha_tested();
   }));
@@ -144,9 +134,10 @@ TEST(ReferenceAdaptive, ProvesPilotsAmongAlphaMaskedCastersOnlyWhereTheFullCount
 // A 4-sample pilot misses more: the window and the whole-light proof must
 // still catch every penumbra pixel it missed.
 TEST(ReferenceAdaptive, AgreesWithTheFullCountFromAFourSamplePilot) {
-  expect_agreement_with_full(build("sphere_grid", {{"grid", 4}}), "sphere grid", 4);
-  expect_agreement_with_full(build("jeep"), "jeep", 4);
-  expect_agreement_with_full(build("foliage"), "foliage", 4);
+  expect_agreement_with_full(sb::test::scene_of_type("sphere_grid", {{"grid", 4}}), "sphere grid",
+                             4);
+  expect_agreement_with_full(sb::test::scene_of_type("jeep"), "jeep", 4);
+  expect_agreement_with_full(sb::test::scene_of_type("foliage"), "foliage", 4);
 }
 
 // Against the exact reference, on the scenes it can do (foliage's leaves
@@ -184,16 +175,17 @@ void expect_agreement_with_exact(const sb::core::Scene& scene, const std::string
 }
 
 TEST(ReferenceAdaptive, AgreesWithTheExactReferenceOnTheSphereGrid) {
-  expect_agreement_with_exact(build("sphere_grid", {{"grid", 4}}), "sphere grid");
+  expect_agreement_with_exact(sb::test::scene_of_type("sphere_grid", {{"grid", 4}}), "sphere grid");
 }
 
 TEST(ReferenceAdaptive, AgreesWithTheExactReferenceOnAJeep) {
-  expect_agreement_with_exact(build("jeep"), "jeep");
+  expect_agreement_with_exact(sb::test::scene_of_type("jeep"), "jeep");
 }
 
 TEST(ReferenceAdaptive, AgreesWithTheExactReferenceFromAFourSamplePilot) {
-  expect_agreement_with_exact(build("sphere_grid", {{"grid", 4}}), "sphere grid", 4);
-  expect_agreement_with_exact(build("jeep"), "jeep", 4);
+  expect_agreement_with_exact(sb::test::scene_of_type("sphere_grid", {{"grid", 4}}), "sphere grid",
+                              4);
+  expect_agreement_with_exact(sb::test::scene_of_type("jeep"), "jeep", 4);
 }
 
 // A pixel refined to the full count traces the uniform reference's very

@@ -193,8 +193,10 @@ TEST(referenceShadowPacket, OneSamplePerPixelTracesOneLane) {
     ASSERT_TRUE(v == 0.0f || v == 1.0f) << "pixel " << i << ": " << v;
     if (w.g.positions.data[i * 4 + 3] <= 0.5f) continue;
     (v == 0.0f ? zeros : ones)++;
-    // One sample says nothing of its own spread: the largest a 0/1 sample has.
-    EXPECT_EQ(r.std_error.data[i], 0.5f);
+    // One sample says nothing of its own spread: σ 0, and the bound of one
+    // agreeing sample beside it.
+    EXPECT_EQ(r.std_error.data[i], 0.0f);
+    EXPECT_EQ(r.stop_bound.data[i], float(ref::detail::stop_rms_bound(1)));
   }
   EXPECT_GT(zeros, 0u);
   EXPECT_GT(ones, 0u);
