@@ -116,18 +116,53 @@ ImageF as_flip_reads_png(const ImageF& shaded) {
 
 }  // namespace
 
+VisibilityKind visibility_kind(float v) {
+  if (!std::isfinite(v)) return VisibilityKind::Nonfinite;
+  if (v < -kVisibilityTolerance) return VisibilityKind::Below0;
+  if (v > 1.0f + kVisibilityTolerance) return VisibilityKind::Above1;
+  return VisibilityKind::Valid;
+}
+
 VisibilityCheckRecord check_visibility(const ImageF& visibility) {
   VisibilityCheckRecord c;
   c.tolerance = kVisibilityTolerance;
   for (float x : visibility.data) {
-    if (!std::isfinite(x))
-      ++c.nonfinite;
-    else if (x < -kVisibilityTolerance)
-      ++c.below_0;
-    else if (x > 1.0f + kVisibilityTolerance)
-      ++c.above_1;
+    switch (visibility_kind(x)) {
+      case VisibilityKind::Nonfinite:
+        ++c.nonfinite;
+        break;
+      case VisibilityKind::Below0:
+        ++c.below_0;
+        break;
+      case VisibilityKind::Above1:
+        ++c.above_1;
+        break;
+      case VisibilityKind::Valid:
+        break;
+    }
   }
   return c;
+}
+
+ImageF invalid_visibility_image(const ImageF& visibility) {
+  ImageF out(visibility.width, visibility.height, 3);
+  for (std::size_t p = 0; p < visibility.pixel_count(); ++p) {
+    float* rgb = &out.data[p * 3];
+    switch (visibility_kind(visibility.data[p])) {
+      case VisibilityKind::Nonfinite:
+        rgb[0] = 1.0f;
+        break;
+      case VisibilityKind::Below0:
+        rgb[2] = 1.0f;
+        break;
+      case VisibilityKind::Above1:
+        rgb[0] = rgb[1] = 1.0f;
+        break;
+      case VisibilityKind::Valid:
+        break;
+    }
+  }
+  return out;
 }
 
 MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const ImageF& ref_visibility,

@@ -4,6 +4,7 @@
 // regions (record "metrics", "second_reference"), the range check of its V
 // ("visibility_check") and the warning when the reference's noise is too
 // large to rank it.
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -18,7 +19,17 @@ namespace sb::metrics {
 // sums (accumulation, kernels) may overshoot by this much.
 inline constexpr float kVisibilityTolerance = 1e-5f;  // the failure message says 1e-5
 
+// What the check makes of one value of V.
+enum class VisibilityKind : std::uint8_t { Valid, Nonfinite, Below0, Above1 };
+VisibilityKind visibility_kind(float v);
+
+// Counts each kind but Valid over V's pixels.
 record::VisibilityCheckRecord check_visibility(const core::ImageF& visibility);
+
+// The pixels check_visibility counts, by kind, as an RGB image: red (1, 0, 0)
+// NaN or infinite, blue (0, 0, 1) below 0, yellow (1, 1, 0) above 1, black
+// the rest (run/run_images.h writes it as invalid.png).
+core::ImageF invalid_visibility_image(const core::ImageF& visibility);
 
 // The FLIP error maps of a job (metrics/flip.h), one channel each: of its
 // visibility as a grey image, and of its shaded image decoded from sRGB (as

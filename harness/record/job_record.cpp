@@ -1,5 +1,7 @@
 #include "record/job_record.h"
 
+#include <utility>
+
 #include "record/record_json.h"
 
 namespace sb::record {
@@ -76,7 +78,33 @@ JobRecord JobRecord::from_json(const json& j) {
   check_schema_version(j);
   JobRecord r = read_record<JobRecord>(Fields(j, ""));
   r.schema_version = kRecordSchemaVersion;
+  r.set_aside_failed_measurements();
   return r;
+}
+
+namespace {
+
+// Moves `from` into `to` unless `to` has a value already; `from` is left empty.
+template <class T>
+void set_aside(std::optional<T>& from, std::optional<T>& to) {
+  std::optional<T> taken = std::exchange(from, std::nullopt);
+  if (!to) to = std::move(taken);
+}
+
+}  // namespace
+
+void JobRecord::set_aside_failed_measurements() {
+  if (status != JobStatus::Failed) return;
+  PartialRecord p = partial.value_or(PartialRecord{});
+  set_aside(timing, p.timing);
+  set_aside(technique.gpu_bytes, p.gpu_bytes);
+  set_aside(metrics, p.metrics);
+  set_aside(second_reference, p.second_reference);
+  set_aside(classes, p.classes);
+  if (p.empty())
+    partial.reset();
+  else
+    partial = std::move(p);
 }
 
 std::optional<double> JobRecord::metric(const MetricPath& path) const {

@@ -41,8 +41,9 @@ struct VisibilityCheckRecord {
   static constexpr RecordDoc kSchema{
       "VisibilityCheckRecord",
       "pixels of the technique's visibility (before the attached-shadow mask) that are NaN/Inf "
-      "or outside [0, 1] by more than `tolerance`: any of them fails the job, whose timing, "
-      "metrics and images are still recorded for inspection"};
+      "or outside [0, 1] by more than `tolerance`: any of them fails the job, whose timing "
+      "and metrics are still recorded for inspection under `partial`, and its images "
+      "with `images.invalid`, the offending pixels"};
 
   std::int64_t nonfinite = 0;
   std::int64_t below_0 = 0;
@@ -59,6 +60,37 @@ struct VisibilityCheckRecord {
   }
 };
 
+// What a failed job measured before it failed (record["partial"]): kept for
+// inspection under a name that says so, and read by no table, chart,
+// comparison or history series (docs/results.md, "Failed jobs").
+struct PartialRecord {
+  static constexpr RecordDoc kSchema{
+      "PartialRecord",
+      "what a failed job had measured when it failed, kept for inspection and shown by no "
+      "table, chart, comparison or history series: the figures an `ok` record has in `timing`, "
+      "`technique.gpu_bytes`, `metrics`, `second_reference` and `classes`. A failed record "
+      "written before `partial` existed has them there; reading it moves them here"};
+
+  std::optional<TimingRecord> timing;
+  std::optional<std::int64_t> gpu_bytes;
+  std::optional<MetricsRecord> metrics;
+  std::optional<SecondReferenceRecord> second_reference;
+  std::optional<ClassesRecord> classes;
+
+  template <class V>
+  static void describe(V& v) {
+    using P = PartialRecord;
+    v.field("timing", &P::timing, {"", "the frames' times, as `timing`"});
+    v.field("gpu_bytes", &P::gpu_bytes,
+            {"bytes", "the technique's peak GPU storage, as `technique.gpu_bytes`"});
+    v.field("metrics", &P::metrics, {"", "the errors, as `metrics`"});
+    v.field("second_reference", &P::second_reference, {"", "as `second_reference`"});
+    v.field("classes", &P::classes, {"", "as `classes`"});
+  }
+
+  bool empty() const { return !timing && !gpu_bytes && !metrics && !second_reference && !classes; }
+};
+
 // Paths relative to the run directory; each present only when written.
 struct ImagesRecord {
   static constexpr RecordDoc kSchema{
@@ -70,6 +102,8 @@ struct ImagesRecord {
   std::optional<std::string> reference_visibility, reference_std_error, reference_shaded;
   std::optional<std::string> reference_stop_bound;
   std::optional<std::string> gbuffer_positions, gbuffer_normals;  // run --gbuffer
+  // A failed visibility check's pixels, by kind (run/run_images.h).
+  std::optional<std::string> invalid;
   // The pixels each metrics.visibility region measured, by region name (an
   // 8-bit PNG, 255 = measured): what recomputes the record's errors from
   // the files (docs/results.md "Recomputing the errors").
@@ -97,6 +131,11 @@ struct ImagesRecord {
     v.field("reference_shaded", &I::reference_shaded, {"", "shaded from it"});
     v.field("gbuffer_positions", &I::gbuffer_positions, {"", "with `run --gbuffer`"});
     v.field("gbuffer_normals", &I::gbuffer_normals, {"", "with `run --gbuffer`"});
+    v.field("invalid", &I::invalid,
+            {"",
+             "when `visibility_check` found pixels: those pixels of the technique's V (before "
+             "the attached-shadow mask) by kind, an 8-bit RGB PNG: red NaN or infinite, blue "
+             "below 0, yellow above 1, black the rest; absent from older records"});
     v.field("masks", &I::masks,
             {"",
              "by region of `metrics.visibility`: an 8-bit PNG, 255 where the region "
@@ -150,7 +189,10 @@ struct JobRecord {
   std::optional<SecondReferenceRecord> second_reference;  // reference.second_method
   std::optional<StabilityRecord> stability;               // the "stability" block
   std::optional<ClassesRecord> classes;  // lit/penumbra/umbra against the reference
-  std::vector<std::string> warnings;     // written only when there are some
+  // A failed job's measurements (above, and technique.gpu_bytes), moved here
+  // by set_aside_failed_measurements().
+  std::optional<PartialRecord> partial;
+  std::vector<std::string> warnings;  // written only when there are some
   // A job whose process died (crash, timeout, out of memory): the last lines
   // that process wrote to stderr. Written only when there are some.
   std::vector<std::string> child_stderr;
@@ -163,6 +205,13 @@ struct JobRecord {
   // Throws RecordError: at /schema_version for another version, else at the
   // first member that is missing or of the wrong type.
   static JobRecord from_json(const nlohmann::json& j);
+
+  // A failed job carries no figures: moves its timing, technique.gpu_bytes,
+  // metrics, second_reference and classes into `partial` (keeping what
+  // `partial` already has). Nothing for a job that did not fail. The
+  // executor calls it on a job that failed, from_json on every record, so
+  // that failed records written before `partial` existed read the same way.
+  void set_aside_failed_measurements();
 
   // The named metric ("visibility.all.rmse"), when the record has metrics.
   std::optional<double> metric(const MetricPath& path) const;
@@ -231,6 +280,10 @@ void JobRecord::describe(V& v) {
   v.field("stability", &J::stability,
           {"", "with a config `stability` block, for a job that was not broken"});
   v.field("classes", &J::classes, {"", "every measured job; absent from older records"});
+  v.field("partial", &J::partial,
+          {"",
+           "a failed job's measurements, in place of `timing`, `technique.gpu_bytes`, "
+           "`metrics`, `second_reference` and `classes`, which a failed record lacks"});
   v.field("warnings", &J::warnings,
           {"",
            "e.g. a reference whose penumbra noise is over half the technique's penumbra "

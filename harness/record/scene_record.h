@@ -155,8 +155,8 @@ struct TechniqueRecord {
   std::optional<PluginRecord> plugin;
   // The most bytes of GPU storage the technique held at once, from its
   // prepare() to its last frame, as made through the gl::make_* helpers
-  // (gl/allocation_meter.h). Absent from older records and from jobs that
-  // did not get through their frames.
+  // (gl/allocation_meter.h). Absent from older records and from failed jobs
+  // (a failed job's is in JobRecord::partial).
   std::optional<std::int64_t> gpu_bytes;
 
   template <class V>
@@ -172,7 +172,8 @@ struct TechniqueRecord {
             {"bytes",
              "the most GPU storage the technique held at once from its `prepare()` "
              "to its last frame, made through the `gl::make_*` helpers (below); "
-             "absent from older records and from jobs that failed before"});
+             "absent from older records and from failed jobs (a failed job's is "
+             "`partial.gpu_bytes`)"});
   }
 
   nlohmann::json to_json() const;

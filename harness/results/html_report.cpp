@@ -344,6 +344,11 @@ class Page {
     if (r.images.shaded || r.images.error_heatmap)
       out_ += "<div class=\"pair\">" + image(r, r.images.shaded, name + ", shaded", "shaded") +
               image(r, r.images.error_heatmap, name + ", error heat map", heat_caption) + "</div>";
+    if (r.images.invalid)
+      out_ += "<div class=\"pair\">" +
+              image(r, r.images.invalid, name + ", invalid pixels",
+                    "V's invalid pixels: red NaN/Inf, blue below 0, yellow above 1") +
+              "</div>";
     const std::string reason = r.reason.value_or("");
     if (r.status != JobStatus::Ok || !reason.empty())
       out_ += "<p class=\"reason-text " + status_class(r.status) + "\">" + to_string(r.status) +

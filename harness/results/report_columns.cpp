@@ -13,6 +13,7 @@ namespace sb::results {
 using core::format_number;
 using record::ImageMetrics;
 using record::JobRecord;
+using record::JobStatus;
 using record::ReferenceRecord;
 using record::RegionStats;
 using record::Series;
@@ -170,6 +171,9 @@ std::vector<ReportColumn> make_columns() {
 
 std::string ReportColumn::cell(const JobRecord& r) const {
   if (text != nullptr) return text(r);
+  // A job that did not finish ok shows its status and reason only, whatever
+  // figures its record keeps (a failed job's are under "partial").
+  if (r.status != JobStatus::Ok) return "";
   const std::optional<double> v = number(r);
   if (!v || std::isnan(*v)) return "";
   if (std::isinf(*v)) return *v > 0 ? "inf" : "-inf";

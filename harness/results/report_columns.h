@@ -35,7 +35,7 @@ struct ReportColumn {
 
   bool numeric() const { return number != nullptr; }
   // The cell: the text, or the number formatted ("" when absent or NaN,
-  // "inf" and "-inf" for infinities).
+  // "inf" and "-inf" for infinities; "" for a job that is not ok).
   std::string cell(const record::JobRecord& r) const;
 };
 

@@ -210,6 +210,7 @@ class JobExecutor::Impl {
       } catch (const std::exception& ex) {
         r.status = JobStatus::Failed;
         r.reason = ex.what();
+        r.set_aside_failed_measurements();  // a failed job carries no figures
         gl::take_debug_errors();
       }
       reset_gl_state();

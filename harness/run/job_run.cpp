@@ -91,6 +91,9 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv, JobRecord& r, Phas
   });
   const VisibilityCheckRecord check = metrics::check_visibility(visibility);
   r.visibility_check = check;
+  const bool invalid = check.nonfinite + check.below_0 + check.above_1 > 0;
+  // V as checked, before the attached-shadow mask hides some offending pixels.
+  const ImageF checked = invalid && s.o.write_images ? visibility : ImageF{};
   const Baseline& b = s.baseline;
   metrics::apply_attached_shadow(b.regions.attached, visibility);
   // Shaded from the same V as the metrics, as the reference is: untimed.
@@ -104,15 +107,19 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv, JobRecord& r, Phas
                                                       s.e.flip_pixels_per_degree)};
   r.classes = ClassesRecord{metrics::confusion_matrix(
       visibility, b.ref.visibility, b.regions.geometry, 1e-6f, &b.regions.penumbra)};
-  if (auto warning = metrics::noise_warning(*r.metrics, b.ref.penumbra_rms_std_error))
-    r.warnings.push_back(*warning);
+  // Of a job that fails, no figure is compared: nor is its penumbra RMSE.
+  if (!invalid)
+    if (auto warning = metrics::noise_warning(*r.metrics, b.ref.penumbra_rms_std_error))
+      r.warnings.push_back(*warning);
   phases.measure = lap.seconds();
   if (s.o.write_images)
     r.images = write_job_images(s.o.run_dir, r.job_id, visibility, shaded, b.ref.visibility,
                                 b.regions, flip_maps);
+  if (!checked.data.empty()) r.images.add(write_invalid_visibility(s.o.run_dir, r.job_id, checked));
   phases.images = lap.seconds();
-  // Metrics and images are kept for inspection, but the job fails.
-  if (check.nonfinite + check.below_0 + check.above_1 > 0)
+  // Metrics and images are kept for inspection (the executor moves the
+  // figures into the record's "partial"), but the job fails.
+  if (invalid)
     throw JobError("visibility outside [0,1]: " + std::to_string(check.nonfinite) + " NaN/Inf, " +
                    std::to_string(check.below_0) + " below 0, " + std::to_string(check.above_1) +
                    " above 1 (tolerance 1e-5)");

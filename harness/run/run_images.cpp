@@ -106,4 +106,16 @@ ImagesRecord write_job_images(const std::string& run_dir, const std::string& job
   return images;
 }
 
+ImagesRecord write_invalid_visibility(const std::string& run_dir, const std::string& job_id,
+                                      const ImageF& visibility) {
+  const std::string rel = "jobs/" + job_id;
+  const fs::path dir = fs::path(run_dir) / rel;
+  fs::create_directories(dir);
+  metrics::io::write_png((dir / "invalid.png").string(),
+                         metrics::invalid_visibility_image(visibility));
+  ImagesRecord images;
+  images.invalid = rel + "/invalid.png";
+  return images;
+}
+
 }  // namespace sb::run

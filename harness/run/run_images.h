@@ -31,4 +31,10 @@ record::ImagesRecord write_job_images(const std::string& run_dir, const std::str
                                       const metrics::Regions& regions,
                                       const metrics::FlipMaps& flip_maps);
 
+// The pixels of the technique's V (before the attached-shadow mask) that
+// fail the visibility check, by kind (metrics::invalid_visibility_image), as
+// <run_dir>/jobs/<job id>/invalid.png: the record's images.invalid.
+record::ImagesRecord write_invalid_visibility(const std::string& run_dir, const std::string& job_id,
+                                              const core::ImageF& visibility);
+
 }  // namespace sb::run

@@ -151,6 +151,11 @@ inline record::JobRecord every_member_record() {
   classes.counts = {{{90, 10, 0}, {30, 50, 20}, {0, 0, 100}}};
   r.classes = classes;
   r.child_stderr = {"Segmentation fault"};
+  // A failed job's figures ("partial"): an ok record has none, but the
+  // schema's every member is here.
+  r.partial = record::PartialRecord{r.timing, r.technique.gpu_bytes, r.metrics, r.second_reference,
+                                    r.classes};
+  r.images.invalid = "jobs/x/invalid.png";
   return r;
 }
 

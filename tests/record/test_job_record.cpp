@@ -311,18 +311,50 @@ TEST(JobRecord, FailedSceneRecordHasNoSceneData) {
   EXPECT_EQ(back.to_json(), j);
 }
 
-// A job that failed after timing (a visibility check): what it got to stays.
-TEST(JobRecord, FailedJobKeepsWhatItMeasured) {
+// A job that failed after timing (a visibility check): what it got to stays,
+// under "partial", and no figure at the top level. A failed record written
+// before "partial" existed, with its figures at the top level, reads the
+// same way (issue 58, item 7).
+TEST(JobRecord, AFailedJobsMeasurementsAreUnderPartial) {
   JobRecord r = full_record();
   r.status = JobStatus::Failed;
   r.reason = "visibility outside [0,1]";
   r.images = {};
   r.images.visibility = "jobs/x/visibility.exr";
-  r.metrics.reset();
-  const json j = r.to_json();
-  EXPECT_EQ(j["images"].size(), 1u);
-  EXPECT_FALSE(j.contains("metrics"));
+  r.images.invalid = "jobs/x/invalid.png";
+  r.technique.gpu_bytes = 4096;
+  r.second_reference = SecondReferenceRecord{*r.reference, r.metrics->visibility};
+  r.classes = ClassesRecord{};
+  ASSERT_TRUE(r.timing && r.metrics && r.second_reference && r.classes && r.technique.gpu_bytes);
+  const json old = r.to_json();  // as a build before "partial" wrote it
+  ASSERT_TRUE(old.contains("metrics"));
+  ASSERT_FALSE(old.contains("partial"));
+
+  const JobRecord back = JobRecord::from_json(old);
+  EXPECT_FALSE(back.timing || back.metrics || back.second_reference || back.classes ||
+               back.technique.gpu_bytes);
+  EXPECT_FALSE(back.metric(*MetricPath::parse("visibility.geometry.rmse")));
+  ASSERT_TRUE(back.partial);
+  EXPECT_EQ(back.partial->timing->to_json(), r.timing->to_json());
+  EXPECT_EQ(back.partial->metrics->to_json(), r.metrics->to_json());
+  EXPECT_EQ(back.partial->second_reference->to_json(), r.second_reference->to_json());
+  EXPECT_EQ(back.partial->classes->to_json(), r.classes->to_json());
+  EXPECT_EQ(back.partial->gpu_bytes, r.technique.gpu_bytes);
+  EXPECT_EQ(back.visibility_check->above_1, r.visibility_check->above_1);  // not a figure: kept
+
+  const json j = back.to_json();
+  for (const char* key : {"timing", "metrics", "second_reference", "classes"})
+    EXPECT_FALSE(j.contains(key)) << key;
+  EXPECT_FALSE(j["technique"].contains("gpu_bytes"));
+  EXPECT_EQ(j["partial"]["metrics"], old["metrics"]);
+  EXPECT_EQ(j["partial"]["timing"], old["timing"]);
+  EXPECT_EQ(j["images"].size(), 2u);
   EXPECT_EQ(JobRecord::from_json(j).to_json(), j);
+
+  // An ok record keeps its figures where they are.
+  const json ok = full_record().to_json();
+  EXPECT_EQ(JobRecord::from_json(ok).to_json(), ok);
+  EXPECT_FALSE(ok.contains("partial"));
 }
 
 // What from_json throws for `j` (a test failure when it reads).

@@ -138,6 +138,7 @@ TEST(RecordSchema, EachRecordTypeRoundTripsMinimalAndFull) {
   round_trips(*r.classes, "classes");
   round_trips(*r.second_reference, "second_reference");
   round_trips(*r.visibility_check, "visibility_check");
+  round_trips(*r.partial, "partial");
   round_trips(r.images, "images");
 }
 

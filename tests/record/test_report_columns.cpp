@@ -217,6 +217,32 @@ TEST(ReportColumns, GpuMemoryIsInMibAndAppearsOnlyWhenARecordHasIt) {
   EXPECT_NE(md.find("| 20.50 |"), std::string::npos) << md;
 }
 
+// A failed job shows its status and reason only, even from a record that
+// keeps figures where an ok one has them (one made in memory, or read
+// whole by an older build): every figure cell is empty (issue 58, item 7).
+TEST(ReportColumns, AFailedJobsFigureCellsAreEmptyWhateverItsRecordHolds) {
+  auto rs = records();
+  JobRecord failed = rs[0];
+  failed.technique_variant = "writes_nan";
+  failed.technique.gpu_bytes = 1 << 20;
+  failed.status = JobStatus::Failed;
+  failed.reason = "visibility outside [0,1]: 7 NaN/Inf, 0 below 0, 0 above 1 (tolerance 1e-5)";
+  int figures = 0;
+  for (const auto& c : report_columns()) {
+    if (!c.numeric()) continue;
+    figures += !c.cell(rs[0]).empty();
+    EXPECT_EQ(c.cell(failed), "") << c.name;
+  }
+  EXPECT_GE(figures, 6);  // the same record, ok, has them
+  EXPECT_EQ(report_column("status").cell(failed), "failed");
+  EXPECT_EQ(report_column("reason").cell(failed), *failed.reason);
+  rs.push_back(failed);
+  const std::string csv = make_csv(rs);
+  EXPECT_NE(csv.find(",writes_nan,failed,,,,,,,,,,,,,,,,,,,,,\"visibility outside"),
+            std::string::npos)
+      << csv;
+}
+
 TEST(ReportColumns, FlipIsTheShadedImagesOverTheGeometryAndAppearsOnlyWhenMeasured) {
   auto rs = records();
   EXPECT_EQ(report_column("flip").cell(rs[0]), "");

@@ -98,7 +98,15 @@ TEST_F(report_chromium, MissingImageIsDetected) {
 // resulting order of the first table into the body's data attributes.
 TEST_F(report_chromium, ClickingAHeaderSortsNumericallyAndToggles) {
   test::TempDir dir("html_chromium_sort");
-  const auto run = test::make_synthetic_run(dir.path());
+  auto run = test::make_synthetic_run(dir.path());
+  // A failed job shows no figure (docs/results.md, "Failed jobs carry no
+  // numbers"): here the one that failed (vsm) is ok, so that its figures
+  // (a tiny negative rmse, a 120 ms frame) are sorted too.
+  for (record::JobRecord& r : run.records)
+    if (r.status == record::JobStatus::Failed) {
+      r.status = record::JobStatus::Ok;
+      r.reason.reset();
+    }
   test::write_synthetic_report(run);
   std::string html = test::read_text(run.out_dir / "index.html");
   const std::string probe = R"(<script>
