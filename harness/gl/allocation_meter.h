@@ -5,9 +5,12 @@
 // (gl/storage_bytes.h) stay counted until the object is deleted or its
 // storage replaced. The run opens the window around one technique's
 // prepare() and frames, so that the G-buffer, reference and control, made
-// outside it, are not counted. GL objects a plugin makes with raw GL calls
-// are not seen. One meter per process, used from the GL thread only.
+// outside it, are not counted; and one around each upload the harness makes
+// for a need (run/scene_upload.h, GpuScene's adjacency), which a technique
+// that declares the need is charged. GL objects a plugin makes with raw GL
+// calls are not seen. One meter per process, used from the GL thread only.
 #include <cstdint>
+#include <memory>
 
 #include "gl/gl.h"
 
@@ -25,10 +28,13 @@ void meter_restorage(StorageKind kind, GLuint id, std::int64_t bytes);
 // Called when an object is deleted: its bytes are no longer live.
 void meter_release(StorageKind kind, GLuint id);
 
-// An open window of the meter; at most one at a time. Closes on
-// destruction, forgetting what it saw.
+// An open window of the meter. Windows nest: each counts what is made
+// while it is open, so a window around a scene's upload inside a job's
+// counts in both. Closes on destruction, forgetting what it saw.
 class AllocationWindow {
  public:
+  struct Tally;
+
   AllocationWindow();
   ~AllocationWindow();
   AllocationWindow(const AllocationWindow&) = delete;
@@ -38,6 +44,9 @@ class AllocationWindow {
   std::int64_t peak_bytes() const;
   // The bytes live now.
   std::int64_t live_bytes() const;
+
+ private:
+  std::unique_ptr<Tally> tally_;
 };
 
 }  // namespace sb::gl

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "gl/allocation_meter.h"
+
 namespace sb::gl {
 
 using core::Mesh;
@@ -87,9 +89,13 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>&
   indices_ = gl::make_buffer(GLsizeiptr(index_data.size() * 4), index_data.data());
   vao_ = make_vao(vertices_.get(), indices_.get());
   if (!adjacency_data.empty()) {
+    // Held for the techniques that declare need::kEdgeAdjacency, which are
+    // charged it (gl/allocation_meter.h).
+    const AllocationWindow window;
     adjacency_ = gl::make_buffer(GLsizeiptr(adjacency_data.size() * 4), adjacency_data.data());
     adjacency_vao_ = make_vao(vertices_.get(), adjacency_.get());
     adjacency_count_ = GLsizei(adjacency_data.size());
+    adjacency_bytes_ = window.live_bytes();
   }
 }
 

@@ -72,6 +72,9 @@ class GpuScene {
   GLuint vertex_buffer() const { return vertices_.get(); }
   GLuint index_buffer() const { return indices_.get(); }
   GLuint adjacency_buffer() const { return adjacency_.get(); }  // 0 unless built
+  // The adjacency buffer's storage as the meter counts it (gl/allocation_meter.h:
+  // 4 bytes an index, 6 indices a caster triangle); 0 unless built.
+  std::int64_t adjacency_bytes() const { return adjacency_bytes_; }
   std::vector<MeshRange> mesh_ranges() const;
 
  private:
@@ -94,6 +97,7 @@ class GpuScene {
   std::vector<Range> ranges_;
   std::vector<Range> adjacency_ranges_;
   GLsizei adjacency_count_ = 0;
+  std::int64_t adjacency_bytes_ = 0;
 };
 
 }  // namespace sb::gl

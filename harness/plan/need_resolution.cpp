@@ -83,11 +83,14 @@ ResolvedNeeds resolve_needs(const Scene& scene, const std::vector<const Techniqu
   Resolver resolver(scene, plugins, out);
   std::vector<std::vector<const NeedProvider*>> per_technique(techniques.size());
   out.skip_reason.assign(techniques.size(), "");
+  out.needs.resize(techniques.size());
   for (size_t t = 0; t < techniques.size(); ++t) {
     const std::string missing = resolver.closure(techniques[t]->needs.names, per_technique[t]);
     if (!missing.empty())
       out.skip_reason[t] =
           techniques[t]->name + " needs '" + missing + "', which no loaded plugin provides";
+    else
+      for (const NeedProvider* p : per_technique[t]) out.needs[t].push_back(p->name);
   }
   // Plan needs of every technique (even those about to be skipped: their
   // reasons come from these), in the techniques' order.

@@ -19,6 +19,10 @@ enum class Derive {
 struct ResolvedNeeds {
   plugin::DerivedData data;
   std::vector<std::string> skip_reason;  // per technique; "" = runs
+  // Per technique: its needs and those they require, dependencies first
+  // (empty when one has no provider). What the harness holds for it, and
+  // charges it (technique.gpu_bytes).
+  std::vector<std::vector<std::string>> needs;
   // GPU stages for the running techniques' needs, in dependency order; the
   // runner calls each once the scene is on the GPU.
   std::vector<const plugin::NeedProvider*> uploads;

@@ -54,6 +54,7 @@ ScenePlan plan_scene(const Experiment& e, const SceneVariant& sv, Derive derive)
     p.derived = std::move(needs.data);
     p.uploads = std::move(needs.uploads);
     p.skip_reason = std::move(needs.skip_reason);
+    p.needs = std::move(needs.needs);
     for (auto& l : needs.log) p.log.push_back(std::move(l));
   } catch (const InputError& ex) {
     p.error = std::string("bad scene input: ") + ex.what();

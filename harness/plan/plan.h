@@ -25,6 +25,7 @@ struct ScenePlan {
   std::vector<const plugin::NeedProvider*> uploads;  // GPU stages of the running techniques' needs
   std::vector<std::string> inferred_receivers;       // scenes/receiver_inference.h
   std::vector<std::string> skip_reason;              // per technique variant; "" = runs
+  std::vector<std::vector<std::string>> needs;       // per technique variant (ResolvedNeeds)
   std::string error;             // why the scene could not be built: all its jobs fail
   bool bad_input = false;        // ... because its input (a glTF file, say) is bad
   std::string input_error;       // then the InputError's message (file and place)

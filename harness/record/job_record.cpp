@@ -98,6 +98,8 @@ void JobRecord::set_aside_failed_measurements() {
   PartialRecord p = partial.value_or(PartialRecord{});
   set_aside(timing, p.timing);
   set_aside(technique.gpu_bytes, p.gpu_bytes);
+  set_aside(technique.gpu_own_bytes, p.gpu_own_bytes);
+  set_aside(technique.gpu_need_bytes, p.gpu_need_bytes);
   set_aside(metrics, p.metrics);
   set_aside(second_reference, p.second_reference);
   set_aside(classes, p.classes);

@@ -68,11 +68,13 @@ struct PartialRecord {
       "PartialRecord",
       "what a failed job had measured when it failed, kept for inspection and shown by no "
       "table, chart, comparison or history series: the figures an `ok` record has in `timing`, "
-      "`technique.gpu_bytes`, `metrics`, `second_reference` and `classes`. A failed record "
+      "`technique.gpu_bytes` with its parts, `metrics`, `second_reference` and `classes`. A failed "
+      "record "
       "written before `partial` existed has them there; reading it moves them here"};
 
   std::optional<TimingRecord> timing;
-  std::optional<std::int64_t> gpu_bytes;
+  std::optional<std::int64_t> gpu_bytes, gpu_own_bytes;
+  std::optional<std::map<std::string, std::int64_t>> gpu_need_bytes;
   std::optional<MetricsRecord> metrics;
   std::optional<SecondReferenceRecord> second_reference;
   std::optional<ClassesRecord> classes;
@@ -82,13 +84,18 @@ struct PartialRecord {
     using P = PartialRecord;
     v.field("timing", &P::timing, {"", "the frames' times, as `timing`"});
     v.field("gpu_bytes", &P::gpu_bytes,
-            {"bytes", "the technique's peak GPU storage, as `technique.gpu_bytes`"});
+            {"bytes", "the technique's GPU memory, as `technique.gpu_bytes`"});
+    v.field("gpu_own_bytes", &P::gpu_own_bytes, {"bytes", "as `technique.gpu_own_bytes`"});
+    v.field("gpu_need_bytes", &P::gpu_need_bytes, {"bytes", "as `technique.gpu_need_bytes`"});
     v.field("metrics", &P::metrics, {"", "the errors, as `metrics`"});
     v.field("second_reference", &P::second_reference, {"", "as `second_reference`"});
     v.field("classes", &P::classes, {"", "as `classes`"});
   }
 
-  bool empty() const { return !timing && !gpu_bytes && !metrics && !second_reference && !classes; }
+  bool empty() const {
+    return !timing && !gpu_bytes && !gpu_own_bytes && !gpu_need_bytes && !metrics &&
+           !second_reference && !classes;
+  }
 };
 
 // Paths relative to the run directory; each present only when written.

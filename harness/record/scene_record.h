@@ -2,6 +2,7 @@
 // record["scene"] and record["technique"]: what ran (docs/results.md).
 #include <array>
 #include <cstdint>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -153,11 +154,23 @@ struct TechniqueRecord {
   // Absent in records from before plugin identities, and for a technique
   // no module registered (a test's own).
   std::optional<PluginRecord> plugin;
-  // The most bytes of GPU storage the technique held at once, from its
-  // prepare() to its last frame, as made through the gl::make_* helpers
-  // (gl/allocation_meter.h). Absent from older records and from failed jobs
-  // (a failed job's is in JobRecord::partial).
+  // GPU storage (docs/results.md, "GPU memory"): the most the technique
+  // held at once from its prepare() to its last frame, made through the
+  // gl::make_* helpers (gl/allocation_meter.h), and what the harness holds
+  // on the GPU for the needs it declares (edge adjacency, silhouette edges,
+  // a plugin need's upload), per need. gpu_bytes is their sum. Absent from
+  // jobs that did not get through their frames and from failed jobs (theirs
+  // are in JobRecord::partial); the parts are absent from older records,
+  // whose gpu_bytes is the technique's own only.
   std::optional<std::int64_t> gpu_bytes;
+  std::optional<std::int64_t> gpu_own_bytes;
+  std::optional<std::map<std::string, std::int64_t>> gpu_need_bytes;
+
+  // Sets the parts and their sum.
+  void set_gpu_bytes(std::int64_t own, const std::map<std::string, std::int64_t>& needs);
+  // gpu_bytes when the record has its parts: its total. nullopt for older
+  // records, whose gpu_bytes left the needs out.
+  std::optional<std::int64_t> gpu_total_bytes() const;
 
   template <class V>
   static void describe(V& v) {
@@ -170,11 +183,25 @@ struct TechniqueRecord {
             {"", "absent from older records and for a technique no module registered"});
     v.field("gpu_bytes", &T::gpu_bytes,
             {"bytes",
-             "the most GPU storage the technique held at once from its `prepare()` "
-             "to its last frame, made through the `gl::make_*` helpers (below); "
-             "absent from older records and from failed jobs (a failed job's is "
-             "`partial.gpu_bytes`)"});
+             "the technique's GPU memory: `gpu_own_bytes` plus the sum of `gpu_need_bytes` "
+             "(below); absent from jobs that failed before their last frame and from failed "
+             "jobs (a failed job's are under `partial`); in records without `gpu_own_bytes`, "
+             "its own storage only"});
+    v.field("gpu_own_bytes", &T::gpu_own_bytes,
+            {"bytes",
+             "the most GPU storage the technique held at once from its `prepare()` to its "
+             "last frame, made through the `gl::make_*` helpers (\"GPU memory\" above); absent "
+             "from older records"});
+    v.field("gpu_need_bytes", &T::gpu_need_bytes,
+            {"bytes",
+             "per need the technique declares (with those they require) that the harness "
+             "holds on the GPU for it, the bytes it holds: `edge_adjacency`, "
+             "`silhouette_edges`, a plugin need's upload; `{}` when none; absent from older "
+             "records"});
   }
+
+  // gpu_bytes is the sum of its parts, when they are there.
+  static void check(const TechniqueRecord& t, const Fields& f);
 
   nlohmann::json to_json() const;
   static TechniqueRecord from_json(const Fields& f);

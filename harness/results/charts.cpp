@@ -238,16 +238,18 @@ void error_time_charts(const std::vector<const JobRecord*>& ok, const std::strin
       styles, out_dir, out);
 }
 
-// Error against the technique's GPU memory (technique.gpu_bytes) per
-// (scene variant, resolution), where the records have it.
+// Error against the technique's GPU memory, its own and its needs'
+// (technique.gpu_bytes), per (scene variant, resolution), where the records
+// have that total (older records counted the technique's own only).
 void error_memory_charts(const std::vector<const JobRecord*>& ok, const std::string& metric,
                          Palette& styles, const std::string& out_dir, std::vector<Chart>& out) {
   error_cost_charts(
-      ok, metric, "error_memory", "GPU memory", "technique's peak GPU memory (MiB)",
+      ok, metric, "error_memory", "GPU memory",
+      "GPU memory: the technique's peak and its needs' (MiB)",
       [](const JobRecord& r) {
         Cost c;
-        if (r.technique.gpu_bytes)
-          c.x = static_cast<double>(*r.technique.gpu_bytes) / (1024.0 * 1024.0);
+        if (const auto bytes = r.technique.gpu_total_bytes())
+          c.x = static_cast<double>(*bytes) / (1024.0 * 1024.0);
         return c;
       },
       styles, out_dir, out);

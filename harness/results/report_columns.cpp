@@ -56,10 +56,12 @@ std::optional<double> ratio_to_control(const JobRecord& r) {
   return r.timing->control->frame_ratio.median;
 }
 
-// The technique's peak GPU storage (technique.gpu_bytes), in MiB.
+// The technique's GPU memory, its own and its needs' (technique.gpu_bytes),
+// in MiB; none for older records, which counted its own only.
 std::optional<double> gpu_mib(const JobRecord& r) {
-  if (!r.technique.gpu_bytes) return std::nullopt;
-  return double(*r.technique.gpu_bytes) / (1024.0 * 1024.0);
+  const auto bytes = r.technique.gpu_total_bytes();
+  if (!bytes) return std::nullopt;
+  return double(*bytes) / (1024.0 * 1024.0);
 }
 
 // The visibility's figure against the second reference.

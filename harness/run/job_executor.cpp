@@ -100,7 +100,7 @@ class JobExecutor::Impl {
         // Both or neither: a failed GPU stage is tried again at the next
         // resolution, like a failed upload.
         if (!uploaded.gpu) uploaded = upload_scene(st);
-        run_resolution(sv, st, *uploaded.gpu, uploaded.derived, res, pending);
+        run_resolution(sv, st, uploaded, res, pending);
       } catch (const std::exception& ex) {
         // Shared work (G-buffer, reference) failed: every job not yet
         // finished fails.
@@ -144,9 +144,10 @@ class JobExecutor::Impl {
     finish(std::move(r));
   }
 
-  void run_resolution(const SceneVariant& sv, const ScenePlan& st, const GpuScene& gpu,
-                      const DerivedData& derived, const Resolution& res,
-                      const std::vector<size_t>& pending) {
+  void run_resolution(const SceneVariant& sv, const ScenePlan& st, const UploadedScene& uploaded,
+                      const Resolution& res, const std::vector<size_t>& pending) {
+    const GpuScene& gpu = *uploaded.gpu;
+    const DerivedData& derived = uploaded.derived;
     reset_gl_state();
     FrameTargets targets(res.width, res.height);
     const float aspect = float(res.width) / float(res.height);
@@ -204,7 +205,7 @@ class JobExecutor::Impl {
       const auto t0 = std::chrono::steady_clock::now();
       PhasesRecord phases;
       try {
-        run_job(setting, tv, r, phases);
+        run_job(setting, tv, uploaded.gpu_bytes_held_for(st.needs.at(i)), r, phases);
         r.images.add(baseline.ref_images);
         r.status = JobStatus::Ok;
       } catch (const std::exception& ex) {

@@ -31,6 +31,7 @@ using record::BuildRecord;
 using record::BuiltScene;
 using record::JobRecord;
 using record::PluginRecord;
+using record::TechniqueRecord;
 using results::json_text;
 
 using json = nlohmann::json;
@@ -177,8 +178,11 @@ JobRecord identity_record(const Experiment& e, const RunOptions& o, const Embree
   r.scene.variant = sv.name;
   r.scene.params = sv.params.json();
   r.technique_variant = tv.name;
-  r.technique = {tv.info->name,    tv.info->family, tv.name,
-                 tv.params.json(), std::nullopt,    std::nullopt};
+  r.technique = TechniqueRecord{};
+  r.technique.name = tv.info->name;
+  r.technique.family = tv.info->family;
+  r.technique.variant = tv.name;
+  r.technique.params = tv.params.json();
   if (const PluginIdentity* p = plugin_of(e, tv))
     r.technique.plugin = PluginRecord{p->file, p->size, p->sha256, p->api_version};
   r.resolution = res.label();

@@ -54,11 +54,14 @@ FrameSchedule schedule_of(const JobSetting& s, const TechniqueVariant& tv) {
 
 }  // namespace
 
-void run_job(const JobSetting& s, const TechniqueVariant& tv, JobRecord& r, PhasesRecord& phases) {
+void run_job(const JobSetting& s, const TechniqueVariant& tv,
+             const std::map<std::string, std::int64_t>& need_gpu_bytes, JobRecord& r,
+             PhasesRecord& phases) {
   Lap lap;
   gl::take_debug_errors();
   const std::string& who = tv.info->name;
-  // Counts what the technique allocates from here to its last frame.
+  // Counts what the technique allocates from here to its last frame; what
+  // the harness holds for its needs was made before, and is added to it.
   gl::AllocationWindow allocations;
   std::unique_ptr<Technique> technique = in_technique_phase(who, "prepare", [&] {
     std::unique_ptr<Technique> t = tv.info->create(tv.params);
@@ -80,7 +83,7 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv, JobRecord& r, Phas
   TechniqueFrames frames(s.frame, *technique, who, s.control, delay, s.timing_source,
                          [&] { s.o.take_turn(tv.name); });
   r.timing = time_frames(frames, schedule_of(s, tv));
-  r.technique.gpu_bytes = allocations.peak_bytes();
+  r.technique.set_gpu_bytes(allocations.peak_bytes(), need_gpu_bytes);
   phases.frames = lap.seconds();
   if (delay != nullptr) r.warnings.push_back(delay->describe());
 

@@ -3,6 +3,8 @@
 // (run/frame_schedule.h) next to the control's, check and measure its V
 // against the baseline, write its images and, with the "stability" block,
 // its stability figures.
+#include <cstdint>
+#include <map>
 #include <string>
 
 #include "config/experiment.h"
@@ -32,7 +34,10 @@ struct JobSetting {
 };
 
 // Whatever the job got to stays in `r` and `phases` when it throws.
-void run_job(const JobSetting& s, const config::TechniqueVariant& tv, record::JobRecord& r,
+// `need_gpu_bytes`: what the harness holds on the GPU for the technique's
+// needs (UploadedScene::gpu_bytes_held_for), charged beside its own storage.
+void run_job(const JobSetting& s, const config::TechniqueVariant& tv,
+             const std::map<std::string, std::int64_t>& need_gpu_bytes, record::JobRecord& r,
              record::PhasesRecord& phases);
 
 }  // namespace sb::run

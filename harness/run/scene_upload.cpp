@@ -3,6 +3,7 @@
 #include <utility>
 #include <vector>
 
+#include "gl/allocation_meter.h"
 #include "scenes/need_providers.h"
 #include "scenes/receiver_inference.h"
 
@@ -39,9 +40,24 @@ UploadedScene upload_scene(const ScenePlan& st) {
   const auto* adjacency = st.derived.find<CasterAdjacency>(plugin::need::kEdgeAdjacency);
   auto uploaded = std::make_unique<GpuScene>(st.scene, adjacency ? *adjacency : CasterAdjacency{},
                                              draw_flags(st));
+  std::map<std::string, std::int64_t> need_gpu_bytes;
+  if (adjacency != nullptr)
+    need_gpu_bytes[plugin::need::kEdgeAdjacency] = uploaded->adjacency_bytes();
   DerivedData with_gpu = st.derived;
-  for (const NeedProvider* p : st.uploads) p->upload(st.scene, *uploaded, with_gpu);
-  return {std::move(uploaded), std::move(with_gpu)};
+  for (const NeedProvider* p : st.uploads) {
+    const gl::AllocationWindow window;
+    p->upload(st.scene, *uploaded, with_gpu);
+    need_gpu_bytes[p->name] = window.live_bytes();  // what it keeps, not its scratch
+  }
+  return {std::move(uploaded), std::move(with_gpu), std::move(need_gpu_bytes)};
+}
+
+std::map<std::string, std::int64_t> UploadedScene::gpu_bytes_held_for(
+    const std::vector<std::string>& needs) const {
+  std::map<std::string, std::int64_t> out;
+  for (const std::string& n : needs)
+    if (const auto it = need_gpu_bytes.find(n); it != need_gpu_bytes.end()) out.insert(*it);
+  return out;
 }
 
 }  // namespace sb::run

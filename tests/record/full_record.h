@@ -107,7 +107,7 @@ inline record::JobRecord every_member_record() {
   r.shard = "1/2";
   r.reason = "a visibility check failed";
   r.technique.plugin = record::PluginRecord{"shadow_map.so", 812345, std::string(64, 'a'), 1};
-  r.technique.gpu_bytes = 4096;
+  r.technique.set_gpu_bytes(3456, {{"edge_adjacency", 640}});
   r.host.gl_stack = record::parse_gl_stack("llvmpipe (LLVM 15.0.6, 256 bits)", "4.5 Mesa 22.3.6");
   r.host.env = {{"LP_NUM_THREADS", "2"}};
   r.host.kernel = "6.1.0";
@@ -153,8 +153,15 @@ inline record::JobRecord every_member_record() {
   r.child_stderr = {"Segmentation fault"};
   // A failed job's figures ("partial"): an ok record has none, but the
   // schema's every member is here.
-  r.partial = record::PartialRecord{r.timing, r.technique.gpu_bytes, r.metrics, r.second_reference,
-                                    r.classes};
+  record::PartialRecord partial;
+  partial.timing = r.timing;
+  partial.gpu_bytes = r.technique.gpu_bytes;
+  partial.gpu_own_bytes = r.technique.gpu_own_bytes;
+  partial.gpu_need_bytes = r.technique.gpu_need_bytes;
+  partial.metrics = r.metrics;
+  partial.second_reference = r.second_reference;
+  partial.classes = r.classes;
+  r.partial = partial;
   r.images.invalid = "jobs/x/invalid.png";
   return r;
 }

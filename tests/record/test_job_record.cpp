@@ -162,6 +162,64 @@ TEST(JobRecord, GpuBytesRoundTripAndOlderRecordsLackThem) {
   }
 }
 
+TEST(JobRecord, GpuBytesAreTheTechniquesOwnPlusItsNeedsAndOlderRecordsHaveNoTotal) {
+  JobRecord r = full_record();
+  r.technique.set_gpu_bytes(32768, {{"edge_adjacency", 1000}, {"silhouette_edges", 640}});
+  EXPECT_EQ(r.technique.gpu_bytes, 32768 + 1000 + 640);
+  json j = r.to_json();
+  EXPECT_EQ(j["technique"]["gpu_bytes"], 34408);
+  EXPECT_EQ(j["technique"]["gpu_own_bytes"], 32768);
+  EXPECT_EQ(j["technique"]["gpu_need_bytes"],
+            json({{"edge_adjacency", 1000}, {"silhouette_edges", 640}}));
+  const JobRecord back = JobRecord::from_json(json::parse(j.dump()));
+  EXPECT_EQ(back.technique.gpu_own_bytes, 32768);
+  EXPECT_EQ(back.technique.gpu_need_bytes, r.technique.gpu_need_bytes);
+  EXPECT_EQ(back.technique.gpu_total_bytes(), 34408);
+  // No needs on the GPU: an empty map, written, so the total is known.
+  r.technique.set_gpu_bytes(4096, {});
+  j = r.to_json();
+  EXPECT_EQ(j["technique"]["gpu_need_bytes"], json::object());
+  EXPECT_EQ(JobRecord::from_json(j).technique.gpu_total_bytes(), 4096);
+
+  // A record from before the needs were counted: gpu_bytes alone, the
+  // technique's own; it reads, without a total.
+  json older = j;
+  older["technique"].erase("gpu_own_bytes");
+  older["technique"].erase("gpu_need_bytes");
+  const JobRecord old = JobRecord::from_json(older);
+  EXPECT_EQ(old.technique.gpu_bytes, 4096);
+  EXPECT_FALSE(old.technique.gpu_own_bytes.has_value());
+  EXPECT_FALSE(old.technique.gpu_need_bytes.has_value());
+  EXPECT_FALSE(old.technique.gpu_total_bytes().has_value());
+
+  // A total that is not the sum of its parts is refused where it is.
+  json wrong = j;
+  wrong["technique"]["gpu_bytes"] = 4000;
+  try {
+    (void)JobRecord::from_json(wrong);
+    FAIL() << "a gpu_bytes other than its parts' sum was read";
+  } catch (const RecordError& e) {
+    EXPECT_EQ(e.pointer(), "/technique/gpu_bytes") << e.what();
+    EXPECT_NE(e.problem().find("4096"), std::string::npos) << e.what();
+  }
+  json half = j;
+  half["technique"].erase("gpu_need_bytes");
+  try {
+    (void)JobRecord::from_json(half);
+    FAIL() << "gpu_own_bytes without gpu_need_bytes was read";
+  } catch (const RecordError& e) {
+    EXPECT_EQ(e.pointer(), "/technique/gpu_own_bytes") << e.what();
+  }
+  json as_text = j;
+  as_text["technique"]["gpu_need_bytes"] = {{"edge_adjacency", "1 KiB"}};
+  try {
+    (void)JobRecord::from_json(as_text);
+    FAIL() << "a need's bytes as a string was read";
+  } catch (const RecordError& e) {
+    EXPECT_EQ(e.pointer(), "/technique/gpu_need_bytes/edge_adjacency") << e.what();
+  }
+}
+
 TEST(JobRecord, AnalyticCastersAreRecordedAndOlderRecordsReadAsNone) {
   json j = full_record().to_json();
   EXPECT_EQ(j["scene"]["analytic_casters"], 81);

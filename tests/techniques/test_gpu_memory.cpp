@@ -130,7 +130,26 @@ TEST_F(GpuMemory, NothingOutsideAWindowCounts) {
   // A stream made before the window (a control's) is refilled in it.
   gl::set_buffer_data(stream, 256, nullptr, GL_STREAM_DRAW);
   EXPECT_EQ(window.peak_bytes(), 0);
-  EXPECT_THROW(gl::AllocationWindow(), std::logic_error);  // one at a time
+}
+
+TEST_F(GpuMemory, NestedWindowsEachCountWhatIsMadeWhileTheyAreOpen) {
+  gl::AllocationWindow outer;
+  const gl::Buffer first = gl::make_buffer(100, nullptr);
+  {
+    gl::AllocationWindow inner;
+    const gl::Buffer second = gl::make_buffer(40, nullptr);
+    gl::Buffer third = gl::make_buffer(10, nullptr);
+    third.reset();
+    EXPECT_EQ(inner.live_bytes(), 40);  // not `first`, made before it opened
+    EXPECT_EQ(inner.peak_bytes(), 50);
+    EXPECT_EQ(outer.live_bytes(), 140);
+    EXPECT_EQ(outer.peak_bytes(), 150);
+  }
+  // `second` was deleted as the inner window closed; the outer one saw it.
+  EXPECT_EQ(outer.live_bytes(), 100);
+  EXPECT_EQ(outer.peak_bytes(), 150);
+  const gl::Buffer fourth = gl::make_buffer(7, nullptr);
+  EXPECT_EQ(outer.live_bytes(), 107);  // still counting once the inner one closed
 }
 
 }  // namespace
