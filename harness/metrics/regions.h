@@ -11,7 +11,11 @@
 namespace sb::metrics {
 
 struct Regions {
-  std::vector<uint8_t> measured;   // all but the pixels whose tangent plane cuts the light
+  std::vector<uint8_t> measured;  // all but the pixels whose tangent plane cuts the light
+  // The pixels whose tangent plane cuts the light (LightHorizon::Cuts: the
+  // band at a curved surface's terminator): in no other region, measured on
+  // their own (metrics/job_metrics.h); the complement of `measured`.
+  std::vector<uint8_t> terminator;
   std::vector<uint8_t> penumbra;   // the reference's soft pixels, measured ones only
   std::vector<uint8_t> attached;   // the light wholly below the tangent plane: V = 0
   std::vector<uint8_t> receivers;  // measured pixels on meshes that cast no shadow
