@@ -147,9 +147,10 @@ def check_record(run_dir, record, rtol):
             problems.append(f"{record['job_id']}: no mask for region {region} in images.masks")
             continue
         got = errors(test, ref, masks[region])
-        # geometry's SSIM windows see the reference's values outside it, every
-        # other region's outside the measured pixels (docs/results.md "Regions").
-        outside = masks[region] if region == "geometry" else masks["all"]
+        # geometry's and terminator's SSIM windows see the reference's values
+        # outside them, every other region's outside the measured pixels
+        # (docs/results.md "Regions").
+        outside = masks[region] if region in ("geometry", "terminator") else masks["all"]
         got["ssim"] = mean_ssim(test, ref, masks[region], outside)
         for key, want in figures.items():
             if key not in got:

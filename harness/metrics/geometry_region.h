@@ -2,7 +2,7 @@
 // The `geometry` region: the measured surface pixels outside attached shadow,
 // i.e. the pixels whose tangent plane has the whole light above it
 // (LightHorizon::Above). Sky, attached shadow (V = 0 for every technique by
-// rule) and the horizon-cut band (left out of every metric) are not in it, so
+// rule) and the horizon-cut band (measured on its own, `terminator`) are not in it, so
 // its error does not change with how much of the frame they fill: the region
 // to compare techniques and scenes by (docs/results.md, "Regions").
 #include <cstdint>

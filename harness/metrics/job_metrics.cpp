@@ -36,6 +36,14 @@ RegionStats region_stats(const ErrorStats& s) {
   return r;
 }
 
+// A region with no pixel: every figure undefined, as compare() gives it.
+RegionStats no_pixels() {
+  ErrorStats s;
+  s.rmse = s.mae = s.max_error = s.psnr = s.ssim = s.mean_signed = std::nan("");
+  s.frac_over_001 = s.frac_over_005 = s.frac_over_01 = std::nan("");
+  return region_stats(s);
+}
+
 // Regions, each only over the measured pixels (all but those whose tangent
 // plane cuts the light; see metrics/light_horizon.h): every pixel; the
 // reference's penumbra; the soft pixels of either the technique or the
@@ -43,7 +51,9 @@ RegionStats region_stats(const ErrorStats& s) {
 // and blur outside the true penumbra; and, when the view holds any, the
 // pixels on meshes that cast no shadow (`receivers`). `geometry`, the surface
 // outside attached shadow, is measured on its own (metrics/geometry_region.h):
-// its SSIM windows see the reference's values everywhere outside it.
+// its SSIM windows see the reference's values everywhere outside it. So is
+// `terminator`, the pixels whose tangent plane cuts the light, which no other
+// region holds: the technique's own values there, the reference's outside.
 //
 // SSIM's windows reach past the mask, so the unmeasured pixels take the
 // reference's values first: they add no error to a neighbour either.
@@ -70,6 +80,9 @@ ImageMetrics compare_images(const ImageF& test, const ImageF& ref, const Regions
   m.geometry = region_stats(geometry_shares ? stats[first_extra - 1]
                                             : compare_within(t, ref, regions.geometry));
   if (regions.any_receiver) m.receivers = region_stats(stats[3]);
+  m.terminator = count_ones(regions.terminator) == 0
+                     ? no_pixels()
+                     : region_stats(compare_within(test, ref, regions.terminator));
   if (extra_stats != nullptr)
     for (size_t i = first_extra; i < stats.size(); ++i)
       extra_stats->push_back(region_stats(stats[i]));
@@ -85,24 +98,42 @@ double masked_mean(const ImageF& map, const std::vector<uint8_t>& mask) {
   return n == 0 ? std::nan("") : sum / static_cast<double>(n);
 }
 
-// The FLIP map of test against ref (the unmeasured pixels from ref), and its
-// mean in each region of m.
-ImageF add_flip_means(ImageMetrics& m, const ImageF& test, const ImageF& ref,
-                      const Regions& regions, const std::vector<uint8_t>& soft_union,
-                      double pixels_per_degree) {
-  ImageF map =
-      flip(with_unmeasured_from(test, ref, regions.measured), ref, pixels_per_degree).error;
+// The FLIP map of test against ref with every pixel outside `inside` taking
+// ref's values, as compare_within does for SSIM.
+ImageF flip_within(const ImageF& test, const ImageF& ref, const std::vector<uint8_t>& inside,
+                   double pixels_per_degree) {
+  return flip(ref, with_unmeasured_from(test, ref, inside), pixels_per_degree).error;
+}
+
+// Each region's mean of the FLIP map of test against ref, the map computed
+// as the region's SSIM is (compare_images): with the unmeasured pixels from
+// ref, and for `geometry` and `terminator` with every pixel outside the
+// region from ref. Geometry shares the first map when the technique's values
+// outside it already equal the reference's (every shaded image, say);
+// terminator, the measured pixels being outside it, takes a map of its own
+// when it has pixels.
+void add_flip_means(ImageMetrics& m, const ImageF& test, const ImageF& ref, const Regions& regions,
+                    const std::vector<uint8_t>& soft_union, double pixels_per_degree) {
+  const ImageF t = with_unmeasured_from(test, ref, regions.measured);
+  const ImageF map = flip(ref, t, pixels_per_degree).error;
   m.all.flip_mean = masked_mean(map, regions.measured);
   m.penumbra.flip_mean = masked_mean(map, regions.penumbra);
   m.soft_union.flip_mean = masked_mean(map, soft_union);
-  if (m.geometry) m.geometry->flip_mean = masked_mean(map, regions.geometry);
+  if (m.geometry)
+    m.geometry->flip_mean =
+        masked_mean(matches_outside(t, ref, regions.geometry)
+                        ? map
+                        : flip_within(t, ref, regions.geometry, pixels_per_degree),
+                    regions.geometry);
   if (m.receivers) m.receivers->flip_mean = masked_mean(map, regions.receivers);
+  if (m.terminator && m.terminator->pixel_count > 0)
+    m.terminator->flip_mean = masked_mean(
+        flip_within(test, ref, regions.terminator, pixels_per_degree), regions.terminator);
   if (regions.distance_thirds) {
     std::optional<RegionStats>* thirds[] = {&m.near_third, &m.middle_third, &m.far_third};
     for (std::size_t i = 0; i < 3; ++i)
       if (*thirds[i]) (*thirds[i])->flip_mean = masked_mean(map, (*regions.distance_thirds)[i]);
   }
-  return map;
 }
 
 // The image as shaded.png holds it (8 bits a value), decoded from sRGB: what
@@ -167,7 +198,7 @@ ImageF invalid_visibility_image(const ImageF& visibility) {
 
 MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const ImageF& ref_visibility,
                       const ImageF& ref_shaded, const Regions& regions,
-                      double flip_pixels_per_degree, FlipMaps* flip_maps) {
+                      double flip_pixels_per_degree, ImageF* flip_map) {
   const std::vector<uint8_t> soft_union = soft_union_of(visibility, regions);
   std::vector<const std::vector<uint8_t>*> thirds;
   if (regions.distance_thirds)
@@ -181,12 +212,14 @@ MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const Imag
     m.visibility.middle_third = third_stats[1];
     m.visibility.far_third = third_stats[2];
   }
-  ImageF vis_flip = add_flip_means(m.visibility, visibility, ref_visibility, regions, soft_union,
-                                   flip_pixels_per_degree);
-  ImageF shaded_flip =
-      add_flip_means(m.shaded, as_flip_reads_png(shaded), as_flip_reads_png(ref_shaded), regions,
-                     soft_union, flip_pixels_per_degree);
-  if (flip_maps != nullptr) *flip_maps = {std::move(vis_flip), std::move(shaded_flip)};
+  add_flip_means(m.visibility, visibility, ref_visibility, regions, soft_union,
+                 flip_pixels_per_degree);
+  const ImageF shaded_png = as_flip_reads_png(shaded), ref_png = as_flip_reads_png(ref_shaded);
+  add_flip_means(m.shaded, shaded_png, ref_png, regions, soft_union, flip_pixels_per_degree);
+  // As FLIP's tool compares the two PNGs: every pixel, nothing replaced.
+  FlipResult whole = flip(ref_png, shaded_png, flip_pixels_per_degree);
+  m.flip_shaded = whole.mean;
+  if (flip_map != nullptr) *flip_map = std::move(whole.error);
   return m;
 }
 

@@ -31,21 +31,16 @@ record::VisibilityCheckRecord check_visibility(const core::ImageF& visibility);
 // the rest (run/run_images.h writes it as invalid.png).
 core::ImageF invalid_visibility_image(const core::ImageF& visibility);
 
-// The FLIP error maps of a job (metrics/flip.h), one channel each: of its
-// visibility as a grey image, and of its shaded image decoded from sRGB (as
-// FLIP's tool reads shaded.png), each against the reference's, the
-// unmeasured pixels taking the reference's values as for every metric.
-struct FlipMaps {
-  core::ImageF visibility, shaded;
-};
-
 // The visibility buffer's and the shaded image's error against the
 // reference's (thirds included when the regions have them), FLIP at
-// `flip_pixels_per_degree`; the FLIP maps into *flip_maps when given.
+// `flip_pixels_per_degree`, and the shaded image's whole-image FLIP
+// (MetricsRecord::flip_shaded: shaded.png against the reference's, both
+// decoded from sRGB as FLIP's tool reads them, every pixel, nothing
+// replaced), whose map goes into *flip_map when given (one channel, in [0, 1]).
 record::MetricsRecord measure(const core::ImageF& visibility, const core::ImageF& shaded,
                               const core::ImageF& ref_visibility, const core::ImageF& ref_shaded,
                               const Regions& regions, double flip_pixels_per_degree,
-                              FlipMaps* flip_maps = nullptr);
+                              core::ImageF* flip_map = nullptr);
 
 // The visibility's error against another reference (the second one), over
 // the same regions: only the reference differs.

@@ -9,7 +9,8 @@
 //   - Cuts:  the plane cuts the light rectangle (the band at every curved
 //     surface's terminator). The reference counts the part below the plane
 //     as occluded, per sample; a technique that tests one light point cannot.
-//     These pixels are left out of every error metric, and counted.
+//     These pixels are left out of every other region, counted, and
+//     measured on their own (the region `terminator`).
 #include <cstdint>
 #include <vector>
 

@@ -12,6 +12,10 @@ namespace sb::metrics {
 
 struct Regions {
   std::vector<uint8_t> measured;  // all but the pixels whose tangent plane cuts the light
+  // The pixels whose tangent plane cuts the light (LightHorizon::Cuts: the
+  // band at a curved surface's terminator): in no other region, measured on
+  // their own (metrics/job_metrics.h); the complement of `measured`.
+  std::vector<uint8_t> terminator;
   // The reference's penumbra (reference.h: Result::penumbra, the light
   // partly seen, decided exactly where the scene allows), measured ones only.
   std::vector<uint8_t> penumbra;

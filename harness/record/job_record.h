@@ -126,8 +126,9 @@ struct ImagesRecord {
             {"", "the error shown as the brightest colour"});
     v.field("flip_shaded", &I::flip_shaded,
             {"",
-             "the shaded image's FLIP map (`metrics.shaded.*.flip_mean`) in the heat-map "
-             "colours, 0 to 1 (PNG); absent from older records"});
+             "the shaded image's FLIP map over every pixel (`metrics.flip_shaded`; "
+             "records written before it hold the map of `metrics.shaded.all.flip_mean`) in the "
+             "heat-map colours, 0 to 1 (PNG); absent from older records"});
     v.field("reference_visibility", &I::reference_visibility, {"", "the reference's V"});
     v.field("reference_std_error", &I::reference_std_error,
             {"", "its standard error σ, 0 where the samples all agreed"});

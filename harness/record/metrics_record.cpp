@@ -80,6 +80,8 @@ std::optional<MetricPath> MetricPath::parse(const std::string& dotted) {
     p.region_ = [](const ImageMetrics& m) { return &m.soft_union; };
   else if (region == "receivers")
     p.region_ = [](const ImageMetrics& m) { return m.receivers ? &*m.receivers : nullptr; };
+  else if (region == "terminator")
+    p.region_ = [](const ImageMetrics& m) { return m.terminator ? &*m.terminator : nullptr; };
   else if (region == "near_third")
     p.region_ = [](const ImageMetrics& m) { return m.near_third ? &*m.near_third : nullptr; };
   else if (region == "middle_third")

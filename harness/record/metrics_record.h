@@ -47,7 +47,8 @@ struct RegionStats {
     v.field("mean_signed", &R::mean_signed, {"", "mean of technique − reference"});
     v.field("flip_mean", &R::flip_mean,
             {"",
-             "mean LDR-FLIP (Andersson et al. 2020, metrics/flip.h) over the region, at "
+             "mean LDR-FLIP (Andersson et al. 2020, metrics/flip.h) over the region, its map "
+             "computed as the region's SSIM is (\"Regions\" above), at "
              "`metrics.flip_pixels_per_degree`: V as a grey image; the shaded image decoded "
              "from sRGB, as FLIP's own tool reads shaded.png; absent from older records"});
   }
@@ -64,7 +65,9 @@ struct RegionStats {
 // the reference's penumbra, the soft pixels of either image, and the
 // measured pixels on meshes that cast no shadow (a ground: where the seed
 // papers compare shadows; absent when the image has none, and in records
-// written before it existed). With the
+// written before it existed). `terminator`: the pixels whose tangent plane
+// cuts the light, which no other region holds (absent from records written
+// before it existed). With the
 // config's metrics.distance_thirds, the visibility's measured pixels also
 // by distance from the camera (metrics/distance_thirds.h): near_third,
 // middle_third, far_third.
@@ -75,6 +78,7 @@ struct ImageMetrics {
   RegionStats all, penumbra, soft_union;
   std::optional<RegionStats> geometry = std::nullopt;
   std::optional<RegionStats> receivers = std::nullopt;
+  std::optional<RegionStats> terminator = std::nullopt;
   std::optional<RegionStats> near_third = std::nullopt;
   std::optional<RegionStats> middle_third = std::nullopt;
   std::optional<RegionStats> far_third = std::nullopt;
@@ -91,6 +95,11 @@ struct ImageMetrics {
     v.field("soft_union", &M::soft_union, {"", "the soft pixels of either image"});
     v.field("receivers", &M::receivers,
             {"", "the measured pixels on meshes that cast no shadow; absent when there are none"});
+    v.field("terminator", &M::terminator,
+            {"",
+             "the pixels whose tangent plane cuts the light (`reference.horizon_cut_pixels`), in "
+             "no other region, measured on their own; figures NaN when there are none; absent "
+             "from records written before it existed"});
     v.field("near_third", &M::near_third,
             {"", "with `metrics.distance_thirds`: the nearest third of the measured pixels"});
     v.field("middle_third", &M::middle_third, {"", "with `metrics.distance_thirds`"});
@@ -106,12 +115,21 @@ struct MetricsRecord {
                                      "the error of the technique's images against the reference's"};
 
   ImageMetrics visibility, shaded;
+  // FLIP as papers print it: of shaded.png against the reference's, every
+  // pixel, nothing replaced (absent from records written before it).
+  std::optional<double> flip_shaded = std::nullopt;
 
   template <class V>
   static void describe(V& v) {
     v.field("visibility", &MetricsRecord::visibility, {"", "the visibility buffer V"});
     v.field("shaded", &MetricsRecord::shaded,
             {"", "the image shaded from the same V, after the attached-shadow rule"});
+    v.field("flip_shaded", &MetricsRecord::flip_shaded,
+            {"",
+             "mean LDR-FLIP of shaded.png against the reference's shaded.png over every pixel, "
+             "nothing replaced, at `metrics.flip_pixels_per_degree`: what NVIDIA's `flip` tool "
+             "prints for the two files, the map `images.flip_shaded` shows and the report's "
+             "`flip` column; absent from older records"});
   }
 
   nlohmann::json to_json() const;
@@ -120,9 +138,10 @@ struct MetricsRecord {
 
 // A metric named by its dotted path under "metrics":
 // <visibility|shaded>.<geometry|all|penumbra|soft_union|receivers|
-// near_third|middle_third|far_third>.<key>, e.g. visibility.geometry.rmse or
-// visibility.all.frac_over_0.05 (a key may hold dots). A region the record
-// lacks (geometry in older records, receivers, the thirds) reads as NaN.
+// terminator|near_third|middle_third|far_third>.<key>, e.g.
+// visibility.geometry.rmse or visibility.all.frac_over_0.05 (a key may hold
+// dots). A region the record lacks (geometry and terminator in older
+// records, receivers, the thirds) reads as NaN.
 class MetricPath {
  public:
   // nullopt when `dotted` names no number of the schema.

@@ -72,7 +72,7 @@ struct ReferenceRecord {
   double penumbra_rms_std_error = 0;
   std::int64_t penumbra_pixels = 0;  // measured ones only
   std::int64_t attached_shadow_pixels = 0;
-  std::int64_t horizon_cut_pixels = 0;  // left out of every metric
+  std::int64_t horizon_cut_pixels = 0;  // in no region but `terminator`
   std::string cache_key;
   bool from_cache = false;
   double seconds = 0;
@@ -131,8 +131,8 @@ struct ReferenceRecord {
              "reference"});
     v.field("horizon_cut_pixels", &R::horizon_cut_pixels,
             {"px",
-             "pixels whose tangent plane cuts the light, left out of every metric "
-             "(docs/design.md \"One definition of V\")"});
+             "pixels whose tangent plane cuts the light, left out of every region but "
+             "`terminator` (docs/design.md \"One definition of V\")"});
     v.field("cache_key", &R::cache_key,
             {"",
              "the reference cache's key for it, written also with `--no-cache`; `compare` "

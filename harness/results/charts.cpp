@@ -57,10 +57,10 @@ MetricPath metric_path(const std::string& metric) {
   throw InputError("", "--metric",
                    "unknown error metric \"" + metric +
                        "\": expected a dotted path into a record's \"metrics\", "
-                       "<visibility|shaded>.<geometry|all|penumbra|soft_union|receivers|near_third|"
-                       "middle_third|far_third>.<key> with key one of rmse, "
+                       "<visibility|shaded>.<geometry|all|penumbra|soft_union|receivers|terminator|"
+                       "near_third|middle_third|far_third>.<key> with key one of rmse, "
                        "mae, max_error, psnr, ssim, frac_over_0.01, frac_over_0.05, frac_over_0.1, "
-                       "mean_signed, pixel_count, nonfinite_count");
+                       "mean_signed, pixel_count, nonfinite_count, flip_mean");
 }
 
 double metric_of(const JobRecord& r, const MetricPath& metric) {

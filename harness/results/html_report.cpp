@@ -149,7 +149,9 @@ class Page {
     out_ += "<section id=\"summary\">\n<h2>Summary</h2>\n<p class=\"note\">Times are medians in ";
     out_ += "milliseconds; error figures are on the visibility buffer over the geometry region ";
     out_ += "(surface pixels outside attached shadow: no sky), except penumbra_rmse (reference ";
-    out_ += "penumbra only). Click a column header to sort.</p>\n";
+    out_ += "penumbra only), terminator_rmse (the pixels whose tangent plane cuts the light, ";
+    out_ += "which no other figure holds) and flip (the shaded image's FLIP over every pixel, as ";
+    out_ += "NVIDIA's tool prints it). Click a column header to sort.</p>\n";
     // Scene and resolution are the group's.
     const std::vector<const ReportColumn*> shown = group_table_columns(records_);
     for (size_t g = 0; g < groups_.size(); ++g) {

@@ -37,11 +37,18 @@ std::optional<double> geometry(const JobRecord& r) {
   return *r.metrics->visibility.geometry.*Value;
 }
 
-// FLIP of the shaded image over the geometry region (absent from records
-// written before FLIP was measured).
+// FLIP of the shaded image over every pixel, as NVIDIA's tool prints it for
+// shaded.png against the reference's (absent from records written before it).
 std::optional<double> shaded_flip(const JobRecord& r) {
-  if (!r.metrics || !r.metrics->shaded.geometry) return std::nullopt;
-  return r.metrics->shaded.geometry->flip_mean;
+  if (!r.metrics) return std::nullopt;
+  return r.metrics->flip_shaded;
+}
+
+// The visibility's RMSE over the terminator band (absent from records
+// written before it; NaN, an empty cell, where the view has no such pixel).
+std::optional<double> terminator_rmse(const JobRecord& r) {
+  if (!r.metrics || !r.metrics->visibility.terminator) return std::nullopt;
+  return r.metrics->visibility.terminator->rmse;
 }
 
 template <Series TimingRecord::*Member>
@@ -155,6 +162,7 @@ std::vector<ReportColumn> make_columns() {
       number("frac_over_0.05", geometry<&S::frac_over_005>, "%.4f", "Error > 0.05"),
       optional(number("flip", shaded_flip, "%.4f", "FLIP")),
       number("penumbra_rmse", visibility<&I::penumbra, &S::rmse>, "%.5f", "Penumbra RMSE"),
+      optional(number("terminator_rmse", terminator_rmse, "%.5f", "Terminator RMSE")),
       optional(number("near_rmse", third_rmse<&I::near_third>, "%.5f", "Near RMSE")),
       optional(number("middle_rmse", third_rmse<&I::middle_third>, "%.5f", "Middle RMSE")),
       optional(number("far_rmse", third_rmse<&I::far_third>, "%.5f", "Far RMSE")),

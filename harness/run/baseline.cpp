@@ -73,13 +73,15 @@ std::string describe(const reference::Result& ref) {
 }
 
 // The pixels whose tangent plane cuts the light are left out of every
-// region; those wholly facing away from it are attached shadow.
+// region but their own (`terminator`); those wholly facing away from it are
+// attached shadow.
 metrics::Regions regions_of(const Baseline& b, const Scene& scene, bool distance_thirds,
                             FrameTargets& targets) {
   const auto horizon = metrics::classify_light_horizon(b.positions, b.normals, scene.light);
   metrics::Regions regions;
   regions.attached = metrics::horizon_mask(horizon, metrics::LightHorizon::Below);
-  regions.measured = metrics::horizon_mask(horizon, metrics::LightHorizon::Cuts);
+  regions.terminator = metrics::horizon_mask(horizon, metrics::LightHorizon::Cuts);
+  regions.measured = regions.terminator;
   for (auto& m : regions.measured) m = m ? 0 : 1;
   regions.geometry = metrics::geometry_mask(horizon);
   if (distance_thirds)

@@ -101,9 +101,9 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv,
   metrics::apply_attached_shadow(b.regions.attached, visibility);
   // Shaded from the same V as the metrics, as the reference is: untimed.
   const ImageF shaded = shade(s.frame, visibility);
-  metrics::FlipMaps flip_maps;
+  ImageF flip_map;
   r.metrics = metrics::measure(visibility, shaded, b.ref.visibility, b.ref_shaded, b.regions,
-                               s.e.flip_pixels_per_degree, &flip_maps);
+                               s.e.flip_pixels_per_degree, &flip_map);
   if (b.second)
     r.second_reference = SecondReferenceRecord{
         *b.second_record, metrics::measure_visibility(visibility, b.second->visibility, b.regions,
@@ -117,7 +117,7 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv,
   phases.measure = lap.seconds();
   if (s.o.write_images)
     r.images = write_job_images(s.o.run_dir, r.job_id, visibility, shaded, b.ref.visibility,
-                                b.regions, flip_maps);
+                                b.regions, flip_map);
   if (!checked.data.empty()) r.images.add(write_invalid_visibility(s.o.run_dir, r.job_id, checked));
   phases.images = lap.seconds();
   // Metrics and images are kept for inspection (the executor moves the

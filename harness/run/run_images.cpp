@@ -40,7 +40,10 @@ ImagesRecord write_reference_images(const RunOptions& o, const std::string& rel,
   images.reference_shaded = rel + "/shaded.png";
   // Named as the record's metrics.visibility regions; soft_union is each job's own.
   std::vector<std::pair<std::string, const std::vector<uint8_t>*>> masks = {
-      {"all", &regions.measured}, {"geometry", &regions.geometry}, {"penumbra", &regions.penumbra}};
+      {"all", &regions.measured},
+      {"geometry", &regions.geometry},
+      {"penumbra", &regions.penumbra},
+      {"terminator", &regions.terminator}};
   if (regions.any_receiver) masks.emplace_back("receivers", &regions.receivers);
   if (regions.distance_thirds) {
     const char* names[3] = {"near_third", "middle_third", "far_third"};
@@ -72,7 +75,7 @@ ImageF heat_colours(const ImageF& map) {
 ImagesRecord write_job_images(const std::string& run_dir, const std::string& job_id,
                               const ImageF& visibility, const ImageF& shaded,
                               const ImageF& ref_visibility, const metrics::Regions& regions,
-                              const metrics::FlipMaps& flip_maps) {
+                              const ImageF& flip_map) {
   const std::string rel = "jobs/" + job_id;
   const fs::path dir = fs::path(run_dir) / rel;
   fs::create_directories(dir);
@@ -93,9 +96,7 @@ ImagesRecord write_job_images(const std::string& run_dir, const std::string& job
                 metrics::with_unmeasured_from(visibility, ref_visibility, regions.measured),
                 ref_visibility, kHeatmapFullScale));
       },
-      [&] {
-        metrics::io::write_png((dir / "flip_shaded.png").string(), heat_colours(flip_maps.shaded));
-      });
+      [&] { metrics::io::write_png((dir / "flip_shaded.png").string(), heat_colours(flip_map)); });
   ImagesRecord images;
   images.visibility = rel + "/visibility.exr";
   images.shaded = rel + "/shaded.png";

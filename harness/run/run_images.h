@@ -23,13 +23,14 @@ record::ImagesRecord write_reference_images(const RunOptions& o, const std::stri
                                             const core::ImageF& positions,
                                             const core::ImageF& normals);
 
-// The technique's V, its shaded image, its error heat map and its soft_union
-// mask, under <run_dir>/jobs/<job id>.
+// The technique's V, its shaded image, its error heat map, the shaded
+// image's whole-image FLIP map (metrics::measure's `flip_map`) and its
+// soft_union mask, under <run_dir>/jobs/<job id>.
 record::ImagesRecord write_job_images(const std::string& run_dir, const std::string& job_id,
                                       const core::ImageF& visibility, const core::ImageF& shaded,
                                       const core::ImageF& ref_visibility,
                                       const metrics::Regions& regions,
-                                      const metrics::FlipMaps& flip_maps);
+                                      const core::ImageF& flip_map);
 
 // The pixels of the technique's V (before the attached-shadow mask) that
 // fail the visibility check, by kind (metrics::invalid_visibility_image), as

@@ -65,6 +65,16 @@ ImageF RunOutput::image(const nlohmann::json& record, const std::string& key) co
       (fs::path(dir) / record["images"][key].get<std::string>()).string());
 }
 
+std::vector<uint8_t> RunOutput::mask(const nlohmann::json& record,
+                                     const std::string& region) const {
+  const ImageF m = metrics::io::read_image(
+      (fs::path(dir) / record["images"]["masks"][region].get<std::string>()).string());
+  std::vector<uint8_t> out(m.pixel_count());
+  for (std::size_t p = 0; p < out.size(); ++p)
+    out[p] = m.data[p * static_cast<std::size_t>(m.channels)] > 0.5f ? 1 : 0;
+  return out;
+}
+
 std::string process_temp_path(const std::string& name) {
   return (fs::temp_directory_path() / (name + "-" + std::to_string(::getpid()))).string();
 }

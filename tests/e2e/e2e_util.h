@@ -1,6 +1,7 @@
 #pragma once
 // Runs small experiments through the real driver code path and reads back
 // what they wrote.
+#include <cstdint>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -23,6 +24,9 @@ struct RunOutput {
   core::ImageF gbuffer_positions() const;     // of the first record (write_gbuffer runs)
   // Any image a record names under "images" (e.g. "visibility", "gbuffer_positions").
   core::ImageF image(const nlohmann::json& record, const std::string& key) const;
+  // The mask of a region the record names under "images.masks": 1 where
+  // the PNG is 255.
+  std::vector<uint8_t> mask(const nlohmann::json& record, const std::string& region) const;
 };
 
 // `config` is an experiment JSON; `name` picks a fresh folder under /tmp.

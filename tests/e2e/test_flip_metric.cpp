@@ -2,8 +2,11 @@
 // FLIP (metrics/flip.h, tested against NVIDIA's implementation in
 // tests/metrics) of the files the run wrote: the shaded PNGs decoded from
 // sRGB, as FLIP's own tool reads them, and the visibility EXRs as grey
-// images, the unmeasured pixels given the reference's values, averaged over
-// the region's mask; at the config's metrics.flip_pixels_per_degree.
+// images, the pixels outside the region's SSIM rule given the reference's
+// values (outside the measured ones; outside the region itself for
+// `geometry` and `terminator`), averaged over the region's mask; at the
+// config's metrics.flip_pixels_per_degree. metrics.flip_shaded is what
+// FLIP's tool prints for the two shaded PNGs: every pixel, nothing replaced.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -35,30 +38,27 @@ json small_config(double ppd) {
           {"metrics", {{"flip_pixels_per_degree", ppd}}}};
 }
 
-double flip_of_files(const fs::path& run, const json& r, const std::string& image,
-                     const std::string& region, double ppd) {
+// The job's and the reference's images as FLIP reads them.
+std::pair<ImageF, ImageF> images_of(const fs::path& run, const json& r, const std::string& image) {
   const json& images = r["images"];
-  const ImageF mask_image =
-      metrics::io::read_image((run / images["masks"][region].get<std::string>()).string());
-  std::vector<uint8_t> mask(mask_image.pixel_count());
-  for (std::size_t p = 0; p < mask.size(); ++p) mask[p] = mask_image.data[p] > 0.5f ? 1 : 0;
-  const ImageF all_mask =
-      metrics::io::read_image((run / images["masks"]["all"].get<std::string>()).string());
-  std::vector<uint8_t> measured(all_mask.pixel_count());
-  for (std::size_t p = 0; p < measured.size(); ++p) measured[p] = all_mask.data[p] > 0.5f ? 1 : 0;
-  ImageF test, ref;
-  if (image == "shaded") {
-    test = metrics::linear_from_srgb(
-        metrics::io::read_image((run / images["shaded"].get<std::string>()).string()));
-    ref = metrics::linear_from_srgb(
-        metrics::io::read_image((run / images["reference_shaded"].get<std::string>()).string()));
-  } else {
-    test = metrics::io::read_image((run / images["visibility"].get<std::string>()).string());
-    ref =
-        metrics::io::read_image((run / images["reference_visibility"].get<std::string>()).string());
-  }
+  if (image == "shaded")
+    return {metrics::linear_from_srgb(
+                metrics::io::read_image((run / images["shaded"].get<std::string>()).string())),
+            metrics::linear_from_srgb(metrics::io::read_image(
+                (run / images["reference_shaded"].get<std::string>()).string()))};
+  return {
+      metrics::io::read_image((run / images["visibility"].get<std::string>()).string()),
+      metrics::io::read_image((run / images["reference_visibility"].get<std::string>()).string())};
+}
+
+double flip_of_files(const RunOutput& run, const json& r, const std::string& image,
+                     const std::string& region, double ppd) {
+  const std::vector<uint8_t> mask = run.mask(r, region);
+  const bool own = region == "geometry" || region == "terminator";
+  const std::vector<uint8_t> inside = own ? mask : run.mask(r, "all");
+  const auto [test, ref] = images_of(run.dir, r, image);
   const ImageF map =
-      metrics::flip(metrics::with_unmeasured_from(test, ref, measured), ref, ppd).error;
+      metrics::flip(ref, metrics::with_unmeasured_from(test, ref, inside), ppd).error;
   double sum = 0;
   std::size_t n = 0;
   for (std::size_t p = 0; p < mask.size(); ++p)
@@ -77,12 +77,22 @@ TEST(FlipMetric, TheRecordsFlipMeansAreFlipOfTheFilesAtTheConfigsDistance) {
     EXPECT_TRUE(
         fs::is_regular_file(fs::path(out.dir) / r["images"]["flip_shaded"].get<std::string>()));
     for (const std::string image : {"shaded", "visibility"})
-      for (const std::string region : {"all", "geometry", "penumbra"}) {
-        SCOPED_TRACE(r["technique_variant"].get<std::string>() + " " + image + "." + region);
+      for (const std::string region : {"all", "geometry", "penumbra", "terminator"}) {
+        std::string where = r["technique_variant"].get<std::string>();
+        where += " " + image;
+        where += "." + region;
+        SCOPED_TRACE(where);
         const double recorded = r["metrics"][image][region]["flip_mean"];
-        EXPECT_NEAR(recorded, flip_of_files(out.dir, r, image, region, kPpd), 1e-6);
+        EXPECT_NEAR(recorded, flip_of_files(out, r, image, region, kPpd), 1e-6);
         EXPECT_GT(recorded, 0.0);
       }
+    // FLIP as its tool prints it for the two PNGs: every pixel, the
+    // terminator band's errors included.
+    const auto [test, ref] = images_of(out.dir, r, "shaded");
+    ASSERT_TRUE(r["metrics"].contains("flip_shaded"));
+    const double whole = r["metrics"]["flip_shaded"];
+    EXPECT_NEAR(whole, metrics::flip(ref, test, kPpd).mean, 1e-6);
+    EXPECT_NE(whole, r["metrics"]["shaded"]["all"]["flip_mean"].get<double>());
   }
   // The hard shadow map looks worse than PCSS's soft shadows to FLIP, as to the eye.
   EXPECT_GT(out.record("shadow_map/size=512")["metrics"]["shaded"]["penumbra"]["flip_mean"],

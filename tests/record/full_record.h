@@ -129,6 +129,7 @@ inline record::JobRecord every_member_record() {
   for (record::ImageMetrics* m : {&r.metrics->visibility, &r.metrics->shaded}) {
     m->geometry = region(0.2);
     m->receivers = region(0.125);
+    m->terminator = region(0.25);
     m->near_third = region(0.1);
     m->middle_third = region(0.2);
     m->far_third = region(0.3);
@@ -137,6 +138,7 @@ inline record::JobRecord every_member_record() {
   second.reference = *r.reference;
   second.visibility = r.metrics->visibility;
   r.second_reference = second;
+  r.metrics->flip_shaded = 0.03125;
   record::StabilityRecord stability;
   stability.max_rmse = 0.1;
   stability.flicker_factor = 2;

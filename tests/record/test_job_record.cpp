@@ -267,6 +267,27 @@ TEST(JobRecord, TheGeometryRegionRoundTripsInBothImagesAndOlderRecordsLackIt) {
   EXPECT_TRUE(std::isnan(MetricPath::parse("visibility.geometry.rmse")->of(*older.metrics)));
 }
 
+TEST(JobRecord, TheTerminatorRegionAndTheWholeImageFlipRoundTripAndOlderRecordsLackThem) {
+  JobRecord r = full_record();
+  r.metrics->visibility.terminator = region(0.25);
+  r.metrics->shaded.terminator = region(0.125);
+  r.metrics->flip_shaded = 0.0625;
+  const json j = r.to_json();
+  EXPECT_EQ(j["metrics"]["visibility"]["terminator"]["rmse"], 0.25);
+  EXPECT_EQ(j["metrics"]["flip_shaded"], 0.0625);
+  const JobRecord back = JobRecord::from_json(j);
+  EXPECT_EQ(back.to_json(), j);
+  EXPECT_EQ(MetricPath::parse("visibility.terminator.rmse")->of(*back.metrics), 0.25);
+  EXPECT_EQ(MetricPath::parse("shaded.terminator.rmse")->of(*back.metrics), 0.125);
+  // A record written before them reads; its terminator figures are NaN.
+  json old = j;
+  for (const char* image : {"visibility", "shaded"}) old["metrics"][image].erase("terminator");
+  old["metrics"].erase("flip_shaded");
+  const JobRecord older = JobRecord::from_json(old);
+  EXPECT_FALSE(older.metrics->flip_shaded.has_value());
+  EXPECT_TRUE(std::isnan(MetricPath::parse("visibility.terminator.rmse")->of(*older.metrics)));
+}
+
 TEST(JobRecord, TheDistanceThirdsRoundTripAndRecordsWithoutThemReadNaN) {
   JobRecord r = full_record();
   r.metrics->visibility.near_third = region(0.25);

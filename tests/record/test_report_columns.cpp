@@ -112,9 +112,9 @@ TEST(ReportColumns, SameHeadersInCsvMarkdownAndHtml) {
   EXPECT_EQ(all.front(), "scene");
   EXPECT_EQ(all.back(), "reason");
   // Scene and resolution head each table instead; the GPU memory's, FLIP's,
-  // the distance thirds', the classes' and the second reference's columns
-  // are there only when a record has them.
-  EXPECT_EQ(all.size(), shown.size() + 2 + 1 + 1 + 3 + 2 + 3);
+  // the terminator's, the distance thirds', the classes' and the second
+  // reference's columns are there only when a record has them.
+  EXPECT_EQ(all.size(), shown.size() + 2 + 1 + 1 + 1 + 3 + 2 + 3);
 
   const std::string csv = make_csv(records());
   EXPECT_EQ(csv.substr(0, csv.find('\n')), join(all, ","));
@@ -144,7 +144,7 @@ TEST(ReportColumns, CellsAgreeAcrossTheTables) {
   // A skipped job has no figures: empty cells, and its reason in the last column.
   EXPECT_EQ(report_column("rmse").cell(rs[1]), "");
   EXPECT_EQ(report_column("reason").cell(rs[1]), "casters are not closed");
-  EXPECT_NE(csv.find(",skipped,,,,,,,,,,,,,,,,,,,,,casters are not closed\n"), std::string::npos)
+  EXPECT_NE(csv.find(",skipped,,,,,,,,,,,,,,,,,,,,,,casters are not closed\n"), std::string::npos)
       << csv;
   EXPECT_THROW(report_column("nonsense"), std::out_of_range);
 }
@@ -250,14 +250,16 @@ TEST(ReportColumns, AFailedJobsFigureCellsAreEmptyWhateverItsRecordHolds) {
       << csv;
 }
 
-TEST(ReportColumns, FlipIsTheShadedImagesOverTheGeometryAndAppearsOnlyWhenMeasured) {
+TEST(ReportColumns, FlipIsTheShadedImagesWholeImageFlipAndAppearsOnlyWhenMeasured) {
   auto rs = records();
   EXPECT_EQ(report_column("flip").cell(rs[0]), "");
   EXPECT_EQ(make_markdown(rs, "title").find("flip"), std::string::npos);
   rs[0].metrics->shaded.geometry = RegionStats{};
-  rs[0].metrics->shaded.geometry->flip_mean = 0.0625;
-  rs[0].metrics->shaded.all.flip_mean = 0.5;             // not this one
+  rs[0].metrics->shaded.geometry->flip_mean = 0.125;     // not a region's
+  rs[0].metrics->shaded.all.flip_mean = 0.5;             // nor this one
   rs[0].metrics->visibility.geometry->flip_mean = 0.25;  // nor V's
+  EXPECT_EQ(report_column("flip").cell(rs[0]), "");      // a record from before it
+  rs[0].metrics->flip_shaded = 0.0625;
   EXPECT_EQ(report_column("flip").cell(rs[0]), "0.0625");
   EXPECT_EQ(report_column("flip").cell(rs[1]), "");  // skipped: no metrics
   std::vector<std::string> shown = headers(false);
@@ -265,6 +267,22 @@ TEST(ReportColumns, FlipIsTheShadedImagesOverTheGeometryAndAppearsOnlyWhenMeasur
   const std::string md = make_markdown(rs, "title");
   EXPECT_NE(md.find("| " + join(shown, " | ") + " |\n"), std::string::npos) << md;
   EXPECT_NE(md.find("| 0.0625 |"), std::string::npos) << md;
+}
+
+TEST(ReportColumns, TerminatorRmseIsTheVisibilitysTerminatorRegionAndAppearsOnlyWithIt) {
+  auto rs = records();
+  EXPECT_EQ(report_column("terminator_rmse").cell(rs[0]), "");
+  EXPECT_EQ(make_markdown(rs, "title").find("terminator_rmse"), std::string::npos);
+  rs[0].metrics->visibility.terminator = RegionStats{};
+  rs[0].metrics->visibility.terminator->rmse = 0.25;
+  rs[0].metrics->shaded.terminator = RegionStats{};
+  rs[0].metrics->shaded.terminator->rmse = 0.5;  // not the shaded image's
+  EXPECT_EQ(report_column("terminator_rmse").cell(rs[0]), "0.25000");
+  std::vector<std::string> shown = headers(false);
+  shown.insert(std::find(shown.begin(), shown.end(), "penumbra_rmse") + 1, "terminator_rmse");
+  const std::string md = make_markdown(rs, "title");
+  EXPECT_NE(md.find("| " + join(shown, " | ") + " |\n"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 0.25000 |"), std::string::npos) << md;
 }
 
 TEST(ReportColumns, DistanceThirdColumnsAreTheVisibilitysThirdsAndAppearOnlyWithThem) {
