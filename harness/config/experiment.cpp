@@ -136,7 +136,15 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
         const auto [param, problem] = st->check(v.params);
         if (!problem.empty()) r.fail(swept_pointer(given, combo, p + "/params", param), problem);
       }
-      v.name = variant_name(label, st->params, combo);
+      // A labelled entry is not named by the file it reads (unless it sweeps
+      // files): its job ids stay when the file is moved or renamed, and its
+      // identity is the file's content (config/identity.h).
+      json named = combo;
+      if (entry.contains("label"))
+        for (const ParamSpec& s : st->params)
+          if (s.is_path && !(given.contains(s.name) && given[s.name].is_array()))
+            named.erase(s.name);
+      v.name = variant_name(label, st->params, named);
       for (auto it = given.begin(); it != given.end(); ++it)
         if (it.value().is_array()) v.swept[it.key()] = combo[it.key()];
       v.light = light;
