@@ -8,6 +8,7 @@
 
 #include "config/config_blocks.h"
 #include "config/config_reader.h"
+#include "config/identity.h"
 #include "config/json_file.h"
 #include "config/resolutions.h"
 #include "config/scene_overrides.h"
@@ -98,8 +99,9 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
   for (size_t i = 0; i < scenes.size(); ++i) {
     const std::string p = "/scenes/" + std::to_string(i);
     const json& entry = r.object(scenes[i], p, "a scene");
-    r.only_keys(entry, p,
-                {"type", "params", "light", "camera", "label", "infer_receivers", "max_rmse"});
+    std::vector<std::string> entry_keys{"type", "params"};
+    for (const SceneEntryKey& k : scene_entry_keys()) entry_keys.push_back(k.name);
+    r.only_keys(entry, p, entry_keys);
     const std::string type = r.string(r.member(entry, p, "type"), p + "/type");
     const SceneType* st = find_scene_type(type);
     if (st == nullptr) {

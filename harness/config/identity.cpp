@@ -59,15 +59,32 @@ json technique_identity(const Experiment& e, const TechniqueVariant& tv) {
   return t;
 }
 
+const std::vector<SceneEntryKey>& scene_entry_keys() {
+  static const std::vector<SceneEntryKey> keys{
+      {"light", Decides::Both, [](const SceneVariant& sv) { return sv.light; },
+       json{{"size", 2.0}}},
+      {"camera", Decides::Both, [](const SceneVariant& sv) { return sv.camera; },
+       json{{"fov_y", 30.0}}},
+      // A name: it makes the job id, not the numbers.
+      {"label", Decides::None, nullptr, "other_label"},
+      {"infer_receivers", Decides::Both,
+       [](const SceneVariant& sv) { return json(sv.infer_receivers); }, false},
+      // The stability table's threshold: whether a job is degraded.
+      {"max_rmse", Decides::Error,
+       [](const SceneVariant& sv) { return sv.max_rmse ? json(*sv.max_rmse) : json(nullptr); },
+       0.25},
+  };
+  return keys;
+}
+
 json scene_identity(const SceneVariant& sv, const std::vector<InputFile>& inputs) {
   const core::SceneType* type = core::find_scene_type(sv.type);
-  return {{"type", sv.type},
-          {"params", params_identity(type != nullptr ? type->params : std::vector<ParamSpec>{},
-                                     sv.params, inputs)},
-          {"light", sv.light},
-          {"camera", sv.camera},
-          {"infer_receivers", sv.infer_receivers},
-          {"max_rmse", sv.max_rmse ? json(*sv.max_rmse) : json(nullptr)}};
+  json id = {{"type", sv.type},
+             {"params", params_identity(type != nullptr ? type->params : std::vector<ParamSpec>{},
+                                        sv.params, inputs)}};
+  for (const SceneEntryKey& k : scene_entry_keys())
+    if (k.decides != Decides::None) id[k.name] = k.value(sv);
+  return id;
 }
 
 json blocks_identity(const Experiment& e) {

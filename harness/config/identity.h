@@ -5,6 +5,7 @@
 // ParamSpec::decides, a config block key's (config/config_blocks.h). A
 // setting that decides no number is left out; a file is identified by its
 // content (SHA-256), never by the path that named it.
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -34,9 +35,23 @@ nlohmann::json params_identity(const std::vector<core::ParamSpec>& specs,
 // module registered it.
 nlohmann::json technique_identity(const Experiment& e, const TechniqueVariant& tv);
 
+// A key of a scene entry beside "type" and "params" (docs/config.md, "Scene
+// entries"), with what it decides and its value in a variant.
+struct SceneEntryKey {
+  std::string name;
+  core::Decides decides;
+  // The variant's value, as its part of the identity; null for a key that
+  // decides nothing.
+  std::function<nlohmann::json(const SceneVariant&)> value;
+  nlohmann::json example;  // a valid value other than the default, for tests
+};
+
+// light, camera, label, infer_receivers, max_rmse: the keys a scene entry
+// may have besides "type" and "params" (the config reader accepts these).
+const std::vector<SceneEntryKey>& scene_entry_keys();
+
 // A scene variant: its type, params_identity (with `inputs`, what building
-// it read) and the entry's own settings (light and camera overrides,
-// infer_receivers, max_rmse: each decides errors).
+// it read) and the entry's keys that decide some number.
 nlohmann::json scene_identity(const SceneVariant& sv, const std::vector<core::InputFile>& inputs);
 
 // Every config block's keys that decide some number, as named fields:

@@ -19,6 +19,7 @@
 
 #include "config/config_blocks.h"
 #include "config/experiment.h"
+#include "config/identity.h"
 #include "core/error.h"
 #include "core/scene_types.h"
 #include "run/job_identity.h"
@@ -177,6 +178,23 @@ TEST(JobIdentity, EveryConfigBlockKeyChangesTheSpecExactlyWhenItDecidesANumber) 
                                       [&](json& c, const json& v) { c[b.name][k.spec.name] = v; });
     }
   EXPECT_GE(walked, 20u);  // frames, reference, stability, metrics, limits
+}
+
+TEST(JobIdentity, EverySceneEntryKeyChangesTheSpecExactlyWhenItDecidesANumber) {
+  const json base = identity_config();
+  const std::optional<Experiment> e = parsed(base);
+  ASSERT_TRUE(e);
+  const json before = spec_of(*e);
+  for (const config::SceneEntryKey& k : config::scene_entry_keys()) {
+    json changed = base;
+    changed["scenes"][0][k.name] = k.example;
+    const std::optional<Experiment> c = parsed(changed);
+    ASSERT_TRUE(c) << "scene entry key " << k.name << ": its example does not parse";
+    if (k.decides == Decides::None)
+      EXPECT_EQ(spec_of(*c), before) << "scene entry key " << k.name;
+    else
+      EXPECT_NE(spec_of(*c), before) << "scene entry key " << k.name;
+  }
 }
 
 TEST(JobIdentity, EveryScenesParameterChangesTheSpecExactlyWhenItDecidesANumber) {
