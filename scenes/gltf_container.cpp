@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/sha256.h"
 
 namespace sb::gltf {
 
@@ -90,6 +91,11 @@ void GltfContainer::check_chunks() {
       fail(where, "a second BIN chunk (only one, right after the JSON chunk, is allowed)");
     offset += 8 + size_t(length_i);
   }
+}
+
+std::string GltfContainer::sha256() const {
+  return core::sha256_hex(
+      std::string_view(reinterpret_cast<const char*>(bytes_.data()), bytes_.size()));
 }
 
 tg::Model GltfContainer::parse(UriSandbox& sandbox) const {

@@ -5,6 +5,7 @@
 // reads them (tinygltf 2.7 trusts the BIN chunk's length a little), and
 // tinygltf reads external files only through the URI sandbox. Images are
 // kept encoded: gltf_images decodes the ones a material uses, within caps.
+#include <string>
 #include <vector>
 
 #include "scenes/gltf_common.h"
@@ -20,6 +21,8 @@ class GltfContainer : public ImportStep {
   // (for a .gltf, the whole file).
   void check_chunks();
   const unsigned char* json_data() const { return json_begin_; }
+  // SHA-256 of the file's bytes, as read.
+  std::string sha256() const;
   size_t json_size() const { return json_size_; }
   // tinygltf's model of the file, external files read through `sandbox`.
   tg::Model parse(UriSandbox& sandbox) const;

@@ -41,6 +41,10 @@ class Importer : public ImportStep {
     container.check_chunks();
     check_gltf_json(file(), sandbox, container.json_data(), container.json_size());
     const tg::Model model = container.parse(sandbox);
+    // What the scene is built from: the file, and every buffer and image it
+    // names (data: URIs are inside the file).
+    scene_.inputs.push_back({file(), "", container.sha256()});
+    for (const core::InputFile& f : sandbox.reads()) scene_.inputs.push_back(f);
     Traversal traversal(file(), model, scene_);
     return build(traversal);
   }

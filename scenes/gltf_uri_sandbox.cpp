@@ -7,6 +7,8 @@
 #include <limits>
 #include <vector>
 
+#include "core/sha256.h"
+
 namespace sb::gltf {
 namespace {
 
@@ -56,10 +58,24 @@ bool inside_folder(const fs::path& dir, const fs::path& p) {
 
 // tinygltf reads buffers and images only through these, and only inside the
 // glTF file's folder (it would also try the working directory, and expand
-// '~' and environment variables, on its own); `user` is the folder.
+// '~' and environment variables, on its own); `user` is the sandbox's
+// State: the folder, and the files read so far.
 bool sandbox_exists(const std::string& path, void* user) {
   std::error_code ec;
-  return inside_folder(*static_cast<const fs::path*>(user), path) && fs::is_regular_file(path, ec);
+  return inside_folder(static_cast<const UriSandbox::State*>(user)->dir, path) &&
+         fs::is_regular_file(path, ec);
+}
+
+// Notes a file read (once, however many buffers or images name it).
+void note_read(UriSandbox::State& state, const std::string& path,
+               const std::vector<unsigned char>& bytes) {
+  const fs::path relative = fs::path(path).lexically_normal().lexically_relative(state.dir);
+  const std::string name = relative.empty() ? path : relative.generic_string();
+  for (const core::InputFile& f : state.reads)
+    if (f.name == name) return;
+  state.reads.push_back({path, name,
+                         core::sha256_hex(std::string_view(
+                             reinterpret_cast<const char*>(bytes.data()), bytes.size()))});
 }
 std::string sandbox_expand(const std::string& path, void*) { return path; }
 bool sandbox_read(std::vector<unsigned char>* out, std::string* err, const std::string& path,
@@ -81,6 +97,7 @@ bool sandbox_read(std::vector<unsigned char>* out, std::string* err, const std::
     if (err) *err = "cannot read";
     return false;
   }
+  note_read(*static_cast<UriSandbox::State*>(user), path, *out);
   return true;
 }
 bool sandbox_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
@@ -94,7 +111,7 @@ UriSandbox::UriSandbox(const std::string& file) : ImportStep(file) {
   std::error_code ec;
   fs::path folder = fs::path(file).parent_path();
   if (folder.empty()) folder = ".";
-  dir_ = fs::weakly_canonical(fs::absolute(folder, ec), ec);
+  state_.dir = fs::weakly_canonical(fs::absolute(folder, ec), ec);
   if (ec) fail("", "cannot resolve the file's folder: " + ec.message());
 }
 
@@ -124,17 +141,17 @@ void UriSandbox::check_uri(const json& value, const std::string& where) const {
                quoted(uri));
     start = stop + 1;
   }
-  const fs::path full = dir_ / path;
+  const fs::path full = dir() / path;
   std::error_code ec;
   if (!fs::exists(full, ec))
     fail(where, "file " + quoted(path) + " not found next to the glTF file");
-  if (!inside_folder(dir_, full))
+  if (!inside_folder(dir(), full))
     fail(where, quoted(path) + " resolves outside the glTF file's folder (symbolic link)");
   if (!fs::is_regular_file(full, ec)) fail(where, quoted(path) + " is not a regular file");
 }
 
 tg::FsCallbacks UriSandbox::callbacks() {
-  return {&sandbox_exists, &sandbox_expand, &sandbox_read, &sandbox_write, &dir_};
+  return {&sandbox_exists, &sandbox_expand, &sandbox_read, &sandbox_write, &state_};
 }
 
 }  // namespace sb::gltf

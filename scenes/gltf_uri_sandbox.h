@@ -10,7 +10,9 @@
 // is given (callbacks()).
 #include <filesystem>
 #include <string>
+#include <vector>
 
+#include "core/scene.h"
 #include "scenes/gltf_common.h"
 
 namespace sb::gltf {
@@ -19,14 +21,24 @@ class UriSandbox : public ImportStep {
  public:
   // Resolves the folder of `file`.
   explicit UriSandbox(const std::string& file);
-  const std::filesystem::path& dir() const { return dir_; }
+  UriSandbox(const UriSandbox&) = delete;  // callbacks() points into it
+  UriSandbox& operator=(const UriSandbox&) = delete;
+  const std::filesystem::path& dir() const { return state_.dir; }
   // Throws unless `value` is a data: URI or names a regular file inside dir().
   void check_uri(const json& value, const std::string& where) const;
   // tinygltf's file access, confined to dir(); valid while this object lives.
   tg::FsCallbacks callbacks();
+  // The files read through callbacks(), each once, in the order first read:
+  // named by their path relative to dir(), with the SHA-256 of the bytes read.
+  const std::vector<core::InputFile>& reads() const { return state_.reads; }
+
+  struct State {
+    std::filesystem::path dir;
+    std::vector<core::InputFile> reads;
+  };
 
  private:
-  std::filesystem::path dir_;
+  State state_;
 };
 
 }  // namespace sb::gltf

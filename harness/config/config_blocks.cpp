@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "config/identity.h"
 #include "config/param_table.h"
 #include "reference/adaptive.h"
 #include "reference/embree_isa.h"
@@ -10,6 +11,7 @@ namespace sb::config {
 
 using core::bool_param;
 using core::choice_param;
+using core::Decides;
 using core::float_param;
 using core::int_param;
 using core::ParamSpec;
@@ -50,18 +52,20 @@ json checked(const ConfigReader& r, const ParamSpec& s, const json& v, const std
 }
 
 ConfigBlock frames_block() {
-  ConfigBlock b{"frames", "frame counts", {}, nullptr, nullptr};
+  ConfigBlock b{"frames", "frame counts", {}, nullptr, nullptr, nullptr};
   b.keys = {
-      {int_param("warmup", 2, 0, 100000,
+      {Decides::Both,
+       int_param("warmup", 2, 0, 100000,
                  "frames rendered and thrown away before the timed ones; one more untimed frame "
                  "always comes first, so shader compilation never lands in a timed frame, even "
                  "with 0"),
        [](Experiment& e, const json& v) { e.warmup_frames = v.get<int>(); },
        [](const Experiment& e) { return json(e.warmup_frames); }},
-      {int_param("timed", 10, 1, 100000, "frames timed per job"),
+      {Decides::Both, int_param("timed", 10, 1, 100000, "frames timed per job"),
        [](Experiment& e, const json& v) { e.timed_frames = v.get<int>(); },
        [](const Experiment& e) { return json(e.timed_frames); }},
-      {string_param("control", kDefaultControl,
+      {Decides::Timing,
+       string_param("control", kDefaultControl,
                     "a technique entry (a name, or `{\"name\", \"params\"}` without a sweep) "
                     "whose frames are timed next to every job's, in ABBA order, so that each "
                     "record also holds its time as a ratio to the control's (`timing.control`); "
@@ -69,6 +73,10 @@ ConfigBlock frames_block() {
        nullptr,
        [](const Experiment& e) { return e.control ? json(e.control->name) : json(nullptr); },
        "technique or null"},
+  };
+  // The control's parameters and plugin decide its times as much as its name.
+  b.keys.back().identity = [](const Experiment& e) {
+    return e.control ? technique_identity(e, *e.control) : json(nullptr);
   };
   return b;
 }
@@ -97,7 +105,7 @@ void check_reference(Experiment& e, const json& ref, const ConfigReader& r) {
 }
 
 ConfigBlock reference_block() {
-  ConfigBlock b{"reference", "reference settings", {}, nullptr, check_reference};
+  ConfigBlock b{"reference", "reference settings", {}, nullptr, check_reference, nullptr};
   const std::vector<std::string> methods{"monte_carlo", "exact"};
   ParamSpec second = choice_param(
       "second_method", "", methods,
@@ -105,7 +113,8 @@ ConfigBlock reference_block() {
       "`second_reference`; docs/results.md, \"Two references\"); absent: one reference");
   second.default_value = nullptr;
   b.keys = {
-      {choice_param("method", "monte_carlo", methods,
+      {Decides::Error,
+       choice_param("method", "monte_carlo", methods,
                     "ray traced and stratified, or exact (docs/results.md, \"The exact "
                     "reference\": no samples, no noise; scenes it cannot do fall back to Monte "
                     "Carlo with the reason)"),
@@ -113,37 +122,44 @@ ConfigBlock reference_block() {
        [](const Experiment& e) {
          return json(e.reference.settings.exact ? "exact" : "monte_carlo");
        }},
-      {second, [](Experiment& e, const json& v) { e.reference.second_exact = exact(v); },
+      {Decides::Error, second,
+       [](Experiment& e, const json& v) { e.reference.second_exact = exact(v); },
        [](const Experiment& e) {
          if (!e.reference.second_exact) return json(nullptr);
          return json(*e.reference.second_exact ? "exact" : "monte_carlo");
        }},
-      {int_param("spp", 256, 1, 1 << 20,
+      {Decides::Error,
+       int_param("spp", 256, 1, 1 << 20,
                  "samples per pixel of the Monte Carlo reference; with 1 the standard error is "
                  "unknown and reported as 0.5; adaptive: at most, and then `pilot_spp` × 4^K"),
        [](Experiment& e, const json& v) { e.reference.settings.spp = v.get<int>(); },
        [](const Experiment& e) { return json(e.reference.settings.spp); }},
-      {int_param("seed", 1, 0, 2147483647, "the Monte Carlo reference's seed"),
+      {Decides::Error, int_param("seed", 1, 0, 2147483647, "the Monte Carlo reference's seed"),
        [](Experiment& e, const json& v) { e.reference.settings.seed = v.get<uint64_t>(); },
        [](const Experiment& e) { return json(e.reference.settings.seed); }},
-      {bool_param("cache", true, "keep references in the on-disk cache, either method"),
+      {Decides::None,
+       bool_param("cache", true, "keep references in the on-disk cache, either method"),
        [](Experiment& e, const json& v) { e.reference.cache = v.get<bool>(); },
        [](const Experiment& e) { return json(e.reference.cache); }},
-      {bool_param("adaptive", false,
+      {Decides::Error,
+       bool_param("adaptive", false,
                   "a `pilot_spp`-sample pilot per pixel, and more samples only where needed "
                   "(below, \"The adaptive reference\")"),
        [](Experiment& e, const json& v) { e.reference.settings.adaptive = v.get<bool>(); },
        [](const Experiment& e) { return json(e.reference.settings.adaptive); }},
-      {int_param("pilot_spp", 4, 1, 1 << 20, "the adaptive reference's pilot: 4, 16 or 64"),
+      {Decides::Error,
+       int_param("pilot_spp", 4, 1, 1 << 20, "the adaptive reference's pilot: 4, 16 or 64"),
        [](Experiment& e, const json& v) { e.reference.settings.pilot_spp = v.get<int>(); },
        [](const Experiment& e) { return json(e.reference.settings.pilot_spp); }},
-      {float_param("target_std_error", 0.01, 1e-6, 0.5,
+      {Decides::Error,
+       float_param("target_std_error", 0.01, 1e-6, 0.5,
                    "the standard error the adaptive reference plans each pixel's level for"),
        [](Experiment& e, const json& v) {
          e.reference.settings.target_std_error = v.get<double>();
        },
        [](const Experiment& e) { return json(e.reference.settings.target_std_error); }},
-      {string_param("embree_config", "",
+      {Decides::Error,
+       string_param("embree_config", "",
                     "Embree's ISA: `\"\"` (the environment's, or the best), `\"isa=avx2\"`, "
                     "`\"max_isa=avx2\"` (below)"),
        [](Experiment& e, const json& v) {
@@ -155,8 +171,9 @@ ConfigBlock reference_block() {
 }
 
 ConfigBlock stability_block() {
-  ConfigBlock b{"stability", "stability settings", {}, nullptr, nullptr};
+  ConfigBlock b{"stability", "stability settings", {}, nullptr, nullptr, nullptr};
   b.present = [](Experiment& e) { e.stability.emplace(); };
+  b.in_effect = [](const Experiment& e) { return e.stability.has_value(); };
   ParamSpec frames = int_param("flicker_frames", 8, 0, 64,
                                "untimed frames per job under a moving light (0: none)");
   frames.rule = [](const json& v) {
@@ -164,30 +181,37 @@ ConfigBlock stability_block() {
   };
   frames.rule_doc = "not 1";
   b.keys = {
-      {frames, [](Experiment& e, const json& v) { e.stability->flicker_frames = v.get<int>(); },
+      {Decides::Error, frames,
+       [](Experiment& e, const json& v) { e.stability->flicker_frames = v.get<int>(); },
        [](const Experiment& e) { return json(e.stability->flicker_frames); }},
-      {float_param("flicker_step", 1.0 / 4096.0, 0, 0.1,
+      {Decides::Error,
+       float_param("flicker_step", 1.0 / 4096.0, 0, 0.1,
                    "the light's move per frame, × the casters' bounding-box diagonal (0 keeps it "
                    "still)"),
        [](Experiment& e, const json& v) { e.stability->flicker_step = v.get<double>(); },
        [](const Experiment& e) { return json(e.stability->flicker_step); }},
-      {float_param("flicker_factor", 2, 1, 1e6,
+      {Decides::Error,
+       float_param("flicker_factor", 2, 1, 1e6,
                    "degraded when the mean flicker is over this × the reference's own"),
        [](Experiment& e, const json& v) { e.stability->flicker_factor = v.get<double>(); },
        [](const Experiment& e) { return json(e.stability->flicker_factor); }},
-      {bool_param("sensitivity", true,
+      {Decides::Error,
+       bool_param("sensitivity", true,
                   "a variant at p ± `sensitivity_step`·\\|p\\| for every continuous parameter "
                   "and for the light's size"),
        [](Experiment& e, const json& v) { e.stability->sensitivity = v.get<bool>(); },
        [](const Experiment& e) { return json(e.stability->sensitivity); }},
-      {float_param("sensitivity_step", 0.01, 1e-6, 0.5, "the relative step of `sensitivity`"),
+      {Decides::Error,
+       float_param("sensitivity_step", 0.01, 1e-6, 0.5, "the relative step of `sensitivity`"),
        [](Experiment& e, const json& v) { e.stability->sensitivity_step = v.get<double>(); },
        [](const Experiment& e) { return json(e.stability->sensitivity_step); }},
-      {float_param("stiff_threshold", 0.5, 0, 1e6,
+      {Decides::Error,
+       float_param("stiff_threshold", 0.5, 0, 1e6,
                    "degraded when a parameter's relative sensitivity is over it"),
        [](Experiment& e, const json& v) { e.stability->stiff_threshold = v.get<double>(); },
        [](const Experiment& e) { return json(e.stability->stiff_threshold); }},
-      {float_param("max_rmse", 0.1, 0, 1,
+      {Decides::Error,
+       float_param("max_rmse", 0.1, 0, 1,
                    "degraded when the RMSE is over it (a scene entry may set its own)"),
        [](Experiment& e, const json& v) { e.stability->max_rmse = v.get<double>(); },
        [](const Experiment& e) { return json(e.stability->max_rmse); }},
@@ -196,15 +220,17 @@ ConfigBlock stability_block() {
 }
 
 ConfigBlock metrics_block() {
-  ConfigBlock b{"metrics", "metric settings", {}, nullptr, nullptr};
+  ConfigBlock b{"metrics", "metric settings", {}, nullptr, nullptr, nullptr};
   b.keys = {
-      {bool_param("distance_thirds", false,
+      {Decides::Error,
+       bool_param("distance_thirds", false,
                   "also measure the visibility's error over the near, middle and far third of "
                   "the camera's distances (record regions `near_third`, `middle_third`, "
                   "`far_third`), for perspective aliasing; part of the jobs' spec"),
        [](Experiment& e, const json& v) { e.distance_thirds = v.get<bool>(); },
        [](const Experiment& e) { return json(e.distance_thirds); }},
-      {float_param("flip_pixels_per_degree", metrics::kFlipDefaultPixelsPerDegree, 1, 1000,
+      {Decides::Error,
+       float_param("flip_pixels_per_degree", metrics::kFlipDefaultPixelsPerDegree, 1, 1000,
                    "the viewing distance of the FLIP errors (`flip_mean`), in pixels per degree "
                    "of visual angle; the default is the paper's (a 0.7 m wide 3840-pixel monitor "
                    "seen from 0.7 m); part of the jobs' spec"),
@@ -216,14 +242,16 @@ ConfigBlock metrics_block() {
 
 ConfigBlock limits_block() {
   // Below a second a busy machine kills healthy jobs; a week is no limit.
-  ConfigBlock b{"limits", "time limits", {}, nullptr, nullptr};
+  ConfigBlock b{"limits", "time limits", {}, nullptr, nullptr, nullptr};
   b.keys = {
-      {float_param("job_seconds", 1800, 1, 604800,
+      {Decides::None,
+       float_param("job_seconds", 1800, 1, 604800,
                    "seconds one job (prepare, frames, metrics, images) may take; `run "
                    "--job-timeout` overrides it"),
        [](Experiment& e, const json& v) { e.limits.job_seconds = v.get<double>(); },
        [](const Experiment& e) { return json(e.limits.job_seconds); }},
-      {float_param("setup_seconds", 3600, 1, 604800,
+      {Decides::None,
+       float_param("setup_seconds", 3600, 1, 604800,
                    "seconds a (scene, resolution)'s set-up (scene, G-buffer, reference) may take"),
        [](Experiment& e, const json& v) { e.limits.setup_seconds = v.get<double>(); },
        [](const Experiment& e) { return json(e.limits.setup_seconds); }},
@@ -258,14 +286,14 @@ std::string markdown_config_blocks() {
   std::string out;
   for (const ConfigBlock& b : config_blocks()) {
     out += "### `" + b.name + "`\n\n";
-    out += "| key | type | default | accepted | meaning |\n|---|---|---|---|---|\n";
+    out += "| key | type | default | accepted | decides | meaning |\n|---|---|---|---|---|---|\n";
     for (const BlockKey& k : b.keys) {
       const ParamSpec& s = k.spec;
       const bool technique = !k.type_doc.empty();
       out += "| `" + s.name + "` | " + (technique ? k.type_doc : to_string(s.type)) + " | `" +
              markdown_cell(s.default_value.is_null() ? "absent" : s.default_value.dump()) + "` | " +
              markdown_cell(technique ? "a technique entry" : accepted_values(s, true)) + " | " +
-             markdown_cell(s.doc) + " |\n";
+             core::to_string(s.decides) + " | " + markdown_cell(s.doc) + " |\n";
     }
     out += "\n";
   }

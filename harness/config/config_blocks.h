@@ -19,14 +19,19 @@ namespace sb::config {
 
 // One key of a block.
 struct BlockKey {
-  BlockKey(core::ParamSpec spec_, std::function<void(Experiment&, const nlohmann::json&)> store_,
+  // `decides`: which of a job's numbers the key decides, declared with the
+  // key (core::Decides): a job's identity is generated from it
+  // (config/identity.h, blocks_identity).
+  BlockKey(core::Decides decides, core::ParamSpec spec_,
+           std::function<void(Experiment&, const nlohmann::json&)> store_,
            std::function<nlohmann::json(const Experiment&)> value_, std::string type_doc_ = "")
-      : spec(std::move(spec_)),
+      : spec(core::deciding(std::move(spec_), decides)),
         store(std::move(store_)),
         value(std::move(value_)),
         type_doc(std::move(type_doc_)) {}
-  // Name, type, default, range or choices, rule and meaning. The default is
-  // what the Experiment holds when the key is absent (a test checks it).
+  // Name, type, default, range or choices, rule, meaning and what it decides
+  // (spec.decides). The default is what the Experiment holds when the key is
+  // absent (a test checks it).
   core::ParamSpec spec;
   // Stores a checked value; null for a key read elsewhere (frames.control, a
   // technique entry, needs the registry).
@@ -34,6 +39,9 @@ struct BlockKey {
   // The Experiment's value, as the config would spell it.
   std::function<nlohmann::json(const Experiment&)> value;
   std::string type_doc;  // the docs' type when not the spec's ("technique")
+  // Its part of a job's identity, when more than `value` (frames.control:
+  // the technique's parameters and plugin); null: `value`.
+  std::function<nlohmann::json(const Experiment&)> identity;
 };
 
 struct ConfigBlock {
@@ -46,6 +54,9 @@ struct ConfigBlock {
   // Rules across keys, after every key is read: the block as given, and the
   // reader to fail with.
   std::function<void(Experiment&, const nlohmann::json&, const ConfigReader&)> finish;
+  // Whether its keys apply to `e` (stability: only when present); null:
+  // always. A block not in effect is null in a job's identity.
+  std::function<bool(const Experiment&)> in_effect;
   std::string pointer() const { return "/" + name; }
 };
 
@@ -55,7 +66,7 @@ const std::vector<ConfigBlock>& config_blocks();
 // Reads every block `doc` holds into `e` (frames.control aside).
 void read_config_blocks(const ConfigReader& r, const nlohmann::json& doc, Experiment& e);
 
-// One Markdown table per block: | key | type | default | accepted | meaning |.
+// One Markdown table per block: | key | type | default | accepted | decides | meaning |.
 std::string markdown_config_blocks();
 
 }  // namespace sb::config

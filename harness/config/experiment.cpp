@@ -8,6 +8,7 @@
 
 #include "config/config_blocks.h"
 #include "config/config_reader.h"
+#include "config/identity.h"
 #include "config/json_file.h"
 #include "config/resolutions.h"
 #include "config/scene_overrides.h"
@@ -98,8 +99,9 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
   for (size_t i = 0; i < scenes.size(); ++i) {
     const std::string p = "/scenes/" + std::to_string(i);
     const json& entry = r.object(scenes[i], p, "a scene");
-    r.only_keys(entry, p,
-                {"type", "params", "light", "camera", "label", "infer_receivers", "max_rmse"});
+    std::vector<std::string> entry_keys{"type", "params"};
+    for (const SceneEntryKey& k : scene_entry_keys()) entry_keys.push_back(k.name);
+    r.only_keys(entry, p, entry_keys);
     const std::string type = r.string(r.member(entry, p, "type"), p + "/type");
     const SceneType* st = find_scene_type(type);
     if (st == nullptr) {
@@ -136,7 +138,15 @@ Experiment parse_experiment(const json& doc, const std::string& file, const Regi
         const auto [param, problem] = st->check(v.params);
         if (!problem.empty()) r.fail(swept_pointer(given, combo, p + "/params", param), problem);
       }
-      v.name = variant_name(label, st->params, combo);
+      // A labelled entry is not named by the file it reads (unless it sweeps
+      // files): its job ids stay when the file is moved or renamed, and its
+      // identity is the file's content (config/identity.h).
+      json named = combo;
+      if (entry.contains("label"))
+        for (const ParamSpec& s : st->params)
+          if (s.is_path && !(given.contains(s.name) && given[s.name].is_array()))
+            named.erase(s.name);
+      v.name = variant_name(label, st->params, named);
       for (auto it = given.begin(); it != given.end(); ++it)
         if (it.value().is_array()) v.swept[it.key()] = combo[it.key()];
       v.light = light;

@@ -21,13 +21,17 @@ ParamSpec int_param(std::string name, int def, int min, int max, std::string doc
           {},
           false,
           {},
-          {}};
+          {},
+          false,
+          Decides::Both};
 }
 ParamSpec float_param(std::string name, double def, double min, double max, std::string doc) {
-  return {std::move(name), ParamType::Float, def, min, max, {}, std::move(doc), {}, false, {}, {}};
+  return {std::move(name), ParamType::Float, def, min, max, {}, std::move(doc), {}, false, {}, {},
+          false,           Decides::Both};
 }
 ParamSpec bool_param(std::string name, bool def, std::string doc) {
-  return {std::move(name), ParamType::Bool, def, 0, 1, {}, std::move(doc), {}, false, {}, {}};
+  return {std::move(name), ParamType::Bool, def, 0, 1, {}, std::move(doc), {}, false, {}, {},
+          false,           Decides::Both};
 }
 ParamSpec choice_param(std::string name, std::string def, std::vector<std::string> choices,
                        std::string doc) {
@@ -41,7 +45,9 @@ ParamSpec choice_param(std::string name, std::string def, std::vector<std::strin
           {},
           false,
           {},
-          {}};
+          {},
+          false,
+          Decides::Both};
 }
 
 ParamSpec string_param(std::string name, std::string def, std::string doc) {
@@ -55,7 +61,9 @@ ParamSpec string_param(std::string name, std::string def, std::string doc) {
           {},
           false,
           {},
-          {}};
+          {},
+          false,
+          Decides::Both};
 }
 
 ParamSpec path_param(std::string name, std::string doc) {
@@ -77,6 +85,11 @@ ParamSpec with_sentinel(ParamSpec spec, double value) {
   return spec;
 }
 
+ParamSpec deciding(ParamSpec spec, Decides what) {
+  spec.decides = what;
+  return spec;
+}
+
 ParamSpec as_map_size(ParamSpec spec) {
   spec.map_size = true;
   return spec;
@@ -94,6 +107,20 @@ std::string to_string(ParamType t) {
       return "choice";
     case ParamType::String:
       return "string";
+  }
+  return "?";
+}
+
+std::string to_string(Decides d) {
+  switch (d) {
+    case Decides::None:
+      return "none";
+    case Decides::Error:
+      return "error";
+    case Decides::Timing:
+      return "timing";
+    case Decides::Both:
+      return "both";
   }
   return "?";
 }
@@ -175,6 +202,7 @@ Params resolve_params(const std::vector<ParamSpec>& specs, const nlohmann::json&
   if (!given.is_null()) {
     r.object(given, pointer, "parameters");
     std::vector<std::string> names;
+    names.reserve(specs.size());
     for (const auto& s : specs) names.push_back(s.name);
     r.only_keys(given, pointer, names, "parameter");
   }

@@ -13,6 +13,13 @@ namespace sb::core {
 
 enum class ParamType { Int, Float, Bool, Choice, String };
 
+// Which of a job's numbers a setting decides: its errors (what is rendered
+// and measured against what), its timings, both, or none (where files go, how
+// long a job may take). A job's identity, the spec a rerun compares
+// (run/job_identity.h), is generated from these declarations: every setting
+// that decides something is in it, and no other.
+enum class Decides { None, Error, Timing, Both };
+
 struct ParamSpec {
   std::string name;
   ParamType type = ParamType::Float;
@@ -37,6 +44,10 @@ struct ParamSpec {
   // error compare unequal work (config/map_sizes.h warns). Declared once,
   // where the parameter is (shadow::depth_map_params).
   bool map_size = false;
+  // What it decides (Decides). A technique's or a scene's parameters decide
+  // both unless declared otherwise. A path parameter (is_path) is part of a
+  // job's identity by the content of the file it names, not by the path.
+  Decides decides = Decides::Both;
 };
 
 // Adds the rule "odd integer" to an Int parameter.
@@ -45,6 +56,8 @@ ParamSpec odd(ParamSpec spec);
 ParamSpec with_sentinel(ParamSpec spec, double value);
 // Marks an Int parameter as a shadow map's side (ParamSpec::map_size).
 ParamSpec as_map_size(ParamSpec spec);
+// Declares what the parameter decides (ParamSpec::decides).
+ParamSpec deciding(ParamSpec spec, Decides what);
 
 ParamSpec int_param(std::string name, int def, int min, int max, std::string doc);
 ParamSpec float_param(std::string name, double def, double min, double max, std::string doc);
@@ -56,6 +69,8 @@ ParamSpec string_param(std::string name, std::string def, std::string doc);
 ParamSpec path_param(std::string name, std::string doc);
 
 std::string to_string(ParamType t);
+// "none", "error", "timing", "both".
+std::string to_string(Decides d);
 
 // Resolved parameter values (defaults filled in, every value checked).
 // Params remembers which of them a get_*() has read, so that a declared

@@ -120,6 +120,17 @@ struct Bounds {
   float radius() const { return 0.5f * glm::length(hi - lo); }
 };
 
+// A file a scene was built from, as its builder read it (a glTF file, its
+// buffers and images): what a job's identity holds instead of the path that
+// named it, so that an edited file reruns and a moved one resumes.
+struct InputFile {
+  std::string path;  // as opened, for messages
+  // Its place relative to the file a parameter named: "" for that file
+  // itself, else the URI it was read by, relative to that file's folder.
+  std::string name;
+  std::string sha256;  // of its bytes
+};
+
 struct Scene {
   std::string name;
   std::vector<Mesh> meshes;
@@ -127,6 +138,9 @@ struct Scene {
   AreaLight light;
   Camera camera;
   glm::vec3 ambient{0.15f};
+  // The files it was built from, in the order first read (none for a
+  // generated scene).
+  std::vector<InputFile> inputs;
 
   size_t triangle_count() const;
   size_t caster_triangle_count() const;

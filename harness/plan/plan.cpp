@@ -128,7 +128,11 @@ Plan make_plan(const Experiment& e, int shard_count) {
         j.outcome = decide_job(e, sp, t);
         plan.jobs.push_back(std::move(j));
       }
-    sp.scene = Scene{};  // a sweep of big scenes must not stay in memory
+    // A sweep of big scenes must not stay in memory; the files it was built
+    // from stay, for the jobs' identity (run/job_identity.h).
+    std::vector<core::InputFile> inputs = std::move(sp.scene.inputs);
+    sp.scene = Scene{};
+    sp.scene.inputs = std::move(inputs);
     sp.derived = DerivedData{};
     plan.scenes.push_back(std::move(sp));
   }

@@ -67,7 +67,7 @@ struct PlannedJob {
 };
 
 struct Plan {
-  std::vector<ScenePlan> scenes;  // scene data dropped (Derive::Decide plans)
+  std::vector<ScenePlan> scenes;  // scene data dropped but its inputs (Derive::Decide plans)
   std::vector<PlannedJob> jobs;   // scene-major, then resolution, then technique
   int shard_count = 1;
   size_t count(PlannedJob::Status s) const;

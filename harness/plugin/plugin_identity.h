@@ -15,8 +15,9 @@ namespace sb::plugin {
 // 2: TechniqueInfo::needs_of_params; 3: ParamSpec::map_size; 4: the names
 // live in their folders' namespaces (sb::core::Scene, sb::plugin::Technique,
 // sb::gl::GpuScene), so modules built before do not load; their source builds
-// unchanged, the names being kept in sb too (plugin/api_names.h)
-inline constexpr int kPluginApiVersion = 4;
+// unchanged, the names being kept in sb too (plugin/api_names.h); 5:
+// ParamSpec::decides and Scene::inputs (a job's identity by what it reads)
+inline constexpr int kPluginApiVersion = 5;
 
 struct PluginIdentity {
   std::string file;       // relative to the plugin folder it was loaded from: "shadow_map.so"

@@ -43,8 +43,56 @@ std::string plugin_hash(const json& plugin) {
   return it != plugin.end() && it->is_string() ? it->get<std::string>() : "";
 }
 
-void collect(const json* before, const json* after, const std::string& name,
+// A file's identity in a spec (config/identity.h, file_identity):
+// {"sha256": ..., "reads": {name: sha256}}; a plugin's has a "file" too.
+bool file_identity(const json& v) {
+  if (!v.is_object() || !v.contains("sha256")) return false;
+  for (auto it = v.begin(); it != v.end(); ++it)
+    if (it.key() != "sha256" && it.key() != "reads") return false;
+  return true;
+}
+
+// A hash as a change line shows it: short, "unreadable" for null.
+std::string content_text(const json* sha) {
+  if (sha == nullptr) return "absent";
+  return sha->is_string() ? short_hash(sha->get<std::string>()) : std::string("unreadable");
+}
+
+// One line per file whose content differs: the file itself, then each file
+// read through it, named by `label` (its path, where the record says it).
+void file_changes(const json& before, const json& after, const std::string& label,
+                  std::vector<std::string>& out) {
+  if (before["sha256"] != after["sha256"])
+    out.push_back("file " + label + ": content changed (sha256 " + content_text(&before["sha256"]) +
+                  " -> " + content_text(&after["sha256"]) + ")");
+  const json none = json::object();
+  const json& b = before.contains("reads") ? before["reads"] : none;
+  const json& a = after.contains("reads") ? after["reads"] : none;
+  std::set<std::string> names;
+  for (auto it = b.begin(); it != b.end(); ++it) names.insert(it.key());
+  for (auto it = a.begin(); it != a.end(); ++it) names.insert(it.key());
+  for (const std::string& n : names) {
+    const json* was = b.contains(n) ? &b[n] : nullptr;
+    const json* now = a.contains(n) ? &a[n] : nullptr;
+    if (was != nullptr && now != nullptr && *was == *now) continue;
+    std::string line = "file ";
+    line.append(n).append(" of ").append(label).append(": content changed (sha256 ");
+    line.append(content_text(was)).append(" -> ").append(content_text(now)).append(")");
+    out.push_back(std::move(line));
+  }
+}
+
+void collect(const json* before, const json* after, const std::string& name, const json& labels,
              std::vector<std::string>& out) {
+  // A file is named by its path, never by its place in the spec, and says
+  // that its content changed.
+  if (before != nullptr && after != nullptr && file_identity(*before) && file_identity(*after)) {
+    const auto label = labels.find(name);
+    file_changes(*before, *after,
+                 label != labels.end() && label->is_string() ? label->get<std::string>() : name,
+                 out);
+    return;
+  }
   // A rebuilt plugin is one change, named by its file, whatever else of it changed.
   if (before != nullptr && after != nullptr && before->is_object() && after->is_object() &&
       (name == "plugin" || ends_with(name, ".plugin")) &&
@@ -64,7 +112,8 @@ void collect(const json* before, const json* after, const std::string& name,
       std::string member = name;
       if (!member.empty()) member += '.';
       member += key;
-      collect(b == before->end() ? nullptr : &*b, a == after->end() ? nullptr : &*a, member, out);
+      collect(b == before->end() ? nullptr : &*b, a == after->end() ? nullptr : &*a, member, labels,
+              out);
     }
     return;
   }
@@ -75,9 +124,9 @@ void collect(const json* before, const json* after, const std::string& name,
 
 }  // namespace
 
-std::vector<std::string> spec_changes(const json& before, const json& after) {
+std::vector<std::string> spec_changes(const json& before, const json& after, const json& labels) {
   std::vector<std::string> out;
-  collect(&before, &after, "", out);
+  collect(&before, &after, "", labels.is_object() ? labels : json::object(), out);
   return out;
 }
 
@@ -86,7 +135,16 @@ std::string rerun_reason(const JobRecord& earlier, const json& spec, const std::
   if (!earlier.spec)
     return "its record stores no spec (written before records kept the settings they were run "
            "with), so its settings cannot be checked";
-  const std::vector<std::string> changes = spec_changes(*earlier.spec, spec);
+  // A file parameter's identity is named by the path the record was run with.
+  json labels = json::object();
+  const auto label = [&](const std::string& where, const json& params) {
+    if (!params.is_object()) return;
+    for (auto it = params.begin(); it != params.end(); ++it)
+      if (it->is_string()) labels[where + "." + it.key()] = *it;
+  };
+  label("scene.params", earlier.scene.params);
+  label("technique.params", earlier.technique.params);
+  const std::vector<std::string> changes = spec_changes(*earlier.spec, spec, labels);
   // Equal settings under another hash: the record was edited, or the hash
   // is not of its spec.
   if (changes.empty()) return "its spec_hash is not that of its stored spec";

@@ -310,8 +310,9 @@ IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const Emb
                                                                     : "failed: ") +
                          how);
     for (const PlannedJob* j : remaining) {
-      JobRecord r = identity_record(e, o, embree, sv, res, e.techniques[j->technique],
-                                    gl ? gl->renderer : "", gl ? gl->version : "");
+      JobRecord r = identity_record(
+          e, o, embree, sv, work.inputs != nullptr ? *work.inputs : std::vector<core::InputFile>{},
+          res, e.techniques[j->technique], gl ? gl->renderer : "", gl ? gl->version : "");
       if (gl) {
         r.gl_platform = gl->platform;
         r.timing_source = gl->timing_source;

@@ -121,8 +121,11 @@ class JobExecutor::Impl {
   // did not build.
   JobRecord base_record(const SceneVariant& sv, const ScenePlan* st, const Resolution& res,
                         const TechniqueVariant& tv) const {
-    JobRecord r =
-        identity_record(e_, o_, embree_, sv, res, tv, context_->renderer(), context_->version());
+    // The files as this process's build of the scene read them; a scene
+    // that did not build is identified by its files as they are now.
+    JobRecord r = identity_record(e_, o_, embree_, sv,
+                                  st != nullptr ? st->scene.inputs : std::vector<core::InputFile>{},
+                                  res, tv, context_->renderer(), context_->version());
     if (st != nullptr) r.scene.built = built_scene(sv, *st);
     r.gl_platform = context_->platform();
     r.timing_source = gl::to_string(timing_source_);

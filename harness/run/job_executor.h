@@ -23,6 +23,9 @@ namespace sb::run {
 struct ResolutionWork {
   size_t resolution = 0;
   std::vector<const plan::PlannedJob*> jobs;
+  // The files the plan's build of the scene read (core::Scene::inputs), for
+  // the records of jobs that end before a scene is built again.
+  const std::vector<core::InputFile>* inputs = nullptr;
 };
 
 class JobExecutor {

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <ctime>
 
+#include "config/identity.h"
 #include "core/error.h"
 #include "core/hash.h"
 #include "core/names.h"
@@ -17,13 +18,18 @@
 
 namespace sb::run {
 
+using config::blocks_identity;
 using config::Experiment;
 using config::ReferenceConfig;
 using config::Resolution;
+using config::scene_identity;
 using config::SceneVariant;
+using config::technique_identity;
 using config::TechniqueVariant;
+using core::Decides;
 using core::Hasher;
 using core::InputError;
+using core::InputFile;
 using core::job_id;
 using plan::ScenePlan;
 using plugin::PluginIdentity;
@@ -64,15 +70,6 @@ const PluginIdentity* plugin_of(const Experiment& e, const TechniqueVariant& tv)
   return e.registry == nullptr ? nullptr : e.registry->plugin_of(tv.info->name);
 }
 
-// Its hash decides the numbers as much as the parameters do: a rebuilt
-// plugin reruns (record/spec_changes.h names it).
-json technique_spec(const Experiment& e, const TechniqueVariant& tv) {
-  json t = {{"name", tv.info->name}, {"params", tv.params.json()}};
-  if (const PluginIdentity* p = plugin_of(e, tv))
-    t["plugin"] = {{"file", p->file}, {"sha256", p->sha256}, {"api_version", p->api_version}};
-  return t;
-}
-
 // SHADOWBENCH_INJECT_DELAY as set, when it slows this job; else null. A
 // malformed value is kept as it is: the executor reports it, not this.
 json injected_delay_spec(const TechniqueVariant& tv) {
@@ -83,6 +80,74 @@ json injected_delay_spec(const TechniqueVariant& tv) {
   } catch (const InputError&) {
   }
   return value;
+}
+
+// What a part of the spec that is no config key is computed from.
+struct RunContext {
+  const Experiment& e;
+  const RunOptions& o;
+  const EmbreeChoice& embree;
+  const TechniqueVariant& tv;
+  const BuildRecord& build;
+};
+
+// A part of the spec that is no config key: `key` of the spec's member
+// `block` ("" for the spec itself), what it decides, and its value.
+struct RunPart {
+  const char* block;
+  const char* key;
+  Decides decides;
+  json (*value)(const RunContext&);
+};
+
+// The one place that lists them: the reference's method with its version
+// and the Embree ISA it resolves to, how frames are timed, the backend and
+// the build.
+const std::vector<RunPart>& run_parts() {
+  static const std::vector<RunPart> parts{
+      // reference::method_id: the method, its version constants and Embree's
+      // version; a bump reruns the jobs it concerns.
+      {"reference", "method_id", Decides::Error,
+       [](const RunContext& c) -> json {
+         const ReferenceConfig& ref = c.e.reference;
+         return reference::method_id(reference_settings(ref, c.embree, ref.settings.exact));
+       }},
+      {"reference", "second_method_id", Decides::Error,
+       [](const RunContext& c) -> json {
+         const ReferenceConfig& ref = c.e.reference;
+         if (!ref.second_exact) return nullptr;
+         return reference::method_id(reference_settings(ref, c.embree, *ref.second_exact));
+       }},
+      {"reference", "embree_isa", Decides::Error,
+       [](const RunContext& c) -> json { return c.embree.isa; }},
+      {"timing", "pass_detail", Decides::Timing,
+       [](const RunContext& c) -> json { return gl::to_string(c.o.pass_detail); }},
+      {"timing", "turns", Decides::Timing,
+       [](const RunContext& c) -> json {
+         return c.o.take_turn ? "every " + std::to_string(c.o.turn_block_frames) + " timed frames"
+                              : std::string("none");
+       }},
+      {"timing", "injected_delay", Decides::Timing,
+       [](const RunContext& c) -> json { return injected_delay_spec(c.tv); }},
+      // Forced bracket kind, or "auto": the context's (glFinish and CPU
+      // clocks on a software rasteriser, GL timestamps on a GPU).
+      {"timing", "source", Decides::Timing,
+       [](const RunContext& c) -> json {
+         return c.o.timing_source ? gl::to_string(*c.o.timing_source) : std::string("auto");
+       }},
+      {"", "backend", Decides::Both,
+       [](const RunContext& c) -> json { return gl::to_string(c.o.backend); }},
+      // The toolchain, and the code of the libraries that render and
+      // measure. Not the driver's: it embeds `git describe`, which every
+      // commit changes, and its own code (the command line) decides no number.
+      {"build", "fingerprint", Decides::Both,
+       [](const RunContext& c) -> json { return c.build.fingerprint.value_or(""); }},
+      {"build", "core_sha256", Decides::Both,
+       [](const RunContext& c) -> json { return c.build.core_sha256.value_or(""); }},
+      {"build", "plugin_api_sha256", Decides::Both,
+       [](const RunContext& c) -> json { return c.build.plugin_api_sha256.value_or(""); }},
+  };
+  return parts;
 }
 
 }  // namespace
@@ -96,62 +161,21 @@ reference::Settings reference_settings(const ReferenceConfig& c, const EmbreeCho
 }
 
 json job_spec(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
-              const SceneVariant& sv, const Resolution& res, const TechniqueVariant& tv) {
-  const ReferenceConfig& ref = e.reference;
+              const SceneVariant& sv, const std::vector<InputFile>& inputs, const Resolution& res,
+              const TechniqueVariant& tv) {
+  // The job's own: the scene (its files by content), resolution and technique.
+  json spec = {{"scene", scene_identity(sv, inputs)},
+               {"resolution", res.label()},
+               {"technique", technique_identity(e, tv)}};
+  // Every config key that decides a number, as its block declares it.
+  spec.update(blocks_identity(e));
+  // And what is no config key.
   const BuildRecord build = describe_build();
-  // Every setting of the reference, those of the exact one included: a
-  // scene the exact reference cannot do gets Monte Carlo with them.
-  json spec = {
-      {"scene",
-       {{"type", sv.type},
-        {"params", sv.params.json()},
-        {"light", sv.light},
-        {"camera", sv.camera},
-        {"infer_receivers", sv.infer_receivers}}},
-      {"resolution", res.label()},
-      {"technique", technique_spec(e, tv)},
-      {"frames",
-       {{"warmup", e.warmup_frames},
-        {"timed", e.timed_frames},
-        {"control", e.control ? technique_spec(e, *e.control) : json(nullptr)}}},
-      {"timing",
-       {{"pass_detail", gl::to_string(o.pass_detail)},
-        {"turns", o.take_turn ? "every " + std::to_string(o.turn_block_frames) + " timed frames"
-                              : std::string("none")},
-        {"injected_delay", injected_delay_spec(tv)},
-        // Forced bracket kind, or "auto": the context's (glFinish and CPU
-        // clocks on a software rasteriser, GL timestamps on a GPU).
-        {"source", o.timing_source ? gl::to_string(*o.timing_source) : std::string("auto")}}},
-      {"reference",
-       {{"method", ref.settings.exact ? "exact" : "monte_carlo"},
-        {"method_id", reference::method_id(reference_settings(ref, embree, ref.settings.exact))},
-        {"spp", ref.settings.spp},
-        {"seed", ref.settings.seed},
-        {"embree_isa", embree.isa},
-        {"adaptive", ref.settings.adaptive},
-        {"pilot_spp", ref.settings.pilot_spp},
-        {"target_std_error", ref.settings.target_std_error}}},
-      {"second_reference", nullptr},
-      {"metrics",
-       {{"distance_thirds", e.distance_thirds},
-        {"flip_pixels_per_degree", e.flip_pixels_per_degree}}},
-      {"stability", nullptr},
-      {"backend", gl::to_string(o.backend)},
-      // The toolchain, and the code of the libraries that render and
-      // measure. Not the driver's: it embeds `git describe`, which every
-      // commit changes, and its own code (the command line) decides no number.
-      {"build",
-       {{"fingerprint", build.fingerprint.value_or("")},
-        {"core_sha256", build.core_sha256.value_or("")},
-        {"plugin_api_sha256", build.plugin_api_sha256.value_or("")}}}};
-  // The second reference takes the first's settings with the other method.
-  if (ref.second_exact)
-    spec["second_reference"] = {
-        {"method", *ref.second_exact ? "exact" : "monte_carlo"},
-        {"method_id", reference::method_id(reference_settings(ref, embree, *ref.second_exact))}};
-  if (e.stability) {
-    json& s = spec["stability"] = e.stability->to_json();
-    s["max_rmse"] = sv.max_rmse.value_or(e.stability->max_rmse);  // the scene's own, if any
+  const RunContext context{e, o, embree, tv, build};
+  for (const RunPart& p : run_parts()) {
+    if (p.decides == Decides::None) continue;
+    json& where = *p.block == '\0' ? spec : spec[p.block];
+    where[p.key] = p.value(context);
   }
   return spec;
 }
@@ -163,7 +187,8 @@ std::string job_spec_hash(const json& spec) {
 }
 
 JobRecord identity_record(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
-                          const SceneVariant& sv, const Resolution& res, const TechniqueVariant& tv,
+                          const SceneVariant& sv, const std::vector<InputFile>& inputs,
+                          const Resolution& res, const TechniqueVariant& tv,
                           const std::string& gl_renderer, const std::string& gl_version) {
   JobRecord r;
   r.run_id = o.run_id;
@@ -171,7 +196,7 @@ JobRecord identity_record(const Experiment& e, const RunOptions& o, const Embree
   r.config_hash = e.content_hash;
   r.experiment = e.name;
   r.job_id = job_id(sv.name, res.label(), tv.name);
-  r.spec = job_spec(e, o, embree, sv, res, tv);
+  r.spec = job_spec(e, o, embree, sv, inputs, res, tv);
   r.spec_hash = job_spec_hash(*r.spec);
   r.scene_variant = sv.name;
   r.scene.type = sv.type;

@@ -5,6 +5,7 @@
 // configured, resolution, backend, host, build).
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "config/experiment.h"
 #include "plan/plan.h"
@@ -29,16 +30,18 @@ reference::Settings reference_settings(const config::ReferenceConfig& c, const E
                                        bool exact);
 
 // Everything that decides a job's numbers, as named fields (the record's
-// "spec", docs/results.md): the scene, resolution and technique; the frame
-// counts and the control; how frames are timed (pass detail, turns between
-// two builds, an injected delay); the reference's method with its version
-// (reference::method_id) and all its settings, and the second reference's;
-// the metrics and stability settings; the backend; and the build's
-// fingerprint, since timings are kept. This function is the one place that
-// lists them.
+// "spec", docs/results.md), generated from the declarations where each
+// setting is described (core::Decides): the scene (config::scene_identity:
+// its parameters, a file by the content of what building the scene read,
+// `inputs`), the resolution and the technique (config::technique_identity);
+// every config block key that decides a number (config::blocks_identity);
+// and the parts that are no config key, listed in job_identity.cpp
+// (run_parts): the reference's method with its version and the Embree ISA,
+// how frames are timed, the backend and the build.
 nlohmann::json job_spec(const config::Experiment& e, const RunOptions& o,
                         const EmbreeChoice& embree, const config::SceneVariant& sv,
-                        const config::Resolution& res, const config::TechniqueVariant& tv);
+                        const std::vector<core::InputFile>& inputs, const config::Resolution& res,
+                        const config::TechniqueVariant& tv);
 
 // The hash of job_spec(). A rerun into the same folder keeps a finished
 // record only when its hash is the same (record/spec_changes.h says why not).
@@ -46,10 +49,12 @@ std::string job_spec_hash(const nlohmann::json& spec);
 
 // The record's identity: everything but the built scene, the GL context's
 // strings and what the job measures. `sv`, `res` and `tv` must be elements
-// of `e`'s own lists (job_index is their place in them). The host is described with the GL
+// of `e`'s own lists (job_index is their place in them); `inputs` are the
+// files building `sv` read (core::Scene::inputs). The host is described with the GL
 // renderer and version given ("" before any context exists).
 record::JobRecord identity_record(const config::Experiment& e, const RunOptions& o,
                                   const EmbreeChoice& embree, const config::SceneVariant& sv,
+                                  const std::vector<core::InputFile>& inputs,
                                   const config::Resolution& res, const config::TechniqueVariant& tv,
                                   const std::string& gl_renderer = "",
                                   const std::string& gl_version = "");

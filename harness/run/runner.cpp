@@ -215,7 +215,7 @@ class Runner {
           continue;
         }
         if (work.empty() || work.back().resolution != j.resolution)
-          work.push_back({j.resolution, {}});
+          work.push_back({j.resolution, {}, &plan_.scenes[j.scene].scene.inputs});
         work.back().jobs.push_back(&j);
       }
       if (!work.empty()) run_scene(scene, work, events);
@@ -242,7 +242,7 @@ class Runner {
       if (o_.isolation == Isolation::Group)
         pieces.push_back(w);
       else
-        for (const PlannedJob* j : w.jobs) pieces.push_back({w.resolution, {j}});
+        for (const PlannedJob* j : w.jobs) pieces.push_back({w.resolution, {j}, w.inputs});
       for (const ResolutionWork& piece : pieces) {
         const IsolatedOutcome out = run_isolated(e_, o_, embree_, scene, piece, limits_, events);
         summary_.crashed += out.crashed;
@@ -268,8 +268,9 @@ class Runner {
     const std::string& id = j.id;
     const JobRecord* done = store_.finished(id);
     if (done == nullptr) return false;
-    const json spec = job_spec(e_, o_, embree_, e_.scenes[j.scene], e_.resolutions[j.resolution],
-                               e_.techniques[j.technique]);
+    const json spec =
+        job_spec(e_, o_, embree_, e_.scenes[j.scene], plan_.scenes[j.scene].scene.inputs,
+                 e_.resolutions[j.resolution], e_.techniques[j.technique]);
     const std::string why = rerun_reason(*done, spec, job_spec_hash(spec));
     if (why.empty()) return true;
     ++summary_.respecified;

@@ -4,9 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
+#include "config/identity.h"
 #include "core/scene_types.h"
+#include "record/spec_changes.h"
 #include "scenes/gltf_export.h"
 #include "scenes/gltf_import.h"
 #include "tests/gltf/gltf_builder.h"
@@ -104,6 +107,65 @@ TEST(GltfImport, ExternalBufferAndImagesInTheSameFolder) {
   std::filesystem::current_path(std::filesystem::temp_directory_path());
   EXPECT_NO_THROW(load_gltf(gltf));
   std::filesystem::current_path(cwd);
+}
+
+// sha256sum's digest of a file: another implementation than the importer's.
+std::string sha256sum_of(const std::string& file) {
+  std::string out;
+  if (FILE* p = popen(("sha256sum '" + file + "'").c_str(), "r")) {
+    char buf[128];
+    while (fgets(buf, sizeof buf, p) != nullptr) out += buf;
+    pclose(p);
+  }
+  return out.substr(0, 64);
+}
+
+TEST(GltfImport, TheSceneListsEveryFileItReadWithItsSha256) {
+  // What a job's identity holds instead of the path (config/identity.h):
+  // the file, then its buffer and images, named relative to its folder as
+  // their URIs name them (%20 decoded), each once.
+  TempDir dir;
+  const std::string gltf = unpack_glb(export_glb_bytes(textured_scene()), dir);
+  const Scene s = load_gltf(gltf);
+  ASSERT_EQ(s.inputs.size(), 3u);
+  EXPECT_EQ(s.inputs[0].path, gltf);
+  EXPECT_EQ(s.inputs[0].name, "");
+  EXPECT_EQ(s.inputs[0].sha256, sha256sum_of(gltf));
+  EXPECT_EQ(s.inputs[1].name, "scene.bin");
+  EXPECT_EQ(s.inputs[1].sha256, sha256sum_of(dir / "scene.bin"));
+  EXPECT_EQ(s.inputs[2].name, "textures/image 0.png");
+  EXPECT_EQ(s.inputs[2].sha256, sha256sum_of(dir / "textures/image 0.png"));
+  // A .glb holds everything: one file.
+  const std::string glb = dir / "scene.glb";
+  test::write_bytes(glb, export_glb_bytes(textured_scene()));
+  const Scene packed = load_gltf(glb);
+  ASSERT_EQ(packed.inputs.size(), 1u);
+  EXPECT_EQ(packed.inputs[0].sha256, sha256sum_of(glb));
+}
+
+TEST(GltfImport, ATextureEditedInPlaceChangesTheScenesIdentityNamingIt) {
+  // A job's identity holds what the import read (config/identity.h): a
+  // texture whose bytes change, under the same name, changes it, and a
+  // rerun's reason names the texture.
+  TempDir dir, other;
+  const std::string gltf = unpack_glb(export_glb_bytes(textured_scene()), dir);
+  const nlohmann::json before = config::file_identity(gltf, load_gltf(gltf).inputs);
+  Scene recoloured = textured_scene();
+  recoloured.textures[0].rgba[0] = 255;
+  unpack_glb(export_glb_bytes(recoloured), other);
+  std::filesystem::copy_file(other / "textures/image 0.png", dir / "textures/image 0.png",
+                             std::filesystem::copy_options::overwrite_existing);
+  const nlohmann::json after = config::file_identity(gltf, load_gltf(gltf).inputs);
+  EXPECT_EQ(after["sha256"], before["sha256"]);  // the .gltf is as it was
+  EXPECT_EQ(after["reads"]["scene.bin"], before["reads"]["scene.bin"]);
+  EXPECT_EQ(after["reads"]["textures/image 0.png"], sha256sum_of(dir / "textures/image 0.png"));
+  EXPECT_NE(after["reads"]["textures/image 0.png"], before["reads"]["textures/image 0.png"]);
+  const std::vector<std::string> changes =
+      record::spec_changes({{"file", before}}, {{"file", after}}, {{"file", "scene.gltf"}});
+  ASSERT_EQ(changes.size(), 1u);
+  EXPECT_EQ(
+      changes[0].rfind("file textures/image 0.png of scene.gltf: content changed (sha256 ", 0), 0u)
+      << changes[0];
 }
 
 TEST(GltfImport, SymbolicLinksOutOfTheFolderAreRefused) {

@@ -130,6 +130,40 @@ TEST(RerunReason, ARebuiltHarnessIsNamedWithShortHashes) {
             "build.core_sha256 changed (aaaaaaaaaaaa.. -> bbbbbbbbbbbb..)");
 }
 
+// The spec's scene member as job_spec writes it for a glTF file
+// (config/identity.h): its content and what it read, no path.
+json with_file(const std::string& gltf, const json& reads) {
+  json s = spec();
+  s["scene"] = {{"type", "gltf"},
+                {"params", {{"file", {{"sha256", gltf}, {"reads", reads}}}, {"scale", 1.0}}}};
+  return s;
+}
+
+TEST(RerunReason, AChangedFileIsNamedByTheRecordsPathAndSaysItsContentChanged) {
+  const std::string a(64, 'a'), b(64, 'b'), c(64, 'c');
+  JobRecord r = test::identity_record("casters", "64x48", "none");
+  r.scene.params = {{"file", "models/casters.gltf"}, {"scale", 1.0}};
+  r.spec = with_file(a, {{"casters.bin", b}, {"textures/leaf.png", c}});
+  // The .gltf itself.
+  EXPECT_EQ(rerun_reason(r, with_file(b, {{"casters.bin", b}, {"textures/leaf.png", c}}),
+                         "00000000000000bb"),
+            "file models/casters.gltf: content changed (sha256 aaaaaaaaaaaa.. -> bbbbbbbbbbbb..)");
+  // A texture it reads, one it no longer reads, one it reads now.
+  EXPECT_EQ(
+      rerun_reason(r, with_file(a, {{"textures/leaf.png", a}, {"textures/bark.png", c}}),
+                   "00000000000000bb"),
+      "file casters.bin of models/casters.gltf: content changed (sha256 bbbbbbbbbbbb.. -> "
+      "absent); file textures/bark.png of models/casters.gltf: content changed (sha256 absent -> "
+      "cccccccccccc..); file textures/leaf.png of models/casters.gltf: content changed (sha256 "
+      "cccccccccccc.. -> aaaaaaaaaaaa..)");
+  // A file that cannot be read now.
+  json gone = with_file(a, {{"casters.bin", b}, {"textures/leaf.png", c}});
+  gone["scene"]["params"]["file"]["sha256"] = nullptr;
+  EXPECT_EQ(spec_changes(*r.spec, gone),
+            Changes{"file scene.params.file: content changed (sha256 aaaaaaaaaaaa.. -> "
+                    "unreadable)"});
+}
+
 TEST(RerunReason, AnEqualSpecUnderAnotherHashIsSaidToBeSo) {
   JobRecord r = test::identity_record("s", "64x48", "none");
   r.spec = spec();
