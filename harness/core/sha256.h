@@ -12,7 +12,9 @@ namespace sb::core {
 // 64 lowercase hex digits of SHA-256 over `bytes`.
 std::string sha256_hex(std::string_view bytes);
 
-// SHA-256 of a file's bytes, read in blocks; nullopt when it cannot be read.
+// SHA-256 of a regular file's bytes, read in blocks; nullopt when it is not
+// a regular file (a device such as /dev/zero would never end, a FIFO could
+// block) or cannot be read.
 std::optional<std::string> sha256_file_hex(const std::string& path);
 
 }  // namespace sb::core

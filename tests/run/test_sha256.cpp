@@ -55,6 +55,13 @@ TEST(Sha256, AFileThatCannotBeReadHasNoHash) {
   EXPECT_EQ(sha256_file_hex("/nonexistent/shadowbench/module.so"), std::nullopt);
 }
 
+// A device never ends: a scene file named /dev/zero must not hang the run
+// that identifies its jobs (tests/hostile, gltf_dev_zero).
+TEST(Sha256, OnlyARegularFileIsHashed) {
+  EXPECT_EQ(sha256_file_hex("/dev/zero"), std::nullopt);
+  EXPECT_EQ(sha256_file_hex("/"), std::nullopt);
+}
+
 TEST(PluginIdentity, NamesTheFileInItsFolderItsSizeAndItsHash) {
   const fs::path file = binary_file(test::test_folder("shadowbench_test_plugin_identity_"));
   const PluginIdentity id = identify_plugin(file.string());
