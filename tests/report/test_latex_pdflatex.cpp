@@ -118,8 +118,7 @@ TEST(LatexPdflatex, NonAsciiLabelsCompileAndReadBack) {
   const fs::path dir = test::test_folder("sb_latex_non_ascii_");
   std::string every_letter;
   for (char32_t c = 0xC0; c <= 0x17E; ++c) {
-    const std::string one =
-        c < 0x800 ? std::string{char(0xC0 | (c >> 6)), char(0x80 | (c & 0x3F))} : std::string();
+    const std::string one{char(0xC0 | (c >> 6)), char(0x80 | (c & 0x3F))};  // two-byte UTF-8
     if (results::latex_text(one) == one) every_letter += one;
   }
   ASSERT_GT(every_letter.size(), 2 * 150U);  // 165 letters
@@ -129,6 +128,7 @@ TEST(LatexPdflatex, NonAsciiLabelsCompileAndReadBack) {
   records[2].technique_variant = "影子";
   records[3].technique_variant = "тень";
   records[4].technique_variant = every_letter;
+  for (const auto& r : test::latex_records("σκηνή/étage=1", "64x48")) records.push_back(r);
   results::LatexOptions options;
   options.columns = {"frame_ms", "rmse"};
   options.title = "Résumé";
@@ -148,7 +148,8 @@ TEST(LatexPdflatex, NonAsciiLabelsCompileAndReadBack) {
   ASSERT_EQ(text.exit_code, 0) << text.output;
   for (const char* shown :
        {"Café Ångström Erdős Dvořák", "Résumé", "<U+03C3><U+03BA><U+03B9><U+03AC>",
-        "<U+5F71><U+5B50>", "<U+0442><U+0435><U+043D><U+044C>"})
+        "<U+5F71><U+5B50>", "<U+0442><U+0435><U+043D><U+044C>",
+        "<U+03C3><U+03BA><U+03B7><U+03BD><U+03AE>/étage=1 @ 64x48"})
     EXPECT_NE(text.output.find(shown), std::string::npos) << shown << "\n" << text.output;
   const CliRun fonts = run_command("pdffonts '" + pdf.string() + "'");
   EXPECT_EQ(fonts.output.find("Type 3"), std::string::npos) << fonts.output;
