@@ -9,8 +9,10 @@
 #include "core/atomic_file.h"
 #include "core/format_number.h"
 #include "core/names.h"
+#include "history/stored_text.h"
 #include "results/charts.h"
 #include "results/html_page.h"
+#include "results/store.h"
 
 namespace sb::history {
 
@@ -48,7 +50,8 @@ std::string percent(double relative_change) {
   return format_number("%+.1f", 100.0 * relative_change) + " %";
 }
 
-std::string short_commit(const std::string& commit) { return commit.substr(0, 10); }
+// Text is cut by characters, never inside one (a commit may be "abcdefé-x").
+std::string short_commit(const std::string& commit) { return utf8_prefix(commit, 10); }
 
 // A quantity as a column heading: "frame / control", "frame ms", the metric path.
 std::string quantity_label(const std::string& quantity) {
@@ -117,7 +120,7 @@ class Hosts {
   }
   int number(const std::string& fingerprint) const { return number_.at(fingerprint); }
   std::string label(const std::string& fingerprint) const {
-    const std::string short_fp = fingerprint.empty() ? "unknown" : fingerprint.substr(0, 12);
+    const std::string short_fp = fingerprint.empty() ? "unknown" : utf8_prefix(fingerprint, 12);
     return "host " + std::to_string(number(fingerprint) + 1) + " (" + short_fp + ")";
   }
   const std::vector<std::string>& fingerprints() const { return order_; }
@@ -174,7 +177,8 @@ class Site {
     for (std::size_t i = 0; i < series_.size(); ++i)
       write_file_atomically((out_ / page(i)).string(), series_page(i));
     write_file_atomically((out_ / "index.html").string(), index_page());
-    write_file_atomically((out_ / "steps.json").string(), steps_json().dump(1) + "\n");
+    write_file_atomically((out_ / "steps.json").string(),
+                          results::json_text(steps_json(), 1) + "\n");
 
     HistoryReport report;
     report.index = (out_ / "index.html").string();
@@ -225,7 +229,7 @@ class Site {
     const SeriesHistory& s = series_[i];
     const fs::path stem = out_ / fs::path(page(i)).replace_extension("");
     json ticks = json::array(), hosts = json::array(), host_labels = json::array();
-    for (const HistoryRun& r : runs_) ticks.push_back(short_commit(r.commit).substr(0, 7));
+    for (const HistoryRun& r : runs_) ticks.push_back(utf8_prefix(r.commit, 7));
     for (const SeriesJob& j : s.jobs.runs)
       hosts.push_back(j.present ? hosts_.number(j.host_fingerprint) : -1);
     for (const std::string& fp : hosts_.fingerprints()) host_labels.push_back(hosts_.label(fp));
@@ -259,7 +263,7 @@ class Site {
               {"panels",
                {panel(q().time, s.time, s.time_steps), panel(q().error, s.error, s.error_steps)}}};
     std::string file = stem.string() + ".json";
-    write_file_atomically(file, d.dump(1) + "\n");
+    write_file_atomically(file, results::json_text(d, 1) + "\n");
     return file;
   }
 
