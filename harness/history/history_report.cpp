@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/folder_file.h"
 #include "core/format_number.h"
 #include "core/names.h"
 #include "history/stored_text.h"
@@ -141,6 +143,16 @@ std::string link_to(const fs::path& target, const fs::path& from_dir) {
   const fs::path rel =
       fs::weakly_canonical(target, ec).lexically_relative(fs::weakly_canonical(from_dir, ec));
   return html_escape(url_path(rel.empty() ? target.generic_string() : rel.generic_string()));
+}
+
+// Whether run_dir/rel is a regular file inside run_dir, reached without a
+// symbolic link.
+bool inside_folder(const std::string& run_dir, const std::string& rel) {
+  try {
+    return core::open_in_folder(run_dir, rel).has_value();
+  } catch (const core::InputError&) {
+    return false;
+  }
 }
 
 std::string page_head(const std::string& title) {
@@ -392,9 +404,12 @@ class Site {
                          const std::string& side) const {
     std::string h;
     if (!job.present) return h;
-    const fs::path dir = fs::path(runs_[run].run_dir) / "jobs" / job.job_id;
     for (const char* name : {"shaded.png", "error.png"}) {
-      const std::string link = link_to(dir / name, from);
+      // Linked only when it is a regular file inside the run folder (the
+      // history's job id is input: core/folder_file.h).
+      const std::string rel = "jobs/" + job.job_id + "/" + name;
+      if (!inside_folder(runs_[run].run_dir, rel)) continue;
+      const std::string link = link_to(fs::path(runs_[run].run_dir) / rel, from);
       if (link.empty()) continue;
       const std::string what =
           side + " (run " + std::to_string(runs_[run].run_order) + "): " + name;
