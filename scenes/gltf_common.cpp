@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/bounded_text.h"
 #include "core/error.h"
 
 namespace sb::gltf {
@@ -13,22 +14,17 @@ void ImportStep::fail(const std::string& where, const std::string& what) const {
 }
 
 std::string str(uint64_t v) { return std::to_string(v); }
-std::string quoted(const std::string& s) {
-  std::string q = s.size() > 80 ? s.substr(0, 77) + "..." : s;
-  return "'" + q + "'";
-}
+std::string quoted(const std::string& s) { return core::quoted_text(s); }
 std::string named(const std::string& kind, const std::string& name, size_t index) {
   return name.empty() ? kind + " " + str(index)
                       : kind + " " + quoted(name) + " (" + str(index) + ")";
 }
 std::string describe(const json& v) {
-  std::string d = v.dump();
-  if (d.size() > 40) d = d.substr(0, 37) + "...";
-  return std::string(v.type_name()) + " " + d;
+  return std::string(v.type_name()) + " " + core::bounded_text(v.dump(), 40);
 }
 std::string first_line(const std::string& s) {
-  std::string l = s.substr(0, s.find('\n'));
-  return l.empty() ? "unknown error" : l;
+  const std::string_view l = std::string_view(s).substr(0, s.find('\n'));
+  return l.empty() ? "unknown error" : core::bounded_text(l, core::kQuoteChars);
 }
 
 const tg::Value* member(const tg::Value& v, const char* key) {

@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "core/atomic_file.h"
+#include "core/bounded_text.h"
 #include "core/image_codec.h"
 
 namespace sb {
@@ -38,11 +39,13 @@ json vec(const glm::vec3& v) { return json::array({double(v.x), double(v.y), dou
 
 std::vector<unsigned char> encode_png(const TextureImage& t) {
   if (t.width <= 0 || t.height <= 0 || t.rgba.size() != size_t(t.width) * size_t(t.height) * 4)
-    throw std::invalid_argument("texture '" + t.name + "': size does not match its pixels");
+    throw std::invalid_argument("texture " + core::quoted_text(t.name) +
+                                ": size does not match its pixels");
   const core::Image8 img{t.width, t.height, 4, t.rgba};
   std::vector<unsigned char> out;
   if (const std::string err = core::image_codec().encode_png(img, out); !err.empty())
-    throw std::runtime_error("cannot encode texture '" + t.name + "' as PNG: " + err);
+    throw std::runtime_error("cannot encode texture " + core::quoted_text(t.name) +
+                             " as PNG: " + err);
   return out;
 }
 
@@ -166,8 +169,9 @@ class GlbWriter {
     const size_t n = m.positions.size();
     for (uint32_t i : m.indices)
       if (i >= n)
-        throw std::invalid_argument("mesh '" + m.name + "': index " + std::to_string(i) +
-                                    " is out of range (" + std::to_string(n) + " vertices)");
+        throw std::invalid_argument("mesh " + core::quoted_text(m.name) + ": index " +
+                                    std::to_string(i) + " is out of range (" + std::to_string(n) +
+                                    " vertices)");
     glm::vec3 lo = m.positions[0], hi = m.positions[0];
     for (const auto& p : m.positions) {
       lo = glm::min(lo, p);

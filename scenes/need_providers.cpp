@@ -6,6 +6,7 @@
 #include <sstream>
 #include <string>
 
+#include "core/bounded_text.h"
 #include "gl/objects.h"
 #include "plugin/silhouette_edges.h"
 #include "scenes/receiver_inference.h"
@@ -109,7 +110,7 @@ NeedProvider closed_casters() {
       if (topo.inconsistent_edges)
         what += (what.empty() ? "" : ", ") + std::to_string(topo.inconsistent_edges) +
                 " inconsistently wound edges";
-      return "needs closed casters: mesh '" + m.name + "' has " + what;
+      return "needs closed casters: mesh " + core::quoted_text(m.name) + " has " + what;
     }
     return "";
   };
@@ -127,7 +128,7 @@ NeedProvider opaque_casters() {
   p.unmet = [](const Scene& scene, const DerivedData&) -> std::string {
     for (const auto& m : scene.meshes)
       if (m.casts_shadow && m.alpha_tested())
-        return "cannot honour alpha masks: mesh '" + m.name + "' is alpha-tested";
+        return "cannot honour alpha masks: mesh " + core::quoted_text(m.name) + " is alpha-tested";
     return "";
   };
   return p;
@@ -142,7 +143,7 @@ NeedProvider planar_receiver() {
     ++derived_data_counters().receiver_searches;
     PlanarReceiver r;
     if (find_planar_receiver(scene, r)) {
-      log.push_back("planar receiver: mesh '" + r.mesh + "'");
+      log.push_back("planar receiver: mesh " + core::quoted_text(r.mesh));
       data.put<PlanarReceiver>(plugin::need::kPlanarReceiver, std::make_shared<PlanarReceiver>(r));
     } else {
       log.emplace_back("no planar receiver");

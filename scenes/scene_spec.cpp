@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "core/bounded_text.h"
 #include "core/error.h"
 #include "core/json_reader.h"
 #include "core/scene_types.h"
@@ -107,7 +108,7 @@ Scene build_scene_from_spec(const std::string& spec) {
 
 std::string describe_scene(const Scene& s) {
   std::string out;
-  char line[512];
+  char line[1024];  // names cut to 60 characters, at most 8 bytes each escaped
   const auto add = [&](const char* fmt, auto... args) {
     std::snprintf(line, sizeof line, fmt, args...);
     out += line;
@@ -122,8 +123,8 @@ std::string describe_scene(const Scene& s) {
     const bool infer = m.casts_shadow && shadows_nothing(i);
     inferred += infer ? 1 : 0;
     std::snprintf(
-        line, sizeof line, "  %-24s %9zu tris  %-8s %-6s %s%s%s\n", m.name.c_str(),
-        m.triangle_count(),
+        line, sizeof line, "  %-24s %9zu tris  %-8s %-6s %s%s%s\n",
+        core::bounded_text(m.name, 60).c_str(), m.triangle_count(),
         infer            ? "inferred"
         : m.casts_shadow ? "caster"
                          : "receiver",
@@ -134,8 +135,8 @@ std::string describe_scene(const Scene& s) {
   }
   const Bounds b = s.bounds();
   add("scene %s: %zu meshes (%zu closed), %zu triangles (%zu casting), %zu textures\n",
-      s.name.c_str(), s.meshes.size(), closed, s.triangle_count(), s.caster_triangle_count(),
-      s.textures.size());
+      core::bounded_text(s.name, 60).c_str(), s.meshes.size(), closed, s.triangle_count(),
+      s.caster_triangle_count(), s.textures.size());
   add("bounds: [%g %g %g] - [%g %g %g]\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z);
   const AreaLight& l = s.light;
   add("light: center [%g %g %g] target [%g %g %g] size %g x %g intensity %g\n", l.center.x,

@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <limits>
 
+#include "core/bounded_text.h"
+
 namespace sb::core {
 
 using json = nlohmann::json;
@@ -20,14 +22,8 @@ std::string text_of(const json& v) {
 
 std::string describe(const json& v) {
   if (v.is_null()) return "null";
-  std::string d = text_of(v);
-  if (d.size() > 60) {
-    size_t cut = 57;
-    while (cut > 0 && (static_cast<unsigned char>(d[cut]) & 0xC0) == 0x80)
-      --cut;  // not mid-character
-    d = d.substr(0, cut) + "...";
-  }
-  return std::string(v.type_name()) + " " + d;
+  const std::string d = text_of(v);
+  return std::string(v.type_name()) + " " + (d.size() > 60 ? bounded_text(d, 57) : d);
 }
 
 std::string pointer_token(const std::string& key) {

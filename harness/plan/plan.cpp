@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "core/bounded_text.h"
 #include "core/error.h"
 #include "core/names.h"
 #include "plan/shards.h"
@@ -44,7 +45,7 @@ ScenePlan plan_scene(const Experiment& e, const SceneVariant& sv, Derive derive)
       const auto& all = p.inferred_receivers;
       std::string names;
       for (size_t i = 0; i < std::min(all.size(), kNamed); ++i)
-        names += (names.empty() ? "'" : ", '") + all[i] + "'";
+        names += (names.empty() ? "" : ", ") + core::quoted_text(all[i]);
       if (all.size() > kNamed)
         names += " and " + std::to_string(all.size() - kNamed) + " more (" +
                  std::to_string(all.size()) + " meshes)";
@@ -57,11 +58,11 @@ ScenePlan plan_scene(const Experiment& e, const SceneVariant& sv, Derive derive)
     p.needs = std::move(needs.needs);
     for (auto& l : needs.log) p.log.push_back(std::move(l));
   } catch (const InputError& ex) {
-    p.error = std::string("bad scene input: ") + ex.what();
+    p.input_error = core::bounded_text(ex.what(), core::kMessageChars);
+    p.error = "bad scene input: " + p.input_error;
     p.bad_input = true;
-    p.input_error = ex.what();
   } catch (const std::exception& ex) {
-    p.error = std::string("building the scene failed: ") + ex.what();
+    p.error = "building the scene failed: " + core::bounded_text(ex.what(), core::kMessageChars);
   }
   return p;
 }
@@ -147,7 +148,7 @@ std::string describe_plan(const Experiment& e, const Plan& plan) {
                     std::to_string(plan.count(PlannedJob::Status::Fail)) + " failing\n";
   for (size_t s = 0; s < plan.scenes.size(); ++s) {
     const ScenePlan& sp = plan.scenes[s];
-    out += "scene " + e.scenes[s].name + "\n";
+    out += "scene " + core::bounded_text(e.scenes[s].name) + "\n";
     if (!sp.error.empty()) out += "  error: " + sp.error + "\n";
     for (const auto& l : sp.log) out += "  " + l + "\n";
     for (const auto& j : plan.jobs) {
@@ -155,7 +156,7 @@ std::string describe_plan(const Experiment& e, const Plan& plan) {
       std::string status = to_string(j.outcome.status);
       status.resize(5, ' ');
       out += "  " + status + e.resolutions[j.resolution].label() + "  " +
-             e.techniques[j.technique].name;
+             core::bounded_text(e.techniques[j.technique].name);
       if (!j.outcome.reason.empty()) out += "  (" + j.outcome.reason + ")";
       out += "\n";
     }

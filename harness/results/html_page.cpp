@@ -170,6 +170,30 @@ std::string html_escape(const std::string& s) {
   return out;
 }
 
+std::string json_for_script(const std::string& json_text) {
+  std::string out;
+  out.reserve(json_text.size());
+  for (size_t i = 0; i < json_text.size(); ++i) {
+    const char c = json_text[i];
+    // Outside strings JSON has none of these, so escaping them everywhere is
+    // escaping them inside strings, where \uXXXX means the same character.
+    if (c == '<') {
+      out += "\\u003c";
+    } else if (c == '>') {
+      out += "\\u003e";
+    } else if (c == '&') {
+      out += "\\u0026";
+    } else if (c == '\xE2' && i + 2 < json_text.size() && json_text[i + 1] == '\x80' &&
+               (json_text[i + 2] == '\xA8' || json_text[i + 2] == '\xA9')) {
+      out += json_text[i + 2] == '\xA8' ? "\\u2028" : "\\u2029";
+      i += 2;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 std::string url_path(const std::string& path) {
   static constexpr char kHex[] = "0123456789ABCDEF";
   std::string out;

@@ -20,6 +20,13 @@ const char* page_script();
 // & < > " ' as character references: safe in text and in quoted attributes.
 std::string html_escape(const std::string& s);
 
+// JSON text (nlohmann's dump) made safe as the content of a <script>
+// element: '<', '>' and '&' as \u003c, \u003e and \u0026 (no "</script",
+// "<!--" or "-->" can appear, so the HTML parser never leaves or enters the
+// escaped states inside it), and U+2028 and U+2029 as \u2028 and \u2029 (line
+// terminators to JavaScript before ES2019). The same JSON value to a parser.
+std::string json_for_script(const std::string& json_text);
+
 // A relative URL for a file path: every byte but unreserved characters and
 // '/', '=', '+', ',' percent-encoded (':' too, so no segment reads as a scheme).
 std::string url_path(const std::string& path);

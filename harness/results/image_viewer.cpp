@@ -166,10 +166,7 @@ class ViewerWriter {
   }
 
   std::string render(const json& config) const {
-    // "</" would end the <script> element early.
-    std::string text = config.dump();
-    for (size_t p = text.find("</"); p != std::string::npos; p = text.find("</", p + 3))
-      text.replace(p, 2, "<\\/");
+    const std::string text = json_for_script(config.dump());
     const std::string id = "viewer-" + std::to_string(group_.index);
     std::string out = "<section class=\"viewer\" id=\"" + id +
                       "\" tabindex=\"0\" data-state=\"loading\" aria-label=\"Compare images: " +

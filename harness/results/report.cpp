@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "core/atomic_file.h"
+#include "core/bounded_text.h"
 #include "results/mixed_hosts.h"
 #include "results/report_columns.h"
 #include "results/stability_table.h"
@@ -29,10 +30,11 @@ std::string csv_escape(const std::string& s) {
 // ('_' inside words is not emphasis in CommonMark.)
 std::string markdown_text(const std::string& s) {
   std::string out;
-  for (char c : s) {
-    if (c == '\n' || c == '\r' || c == '\t')
-      out += ' ';
-    else if (std::string_view("\\`*[]<>|").find(c) != std::string_view::npos)
+  std::string line = s;
+  for (char& c : line)
+    if (c == '\n' || c == '\r' || c == '\t') c = ' ';
+  for (char c : core::bounded_text(line, core::kMessageChars)) {
+    if (std::string_view("\\`*[]<>|&").find(c) != std::string_view::npos)
       (out += '\\') += c;
     else
       out += c;
@@ -57,9 +59,11 @@ std::string make_markdown(const std::vector<JobRecord>& records, const std::stri
   std::string out = "# " + markdown_text(title) + "\n\n";
   if (!records.empty()) {
     const JobRecord& r0 = records.front();
-    out += "Backend `" + r0.backend + "`, renderer `" + r0.gl_renderer + "`, timing source `" +
-           r0.timing_source + "`. Error is measured on the visibility buffer against the " +
-           "ray-traced reference" +
+    // Plain escaped text, not code spans: a backtick in a record's field
+    // would end the span, and escapes do not work inside one.
+    out += "Backend " + markdown_text(r0.backend) + ", renderer " + markdown_text(r0.gl_renderer) +
+           ", timing source " + markdown_text(r0.timing_source) +
+           ". Error is measured on the visibility buffer against the " + "ray-traced reference" +
            (r0.reference ? ": " + markdown_text(reference_label(*r0.reference)) : std::string()) +
            ".\n";
     if (const auto hosts = distinct_hosts(records); hosts.size() > 1) {

@@ -10,9 +10,10 @@
 namespace sb::results {
 
 // Text from records (labels, reasons) inside a Markdown table or heading:
-// the characters that end a cell, open code, links, emphasis or HTML are
-// escaped and line breaks become spaces, so a label cannot break the table or
-// inject markup.
+// the characters that end a cell, open code, links, emphasis, HTML or an
+// entity are escaped, line breaks become spaces, and the text is cut and its
+// control characters escaped by core::bounded_text (core::kMessageChars), so a
+// label cannot break the table, inject markup or drive a terminal.
 std::string markdown_text(const std::string& s);
 
 std::string make_csv(const std::vector<record::JobRecord>& records);

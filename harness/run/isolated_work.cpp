@@ -15,6 +15,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "core/bounded_text.h"
 #include "core/format_number.h"
 #include "core/names.h"
 #include "results/store.h"
@@ -170,7 +171,7 @@ IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const Emb
   const auto fail = [&](JobRecord r, const std::string& reason, const ChildState& c,
                         bool timed_out) {
     r.status = JobStatus::Failed;
-    r.reason = reason;
+    r.reason = core::bounded_text(reason, core::kMessageChars);
     r.child_stderr.assign(c.stderr_tail.begin(), c.stderr_tail.end());
     events.job_finished(std::move(r));
     ++(timed_out ? outcome.timed_out : outcome.crashed);
@@ -195,7 +196,9 @@ IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const Emb
     replies.keep_parent_end();
     const Clock::time_point child_started = Clock::now();
     ChildState c;
-    const auto on_stderr = [&](const std::string& line) {
+    const auto on_stderr = [&](const std::string& raw) {
+      // A child's line may quote input (a scene's error): bounded, escaped.
+      const std::string line = core::bounded_text(raw, core::kMessageChars);
       c.stderr_tail.push_back(line);
       if (c.stderr_tail.size() > kStderrTail) c.stderr_tail.pop_front();
       if (c.rendering)

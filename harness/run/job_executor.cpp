@@ -5,6 +5,7 @@
 #include <set>
 #include <utility>
 
+#include "core/bounded_text.h"
 #include "gl/debug.h"
 #include "gl/objects.h"
 #include "metrics/regions.h"
@@ -143,7 +144,7 @@ class JobExecutor::Impl {
                     const TechniqueVariant& tv, JobStatus status, const std::string& reason) {
     JobRecord r = base_record(sv, st, res, tv);
     r.status = status;
-    r.reason = reason;
+    r.reason = core::bounded_text(reason, core::kMessageChars);
     finish(std::move(r));
   }
 
@@ -213,7 +214,7 @@ class JobExecutor::Impl {
         r.status = JobStatus::Ok;
       } catch (const std::exception& ex) {
         r.status = JobStatus::Failed;
-        r.reason = ex.what();
+        r.reason = core::bounded_text(ex.what(), core::kMessageChars);
         r.set_aside_failed_measurements();  // a failed job carries no figures
         gl::take_debug_errors();
       }

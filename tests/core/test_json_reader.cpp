@@ -126,10 +126,12 @@ TEST(JsonReader, AcceptedValuesAreReturned) {
 TEST(JsonReader, DescribeCutsLongValuesAtACharacterBoundary) {
   EXPECT_EQ(describe(json("abc")), "string \"abc\"");
   const std::string long_text(100, 'x');
-  EXPECT_EQ(describe(json(long_text)), "string \"" + std::string(56, 'x') + "...");
-  // "é" is two bytes: a cut inside it backs off to before it.
+  EXPECT_EQ(describe(json(long_text)),
+            "string \"" + std::string(56, 'x') + "... (102 bytes in all)");
+  // Cut by characters (core::bounded_text): 57 of them, "é" (two bytes) one.
   const std::string accents = std::string(55, 'x') + "\xC3\xA9\xC3\xA9\xC3\xA9";
-  EXPECT_EQ(describe(json(accents)), "string \"" + std::string(55, 'x') + "...");
+  EXPECT_EQ(describe(json(accents)),
+            "string \"" + std::string(55, 'x') + "\xC3\xA9... (63 bytes in all)");
 }
 
 }  // namespace

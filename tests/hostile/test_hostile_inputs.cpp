@@ -30,6 +30,8 @@
 #include <thread>
 #include <vector>
 
+#include "../common/text.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -183,5 +185,124 @@ INSTANTIATE_TEST_SUITE_P(Corpus, HostileInput, ::testing::ValuesIn(cases()),
                          [](const ::testing::TestParamInfo<Case>& p) { return p.param.name; });
 
 TEST(HostileCorpus, HasCases) { EXPECT_GE(cases().size(), 100u) << SHADOWBENCH_HOSTILE_DIR; }
+
+// Issue 59, item 8: glTF node and mesh names reached the terminal raw (an
+// OSC sequence set the terminal's title, CSI 2J cleared it) and were cut at
+// byte 77, inside a character. `scene info` and `run` print them escaped and
+// cut between characters.
+TEST(HostileMessages, GltfNamesReachTheTerminalEscapedAndWhole) {
+  const fs::path dir = fs::temp_directory_path() / "hostile_gltf_names";
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  fs::create_directories(dir);
+  std::string long_name;
+  for (int i = 0; i < 100; ++i) long_name += "\u65e5";  // 日, three bytes each
+  std::string doc =
+      R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1]}],)"
+      R"("nodes":[{"mesh":0,"name":"\u001b]0;pwned\u0007\u001b[2Jfloor"},)"
+      R"({"mesh":1,"name":")" +
+      long_name +
+      R"("}],)"
+      R"("meshes":[{"name":"m\u001b[31m","primitives":[{"attributes":{"POSITION":0}}]},)"
+      R"({"primitives":[{"attributes":{"POSITION":1}}]}],)"
+      R"("buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)"
+      R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"},)"
+      R"({"byteLength":36,"uri":"data:application/octet-stream;base64,)"
+      R"(AAAAAAAAAAAAAIA/AACAPwAAAAAAAIA/AAAAAAAAgD8AAMA/"}],)"
+      R"("bufferViews":[{"buffer":0,"byteLength":36},{"buffer":1,"byteLength":36}],)"
+      R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",)"
+      R"("min":[0,0,0],"max":[1,1,0]},{"bufferView":1,"componentType":5126,"count":3,)"
+      R"("type":"VEC3","min":[0,0,1],"max":[1,1,1.5]}]})";
+  std::ofstream(dir / "names.gltf") << doc;
+  const nlohmann::json config = {
+      {"name", "names"},
+      {"scenes", {{{"type", "gltf"}, {"params", {{"file", (dir / "names.gltf").string()}}}}}},
+      {"techniques", {"none", "shadow_volume"}},
+      {"resolutions", {{24, 16}}},
+      {"frames", {{"warmup", 0}, {"timed", 1}}},
+      {"reference", {{"spp", 4}, {"cache", false}}}};
+  std::ofstream(dir / "config.json") << config.dump();
+  const std::vector<std::vector<std::string>> commands = {
+      {SHADOWBENCH_EXE, "scene", "info", (dir / "names.gltf").string()},
+      {SHADOWBENCH_EXE, "validate", (dir / "config.json").string()},
+      {SHADOWBENCH_EXE, "run", (dir / "config.json").string(), "--out", (dir / "run").string(),
+       "--no-cache", "--no-images"}};
+  for (const auto& args : commands) {
+    SCOPED_TRACE(args[1]);
+    const Outcome o = run_limited(args, (dir / (args[1] + ".log")).string());
+    ASSERT_TRUE(o.finished);
+    EXPECT_EQ(o.signal, 0);
+    EXPECT_EQ(o.output.find('\x1b'), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find('\x07'), std::string::npos) << o.output;
+    EXPECT_TRUE(sb::test::valid_utf8(o.output)) << o.output;
+    if (args[1] == "scene") {
+      EXPECT_EQ(o.exit_code, 0) << o.output;
+      EXPECT_NE(o.output.find("\\x1B]0;pwned\\x07\\x1B[2Jfloor"), std::string::npos) << o.output;
+    }
+  }
+}
+
+// Issue 59, item 7: tinygltf's error for an undecodable data URI quotes the
+// whole URI. A 50 MiB one (made here, not in the corpus: the build tree
+// would keep it) once made a 56 MB stderr line, a 56 MB reason in every
+// failed job and a run folder of 909 MB at 1.5 GB resident. Messages that
+// quote input are cut (core/bounded_text.h: 200 characters a quote, 2000 a
+// reason), so the terminal output, each reason and the folder stay small, and
+// the peak resident set is what reading the file costs (measured 2026-12-07
+// on the 2-core development VM: 362 MiB).
+TEST(HostileMessages, FiftyMegabyteBadDataUriGivesBoundedMessagesAndFolder) {
+  const fs::path dir = fs::temp_directory_path() / "hostile_big_data_uri";
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  fs::create_directories(dir);
+  {
+    std::ofstream g(dir / "big.gltf", std::ios::binary);
+    g << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+         R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+         R"("buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)"
+      << std::string(std::size_t(50) << 20, '@')
+      << R"("}],"bufferViews":[{"buffer":0,"byteLength":36}],)"
+         R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",)"
+         R"("min":[0,0,0],"max":[1,1,0]}]})";
+  }
+  const nlohmann::json config = {
+      {"name", "big_data_uri"},
+      {"scenes", {{{"type", "gltf"}, {"params", {{"file", (dir / "big.gltf").string()}}}}}},
+      {"techniques", {"none"}},
+      {"resolutions", {{24, 16}, {32, 16}, {40, 16}}},
+      {"frames", {{"warmup", 0}, {"timed", 1}}},
+      {"reference", {{"spp", 4}, {"cache", false}}}};
+  std::ofstream(dir / "config.json") << config.dump();
+  const fs::path out = dir / "run";
+  const Outcome o = run_limited({SHADOWBENCH_EXE, "run", (dir / "config.json").string(), "--out",
+                                 out.string(), "--no-cache", "--no-images"},
+                                (dir / "run.log").string());
+  fs::remove(dir / "big.gltf", ec);
+  ASSERT_TRUE(o.finished);
+  ASSERT_EQ(o.signal, 0) << o.output.substr(0, 4000);
+  EXPECT_TRUE(o.exit_code == 1 || o.exit_code == 2) << o.output.substr(0, 4000);
+  EXPECT_LT(o.output.size(), 64u << 10) << o.output.substr(0, 4000);
+  EXPECT_EQ(o.output.find('\x1b'), std::string::npos);
+  constexpr long kMaxKib = 640L << 10;  // 640 MiB: the file and tinygltf's copies of it
+  EXPECT_LE(o.max_rss_kib, kMaxKib) << "peak resident set " << o.max_rss_kib << " KiB";
+  std::uintmax_t folder = 0;
+  for (const auto& e : fs::recursive_directory_iterator(out))
+    if (e.is_regular_file()) folder += e.file_size();
+  EXPECT_LT(folder, std::uintmax_t(1) << 20) << "the run folder holds " << folder << " bytes";
+  std::ifstream jsonl(out / "results.jsonl");
+  int failed = 0;
+  for (std::string line; std::getline(jsonl, line);) {
+    const nlohmann::json r = nlohmann::json::parse(line);
+    if (r.value("status", "") != "failed") continue;
+    ++failed;
+    const std::string reason = r.value("reason", "");
+    EXPECT_LE(reason.size(), 8000u) << reason.substr(0, 400);
+    EXPECT_NE(reason.find("bytes in all"), std::string::npos) << reason.substr(0, 400);
+  }
+  EXPECT_EQ(failed, 3) << o.output.substr(0, 4000);
+  std::printf("50 MiB data URI run: exit %d, peak %ld MiB, folder %ju bytes, output %zu bytes\n",
+              o.exit_code, o.max_rss_kib >> 10, folder, o.output.size());
+  fs::remove_all(dir, ec);
+}
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "../metrics/test_util.h"
@@ -327,6 +328,33 @@ TEST(ReportColumns, NoiseShareNeedsOneExactAndOneMonteCarloReference) {
   EXPECT_EQ(report_column("mc_noise_share").cell(rs[0]), "");
   EXPECT_NE(reference_label(rs[0].second_reference->reference).find("not exact: alpha-masked"),
             std::string::npos);
+}
+
+// Issue 59, item 8: summary.md writes fields a record holds, and a record
+// may come from anyone. Every character that opens markup in CommonMark
+// (code, links, images, HTML, entities) must reach the file escaped (an odd
+// number of backslashes before it), and no control character but the line
+// ends may reach it.
+TEST(ReportColumns, SummaryEscapesEveryFieldFromARecord) {
+  auto rs = records();
+  for (auto& r : rs) {
+    r.backend = "osmesa` <img src=x onerror=alert(1)> [link](http://example.com) `";
+    r.gl_renderer = "llvmpipe`<b>bold</b>`&amp;";
+    r.timing_source = "gl_timer_query` ![i](x.png)";
+  }
+  rs[1].reason = "casters \x1b]0;title\x07\x1b[2J are not [closed](http://example.com) |";
+  rs[1].technique_variant = "shadow_volume/<!--<script>";
+  const std::string md = make_markdown(rs, "title");
+  for (size_t i = 0; i < md.size(); ++i) {
+    const char c = md[i];
+    EXPECT_TRUE(c == '\n' || static_cast<unsigned char>(c) >= 0x20) << "byte " << i << ":\n" << md;
+    if (std::string_view("`<>[]&").find(c) == std::string_view::npos) continue;
+    size_t slashes = 0;
+    while (slashes < i && md[i - 1 - slashes] == '\\') ++slashes;
+    EXPECT_EQ(slashes % 2, 1u) << "unescaped '" << c << "' at byte " << i << ": "
+                               << md.substr(i < 40 ? 0 : i - 40, 80);
+  }
+  EXPECT_NE(md.find("osmesa"), std::string::npos) << md;
 }
 
 }  // namespace

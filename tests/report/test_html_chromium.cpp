@@ -24,7 +24,6 @@ namespace sb {
 
 using core::ImageF;
 using test::BrowserRun;
-using test::find_chromium;
 using test::joined;
 using test::run_chromium;
 using test::shell_quote;
@@ -71,6 +70,35 @@ TEST_F(report_chromium, PageLoadsEveryImageWithoutConsoleErrorsAndRenders) {
     colours.insert(key);
   }
   EXPECT_GT(colours.size(), 100u);
+}
+
+// Issue 59, item 6: a technique label "<!--<script>" in the viewer's JSON
+// once put the HTML parser in its double-escaped script state: the rest of
+// the page became script text, the page's scripts never ran and the Images
+// section was empty. With '<' as \u003c the page is whole: its script ran
+// (every image loaded and checked), and every viewer is in the DOM with its
+// buttons, the label among them as text.
+TEST_F(report_chromium, LabelThatOpensAScriptCommentLeavesThePageWhole) {
+  test::TempDir dir("html_chromium_label");
+  auto run = test::make_synthetic_run(dir.path());
+  for (auto& r : run.records)
+    if (r.technique_variant == "shadow_map/size=1024") r.technique_variant = "<!--<script>";
+  test::write_synthetic_report(run);
+  const fs::path index = run.out_dir / "index.html";
+
+  const BrowserRun dom = run_chromium(chromium_, dir.path(), index, "--dump-dom");
+  ASSERT_EQ(dom.exit_code, 0) << dom.log;
+  EXPECT_TRUE(dom.console.empty()) << "console messages:\n" << joined(dom.console);
+  EXPECT_NE(dom.dom.find("data-images-ok=\"true\""), std::string::npos)
+      << "the page's script did not run:\n"
+      << dom.dom.substr(0, 3000);
+  const size_t images = dom.dom.find("<section id=\"images\">");
+  ASSERT_NE(images, std::string::npos) << dom.dom.substr(0, 3000);
+  const std::string section = dom.dom.substr(images);
+  EXPECT_EQ(test::between(section, "<section class=\"viewer\"", ">").size(), 2u) << section;
+  EXPECT_EQ(test::between(section, "&lt;!--&lt;script&gt;</button>", "<").size(), 2u) << section;
+  // The viewers' script ran on them: none is still loading.
+  EXPECT_EQ(section.find("data-state=\"loading\""), std::string::npos) << section.substr(0, 3000);
 }
 
 TEST_F(report_chromium, MissingImageIsDetected) {
