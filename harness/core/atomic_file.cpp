@@ -1,12 +1,15 @@
 #include "core/atomic_file.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <cstdint>
-#include <filesystem>
-#include <fstream>
-#include <system_error>
+#include <cstring>
+#include <random>
+#include <vector>
 
 #include "core/error.h"
 
@@ -16,6 +19,10 @@ namespace {
 
 constexpr std::string_view kTempMarker = ".tmp-";
 
+// Names tried before giving up when every one is taken (something planted
+// them, or a folder full of killed writers' files).
+constexpr int kTempNameTries = 64;
+
 // The rest of a name after a run of digits at `pos`, or npos if none is there.
 size_t after_digits(std::string_view s, size_t pos) {
   const size_t end = s.find_first_not_of("0123456789", pos);
@@ -23,38 +30,107 @@ size_t after_digits(std::string_view s, size_t pos) {
   return stop > pos ? stop : std::string_view::npos;
 }
 
+// The next counter: per process, then random once a name was found taken,
+// so that names planted ahead of it cannot all be guessed.
+uint64_t next_counter(bool collided) {
+  static std::atomic<uint64_t> counter{0};
+  if (!collided) return counter++;
+  static thread_local std::mt19937_64 rng{std::random_device{}()};
+  return rng() >> 1;
+}
+
 }  // namespace
 
 AtomicFile::AtomicFile(std::string path, std::string context)
     : path_(std::move(path)), context_(std::move(context)) {
-  static std::atomic<uint64_t> counter{0};
-  temp_ = path_ + std::string(kTempMarker) + std::to_string(::getpid()) + "-" +
-          std::to_string(counter++);
+  bool collided = false;
+  for (int i = 0; i < kTempNameTries; ++i) {
+    temp_ = path_ + std::string(kTempMarker) + std::to_string(::getpid()) + "-" +
+            std::to_string(next_counter(collided));
+    // O_EXCL: a new file or nothing; whatever is at the name already (a
+    // symlink planted to redirect the write, a killed writer's file) makes
+    // it fail, and O_NOFOLLOW says so for a symlink even if dangling.
+    fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd_ >= 0) return;
+    if (errno != EEXIST && errno != ELOOP) break;
+    collided = true;
+  }
+  const int err = errno;
+  const std::string temp = temp_;
+  temp_.clear();  // nothing of ours to remove
+  if (err == EEXIST || err == ELOOP)
+    throw JobError(context_ + "cannot write " + path_ + ": " + std::to_string(kTempNameTries) +
+                   " temporary names next to it are taken (the last " + temp + ")");
+  throw JobError(context_ + "cannot write " + temp + ": " + std::strerror(err));
 }
 
 AtomicFile::~AtomicFile() {
-  if (committed_) return;
-  std::error_code ignored;
-  std::filesystem::remove(temp_, ignored);
+  if (fd_ >= 0) ::close(fd_);
+  if (committed_ || temp_.empty()) return;
+  ::unlink(temp_.c_str());
+}
+
+void AtomicFile::write(std::string_view bytes) {
+  const char* p = bytes.data();
+  size_t left = bytes.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd_, p, left);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw JobError(context_ + "cannot write " + temp_ + ": " + std::strerror(errno));
+    p += n;
+    left -= size_t(n);
+  }
 }
 
 void AtomicFile::commit() {
-  std::error_code ec;
-  std::filesystem::rename(temp_, path_, ec);
-  // On failure the destructor removes the temporary file.
-  if (ec)
-    throw JobError(context_ + "cannot rename " + temp_ + " to " + path_ + ": " + ec.message());
+  if (fd_ >= 0) {
+    const int fd = fd_;
+    fd_ = -1;
+    // close() is where some file systems (NFS) say that the data did not fit.
+    if (::close(fd) != 0 && errno != EINTR)
+      throw JobError(context_ + "cannot write " + temp_ + ": " + std::strerror(errno));
+  }
+  // rename() replaces whatever is at path_, a symlink included, and never
+  // writes through it. On failure the destructor removes the temporary file.
+  if (::rename(temp_.c_str(), path_.c_str()) != 0)
+    throw JobError(context_ + "cannot rename " + temp_ + " to " + path_ + ": " +
+                   std::strerror(errno));
   committed_ = true;
 }
 
 void write_file_atomically(const std::string& path, std::string_view bytes,
                            const std::string& context) {
   AtomicFile file(path, context);
-  {
-    std::ofstream out(file.temp_path(), std::ios::binary | std::ios::trunc);
-    out.write(bytes.data(), std::streamsize(bytes.size()));
-    out.close();
-    if (!out) throw JobError(context + "cannot write " + file.temp_path());
+  file.write(bytes);
+  file.commit();
+}
+
+void copy_file_atomically(const std::string& from, const std::string& to,
+                          const std::string& context) {
+  // O_NOFOLLOW and a regular file only: a symlink or a device planted under
+  // a name a record gives is not copied out of wherever it points.
+  const auto cannot_read = [&](int err) {
+    return JobError(context + "cannot read " + from + ": " +
+                    (err == ELOOP ? "a symlink, which is not copied" : std::strerror(err)));
+  };
+  const int in = ::open(from.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK);
+  if (in < 0) throw cannot_read(errno);
+  struct FdCloser {
+    int fd;
+    ~FdCloser() { ::close(fd); }
+  } closer{in};
+  struct stat st {};
+  if (::fstat(in, &st) != 0) throw cannot_read(errno);
+  if (!S_ISREG(st.st_mode))
+    throw JobError(context + "cannot read " + from + ": not a regular file, which is not copied");
+  AtomicFile file(to, context);
+  std::vector<char> buf(1 << 16);
+  for (;;) {
+    const ssize_t n = ::read(in, buf.data(), buf.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw cannot_read(errno);
+    if (n == 0) break;
+    file.write(std::string_view(buf.data(), size_t(n)));
   }
   file.commit();
 }

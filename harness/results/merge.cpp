@@ -230,7 +230,7 @@ MergeSummary merge_runs(const std::string& out, const std::vector<std::string>& 
       const fs::path from = fs::path(s.dir) / rel, to = fs::path(out) / rel;
       if (!fs::exists(from)) continue;  // written with --no-images, or removed
       fs::create_directories(to.parent_path());
-      fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+      core::copy_file_atomically(from.string(), to.string(), "merge: ");
       ++summary.images;
     }
   }
