@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "cli/commands.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "results/charts.h"
 #include "results/html_report.h"
@@ -44,7 +45,11 @@ int cmd_report(const Args& a) {
   // Charts and index.html go to --out, by default RUN_DIR/report.
   const std::string out =
       a.out.empty() ? (std::filesystem::path(run_dir) / "report").string() : a.out;
-  std::filesystem::create_directories(out);
+  // Its default folder is the run folder's: not followed if a symlink.
+  if (a.out.empty())
+    core::make_own_folder(run_dir, "report");
+  else
+    std::filesystem::create_directories(out);
   ChartOptions chart_options;
   chart_options.error_metric = a.compare.metric;
   chart_options.style = a.chart_style;

@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <random>
 #include <vector>
 
@@ -133,6 +134,26 @@ void copy_file_atomically(const std::string& from, const std::string& to,
     file.write(std::string_view(buf.data(), size_t(n)));
   }
   file.commit();
+}
+
+void make_own_folder(const std::string& root, const std::string& rel, const std::string& context) {
+  std::error_code ec;
+  std::filesystem::create_directories(root, ec);
+  if (ec) throw JobError(context + "cannot create " + root + ": " + ec.message());
+  std::filesystem::path at(root);
+  for (const std::filesystem::path& part : std::filesystem::path(rel)) {
+    at /= part;
+    if (::mkdir(at.c_str(), 0777) != 0 && errno != EEXIST)
+      throw JobError(context + "cannot create " + at.string() + ": " + std::strerror(errno));
+    struct stat st {};
+    if (::lstat(at.c_str(), &st) != 0)
+      throw JobError(context + "cannot create " + at.string() + ": " + std::strerror(errno));
+    if (!S_ISDIR(st.st_mode))
+      throw JobError(context + at.string() +
+                     (S_ISLNK(st.st_mode) ? " is a symlink" : " is not a folder") +
+                     " where shadowbench makes a folder of its own: it does not write through it "
+                     "(remove it)");
+  }
 }
 
 bool is_atomic_temp_name(std::string_view name) {

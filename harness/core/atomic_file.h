@@ -30,6 +30,13 @@ void write_file_atomically(const std::string& path, std::string_view bytes,
 void copy_file_atomically(const std::string& from, const std::string& to,
                           const std::string& context = "");
 
+// Makes the folder `root`/`rel` (root and its parents as needed, followed
+// if symlinks: the user named root), each part of `rel` a real folder: a
+// symlink or a file planted there (`report -> elsewhere` in a run folder from
+// elsewhere) throws JobError naming it, and nothing is written through it.
+void make_own_folder(const std::string& root, const std::string& rel,
+                     const std::string& context = "");
+
 // For writers that take a file name (OpenImageIO): write to temp_path(),
 // then commit(); or write() the bytes, then commit(). Destroyed without a
 // commit, it removes the temporary file.

@@ -229,7 +229,7 @@ MergeSummary merge_runs(const std::string& out, const std::vector<std::string>& 
       if (!copied.insert(rel).second) continue;
       const fs::path from = fs::path(s.dir) / rel, to = fs::path(out) / rel;
       if (!fs::exists(from)) continue;  // written with --no-images, or removed
-      fs::create_directories(to.parent_path());
+      core::make_own_folder(out, fs::path(rel).parent_path().string(), "merge: ");
       core::copy_file_atomically(from.string(), to.string(), "merge: ");
       ++summary.images;
     }

@@ -260,5 +260,25 @@ TEST(core_atomic_file, FullFileSystemIsNamed) {
   EXPECT_TRUE(fs::is_empty(mnt));
 }
 
+TEST(core_atomic_file, OwnFoldersAreNeverReachedThroughASymlink) {
+  Folder dir, outside;
+  core::make_own_folder(dir / "run", "jobs/a");
+  EXPECT_TRUE(fs::is_directory(fs::symlink_status(dir / "run" / "jobs" / "a")));
+  fs::create_symlink(outside / ".", dir / "run" / "report");
+  fs::create_symlink(outside / ".", dir / "run" / "jobs" / "b");
+  for (const char* rel : {"report", "report/viewer", "jobs/b"}) {
+    try {
+      core::make_own_folder((dir / "run").string(), rel, "report: ");
+      FAIL() << "made " << rel << " through a symlink";
+    } catch (const JobError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(" is a symlink where shadowbench makes a folder of its own"),
+                std::string::npos)
+          << what;
+    }
+  }
+  EXPECT_TRUE(outside.names().empty());
+}
+
 }  // namespace
 }  // namespace sb

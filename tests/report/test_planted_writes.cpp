@@ -166,5 +166,19 @@ TEST(PlantedSymlinks, ALockFileThatIsASymlinkIsRefused) {
   EXPECT_EQ(read_all(victim), kVictim);
 }
 
+// A folder the tool makes for itself, planted as a symlink to a folder
+// elsewhere: report refuses, naming it, and writes nothing there.
+TEST(PlantedSymlinks, AReportFolderThatIsASymlinkIsRefused) {
+  const fs::path dir = test::test_folder("sb_planted_");
+  const fs::path run = baseline_run(dir / "run");
+  fs::create_directories(dir / "elsewhere");
+  fs::create_symlink(dir / "elsewhere", run / "report");
+  std::string output;
+  EXPECT_NE(run_planted({"report", run.string()}, {}, dir / "none", dir / "report.log", &output), 0)
+      << output;
+  EXPECT_NE(output.find((run / "report").string() + " is a symlink"), std::string::npos) << output;
+  EXPECT_TRUE(fs::is_empty(dir / "elsewhere")) << output;
+}
+
 }  // namespace
 }  // namespace sb
