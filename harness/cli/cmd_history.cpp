@@ -44,6 +44,7 @@ int cmd_history_add(const Args& a) {
     throw InputError(a.run_dir, "--commit",
                      "no commit given, and the current folder is not in a git repository: "
                      "give --commit SHA");
+  history::check_commit(a.run_dir, commit);  // before the file is made
   HistoryDb db(a.history_db);
   const AddedRun r = db.add_run(a.run_dir, commit);
   std::printf("%s run %s at commit %s: %zu jobs, %zu values; run %lld of %lld in %s\n",

@@ -40,16 +40,18 @@ int cmd_report(const Args& a) {
   const std::string title =
       records.empty() ? "shadowbench" : records[0].experiment + " (" + records[0].run_id + ")";
   if (a.latex) latex_columns(a.latex_columns, records);  // an unknown column before any output
-  write_reports(run_dir, records, title);
-  std::printf("%s", make_markdown(records, title).c_str());
   // Charts and index.html go to --out, by default RUN_DIR/report.
   const std::string out =
       a.out.empty() ? (std::filesystem::path(run_dir) / "report").string() : a.out;
+  // A viewer folder that is not the report's, before any output.
+  results::check_viewer_folder(out);
   // Its default folder is the run folder's: not followed if a symlink.
   if (a.out.empty())
     core::make_own_folder(run_dir, "report");
   else
     std::filesystem::create_directories(out);
+  write_reports(run_dir, records, title);
+  std::printf("%s", make_markdown(records, title).c_str());
   ChartOptions chart_options;
   chart_options.error_metric = a.compare.metric;
   chart_options.style = a.chart_style;

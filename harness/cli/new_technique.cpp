@@ -55,6 +55,20 @@ bool is_keyword(const std::string& name) {
   return keywords.count(name) > 0;
 }
 
+// Target names CMake refuses (policy CMP0037, an error from 3.0 on; the
+// template's cmake_minimum_required sets it to NEW): its generators reserve
+// these lowercase ones (CMake 3.25's cmGlobalGenerator::IsReservedTarget; the
+// others there are upper case, which NAME cannot be), and "test", "package"
+// and "package_source" once CTest or CPack is included (always before 3.11).
+// NAME is the plugin's CMake target, so each of these made a project CMake
+// refused at configure time ("The target name \"all\" is reserved").
+bool is_cmake_reserved(const std::string& name) {
+  static const std::set<std::string> reserved = {
+      "all",        "clean",         "edit_cache", "help",    "install",
+      "preinstall", "rebuild_cache", "test",       "package", "package_source"};
+  return reserved.count(name) > 0;
+}
+
 std::string fill(std::string text, const std::map<std::string, std::string>& values) {
   for (const auto& [key, value] : values) {
     for (size_t at = text.find(key); at != std::string::npos;
@@ -87,6 +101,10 @@ std::string technique_name_problem(const std::string& name, const Registry& regi
     return "NAME '" + name + "' has " + std::to_string(name.size()) + " characters; at most " +
            std::to_string(kMaxLength);
   if (is_keyword(name)) return "NAME '" + name + "' is a C++ keyword";
+  if (is_cmake_reserved(name))
+    return "NAME '" + name +
+           "' is a target name CMake reserves (policy CMP0037); the plugin's CMake target is "
+           "NAME, so choose another name";
   if (const TechniqueInfo* t = registry.find(name))
     return "NAME '" + name + "' is a technique already (family " + t->family +
            "); choose another name";

@@ -10,7 +10,6 @@
 #include <cstring>
 #include <filesystem>
 #include <random>
-#include <vector>
 
 #include "core/error.h"
 
@@ -103,36 +102,6 @@ void write_file_atomically(const std::string& path, std::string_view bytes,
                            const std::string& context) {
   AtomicFile file(path, context);
   file.write(bytes);
-  file.commit();
-}
-
-void copy_file_atomically(const std::string& from, const std::string& to,
-                          const std::string& context) {
-  // O_NOFOLLOW and a regular file only: a symlink or a device planted under
-  // a name a record gives is not copied out of wherever it points.
-  const auto cannot_read = [&](int err) {
-    return JobError(context + "cannot read " + from + ": " +
-                    (err == ELOOP ? "a symlink, which is not copied" : std::strerror(err)));
-  };
-  const int in = ::open(from.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK);
-  if (in < 0) throw cannot_read(errno);
-  struct FdCloser {
-    int fd;
-    ~FdCloser() { ::close(fd); }
-  } closer{in};
-  struct stat st {};
-  if (::fstat(in, &st) != 0) throw cannot_read(errno);
-  if (!S_ISREG(st.st_mode))
-    throw JobError(context + "cannot read " + from + ": not a regular file, which is not copied");
-  AtomicFile file(to, context);
-  std::vector<char> buf(1 << 16);
-  for (;;) {
-    const ssize_t n = ::read(in, buf.data(), buf.size());
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) throw cannot_read(errno);
-    if (n == 0) break;
-    file.write(std::string_view(buf.data(), size_t(n)));
-  }
   file.commit();
 }
 

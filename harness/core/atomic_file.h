@@ -24,12 +24,6 @@ namespace sb::core {
 void write_file_atomically(const std::string& path, std::string_view bytes,
                            const std::string& context = "");
 
-// The bytes of the regular file `from` (opened without following a
-// symlink; a symlink, a folder or a device is refused) written atomically
-// to `to`. Throws JobError naming the file and the reason.
-void copy_file_atomically(const std::string& from, const std::string& to,
-                          const std::string& context = "");
-
 // Makes the folder `root`/`rel` (root and its parents as needed, followed
 // if symlinks: the user named root), each part of `rel` a real folder: a
 // symlink or a file planted there (`report -> elsewhere` in a run folder from

@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "history/run_points.h"
+#include "history/stored_text.h"
 #include "record/job_record.h"
 #include "results/store.h"
 
@@ -156,8 +157,19 @@ class Statement {
   }
   std::string column_text(int i) const {
     const unsigned char* t = sqlite3_column_text(s_, i);
-    return t ? reinterpret_cast<const char*>(t) : "";
+    return t ? std::string(reinterpret_cast<const char*>(t),
+                           static_cast<std::size_t>(sqlite3_column_bytes(s_, i)))
+             : "";
   }
+  // The column's text, refused (naming the table, row and column) when it
+  // is not what a history stores (stored_text.h).
+  std::string checked_text(int i, const std::string& place) const {
+    std::string t = column_text(i);
+    if (const std::string problem = text_problem(t); !problem.empty())
+      throw InputError(path_, place, problem);
+    return t;
+  }
+  int column_type(int i) const { return sqlite3_column_type(s_, i); }
   std::int64_t column_integer(int i) const { return sqlite3_column_int64(s_, i); }
   double column_real(int i) const { return sqlite3_column_double(s_, i); }
 
@@ -171,7 +183,29 @@ class Statement {
   sqlite3_stmt* s_ = nullptr;
 };
 
+// "runs row 2 (run_order)": a place in the history for a message.
+std::string row_place(const char* table, std::int64_t rowid, const char* column) {
+  return std::string(table) + " row " + std::to_string(rowid) + " (" + column + ")";
+}
+
+// Refuses a run_order that is not an integer from 1 to kMaxRunOrder.
+void check_run_order(const std::string& path, std::int64_t rowid, int type, std::int64_t order) {
+  if (type != SQLITE_INTEGER)
+    throw InputError(path, row_place("runs", rowid, "run_order"),
+                     "run_order is not an integer (the file was made or edited by hand)");
+  if (order < 1 || order > kMaxRunOrder)
+    throw InputError(path, row_place("runs", rowid, "run_order"),
+                     "run_order " + std::to_string(order) + " is outside 1 to " +
+                         std::to_string(kMaxRunOrder) +
+                         ", the orders a history holds (the file was made or edited by hand)");
+}
+
 }  // namespace
+
+void check_commit(const std::string& run_dir, const std::string& commit) {
+  if (const std::string problem = commit_problem(commit); !problem.empty())
+    throw InputError(run_dir, "--commit", quoted_excerpt(commit) + " " + problem);
+}
 
 HistoryDb::HistoryDb(const std::string& path) : path_(path), db_(std::make_unique<Connection>()) {
   db_->path = path;
@@ -181,27 +215,35 @@ HistoryDb::HistoryDb(const std::string& path) : path_(path), db_(std::make_uniqu
   if (sqlite3_open_v2(path.c_str(), &db_->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE,
                       nullptr) != SQLITE_OK)
     db_->fail("cannot open the history");
-  sqlite3_busy_timeout(db_->db, 10000);  // two CI jobs adding at once wait for each other
-  // A file that is not SQLite fails on its first read, here.
+  sqlite3_busy_timeout(db_->db, 10000);   // two CI jobs adding at once wait for each other
+  db_->exec("PRAGMA foreign_keys = ON");  // (a no-op inside a transaction)
+  // The version and the tables are read, and a new file's tables made, in
+  // one write transaction (a read one when the file is read-only): a writer
+  // that opens a new file while another makes its tables sees both before
+  // or both after (issue 59: read apart, one saw user_version 0 and the
+  // tables, and refused the file). A file that is not SQLite fails here.
+  const bool read_only = sqlite3_db_readonly(db_->db, "main") == 1;
   std::int64_t version = 0;
   std::int64_t tables = 0;
   try {
+    db_->exec(read_only ? "BEGIN" : "BEGIN IMMEDIATE");
     version = db_->scalar("PRAGMA user_version");
     tables = db_->scalar("SELECT count(*) FROM sqlite_master WHERE type = 'table'");
   } catch (const InputError&) {
+    const int code = sqlite3_errcode(db_->db);
+    if (code == SQLITE_BUSY || code == SQLITE_LOCKED) throw;  // not the file's fault
     throw InputError(path, "", "is not a shadowbench history (not an SQLite file)");
   }
-  db_->exec("PRAGMA foreign_keys = ON");
-  if (tables == 0 && version == 0) {
-    // Made under the write lock, looked at again there: two CI jobs that
-    // open a new file at once make its tables once.
-    db_->exec("BEGIN IMMEDIATE");
-    if (db_->scalar("SELECT count(*) FROM sqlite_master WHERE type = 'table'") == 0) {
+  try {
+    if (tables == 0 && version == 0 && !read_only) {
       db_->exec(kCreateTables);
       db_->exec(("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion)).c_str());
+      version = kHistorySchemaVersion;
     }
     db_->exec("COMMIT");
-    version = db_->scalar("PRAGMA user_version");
+  } catch (...) {
+    sqlite3_exec(db_->db, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
   }
   if (version != kHistorySchemaVersion)
     throw InputError(path, "PRAGMA user_version",
@@ -219,18 +261,23 @@ std::int64_t HistoryDb::run_count() const { return db_->scalar("SELECT count(*) 
 std::vector<HistoryRun> HistoryDb::runs() const {
   Statement q(db_->db,
               "SELECT run_key, run_id, commit_sha, coalesce(started_at, ''), run_dir, "
-              "coalesce(host_fingerprint, ''), run_order FROM runs ORDER BY run_order",
+              "coalesce(host_fingerprint, ''), run_order, rowid FROM runs ORDER BY run_order",
               path_);
   std::vector<HistoryRun> out;
   while (q.step()) {
+    const std::int64_t row = q.column_integer(7);
     HistoryRun r;
-    r.run_key = q.column_text(0);
-    r.run_id = q.column_text(1);
-    r.commit = q.column_text(2);
-    r.started_at = q.column_text(3);
-    r.run_dir = q.column_text(4);
-    r.host_fingerprint = q.column_text(5);
+    r.run_key = q.checked_text(0, row_place("runs", row, "run_key"));
+    r.run_id = q.checked_text(1, row_place("runs", row, "run_id"));
+    r.commit = q.checked_text(2, row_place("runs", row, "commit_sha"));
+    if (const std::string problem = commit_problem(r.commit); !problem.empty())
+      throw InputError(path_, row_place("runs", row, "commit_sha"),
+                       quoted_excerpt(r.commit) + " " + problem);
+    r.started_at = q.checked_text(3, row_place("runs", row, "started_at"));
+    r.run_dir = q.checked_text(4, row_place("runs", row, "run_dir"));
+    r.host_fingerprint = q.checked_text(5, row_place("runs", row, "host_fingerprint"));
     r.run_order = q.column_integer(6);
+    check_run_order(path_, row, q.column_type(6), r.run_order);
     out.push_back(std::move(r));
   }
   return out;
@@ -241,16 +288,36 @@ std::vector<QuantitySeries> HistoryDb::series(const std::string& quantity) const
   std::map<std::string, std::size_t> position;  // run_key -> index in run order
   for (std::size_t i = 0; i < all.size(); ++i) position[all[i].run_key] = i;
   Statement q(db_->db,
-              "SELECT j.series, p.run_key, p.value FROM points p "
-              "JOIN jobs j USING (run_key, job_id) WHERE p.quantity = ?1 ORDER BY j.series",
+              "SELECT j.series, p.run_key, p.value, p.rowid, j.rowid, p.job_id FROM points p "
+              "LEFT JOIN jobs j USING (run_key, job_id) WHERE p.quantity = ?1 ORDER BY j.series",
               path_);
   q.text(1, quantity);
   std::vector<QuantitySeries> out;
   while (q.step()) {
-    const std::string name = q.column_text(0);
+    const std::int64_t row = q.column_integer(3);
+    const std::string run_key = q.checked_text(1, row_place("points", row, "run_key"));
+    if (q.column_type(4) == SQLITE_NULL)
+      throw InputError(path_, row_place("points", row, "job_id"),
+                       "names job " + quoted_excerpt(q.column_text(5)) + " of run " +
+                           quoted_excerpt(run_key) +
+                           ", which has no row of jobs (the file was made or edited by hand)");
+    const std::string name = q.checked_text(0, row_place("jobs", q.column_integer(4), "series"));
+    const auto at = position.find(run_key);
+    if (at == position.end())
+      throw InputError(path_, row_place("points", row, "run_key"),
+                       "names run " + quoted_excerpt(run_key) +
+                           ", which runs does not hold (the file was made or edited by hand)");
+    const int type = q.column_type(2);
+    const double value = q.column_real(2);
+    if ((type != SQLITE_FLOAT && type != SQLITE_INTEGER) || !std::isfinite(value))
+      throw InputError(path_, row_place("points", row, "value"),
+                       type == SQLITE_FLOAT || type == SQLITE_INTEGER
+                           ? "is " + std::string(std::isnan(value) ? "NaN" : "infinite") +
+                                 "; a history holds finite numbers only"
+                           : "is not a number; a history holds finite numbers only");
     if (out.empty() || out.back().series != name)
       out.push_back({name, std::vector<double>(all.size(), std::nan(""))});
-    out.back().values[position.at(q.column_text(1))] = q.column_real(2);
+    out.back().values[at->second] = value;
   }
   return out;
 }
@@ -261,23 +328,32 @@ std::vector<SeriesJobs> HistoryDb::series_jobs() const {
   for (std::size_t i = 0; i < all.size(); ++i) position[all[i].run_key] = i;
   Statement q(db_->db,
               "SELECT series, scene_variant, resolution, technique_variant, run_key, job_id, "
-              "status, coalesce(reason, ''), coalesce(host_fingerprint, '') FROM jobs "
+              "status, coalesce(reason, ''), coalesce(host_fingerprint, ''), rowid FROM jobs "
               "ORDER BY series",
               path_);
+  static constexpr const char* kColumns[] = {
+      "series", "scene_variant", "resolution", "technique_variant", "run_key",
+      "job_id", "status",        "reason",     "host_fingerprint"};
   std::vector<SeriesJobs> out;
   while (q.step()) {
-    const std::string name = q.column_text(0);
-    if (out.empty() || out.back().series != name)
-      out.push_back({name, q.column_text(1), q.column_text(2), q.column_text(3),
-                     std::vector<SeriesJob>(all.size())});
-    SeriesJob& job = out.back().runs[position.at(q.column_text(4))];
-    job = {true, q.column_text(5), q.column_text(6), q.column_text(7), q.column_text(8)};
+    const std::int64_t row = q.column_integer(9);
+    std::string text[9];
+    for (int i = 0; i < 9; ++i) text[i] = q.checked_text(i, row_place("jobs", row, kColumns[i]));
+    const auto at = position.find(text[4]);
+    if (at == position.end())
+      throw InputError(path_, row_place("jobs", row, "run_key"),
+                       "names run " + quoted_excerpt(text[4]) +
+                           ", which runs does not hold (the file was made or edited by hand)");
+    if (out.empty() || out.back().series != text[0])
+      out.push_back({text[0], text[1], text[2], text[3], std::vector<SeriesJob>(all.size())});
+    out.back().runs[at->second] = {true, text[5], text[6], text[7], text[8]};
   }
   return out;
 }
 
 AddedRun HistoryDb::add_run(const std::string& run_dir, const std::string& commit) {
   if (commit.empty()) throw InputError(run_dir, "--commit", "no commit to store the run at");
+  check_commit(run_dir, commit);
   // Refuses another schema_version, naming the file, line and pointer.
   const std::vector<JobRecord> records = results::read_job_records(run_dir);
   if (records.empty())
@@ -293,7 +369,23 @@ AddedRun HistoryDb::add_run(const std::string& run_dir, const std::string& commi
   for (const JobRecord& r : records)
     if (r.started_at && (started.empty() || *r.started_at < started)) started = *r.started_at;
   added.run_key = started.empty() ? added.run_id : added.run_id + " " + started;
-  const std::vector<JobPoints> jobs = run_points(records);
+  std::vector<JobPoints> jobs = run_points(records);
+  // What is stored is what a history reads back (stored_text.h): a reason
+  // is cut to the bound, anything else too long is refused.
+  const std::string records_file = (fs::path(run_dir) / "results.jsonl").string();
+  auto check = [&](const std::string& text, const std::string& what) {
+    if (const std::string problem = text_problem(text); !problem.empty())
+      throw InputError(records_file, what, quoted_excerpt(text) + " " + problem);
+  };
+  check(added.run_key, "run_id and started_at");
+  for (JobPoints& j : jobs) {
+    if (j.reason.size() > kMaxStoredTextBytes)
+      j.reason = utf8_cut(j.reason, kMaxStoredTextBytes - 3) + "\u2026";
+    for (const std::string* t :
+         {&j.job_id, &j.series, &j.scene_variant, &j.resolution, &j.technique_variant, &j.status,
+          &j.reason, &j.host_fingerprint, &j.build_fingerprint})
+      check(*t, "job " + quoted_excerpt(j.job_id));
+  }
 
   db_->exec("BEGIN IMMEDIATE");
   try {
@@ -310,7 +402,27 @@ AddedRun HistoryDb::add_run(const std::string& run_dir, const std::string& commi
       Statement drop(db_->db, "DELETE FROM runs WHERE run_key = ?1", path_);
       drop.text(1, added.run_key).step();
     } else {
-      added.run_order = db_->scalar("SELECT coalesce(max(run_order), 0) + 1 FROM runs");
+      // Every order is checked (a hand-made file may hold any), and the
+      // next is the largest plus one, when there is room for it.
+      Statement orders(db_->db,
+                       "SELECT rowid, typeof(run_order) = 'integer', run_order FROM runs "
+                       "ORDER BY typeof(run_order) = 'integer', run_order NOT BETWEEN 1 AND ?1 "
+                       "DESC, run_order DESC LIMIT 1",
+                       path_);
+      orders.integer(1, kMaxRunOrder);
+      added.run_order = 1;
+      if (orders.step()) {
+        const std::int64_t row = orders.column_integer(0);
+        const std::int64_t last = orders.column_integer(2);
+        check_run_order(path_, row, orders.column_integer(1) != 0 ? SQLITE_INTEGER : SQLITE_TEXT,
+                        last);
+        if (last == kMaxRunOrder)
+          throw InputError(path_, row_place("runs", row, "run_order"),
+                           "run_order " + std::to_string(last) +
+                               " is the largest a history holds: no run can follow it (start "
+                               "another history, or renumber its runs from 1)");
+        added.run_order = last + 1;
+      }
     }
 
     const JobRecord& first = records.front();

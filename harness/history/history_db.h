@@ -61,6 +61,11 @@ struct SeriesJobs {
   std::vector<SeriesJob> runs;
 };
 
+// Refuses (InputError naming --commit) a commit a history does not store:
+// empty, longer than kMaxCommitCharacters, not UTF-8, or holding a control
+// character (stored_text.h).
+void check_commit(const std::string& run_dir, const std::string& commit);
+
 class HistoryDb {
  public:
   // Opens the history at `path`, creating it (and its folder) when absent.

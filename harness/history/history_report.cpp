@@ -7,10 +7,14 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/folder_file.h"
 #include "core/format_number.h"
 #include "core/names.h"
+#include "history/stored_text.h"
 #include "results/charts.h"
 #include "results/html_page.h"
+#include "results/store.h"
 
 namespace sb::history {
 
@@ -48,7 +52,8 @@ std::string percent(double relative_change) {
   return format_number("%+.1f", 100.0 * relative_change) + " %";
 }
 
-std::string short_commit(const std::string& commit) { return commit.substr(0, 10); }
+// Text is cut by characters, never inside one (a commit may be "abcdefé-x").
+std::string short_commit(const std::string& commit) { return utf8_prefix(commit, 10); }
 
 // A quantity as a column heading: "frame / control", "frame ms", the metric path.
 std::string quantity_label(const std::string& quantity) {
@@ -117,7 +122,7 @@ class Hosts {
   }
   int number(const std::string& fingerprint) const { return number_.at(fingerprint); }
   std::string label(const std::string& fingerprint) const {
-    const std::string short_fp = fingerprint.empty() ? "unknown" : fingerprint.substr(0, 12);
+    const std::string short_fp = fingerprint.empty() ? "unknown" : utf8_prefix(fingerprint, 12);
     return "host " + std::to_string(number(fingerprint) + 1) + " (" + short_fp + ")";
   }
   const std::vector<std::string>& fingerprints() const { return order_; }
@@ -138,6 +143,16 @@ std::string link_to(const fs::path& target, const fs::path& from_dir) {
   const fs::path rel =
       fs::weakly_canonical(target, ec).lexically_relative(fs::weakly_canonical(from_dir, ec));
   return html_escape(url_path(rel.empty() ? target.generic_string() : rel.generic_string()));
+}
+
+// Whether run_dir/rel is a regular file inside run_dir, reached without a
+// symbolic link.
+bool inside_folder(const std::string& run_dir, const std::string& rel) {
+  try {
+    return core::open_in_folder(run_dir, rel).has_value();
+  } catch (const core::InputError&) {
+    return false;
+  }
 }
 
 std::string page_head(const std::string& title) {
@@ -174,7 +189,8 @@ class Site {
     for (std::size_t i = 0; i < series_.size(); ++i)
       write_file_atomically((out_ / page(i)).string(), series_page(i));
     write_file_atomically((out_ / "index.html").string(), index_page());
-    write_file_atomically((out_ / "steps.json").string(), steps_json().dump(1) + "\n");
+    write_file_atomically((out_ / "steps.json").string(),
+                          results::json_text(steps_json(), 1) + "\n");
 
     HistoryReport report;
     report.index = (out_ / "index.html").string();
@@ -225,7 +241,7 @@ class Site {
     const SeriesHistory& s = series_[i];
     const fs::path stem = out_ / fs::path(page(i)).replace_extension("");
     json ticks = json::array(), hosts = json::array(), host_labels = json::array();
-    for (const HistoryRun& r : runs_) ticks.push_back(short_commit(r.commit).substr(0, 7));
+    for (const HistoryRun& r : runs_) ticks.push_back(utf8_prefix(r.commit, 7));
     for (const SeriesJob& j : s.jobs.runs)
       hosts.push_back(j.present ? hosts_.number(j.host_fingerprint) : -1);
     for (const std::string& fp : hosts_.fingerprints()) host_labels.push_back(hosts_.label(fp));
@@ -259,7 +275,7 @@ class Site {
               {"panels",
                {panel(q().time, s.time, s.time_steps), panel(q().error, s.error, s.error_steps)}}};
     std::string file = stem.string() + ".json";
-    write_file_atomically(file, d.dump(1) + "\n");
+    write_file_atomically(file, results::json_text(d, 1) + "\n");
     return file;
   }
 
@@ -388,9 +404,12 @@ class Site {
                          const std::string& side) const {
     std::string h;
     if (!job.present) return h;
-    const fs::path dir = fs::path(runs_[run].run_dir) / "jobs" / job.job_id;
     for (const char* name : {"shaded.png", "error.png"}) {
-      const std::string link = link_to(dir / name, from);
+      // Linked only when it is a regular file inside the run folder (the
+      // history's job id is input: core/folder_file.h).
+      const std::string rel = "jobs/" + job.job_id + "/" + name;
+      if (!inside_folder(runs_[run].run_dir, rel)) continue;
+      const std::string link = link_to(fs::path(runs_[run].run_dir) / rel, from);
       if (link.empty()) continue;
       const std::string what =
           side + " (run " + std::to_string(runs_[run].run_order) + "): " + name;

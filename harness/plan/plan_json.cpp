@@ -40,7 +40,10 @@ nlohmann::json plan_to_json(const Experiment& e, const Plan& plan) {
 }
 
 PlanRecord read_plan_file(const std::string& path) {
-  const std::string text = read_input_file(path, JsonLimits{}.max_bytes, "plan");
+  return read_plan_text(read_input_file(path, JsonLimits{}.max_bytes, "plan"), path);
+}
+
+PlanRecord read_plan_text(const std::string& text, const std::string& path) {
   JsonPositions positions;
   const nlohmann::json j = parse_json_text(text, path, {}, 0, &positions);
   try {

@@ -21,5 +21,7 @@ nlohmann::json plan_to_json(const config::Experiment& e, const Plan& plan);
 // column and the JSON pointer of what is wrong (a file of another
 // plan_version is refused so).
 record::PlanRecord read_plan_file(const std::string& path);
+// The same, of a plan.json's text read by the caller (`path` names it in errors).
+record::PlanRecord read_plan_text(const std::string& text, const std::string& path);
 
 }  // namespace sb::plan

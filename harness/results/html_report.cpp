@@ -7,9 +7,11 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <string_view>
 #include <tuple>
 
 #include "core/atomic_file.h"
+#include "core/error.h"
 #include "core/format_number.h"
 #include "core/image.h"
 #include "metrics/image_io.h"
@@ -370,15 +372,52 @@ class Page {
   std::string out_;
 };
 
+// A data file the viewer writes: "<n>-<m>.js" (image_viewer.cpp).
+bool viewer_data_name(const std::string& name) {
+  const size_t dash = name.find('-');
+  const auto digits = [](std::string_view t) {
+    return !t.empty() &&
+           std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
+  };
+  return dash != std::string::npos && name.size() > 3 &&
+         name.compare(name.size() - 3, 3, ".js") == 0 &&
+         digits(std::string_view(name).substr(0, dash)) &&
+         digits(std::string_view(name).substr(dash + 1, name.size() - 3 - dash - 1));
+}
+
 }  // namespace
+
+void check_viewer_folder(const std::string& out_dir) {
+  const fs::path viewer = fs::path(out_dir) / kViewerDataDir;
+  const std::string why = "is not the report's: the report replaces " + viewer.string() +
+                          " only when it holds the viewer's files (its marker " +
+                          kViewerMarkerFile +
+                          "), and keeps anything else; move it away or choose another --out";
+  const fs::file_status folder = fs::symlink_status(viewer);
+  if (folder.type() == fs::file_type::not_found) return;
+  if (folder.type() != fs::file_type::directory) throw core::InputError(viewer.string(), "", why);
+  if (fs::symlink_status(viewer / kViewerMarkerFile).type() == fs::file_type::regular) return;
+  // A viewer folder written before the marker holds only data files.
+  for (const fs::directory_entry& e : fs::directory_iterator(viewer))
+    if (!e.is_regular_file() || e.is_symlink() || !viewer_data_name(e.path().filename().string()))
+      throw core::InputError(e.path().string(), "", why);
+}
 
 void write_html_report(const std::vector<JobRecord>& records, const std::string& run_dir,
                        const std::string& out_dir, const std::vector<ReportChart>& charts,
                        const std::string& title, bool viewer_data) {
   fs::create_directories(out_dir);
   // The viewers' data files are this report's alone: none survives from an
-  // earlier report of more groups or jobs.
+  // earlier report of more groups or jobs. The folder goes only when it is
+  // the report's own, and the new one is marked as such first.
+  check_viewer_folder(out_dir);
   fs::remove_all(fs::path(out_dir) / kViewerDataDir);
+  if (viewer_data) {
+    fs::create_directories(fs::path(out_dir) / kViewerDataDir);
+    write_file_atomically((fs::path(out_dir) / kViewerDataDir / kViewerMarkerFile).string(),
+                          "Written by shadowbench report: this folder is replaced by the next "
+                          "report into its folder.\n");
+  }
   const fs::path out = fs::weakly_canonical(fs::absolute(out_dir));
   fs::path run_from_out = fs::weakly_canonical(fs::absolute(run_dir)).lexically_relative(out);
   if (run_from_out.empty()) run_from_out = fs::weakly_canonical(fs::absolute(run_dir));

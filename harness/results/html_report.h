@@ -31,9 +31,22 @@ inline constexpr const char* kHeatmapLegendFile = "heatmap_legend.png";
 // page's script sets <body data-images-ok="true|false" data-missing="...">
 // and logs console.error for each image that did not load. Each group gets an
 // interactive viewer (results/image_viewer.h) whose data files go to
-// out_dir/viewer (replaced), unless viewer_data is false.
+// out_dir/viewer, unless viewer_data is false. out_dir/viewer is replaced
+// (with or without viewer_data) only when it is the report's own:
+// check_viewer_folder.
 void write_html_report(const std::vector<record::JobRecord>& records, const std::string& run_dir,
                        const std::string& out_dir, const std::vector<ReportChart>& charts,
                        const std::string& title, bool viewer_data = true);
+
+// The file that marks a viewer folder as the report's (written first into
+// out_dir/viewer).
+inline constexpr const char* kViewerMarkerFile = ".shadowbench-viewer";
+
+// Throws InputError naming what stops out_dir/viewer from being replaced:
+// the folder may go when it is not there, or holds the marker file, or
+// (written before the marker) only the viewer's data files "<n>-<m>.js";
+// anything else there (a file of the user's, a symbolic link, a viewer that
+// is not a folder) is kept and named. docs/robustness.md.
+void check_viewer_folder(const std::string& out_dir);
 
 }  // namespace sb::results

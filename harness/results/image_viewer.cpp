@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "core/atomic_file.h"
+#include "core/folder_file.h"
 #include "core/image.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
@@ -39,16 +40,18 @@ std::string base64_floats(const std::vector<float>& values) {
 }
 
 // An image the record names (an EXR, or a mask's PNG), or nothing when it is not there (`run
-// --no-images`, a folder cleaned up); an unreadable one is said on stderr.
+// --no-images`, a folder cleaned up); an unreadable one, or one the record names outside its
+// run folder (absolute, "..", through a symbolic link: core/folder_file.h), is said on stderr
+// and left out, so that no file from elsewhere reaches viewer/*.js.
 std::optional<ImageF> read_named_image(const fs::path& run_dir,
                                        const std::optional<std::string>& rel) {
   if (!rel) return std::nullopt;
-  const fs::path path = run_dir / *rel;
-  if (!fs::is_regular_file(path)) return std::nullopt;
   try {
-    return metrics::io::read_image(path.string());
+    const std::optional<core::FolderFile> file = core::open_in_folder(run_dir.string(), *rel);
+    if (!file) return std::nullopt;
+    return metrics::io::read_image(file->path());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "report: the viewer leaves out %s: %s\n", path.string().c_str(), e.what());
+    std::fprintf(stderr, "report: the viewer leaves out %s\n", e.what());
     return std::nullopt;
   }
 }

@@ -110,9 +110,97 @@ std::vector<const ReportColumn*> latex_columns(const std::vector<std::string>& n
   return out;
 }
 
+namespace {
+
+// The next code point of `s` at `at` (advanced past it); U+FFFD for a byte
+// that does not start well-formed UTF-8 (overlong forms, surrogates and
+// values above U+10FFFF included), which then takes one byte.
+char32_t next_code_point(const std::string& s, size_t& at) {
+  const auto byte = [&](size_t i) { return static_cast<unsigned char>(s[i]); };
+  const unsigned char b0 = byte(at);
+  size_t len = 0;
+  char32_t cp = 0, min = 0;
+  if (b0 >= 0xC2 && b0 <= 0xDF) {
+    len = 2, cp = b0 & 0x1Fu, min = 0x80;
+  } else if (b0 >= 0xE0 && b0 <= 0xEF) {
+    len = 3, cp = b0 & 0x0Fu, min = 0x800;
+  } else if (b0 >= 0xF0 && b0 <= 0xF4) {
+    len = 4, cp = b0 & 0x07u, min = 0x10000;
+  }
+  bool ok = len > 0 && at + len <= s.size();
+  for (size_t i = 1; ok && i < len; ++i) {
+    ok = (byte(at + i) & 0xC0u) == 0x80u;
+    cp = (cp << 6) | (byte(at + i) & 0x3Fu);
+  }
+  if (!ok || cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) {
+    ++at;
+    return 0xFFFD;
+  }
+  at += len;
+  return cp;
+}
+
+// The Latin letters (U+00C0 to U+017E) that LaTeX's own UTF-8 support sets
+// in the default OT1 encoding with Computer Modern's Type 1 fonts (no extra
+// package, no bitmap font): every letter of those two blocks but the ones
+// OT1 lacks (Ð Þ ð þ, the ogonek and stroke letters Ą Đ Ę Į Ħ Ŧ Ų, Ŋ, Ŀ, ĸ,
+// ŉ) and the signs × ÷. Tried one by one with pdflatex (TeX Live 2022).
+bool latex_sets_itself(char32_t c) {
+  if (c < 0xC0 || c > 0x17E) return false;
+  switch (c) {
+    case 0xD0:
+    case 0xD7:
+    case 0xDE:
+    case 0xF0:
+    case 0xF7:
+    case 0xFE:
+    case 0x104:
+    case 0x105:
+    case 0x110:
+    case 0x111:
+    case 0x118:
+    case 0x119:
+    case 0x126:
+    case 0x127:
+    case 0x12E:
+    case 0x12F:
+    case 0x138:
+    case 0x13F:
+    case 0x140:
+    case 0x149:
+    case 0x14A:
+    case 0x14B:
+    case 0x166:
+    case 0x167:
+    case 0x172:
+    case 0x173:
+      return false;
+    default:
+      return true;
+  }
+}
+
+}  // namespace
+
 std::string latex_text(const std::string& s) {
   std::string out;
-  for (char c : s) {
+  for (size_t at = 0; at < s.size();) {
+    const char c = s[at];
+    if (static_cast<unsigned char>(c) >= 0x80) {
+      const size_t from = at;
+      const char32_t cp = next_code_point(s, at);
+      if (latex_sets_itself(cp)) {
+        out.append(s, from, at - from);  // as UTF-8, LaTeX's input encoding
+      } else {
+        char code[16];
+        std::snprintf(code, sizeof code, "U+%04X", static_cast<unsigned>(cp));
+        out += "\\textless{}";
+        out += code;
+        out += "\\textgreater{}";
+      }
+      continue;
+    }
+    ++at;
     switch (c) {
       case '_':
         out += "\\_";

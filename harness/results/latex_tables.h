@@ -40,7 +40,10 @@ std::vector<const ReportColumn*> latex_columns(const std::vector<std::string>& n
                                                const std::vector<record::JobRecord>& records);
 
 // `s` as LaTeX text that prints `s`: _ & % # { } ~ ^ \ $ < > | escaped,
-// line breaks as spaces.
+// line breaks as spaces. Outside ASCII, the Latin letters pdflatex sets in
+// its default encoding (é, ñ, ő, ł, ...) stay UTF-8; every other character
+// (Greek, Cyrillic, CJK, signs) prints as its code point, "<U+03B1>", and
+// bytes that are not UTF-8 as "<U+FFFD>" (docs/paper.md).
 std::string latex_text(const std::string& s);
 
 // `v` to `digits` significant digits as LaTeX: "12.3", "0.0123", "1235",

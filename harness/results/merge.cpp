@@ -3,16 +3,16 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <optional>
 #include <set>
 #include <string_view>
 #include <type_traits>
 
+#include "config/json_file.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/folder_file.h"
 #include "plan/plan_json.h"
 #include "record/job_record.h"
 #include "results/mixed_hosts.h"
@@ -24,7 +24,7 @@ namespace sb::results {
 
 using core::InputError;
 using core::write_file_atomically;
-using plan::read_plan_file;
+using plan::read_plan_text;
 using record::ImagesRecord;
 using record::JobRecord;
 using record::plan_difference;
@@ -34,6 +34,9 @@ using record::PlanRecord;
 namespace fs = std::filesystem;
 
 namespace {
+
+// An image merge copies is read whole into memory first.
+constexpr size_t kMaxImageBytes = size_t(1) << 32;
 
 // The shards of one config ran one plan and each kept it as plan.json: the
 // merged folder keeps it when every folder has one and they plan the same
@@ -51,17 +54,18 @@ ShardsPlan the_shards_plan(const std::vector<std::string>& dirs,
   std::string first_dir;
   for (const std::string& dir : dirs) {
     const fs::path file = fs::path(dir) / "plan.json";
-    if (!fs::exists(file)) {
+    const std::optional<core::FolderFile> in = core::open_in_folder(dir, "plan.json");
+    if (!in) {
       warnings.push_back(dir +
                          " has no plan.json (written by a build before runs kept their "
                          "plan): the merged folder has none, and which planned jobs are "
                          "missing is not checked");
       return {};
     }
-    PlanRecord plan = read_plan_file(file.string());
+    std::string text = in->read_all(config::JsonLimits{}.max_bytes);
+    PlanRecord plan = read_plan_text(text, file.string());
     if (!out.plan) {
-      std::ifstream in(file, std::ios::binary);
-      out.text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+      out.text = std::move(text);
       out.plan = std::move(plan);
       first_dir = dir;
     } else if (const std::string d = plan_difference(*out.plan, plan); !d.empty()) {
@@ -102,15 +106,24 @@ void warn_of_missing_jobs(const PlanRecord& plan, const std::map<std::string, st
                              "): the merged results are incomplete");
 }
 
-// An image path a record names, inside its run folder: relative, without
-// "..". Records are input; a crafted one must not make merge copy from or
-// write to anywhere else.
-bool inside_run_folder(const std::string& rel) {
-  const fs::path p(rel);
-  if (rel.empty() || p.is_absolute()) return false;
-  for (const auto& part : p)
-    if (part == "..") return false;
-  return true;
+// The marker of a folder merge made (written first into OUT): merge writes
+// only into a new or empty folder or one that holds it.
+constexpr const char* kMergeMarkerFile = ".shadowbench-merge";
+
+// Throws InputError naming what stops merge from writing into `out`: a file
+// or folder there that no merge made. merge replaces plan.json, summary.md,
+// results.csv and the images it copies: they must be its own.
+void check_merge_out(const std::string& out) {
+  const fs::file_status folder = fs::symlink_status(out);
+  if (folder.type() == fs::file_type::not_found) return;
+  const std::string why =
+      "is not merge's: merge writes into a new or empty folder, or one an earlier merge made "
+      "(its marker " +
+      std::string(kMergeMarkerFile) + "), and keeps anything else; choose another folder";
+  if (folder.type() != fs::file_type::directory) throw InputError(out, "", why);
+  if (fs::symlink_status(fs::path(out) / kMergeMarkerFile).type() == fs::file_type::regular) return;
+  for (const fs::directory_entry& e : fs::directory_iterator(out))
+    throw InputError(e.path().string(), "", why);
 }
 
 // What file_safe() and job_id() write: letters, digits, . _ - = + ~, and no
@@ -181,10 +194,16 @@ MergeSummary merge_runs(const std::string& out, const std::vector<std::string>& 
                          "is also in " + it->second +
                              ": two folders ran the same job (overlapping shards, or one "
                              "folder given twice)");
-      for (const std::string& rel : image_paths(r.images))
-        if (!inside_run_folder(rel))
-          throw InputError(jsonl, "job " + r.job_id,
-                           "names the image '" + rel + "', outside its run folder");
+      // Each image inside its run folder, a regular file not reached through
+      // a symbolic link (core/folder_file.h), before anything is written.
+      for (const std::string& rel : image_paths(r.images)) {
+        if (const std::string why = core::folder_path_problem(rel); !why.empty()) {
+          std::string what = "names the image '" + rel;
+          what += "', outside its run folder: the path " + why;
+          throw InputError(jsonl, "job " + r.job_id, what);
+        }
+        (void)core::open_in_folder(dir, rel);
+      }
       all.push_back({std::move(r), dir});
     }
   }
@@ -216,6 +235,11 @@ MergeSummary merge_runs(const std::string& out, const std::vector<std::string>& 
                          "marks them)");
   }
 
+  check_merge_out(out);
+  fs::create_directories(out);
+  write_file_atomically((fs::path(out) / kMergeMarkerFile).string(),
+                        "Written by shadowbench merge: a later merge may write into this folder.\n",
+                        "merge: ");
   const RunFolderLock lock(out);
   if (fs::exists(fs::path(out) / "records") && !fs::is_empty(fs::path(out) / "records"))
     throw InputError(out, "", "already holds records: merge into a new or empty folder");
@@ -227,10 +251,12 @@ MergeSummary merge_runs(const std::string& out, const std::vector<std::string>& 
       // The reference's images are shared by a group's jobs, and equal in
       // every shard that rendered the group: copied once.
       if (!copied.insert(rel).second) continue;
-      const fs::path from = fs::path(s.dir) / rel, to = fs::path(out) / rel;
-      if (!fs::exists(from)) continue;  // written with --no-images, or removed
+      // Read inside the folder, as a regular file: a link is never followed.
+      const std::optional<core::FolderFile> from = core::open_in_folder(s.dir, rel);
+      if (!from) continue;  // written with --no-images, or removed
+      const fs::path to = fs::path(out) / rel;
       core::make_own_folder(out, fs::path(rel).parent_path().string(), "merge: ");
-      core::copy_file_atomically(from.string(), to.string(), "merge: ");
+      write_file_atomically(to.string(), from->read_all(kMaxImageBytes), "merge: ");
       ++summary.images;
     }
   }

@@ -3,16 +3,17 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <set>
 
 #include "config/json_file.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/folder_file.h"
 
 namespace sb::results {
 
 using config::parse_json_text;
-using config::read_input_file;
 using config::read_json_file;
 using core::InputError;
 using core::is_atomic_temp_name;
@@ -26,11 +27,14 @@ namespace fs = std::filesystem;
 namespace {
 
 // Each non-empty line of run_dir/results.jsonl, parsed with the config's
-// limits, with its line number.
+// limits, with its line number. The file is read inside the folder
+// (core/folder_file.h): a results.jsonl that links elsewhere is refused.
 void for_each_line(const std::string& run_dir,
                    const std::function<void(const nlohmann::json&, size_t line)>& take) {
   const fs::path jsonl = fs::path(run_dir) / "results.jsonl";
-  const std::string text = read_input_file(jsonl.string(), size_t(1) << 30, "results file");
+  const std::optional<core::FolderFile> file = core::open_in_folder(run_dir, "results.jsonl");
+  if (!file) throw InputError(jsonl.string(), "", "cannot open the results file: no such file");
+  const std::string text = file->read_all(size_t(1) << 30);
   size_t n = 0, begin = 0;
   while (begin < text.size()) {
     size_t end = text.find('\n', begin);

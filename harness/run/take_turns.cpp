@@ -45,6 +45,9 @@ int parse_fd(const std::string& text, const std::string& all) {
   return int(v);
 }
 
+// The descriptors a started command reads "go" at and writes "ready" to.
+constexpr int kChildIn = 3, kChildOut = 4;
+
 // A started command: its pid and our ends of its two pipes.
 struct Child {
   pid_t pid = -1;
@@ -68,8 +71,13 @@ Child start(const TurnCommand& c) {
   if (::pipe2(to.data(), O_CLOEXEC) != 0 || ::pipe2(from.data(), O_CLOEXEC) != 0)
     throw std::runtime_error(c.label + ": pipe: " + std::strerror(errno));
   std::vector<std::string> args = c.argv;
+  // The child reads at descriptor 3 and writes at 4, whatever numbers the
+  // pipes have here: a process started with descriptors open (some CI
+  // runners and IDEs pass them) got pipes above 9, which a POSIX shell
+  // cannot name (dash: "exec 3<&41" is "Bad fd number"), so a wrapper
+  // script around a build failed.
   args.push_back("--take-turns");
-  args.push_back(std::to_string(to[0]) + "," + std::to_string(from[1]));
+  args.push_back(std::to_string(kChildIn) + "," + std::to_string(kChildOut));
   std::vector<char*> argv;
   argv.reserve(args.size() + 1);
   for (auto& a : args) argv.push_back(a.data());
@@ -77,10 +85,17 @@ Child start(const TurnCommand& c) {
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error(c.label + ": fork: " + std::strerror(errno));
   if (pid == 0) {
-    // Only the child's own two ends survive exec (every end is O_CLOEXEC,
-    // so neither build ever holds the other's pipes open).
-    ::fcntl(to[0], F_SETFD, 0);
-    ::fcntl(from[1], F_SETFD, 0);
+    // Only the child's own two ends survive exec, at 3 and 4 (every end is
+    // O_CLOEXEC, so neither build ever holds the other's pipes open). Both
+    // are first copied above 4 (close-on-exec), so that neither dup2 lands
+    // on the other end; dup2 clears close-on-exec on 3 and 4.
+    const int in = ::fcntl(to[0], F_DUPFD_CLOEXEC, kChildOut + 1);
+    const int out = ::fcntl(from[1], F_DUPFD_CLOEXEC, kChildOut + 1);
+    if (in < 0 || out < 0 || ::dup2(in, kChildIn) < 0 || ::dup2(out, kChildOut) < 0) {
+      std::fprintf(stderr, "shadowbench: %s: cannot place the pipes at 3 and 4: %s\n",
+                   c.label.c_str(), std::strerror(errno));
+      ::_exit(127);
+    }
     ::execv(argv[0], argv.data());
     std::fprintf(stderr, "shadowbench: %s: cannot run %s: %s\n", c.label.c_str(), argv[0],
                  std::strerror(errno));

@@ -13,7 +13,9 @@
 
 namespace sb::run {
 
-// The run's side: `run --take-turns IN_FD,OUT_FD`.
+// The run's side: `run --take-turns IN_FD,OUT_FD` (take_turns passes 3,4:
+// it places the pipes at descriptors 3 and 4 in the child, which any POSIX
+// shell can name, whatever numbers they have in the driver).
 class TurnTaker {
  public:
   // Throws InputError naming --take-turns for a malformed value.

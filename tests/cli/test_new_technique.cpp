@@ -76,18 +76,36 @@ TEST(NewTechnique, RefusesTheNameOfATechniqueTheRegistryHas) {
             "name");
 }
 
+// `new-technique NAME` into dir/out exits 2 with an error that starts
+// "NAME 'NAME'" + `says`, and writes nothing.
+void expect_refused(const fs::path& dir, const std::string& name, const std::string& says = "") {
+  const fs::path folder = dir / "out";
+  const auto r = run_cli("new-technique " + name + " --dir " + folder.string());
+  EXPECT_EQ(r.exit_code, 2) << name << "\n" << r.output;
+  EXPECT_NE(
+      r.output.find("shadowbench: error: <input>: at command line: NAME '" + name + "'" + says),
+      std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(folder)) << name;
+}
+
 TEST(NewTechnique, TheCommandRefusesABuiltInsNameOrABadOneWithExitTwoAndWritesNothing) {
   const fs::path dir = scratch("bad_names");
-  for (const char* args : {"pcf_box", "shadow_map", "my-pcf", "1pcf"}) {
-    const fs::path folder = dir / "out";
-    const auto r = run_cli(std::string("new-technique ") + args + " --dir " + folder.string());
-    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
-    EXPECT_NE(r.output.find(std::string("shadowbench: error: <input>: at command line: NAME '") +
-                            args + "'"),
-              std::string::npos)
-        << r.output;
-    EXPECT_FALSE(fs::exists(folder)) << args;
-  }
+  for (const char* name : {"pcf_box", "shadow_map", "my-pcf", "1pcf"}) expect_refused(dir, name);
+}
+
+// CMake's reserved target names (policy CMP0037: its documentation names all,
+// clean, help, install, and test and package with CTest or CPack; CMake 3.25
+// also refused preinstall, edit_cache, rebuild_cache and package_source when
+// tried): NAME is the plugin's target, so each made a project CMake refused.
+TEST(NewTechnique, TheCommandRefusesTargetNamesCMakeReservesWithExitTwoAndWritesNothing) {
+  const fs::path dir = scratch("cmake_reserved");
+  for (const char* name : {"all", "clean", "help", "install", "test", "package", "preinstall",
+                           "edit_cache", "rebuild_cache", "package_source"})
+    expect_refused(dir, name, " is a target name CMake reserves");
+  // Names that only contain a reserved one are fine.
+  for (const char* name : {"all_pcf", "my_test", "cleaner"})
+    EXPECT_EQ(cli::technique_name_problem(name, Registry{}), "") << name;
 }
 
 TEST(NewTechnique, WritesEveryFileOfTheTemplateWithTheName) {

@@ -21,7 +21,6 @@
 namespace sb {
 
 using core::AtomicFile;
-using core::copy_file_atomically;
 using core::is_atomic_temp_name;
 using core::JobError;
 using core::write_file_atomically;
@@ -187,30 +186,6 @@ TEST(core_atomic_file, FileNameWritersGetAFileOfTheirOwnNotAPlantedSymlink) {
   EXPECT_EQ(read_back(f.victim), PlantedFolder::kVictim);
   EXPECT_EQ(fs::symlink_status(f.target).type(), fs::file_type::regular);
   EXPECT_EQ(read_back(f.target), "pixels");
-}
-
-TEST(core_atomic_file, CopiesRegularFilesOnlyAndNeverThroughATargetSymlink) {
-  PlantedFolder f("shaded.png");
-  Folder src;
-  std::ofstream(src / "shaded.png", std::ios::binary) << "png bytes";
-  copy_file_atomically((src / "shaded.png").string(), f.target);
-  EXPECT_EQ(read_back(f.victim), PlantedFolder::kVictim);
-  EXPECT_EQ(fs::symlink_status(f.target).type(), fs::file_type::regular);
-  EXPECT_EQ(read_back(f.target), "png bytes");
-
-  // A source that is a symlink (to a secret) or a device is not copied.
-  fs::create_symlink(f.victim, src / "linked.png");
-  for (const std::string& from : {(src / "linked.png").string(), std::string("/dev/zero")}) {
-    const std::string to = (src / "copy.png").string();
-    try {
-      copy_file_atomically(from, to, "merge: ");
-      FAIL() << "copied " << from;
-    } catch (const JobError& e) {
-      const std::string what = e.what();
-      EXPECT_EQ(what.rfind("merge: cannot read " + from + ": ", 0), 0u) << what;
-    }
-    EXPECT_FALSE(fs::exists(to));
-  }
 }
 
 // The reason, in strerror's words, for a write that the kernel refuses: a

@@ -22,6 +22,7 @@
 #include "metrics/image_io.h"
 #include "results/charts.h"
 #include "results/latex_export.h"
+#include "results/latex_tables.h"
 
 namespace sb {
 
@@ -102,6 +103,55 @@ TEST(LatexPdflatex, TablesAndPlotsCompileAndTheFirstPageRenders) {
   // values were set; and no bitmap (Type 3) font stands in for a character.
   const CliRun fonts = run_command("pdffonts '" + pdf.string() + "'");
   EXPECT_NE(fonts.output.find("CMBX9"), std::string::npos) << fonts.output;
+  EXPECT_EQ(fonts.output.find("Type 3"), std::string::npos) << fonts.output;
+  fs::remove_all(dir);
+}
+
+// Labels in several scripts (configs allow any UTF-8): tables.tex compiles,
+// the Latin letters read back as themselves, the others as their code points
+// (docs/paper.md), and no bitmap font stands in. One label holds every
+// letter latex_text passes through as UTF-8.
+TEST(LatexPdflatex, NonAsciiLabelsCompileAndReadBack) {
+  ASSERT_TRUE(on_path("pdflatex"));
+  ASSERT_TRUE(on_path("pdftotext"));
+  ASSERT_TRUE(on_path("pdffonts"));
+  const fs::path dir = test::test_folder("sb_latex_non_ascii_");
+  std::string every_letter;
+  for (char32_t c = 0xC0; c <= 0x17E; ++c) {
+    const std::string one{char(0xC0 | (c >> 6)), char(0x80 | (c & 0x3F))};  // two-byte UTF-8
+    if (results::latex_text(one) == one) every_letter += one;
+  }
+  ASSERT_GT(every_letter.size(), 2 * 150U);  // 165 letters
+  auto records = test::latex_records("plates/layout=edge", "64x48");
+  records[0].technique_variant = "Café Ångström Erdős Dvořák";
+  records[1].technique_variant = "σκιά";
+  records[2].technique_variant = "影子";
+  records[3].technique_variant = "тень";
+  records[4].technique_variant = every_letter;
+  for (const auto& r : test::latex_records("σκηνή/étage=1", "64x48")) records.push_back(r);
+  results::LatexOptions options;
+  options.columns = {"frame_ms", "rmse"};
+  options.title = "Résumé";
+  results::write_latex(records, (dir / "latex").string(), options);
+  const CliRun tex = run_command("cd '" + (dir / "latex").string() +
+                                 "' && pdflatex -interaction=nonstopmode -halt-on-error "
+                                 "tables.tex");
+  ASSERT_EQ(tex.exit_code, 0) << tex.output;
+  const fs::path pdf = dir / "latex" / "tables.pdf";
+  // pdftotext writes an accented letter as the letter and a combining
+  // accent (NFD); composed again (NFC) it is the label's own character.
+  const CliRun text =
+      run_command("pdftotext '" + pdf.string() + "' '" + (dir / "tables.txt").string() +
+                  "' && python3 -c 'import sys, unicodedata; "
+                  "sys.stdout.write(unicodedata.normalize(\"NFC\", sys.stdin.read()))' < '" +
+                  (dir / "tables.txt").string() + "'");
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  for (const char* shown :
+       {"Café Ångström Erdős Dvořák", "Résumé", "<U+03C3><U+03BA><U+03B9><U+03AC>",
+        "<U+5F71><U+5B50>", "<U+0442><U+0435><U+043D><U+044C>",
+        "<U+03C3><U+03BA><U+03B7><U+03BD><U+03AE>/étage=1 @ 64x48"})
+    EXPECT_NE(text.output.find(shown), std::string::npos) << shown << "\n" << text.output;
+  const CliRun fonts = run_command("pdffonts '" + pdf.string() + "'");
   EXPECT_EQ(fonts.output.find("Type 3"), std::string::npos) << fonts.output;
   fs::remove_all(dir);
 }

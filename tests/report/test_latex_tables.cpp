@@ -126,6 +126,24 @@ TEST(LatexTables, SpecialCharactersAreEscaped) {
   EXPECT_EQ(latex_text("pcf_box/k=3,size=1024"), "pcf\\_box/k=3,size=1024");
 }
 
+// Outside ASCII: the Latin letters pdflatex sets in its default encoding stay
+// UTF-8; other characters print as their code points, and bytes that are
+// not UTF-8 (a cut character, an overlong form, a surrogate) as U+FFFD.
+TEST(LatexTables, NonAsciiTextKeepsLatinLettersAndShowsOthersAsCodePoints) {
+  EXPECT_EQ(latex_text("Café Erdős Dvořák"), "Café Erdős Dvořák");
+  EXPECT_EQ(latex_text("σκιά"),
+            "\\textless{}U+03C3\\textgreater{}\\textless{}U+03BA\\textgreater{}"
+            "\\textless{}U+03B9\\textgreater{}\\textless{}U+03AC\\textgreater{}");
+  EXPECT_EQ(latex_text("影_1"), "\\textless{}U+5F71\\textgreater{}\\_1");
+  EXPECT_EQ(latex_text("\xF0\x9F\x98\x80"), "\\textless{}U+1F600\\textgreater{}");
+  EXPECT_EQ(latex_text("Þ×"), "\\textless{}U+00DE\\textgreater{}\\textless{}U+00D7\\textgreater{}");
+  const std::string fffd = "\\textless{}U+FFFD\\textgreater{}";
+  EXPECT_EQ(latex_text("a\xC3"), "a" + fffd);                 // cut after its first byte
+  EXPECT_EQ(latex_text("\xC0\xAF"), fffd + fffd);             // overlong '/'
+  EXPECT_EQ(latex_text("\xED\xA0\x80"), fffd + fffd + fffd);  // a surrogate
+  EXPECT_EQ(latex_text("\xFFx"), fffd + "x");
+}
+
 TEST(LatexTables, NumbersHaveFixedSignificantDigits) {
   EXPECT_EQ(latex_number(2.5), "2.50");
   EXPECT_EQ(latex_number(0.012345), "0.0123");

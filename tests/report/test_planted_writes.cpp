@@ -23,7 +23,9 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kVictim = "# the user's own file, outside every run folder\n";
-constexpr int kCounters = 64;  // temporary names planted per target and pid
+constexpr int kCounters = 64;
+constexpr const char* kMergeMarker =
+    ".shadowbench-merge";  // results/merge.cpp  // temporary names planted per target and pid
 
 std::string read_all(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -107,8 +109,10 @@ TEST(PlantedSymlinks, ReportReplacesThemAndNeverWritesThrough) {
             0)
       << output;
   std::vector<fs::path> written;
+  // Not the viewer's folder: report replaces it only when its marker is a
+  // file report wrote, and refuses it otherwise (tested on its own).
   for (const fs::path& rel : files_under(clean))
-    if (rel != "results.jsonl") written.push_back(rel);
+    if (rel != "results.jsonl" && rel.parent_path() != "report/viewer") written.push_back(rel);
   ASSERT_GE(written.size(), 3u);  // results.csv, summary.md, report/index.html at least
 
   const fs::path victim = dir / "bashrc";
@@ -130,15 +134,19 @@ TEST(PlantedSymlinks, MergeReplacesThemAndNeverWritesThrough) {
             0)
       << output;
   // Not the records: merge refuses a folder whose records/ holds anything.
+  // Its marker a regular file, as an earlier merge (or whoever made the
+  // folder) leaves it: merge then writes into the folder.
   std::vector<fs::path> written;
   for (const fs::path& rel : files_under(dir / "clean"))
-    if (rel != ".lock" && rel.parent_path() != "records") written.push_back(rel);
+    if (rel != ".lock" && rel != kMergeMarker && rel.parent_path() != "records")
+      written.push_back(rel);
   ASSERT_GE(written.size(), 3u);  // results.jsonl, results.csv, summary.md
 
   const fs::path victim = dir / "bashrc";
   std::ofstream(victim, std::ios::binary) << kVictim;
   const fs::path out = dir / "hostile";
   const std::vector<fs::path> targets = plant(out, written, victim);
+  fs::copy_file(dir / "clean" / kMergeMarker, out / kMergeMarker);
   ASSERT_EQ(run_planted({"merge", out.string(), shard.string()}, targets, victim,
                         dir / "hostile.log", &output),
             0)
@@ -155,6 +163,7 @@ TEST(PlantedSymlinks, ALockFileThatIsASymlinkIsRefused) {
   const fs::path victim = dir / "bashrc";
   std::ofstream(victim, std::ios::binary) << kVictim;
   fs::create_directories(dir / "out");
+  std::ofstream(dir / "out" / kMergeMarker) << "";  // a merge's folder, as far as it shows
   fs::create_symlink(victim, dir / "out" / ".lock");
   std::string output;
   EXPECT_NE(run_planted({"merge", (dir / "out").string(), shard.string()}, {}, victim,

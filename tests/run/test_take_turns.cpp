@@ -1,12 +1,15 @@
 // The turn protocol of interleaved A/B runs (run/take_turns.h), driven with
 // two shell scripts that play a build's part: ABBA order, a build that
 // exits early, and one that breaks the protocol.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "run/take_turns.h"
 
@@ -28,29 +31,31 @@ fs::path fresh_dir(const std::string& name) {
 
 // A build's stand-in: says ready, then per "go" logs "<label><block>" and
 // says ready again, `blocks` times; then exits. Its last argument is the
-// "IN,OUT" that take_turns appends.
+// "IN,OUT" that take_turns appends, which must be "3,4": the pipes are at
+// descriptors 3 and 4, which every POSIX shell can name (dash names no
+// descriptor above 9). POSIX sh only, so that dash runs it.
 fs::path write_player(const fs::path& dir, int blocks, const std::string& first_reply = "ready") {
   fs::path script = dir / "player.sh";
-  std::ofstream(script) << "#!/bin/sh\n"
-                           "label=$1; log=$2; fds=$5\n"
-                           "in=${fds%,*}; out=${fds#*,}\n"
-                           "eval \"exec 3<&$in 4>&$out\"\n"
-                           "echo '"
-                        << first_reply
-                        << " start' >&4\n"
-                           "i=1\n"
-                           "while [ $i -le "
-                        << blocks
-                        << " ]; do\n"
-                           "  read go <&3 || exit 9\n"
-                           "  [ \"$go\" = go ] || exit 8\n"
-                           "  echo \"$label$i\" >> \"$log\"\n"
-                           "  [ $i -lt "
-                        << blocks
-                        << " ] && echo \"ready block $i\" >&4\n"
-                           "  i=$((i+1))\n"
-                           "done\n"
-                           "exit 0\n";
+  std::ofstream(script)
+      << "#!/bin/sh\n"
+         "label=$1; log=$2; fds=$5\n"
+         "[ \"$fds\" = 3,4 ] || { echo \"pipes at $fds, not 3,4\" >&2; exit 7; }\n"
+         "echo '"
+      << first_reply
+      << " start' >&4\n"
+         "i=1\n"
+         "while [ $i -le "
+      << blocks
+      << " ]; do\n"
+         "  read go <&3 || exit 9\n"
+         "  [ \"$go\" = go ] || exit 8\n"
+         "  echo \"$label$i\" >> \"$log\"\n"
+         "  [ $i -lt "
+      << blocks
+      << " ] && echo \"ready block $i\" >&4\n"
+         "  i=$((i+1))\n"
+         "done\n"
+         "exit 0\n";
   fs::permissions(script, fs::perms::owner_all);
   return script;
 }
@@ -121,6 +126,42 @@ TEST(TakeTurns, ABuildThatBreaksTheProtocolStopsBothWithAnError) {
         << e.what();
     EXPECT_NE(std::string(e.what()).find("hello start"), std::string::npos) << e.what();
   }
+}
+
+// Descriptors 3 to 40 open in the driver (some CI runners and IDEs start a
+// process so) put the pipes above 9, where dash could not name them: the
+// builds still get them at 3 and 4, under each POSIX shell there is.
+TEST(TakeTurns, TheBuildsGetThePipesAtThreeAndFourWhateverTheDriverHasOpen) {
+  std::vector<int> opened;
+  for (int fd = 3; fd <= 40; ++fd)
+    if (::fcntl(fd, F_GETFD) < 0) {  // not open: fill it (never close one we did not open)
+      const int null = ::open("/dev/null", O_RDONLY);
+      ASSERT_GE(null, 0);
+      if (null != fd) {
+        ASSERT_EQ(::dup2(null, fd), fd);
+        ::close(null);
+      }
+      opened.push_back(fd);
+    }
+  const fs::path dir = fresh_dir("open_fds");
+  const fs::path player = write_player(dir, 2);
+  for (const char* shell : {"/bin/sh", "/bin/dash", "/bin/bash", "/bin/busybox"}) {
+    if (!fs::exists(shell)) continue;
+    std::vector<std::string> prefix = {shell};
+    if (fs::path(shell).filename() == "busybox") prefix.push_back("sh");
+    auto command = [&](const std::string& label, const std::string& log) {
+      std::vector<std::string> argv = prefix;
+      for (const std::string& a : {player.string(), label, log, std::string("unused")})
+        argv.push_back(a);
+      return argv;
+    };
+    const std::string log = (dir / (fs::path(shell).filename().string() + ".log")).string();
+    const TurnsResult r = take_turns({"base", command("A", log)}, {"new", command("B", log)});
+    EXPECT_EQ(r.exit_code[0], 0) << shell;
+    EXPECT_EQ(r.exit_code[1], 0) << shell;
+    EXPECT_EQ(read_all(log), "A1\nB1\nB2\nA2\n") << shell;
+  }
+  for (const int fd : opened) ::close(fd);
 }
 
 TEST(TakeTurns, AMissingBinaryExitsWith127) {
