@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "cli/commands.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "results/charts.h"
 #include "results/html_report.h"
@@ -44,9 +45,13 @@ int cmd_report(const Args& a) {
       a.out.empty() ? (std::filesystem::path(run_dir) / "report").string() : a.out;
   // A viewer folder that is not the report's, before any output.
   results::check_viewer_folder(out);
+  // Its default folder is the run folder's: not followed if a symlink.
+  if (a.out.empty())
+    core::make_own_folder(run_dir, "report");
+  else
+    std::filesystem::create_directories(out);
   write_reports(run_dir, records, title);
   std::printf("%s", make_markdown(records, title).c_str());
-  std::filesystem::create_directories(out);
   ChartOptions chart_options;
   chart_options.error_metric = a.compare.metric;
   chart_options.style = a.chart_style;

@@ -3,7 +3,11 @@
 // on first use (a process that handles no image does not load OIIO).
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -38,18 +42,47 @@ OIIO::ImageSpec make_spec(int width, int height, int channels, const OIIO::TypeD
   return spec;
 }
 
-// Writes by format name: the caller's temporary file name has no usable extension.
+// Writes `bytes` to `path` (the caller's temporary file, which it made):
+// "" or the reason, in strerror's words. OIIO's own file writers do not
+// report a failed write: a PNG cut short by a full disk came back as written.
+std::string write_bytes(const std::string& path, const std::vector<unsigned char>& bytes) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_TRUNC | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) return std::strerror(errno);
+  const unsigned char* p = bytes.data();
+  size_t left = bytes.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int err = errno;
+      ::close(fd);
+      return std::strerror(err);
+    }
+    p += n;
+    left -= size_t(n);
+  }
+  if (::close(fd) != 0 && errno != EINTR) return std::strerror(errno);
+  return "";
+}
+
+// Encodes by format name (the caller's temporary file name has no usable
+// extension) into memory, then writes the bytes, so that a failed write
+// says why.
 std::string write_file(const std::string& path, const char* format, const OIIO::ImageSpec& spec,
                        const void* pixels) {
-  auto out = OIIO::ImageOutput::create(format);
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput proxy(bytes);
+  auto out = OIIO::ImageOutput::create(format, &proxy);
   if (!out) return std::string("no ") + format + " writer: " + OIIO::geterror();
+  if (!out->supports("ioproxy")) return std::string(format) + " writer cannot write to memory";
   bool ok = out->open(path, spec) && out->write_image(spec.format, pixels);
   std::string err = ok ? std::string() : out->geterror();
   if (!out->close() && ok) {
     ok = false;
     err = out->geterror();
   }
-  return ok ? std::string() : std::string("writing ") + format + " failed: " + err;
+  if (ok) err = write_bytes(path, bytes);
+  return err.empty() ? std::string() : std::string("writing ") + format + " failed: " + err;
 }
 
 class OiioImageCodec final : public core::ImageCodec {

@@ -14,7 +14,7 @@ namespace sb::reference::detail {
 using core::JobError;
 
 KeyLock::KeyLock(const std::filesystem::path& file)
-    : fd_(::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644)) {
+    : fd_(::open(file.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644)) {
   if (fd_ < 0)
     throw JobError("reference cache: cannot open " + file.string() + ": " + std::strerror(errno));
   while (::flock(fd_, LOCK_EX) != 0)

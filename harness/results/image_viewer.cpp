@@ -131,7 +131,7 @@ class ViewerWriter {
         bytes[p] = measured->data[p * static_cast<size_t>(measured->channels)] > 0.5f ? 1 : 0;
       d["measured"] = base64(bytes.data(), bytes.size());
     }
-    fs::create_directories(out_dir_ / kViewerDataDir);
+    core::make_own_folder(out_dir_.string(), kViewerDataDir);
     core::write_file_atomically((out_dir_ / rel).string(),
                                 "sbViewerData(" + json(key).dump() + "," + d.dump() + ");\n");
     return key;

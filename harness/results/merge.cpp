@@ -255,7 +255,7 @@ MergeSummary merge_runs(const std::string& out, const std::vector<std::string>& 
       const std::optional<core::FolderFile> from = core::open_in_folder(s.dir, rel);
       if (!from) continue;  // written with --no-images, or removed
       const fs::path to = fs::path(out) / rel;
-      fs::create_directories(to.parent_path());
+      core::make_own_folder(out, fs::path(rel).parent_path().string(), "merge: ");
       write_file_atomically(to.string(), from->read_all(kMaxImageBytes), "merge: ");
       ++summary.images;
     }

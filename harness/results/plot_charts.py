@@ -16,6 +16,7 @@ import math
 import os
 import re
 import sys
+import tempfile
 import traceback
 import warnings
 
@@ -328,9 +329,20 @@ def history(d):
 
 
 def save(fig, path, fmt, tight=True, **kw):
-    tmp = path + ".tmp"
-    fig.savefig(tmp, format=fmt, bbox_inches="tight" if tight else None, **kw)
-    os.replace(tmp, path)
+    # As core/atomic_file does: a temporary file this process creates
+    # (mkstemp: O_CREAT|O_EXCL, never through a symlink planted in a run
+    # folder from elsewhere), renamed over the target (a symlink there is
+    # replaced, not followed).
+    folder, name = os.path.split(path)
+    fd, tmp = tempfile.mkstemp(prefix=name + ".tmp-", dir=folder or ".")
+    try:
+        with os.fdopen(fd, "wb") as f:
+            fig.savefig(f, format=fmt, bbox_inches="tight" if tight else None, **kw)
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise
 
 
 def draw(data_path):

@@ -15,8 +15,14 @@ namespace sb::results {
 RunFolderLock::RunFolderLock(const std::string& run_dir) {
   std::filesystem::create_directories(run_dir);
   const std::string path = (std::filesystem::path(run_dir) / ".lock").string();
-  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw std::runtime_error("cannot open " + path + ": " + std::strerror(errno));
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
+  // O_NOFOLLOW: the holder's pid is written into it, never through a
+  // symlink planted in a run folder from elsewhere.
+  if (fd_ < 0)
+    throw std::runtime_error("cannot open " + path + ": " +
+                             (errno == ELOOP
+                                  ? std::string("a symlink, which is not written through")
+                                  : std::strerror(errno)));
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     const int err = errno;
     char holder[512] = {};

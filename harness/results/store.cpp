@@ -53,7 +53,7 @@ std::string json_text(const nlohmann::json& value, int indent) {
 }
 
 ResultsStore::ResultsStore(std::string run_dir) : dir_(std::move(run_dir)) {
-  fs::create_directories(fs::path(dir_) / "records");
+  core::make_own_folder(dir_, "records");
   // What a writer killed between its write and its rename leaves behind.
   for (const fs::path& folder : {fs::path(dir_), fs::path(dir_) / "records"})
     for (const auto& e : fs::directory_iterator(folder))

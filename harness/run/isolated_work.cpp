@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "core/bounded_text.h"
+#include "core/error.h"
 #include "core/format_number.h"
 #include "core/names.h"
 #include "results/store.h"
@@ -250,6 +251,11 @@ IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const Emb
         } else {
           on_stderr("(a message the parent could not read: " + line.substr(0, 200) + ")");
         }
+      } catch (const core::JobError& ex) {
+        // Read, but not kept: the parent's own write failed (a full disk),
+        // and its words say which file and why.
+        on_stderr("(the parent could not keep the child's " + event +
+                  " message: " + std::string(ex.what()) + ")");
       } catch (const std::exception& ex) {
         on_stderr("(a message the parent could not read: " + std::string(ex.what()) + ")");
       }

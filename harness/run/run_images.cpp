@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/atomic_file.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
 
@@ -29,7 +30,7 @@ ImagesRecord write_reference_images(const RunOptions& o, const std::string& rel,
   ImagesRecord images;
   if (!o.write_images) return images;
   const fs::path dir = fs::path(o.run_dir) / rel;
-  fs::create_directories(dir);
+  core::make_own_folder(o.run_dir, rel);
   metrics::io::write_exr((dir / "visibility.exr").string(), ref.visibility);
   metrics::io::write_exr((dir / "std_error.exr").string(), ref.std_error);
   metrics::io::write_exr((dir / "stop_bound.exr").string(), ref.stop_bound);
@@ -78,7 +79,7 @@ ImagesRecord write_job_images(const std::string& run_dir, const std::string& job
                               const ImageF& flip_map) {
   const std::string rel = "jobs/" + job_id;
   const fs::path dir = fs::path(run_dir) / rel;
-  fs::create_directories(dir);
+  core::make_own_folder(run_dir, rel);
   // Five files at once: no frame runs now, and one file's encoding keeps
   // one core busy (zlib), so the job's images take about half the time.
   tbb::parallel_invoke(
@@ -111,7 +112,7 @@ ImagesRecord write_invalid_visibility(const std::string& run_dir, const std::str
                                       const ImageF& visibility) {
   const std::string rel = "jobs/" + job_id;
   const fs::path dir = fs::path(run_dir) / rel;
-  fs::create_directories(dir);
+  core::make_own_folder(run_dir, rel);
   metrics::io::write_png((dir / "invalid.png").string(),
                          metrics::invalid_visibility_image(visibility));
   ImagesRecord images;

@@ -2,6 +2,8 @@
 // and error reporting.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <sys/mount.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -133,6 +135,38 @@ TEST(metrics_image_io, FailuresThrowJobErrorNamingThePath) {
   }
   EXPECT_TRUE(leftovers(dir.path()).empty());
   EXPECT_FALSE(std::filesystem::exists(dir.file("five.png")));
+}
+
+// Issue 59, item 11: an image that does not fit says why ("No space left
+// on device"), for OpenImageIO's writers too. A 16 KiB tmpfs mounted on a
+// test folder: root only, skipped elsewhere (core's FailedWriteNamesTheReason
+// covers the reason without privileges).
+TEST(metrics_image_io, FullFileSystemIsNamedForImages) {
+  test::TempDir dir("full");
+  const std::string mnt = dir.file("small");
+  std::filesystem::create_directories(mnt);
+  if (::geteuid() != 0 || ::mount("tmpfs", mnt.c_str(), "tmpfs", 0, "size=16k") != 0)
+    GTEST_SKIP() << "cannot mount a tmpfs here (not root)";
+  struct Unmount {
+    std::string at;
+    ~Unmount() { ::umount2(at.c_str(), MNT_DETACH); }
+  } unmount{mnt};
+  const ImageF noise = test::noise_image(256, 256, 4, 7u, 0.0f, 1.0f);  // 256 KiB, incompressible
+  for (const std::string& name : {std::string("shaded.png"), std::string("v.exr")}) {
+    const std::string path = (std::filesystem::path(mnt) / name).string();
+    try {
+      if (name == "v.exr")
+        write_exr(path, noise);
+      else
+        write_png(path, noise);
+      FAIL() << "wrote " << name << " into 16 KiB";
+    } catch (const JobError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(path), std::string::npos) << what;
+      EXPECT_NE(what.find("No space left on device"), std::string::npos) << what;
+    }
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(mnt));
 }
 
 // png_byte against std::lround(clamp(v) * 255) on every float within 4096
