@@ -178,7 +178,9 @@ class Site {
         hosts_(series_) {}
 
   HistoryReport write() {
-    fs::create_directories(out_ / "series");
+    // series/ is the tool's own folder in the site's: a symlink planted
+    // there is refused, never written through.
+    core::make_own_folder(out_.string(), "series", "history report: ");
     for (std::size_t i = 0; i < series_.size(); ++i) collect_steps(i);
     std::stable_sort(steps_.begin(), steps_.end(), [](const auto& a, const auto& b) {
       return a.run_order != b.run_order ? a.run_order > b.run_order : a.series < b.series;

@@ -101,7 +101,11 @@ LatexFiles write_latex(const std::vector<JobRecord>& records, const std::string&
     texts.push_back(std::move(t));
   }
 
-  fs::create_directories(out_dir);
+  // latex/ is the tool's own folder in the report's: a symlink planted there
+  // is refused, never written through.
+  const fs::path out_path(out_dir);
+  core::make_own_folder(out_path.parent_path().string(), out_path.filename().string(),
+                        "report --latex: ");
   LatexFiles files;
   std::string doc =
       "% shadowbench report --latex: every table and error-against-time plot of the run.\n"

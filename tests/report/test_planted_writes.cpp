@@ -189,5 +189,48 @@ TEST(PlantedSymlinks, AReportFolderThatIsASymlinkIsRefused) {
   EXPECT_TRUE(fs::is_empty(dir / "elsewhere")) << output;
 }
 
+// The folders the tool makes inside a folder it writes: report --latex's
+// latex/ in the report, and history report's series/ in its site. Planted as
+// symlinks to a folder elsewhere, each is refused, named, and nothing is
+// written there.
+TEST(PlantedSymlinks, ALatexFolderThatIsASymlinkIsRefused) {
+  const fs::path dir = test::test_folder("sb_planted_");
+  const fs::path run = baseline_run(dir / "run");
+  fs::create_directories(dir / "elsewhere");
+  fs::create_directories(run / "report");
+  fs::create_symlink(dir / "elsewhere", run / "report" / "latex");
+  std::string output;
+  EXPECT_NE(run_planted({"report", run.string(), "--latex", "--no-viewer-data"}, {}, dir / "none",
+                        dir / "report.log", &output),
+            0)
+      << output;
+  EXPECT_NE(output.find((run / "report" / "latex").string() + " is a symlink"), std::string::npos)
+      << output;
+  EXPECT_TRUE(fs::is_empty(dir / "elsewhere")) << output;
+}
+
+TEST(PlantedSymlinks, AHistorySitesSeriesFolderThatIsASymlinkIsRefused) {
+  const fs::path dir = test::test_folder("sb_planted_");
+  const fs::path run = baseline_run(dir / "run");
+  const fs::path db = dir / "history.sqlite";
+  std::string output;
+  ASSERT_EQ(
+      run_planted({"history", "add", run.string(), "--commit", "abc1234", "--db", db.string()}, {},
+                  dir / "none", dir / "add.log", &output),
+      0)
+      << output;
+  fs::create_directories(dir / "elsewhere");
+  fs::create_directories(dir / "site");
+  fs::create_symlink(dir / "elsewhere", dir / "site" / "series");
+  EXPECT_NE(
+      run_planted({"history", "report", "--db", db.string(), "--out", (dir / "site").string()}, {},
+                  dir / "none", dir / "report.log", &output),
+      0)
+      << output;
+  EXPECT_NE(output.find((dir / "site" / "series").string() + " is a symlink"), std::string::npos)
+      << output;
+  EXPECT_TRUE(fs::is_empty(dir / "elsewhere")) << output;
+}
+
 }  // namespace
 }  // namespace sb
