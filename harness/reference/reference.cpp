@@ -282,15 +282,16 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
   r.isa = resolve_isa(embree_config_of(s));
 
   const auto t0 = std::chrono::steady_clock::now();
-  // The exact visibility decides the penumbra (and proves the adaptive
-  // reference's agreeing pilots) where the scene has an exact form.
   std::optional<ExactVisibility> exact;
-  if (ExactVisibility::unsupported_reason(scene).empty() || (s.adaptive && proofs_hold(scene)))
-    exact.emplace(scene, closed_casters(scene));
   {
     Device device(r.isa);
     FlatScene casters(
         device, scene, [](const Mesh& m) { return m.casts_shadow; }, /*analytic_shapes=*/true);
+    // The exact visibility decides the penumbra (and proves the adaptive
+    // reference's agreeing pilots) where the scene has an exact form; made
+    // after the flat scene, which refuses broken caster geometry first.
+    if (ExactVisibility::unsupported_reason(scene).empty() || (s.adaptive && proofs_hold(scene)))
+      exact.emplace(scene, closed_casters(scene));
     const detail::Strata strata = strata_of(scene.light);
     const detail::Layout layout = detail::make_layout(s.spp, strata);
     const detail::RaySetup setup(scene, casters, layout, positions, geometric_normals, s.seed);
