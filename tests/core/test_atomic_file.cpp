@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/scratch_folder.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 
@@ -29,29 +30,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh folder of its own under the system's temporary folder.
-class Folder {
+// A scratch folder that lists what it holds.
+class Folder : public test::ScratchFolder {
  public:
-  Folder() {
-    std::string name = (fs::temp_directory_path() / "sb_atomic_file_XXXXXX").string();
-    if (::mkdtemp(name.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
-    path_ = name;
-  }
-  ~Folder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  Folder(const Folder&) = delete;
-  Folder& operator=(const Folder&) = delete;
-  fs::path operator/(const std::string& name) const { return path_ / name; }
   std::vector<std::string> names() const {
     std::vector<std::string> out;
-    for (const auto& e : fs::directory_iterator(path_)) out.push_back(e.path().filename());
+    for (const auto& e : fs::directory_iterator(path())) out.push_back(e.path().filename());
     return out;
   }
-
- private:
-  fs::path path_;
 };
 
 std::string read_back(const fs::path& path) {

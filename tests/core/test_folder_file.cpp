@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "../common/scratch_folder.h"
 #include "core/error.h"
 #include "core/folder_file.h"
 
@@ -24,24 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class ScratchFolder {
- public:
-  ScratchFolder() {
-    std::string name = (fs::temp_directory_path() / "sb_folder_file_XXXXXX").string();
-    if (::mkdtemp(name.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
-    path_ = name;
-  }
-  ~ScratchFolder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  ScratchFolder(const ScratchFolder&) = delete;
-  ScratchFolder& operator=(const ScratchFolder&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using test::ScratchFolder;
 
 void write_at(const fs::path& p, const std::string& text) {
   fs::create_directories(p.parent_path());
