@@ -4,8 +4,12 @@
 // from either. The build installs its output (docs/install.md).
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <memory>
+#include <string>
 
+#include "cli/command_line.h"
 #include "cli/commands.h"
+#include "cli/shared.h"
 #include "core/error.h"
 #include "core/scene_types.h"
 
@@ -129,15 +133,29 @@ std::string bash_script(CLI::App& app, const Registry& registry) {
   return script;
 }
 
-}  // namespace
+struct CompletionArgs {
+  std::string shell;
+};
 
-int cmd_completion(const Args& a, CLI::App& app) {
+int cmd_completion(const CompletionArgs& a, CLI::App& app) {
   if (a.shell != "bash")
     throw InputError(
         "", "completion",
         "expected the shell 'bash', found '" + a.shell + "' (see shadowbench completion --help)");
-  std::printf("%s", bash_script(app, load_registry(a)).c_str());
+  // The installed plugins and $SHADOWBENCH_PLUGIN_PATH's.
+  std::printf("%s", bash_script(app, load_registry("")).c_str());
   return kExitOk;
+}
+
+}  // namespace
+
+void add_completion_command(CommandLine& cl) {
+  const auto a = std::make_shared<CompletionArgs>();
+  CLI::App* completion = cl.add_command(
+      cl.app(), "completion", "Print a shell completion script (bash).",
+      "shadowbench completion bash > ~/.local/share/bash-completion/completions/shadowbench",
+      [a, &app = cl.app()] { return cmd_completion(*a, app); });
+  completion->add_option("SHELL", a->shell, "the shell")->type_name("{bash}");
 }
 
 }  // namespace sb::cli

@@ -2,8 +2,13 @@
 // prints docs/cli.md from the parser itself (a test keeps the two equal).
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
 
+#include "cli/command_line.h"
 #include "cli/commands.h"
+#include "cli/options.h"
 #include "core/error.h"
 
 namespace sb::cli {
@@ -83,9 +88,12 @@ std::string markdown(CLI::App& app) {
   return md;
 }
 
-}  // namespace
+struct HelpArgs {
+  std::vector<std::string> names;  // a command: "scene export" as two words
+  bool markdown = false;
+};
 
-int cmd_help(const Args& a, CLI::App& app) {
+int cmd_help(const HelpArgs& a, CLI::App& app) {
   if (a.markdown) {
     if (!a.names.empty())
       throw InputError("", "help", "--markdown prints every command; it takes no COMMAND");
@@ -107,6 +115,17 @@ int cmd_help(const Args& a, CLI::App& app) {
       return kExitOk;
     }
   throw InputError("", "help", "no command '" + path + "' (see shadowbench --help)");
+}
+
+}  // namespace
+
+void add_help_command(CommandLine& cl) {
+  const auto a = std::make_shared<HelpArgs>();
+  CLI::App* help = cl.add_command(
+      cl.app(), "help", "Print the help of a command, or of all of them.",
+      "shadowbench help compare", [a, &app = cl.app()] { return cmd_help(*a, app); });
+  add_argument(help, "COMMAND", a->names, "a command, e.g. run or scene export")->default_str("");
+  help->add_flag("--markdown", a->markdown, "print docs/cli.md: every command's options");
 }
 
 }  // namespace sb::cli

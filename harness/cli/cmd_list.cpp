@@ -1,8 +1,14 @@
 // `shadowbench list`: techniques, needs and scene types with their parameters.
 #include <algorithm>
 #include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
 
+#include "cli/command_line.h"
 #include "cli/commands.h"
+#include "cli/options.h"
+#include "cli/shared.h"
 #include "config/param_table.h"
 #include "core/error.h"
 #include "core/nearest_names.h"
@@ -64,9 +70,13 @@ void print_params(const std::vector<ParamSpec>& params) {
                 accepted_values(p, false).c_str());
 }
 
-}  // namespace
+struct ListArgs {
+  std::vector<std::string> names;  // techniques or scene types
+  std::string plugins;
+  bool markdown = false, record_schema = false, plan_schema = false, names_only = false;
+};
 
-int cmd_list(const Args& a) {
+int cmd_list(const ListArgs& a) {
   if (a.record_schema) {
     if (!a.names.empty())
       throw InputError("", "list", "--record-schema prints the whole schema; it takes no NAME");
@@ -79,7 +89,7 @@ int cmd_list(const Args& a) {
     std::fputs(plan_schema_markdown().c_str(), stdout);
     return kExitOk;
   }
-  const Registry r = load_registry(a);
+  const Registry r = load_registry(a.plugins);
   if (a.markdown) {
     if (!a.names.empty())
       throw InputError("", "list", "--markdown prints every technique; it takes no NAME");
@@ -133,6 +143,28 @@ int cmd_list(const Args& a) {
     print_params(s.params);
   }
   return kExitOk;
+}
+
+}  // namespace
+
+void add_list_command(CommandLine& cl) {
+  const auto a = std::make_shared<ListArgs>();
+  CLI::App* list = cl.add_command(
+      cl.app(), "list",
+      "List the techniques (with their family, needs and parameters), the needs and the scene "
+      "types; or only the NAMEs given.",
+      "shadowbench list pcss sphere_grid", [a] { return cmd_list(*a); });
+  add_argument(list, "NAME", a->names, "techniques or scene types to show")
+      ->default_str("");  // not "[]"
+  add_plugins(list, a->plugins);
+  list->add_flag("--markdown", a->markdown,
+                 "print docs/parameters.md: every parameter as Markdown tables");
+  list->add_flag("--record-schema", a->record_schema,
+                 "print the job record's schema tables, as docs/results.md holds them");
+  list->add_flag("--plan-schema", a->plan_schema,
+                 "print plan.json's schema tables, as docs/results.md holds them");
+  list->add_flag("--names", a->names_only,
+                 "print technique and scene type names only, one per line");
 }
 
 }  // namespace sb::cli

@@ -2,9 +2,16 @@
 // shadowbench and runs beside the built-ins it is nearest to.
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
 
+#include "cli/command_line.h"
 #include "cli/commands.h"
 #include "cli/new_technique.h"
+#include "cli/options.h"
+#include "cli/shared.h"
+#include "cli/technique_template.h"
 #include "core/error.h"
 #include "core/install_layout.h"
 
@@ -33,13 +40,18 @@ std::string cmake_hint(const std::string& exe_dir) {
   return "-DCMAKE_PREFIX_PATH=/path/to/shadowbench/prefix";
 }
 
-}  // namespace
+struct NewTechniqueArgs {
+  std::string new_name;
+  std::string family = "plugin_api";  // the template
+  std::string dir;                    // the folder (default: NAME)
+  std::string plugins;
+};
 
-int cmd_new_technique(const Args& a) {
+int cmd_new_technique(const NewTechniqueArgs& a) {
   const TechniqueTemplate* tmpl = find_technique_template(a.family);
   if (tmpl == nullptr)  // the parser's choice check lists the families
     throw InputError("", "command line", "no template for --family '" + a.family + "'");
-  const Registry registry = load_registry(a);
+  const Registry registry = load_registry(a.plugins);
   if (const std::string problem = technique_name_problem(a.new_name, registry); !problem.empty())
     throw InputError("", "command line", problem);
   const std::string folder = a.dir.empty() ? a.new_name : a.dir;
@@ -52,6 +64,32 @@ int cmd_new_technique(const Args& a) {
   std::printf("%s (%s): build, load and run it as %s/README.md says.\n", a.new_name.c_str(),
               tmpl->summary.c_str(), folder.c_str());
   return kExitOk;
+}
+
+}  // namespace
+
+void add_new_technique_command(CommandLine& cl) {
+  const auto a = std::make_shared<NewTechniqueArgs>();
+  CLI::App* new_technique = cl.add_command(
+      cl.app(), "new-technique",
+      "Write a plugin folder for a new technique NAME: its source (a working shadow map with PCF "
+      "to start from), CMakeLists.txt, a config that runs it beside its nearest built-ins, and a "
+      "README with the commands to build, load and run it.",
+      "shadowbench new-technique my_pcf --dir ~/my_pcf", [a] { return cmd_new_technique(*a); });
+  add_argument(new_technique, "NAME", a->new_name,
+               "the technique's name: a lowercase C identifier no plugin uses")
+      ->required();
+  std::vector<std::string> families;
+  std::string family_doc = "the template:";
+  for (const TechniqueTemplate& t : technique_templates()) {
+    families.push_back(t.family);
+    family_doc += (families.size() == 1 ? " " : "; ") + t.family + ", " + t.summary;
+  }
+  add_choice(new_technique, "--family", a->family, families, family_doc);
+  new_technique
+      ->add_option("--dir", a->dir, "the folder to write, which must not exist (default: NAME)")
+      ->type_name("DIR");
+  add_plugins(new_technique, a->plugins);
 }
 
 }  // namespace sb::cli

@@ -1,9 +1,14 @@
 // `shadowbench run`: every job of a config, into a run folder.
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <optional>
+#include <string>
 
+#include "cli/command_line.h"
 #include "cli/commands.h"
+#include "cli/options.h"
+#include "cli/shared.h"
 #include "config/experiment.h"
 #include "core/error.h"
 #include "gl/pass_timer.h"
@@ -32,11 +37,27 @@ using run::RunOptions;
 using run::RunSummary;
 using run::TurnTaker;
 
-int cmd_run(const Args& a) {
-  const Registry r = load_registry(a);
-  const Experiment e = load_checked_experiment(a, r);
+namespace {
+
+struct RunArgs {
+  ExperimentArgs experiment{"run"};
+  std::string out;
+  ReferenceArgs reference;
+  bool no_images = false, gbuffer = false, quiet = false;
+  CiOutputs ci;
+  std::string pass_timing = "coarse";
+  int turn_block = RunOptions{}.turn_block_frames;
+  std::string isolation = "group";    // job, group or none
+  std::optional<double> job_timeout;  // seconds, over limits.job_seconds
+  std::string shard;                  // K/N
+  std::string take_turns;             // IN_FD,OUT_FD of compare-builds' turn pipes
+};
+
+int cmd_run(const RunArgs& a) {
+  const Registry r = load_registry(a.experiment.plugins);
+  const Experiment e = load_checked_experiment(a.experiment, r);
   RunOptions o;
-  o.backend = gl::backend_from_string(a.backend);
+  o.backend = gl::backend_from_string(a.reference.backend);
   if (a.out.empty()) {
     o.run_id = default_run_id(e.name);
     o.run_dir = "results/" + o.run_id;
@@ -46,11 +67,11 @@ int cmd_run(const Args& a) {
     if (o.run_id.empty())
       o.run_id = std::filesystem::path(a.out).lexically_normal().parent_path().filename().string();
   }
-  o.cache_dir = a.no_cache ? "" : a.cache_dir;
+  o.cache_dir = a.reference.no_cache ? "" : a.reference.cache_dir;
   o.write_images = !a.no_images;
   o.write_gbuffer = a.gbuffer;
   o.quiet = a.quiet;
-  o.embree_config = a.embree_config;
+  o.embree_config = a.reference.embree_config;
   o.pass_detail = gl::pass_detail_from_string(a.pass_timing);
   o.turn_block_frames = a.turn_block;
   o.isolation = isolation_from_string(a.isolation);
@@ -92,10 +113,50 @@ int cmd_run(const Args& a) {
   if (s.respecified > 0)
     std::printf(" (%d earlier records had other settings and were rerun)", s.respecified);
   std::printf("; results in %s\n", o.run_dir.c_str());
-  if (!a.benchmark_out.empty() || !a.bencher_out.empty())
-    write_ci_outputs(a, read_job_records(o.run_dir));
+  if (!a.ci.benchmark_out.empty() || !a.ci.bencher_out.empty())
+    write_ci_outputs(a.ci, read_job_records(o.run_dir));
   if (s.bad_input > 0) return kExitBadInput;
   return s.failed > 0 ? kExitJobsFailed : kExitOk;
+}
+
+}  // namespace
+
+void add_run_command(CommandLine& cl) {
+  const auto a = std::make_shared<RunArgs>();
+  CLI::App* run = cl.add_command(cl.app(), "run",
+                                 "Render every job of CONFIG, time it, measure it against the "
+                                 "reference, and write records, tables and images. Rerun to "
+                                 "resume.",
+                                 "shadowbench run configs/quick.json --out results/quick",
+                                 [a] { return cmd_run(*a); });
+  add_argument(run, "CONFIG", a->experiment.config, "the experiment (JSON)");
+  run->add_option("--out", a->out, "the run folder (default: results/<name>-<UTC time>)")
+      ->type_name("DIR");
+  add_reference_options(run, a->reference);
+  run->add_flag("--no-images", a->no_images, "write no EXR/PNG images (records and tables only)");
+  run->add_flag("--gbuffer", a->gbuffer, "also write each job's G-buffer positions (EXR)");
+  add_plugins(run, a->experiment.plugins);
+  run->add_flag("--quiet", a->quiet, "no progress line and no table at the end");
+  add_ci_outputs(run, a->ci);
+  add_max_jobs(run, a->experiment.max_jobs);
+  add_choice(run, "--pass-timing", a->pass_timing, {"coarse", "fine"},
+             "fine: extra frames with every pass in its own timing bracket");
+  add_turn_block(run, a->turn_block);
+  add_choice(run, "--isolation", a->isolation, {"group", "job", "none"},
+             "where jobs render: a child process per (scene, resolution), one per job, or this "
+             "process (then a crash or a hang ends the run)");
+  run->add_option("--job-timeout", a->job_timeout,
+                  "kill a job that runs longer and record it as failed (default: the config's "
+                  "limits.job_seconds, 1800); needs isolation")
+      ->type_name("SECONDS")
+      ->check(bounded_check(1, 604800, "expected a number of seconds in [1, 604800]"));
+  run->add_option("--shard", a->shard,
+                  "run only shard K of N (1 <= K <= N), in the layout `plan` prints; merge the N "
+                  "run folders with `merge`")
+      ->type_name("K/N")
+      ->check(parser_check([](const std::string& text) { (void)parse_shard(text); }));
+  run->add_option("--take-turns", a->take_turns, "IN_FD,OUT_FD of compare-builds' turn pipes")
+      ->group("");  // internal: compare-builds runs both builds with it
 }
 
 }  // namespace sb::cli

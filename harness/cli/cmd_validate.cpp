@@ -3,8 +3,14 @@
 // jobs will be skipped and why. `plan --json` prints the plan whole, bad
 // scenes included (their jobs fail in it), before the exit code says so.
 #include <cstdio>
+#include <memory>
+#include <string>
+#include <utility>
 
+#include "cli/command_line.h"
 #include "cli/commands.h"
+#include "cli/options.h"
+#include "cli/shared.h"
 #include "config/experiment.h"
 #include "core/error.h"
 #include "plan/plan.h"
@@ -30,9 +36,19 @@ using plan::ScenePlan;
 using plugin::Registry;
 using results::json_text;
 
-int cmd_validate(const Args& a, bool show_plan) {
-  const Registry r = load_registry(a);
-  const Experiment e = load_checked_experiment(a, r);
+namespace {
+
+// validate's and plan's.
+struct ValidateArgs {
+  explicit ValidateArgs(std::string command) : experiment(std::move(command)) {}
+  ExperimentArgs experiment;
+  int shards = 1;          // plan: N
+  bool plan_json = false;  // plan: the plan as JSON (plan/plan_json.h)
+};
+
+int cmd_validate(const ValidateArgs& a, bool show_plan) {
+  const Registry r = load_registry(a.experiment.plugins);
+  const Experiment e = load_checked_experiment(a.experiment, r);
   const Plan plan = make_plan(e, a.shards);
   if (show_plan && a.plan_json) {
     std::printf("%s\n", json_text(plan_to_json(e, plan), 2).c_str());
@@ -68,6 +84,41 @@ int cmd_validate(const Args& a, bool show_plan) {
         plan.jobs.size(), plan.count(PlannedJob::Status::Run),
         plan.count(PlannedJob::Status::Skip));
   return kExitOk;
+}
+
+// CONFIG, --plugins and --max-jobs, which validate and plan both take.
+void add_experiment_options(CLI::App* sub, ExperimentArgs& a) {
+  add_argument(sub, "CONFIG", a.config, "the experiment (JSON)");
+  add_plugins(sub, a.plugins);
+  add_max_jobs(sub, a.max_jobs);
+}
+
+}  // namespace
+
+void add_validate_command(CommandLine& cl) {
+  const auto a = std::make_shared<ValidateArgs>("validate");
+  CLI::App* validate = cl.add_command(cl.app(), "validate",
+                                      "Check CONFIG and its scenes without rendering: exit 2 "
+                                      "naming the file and JSON pointer of the first error.",
+                                      "shadowbench validate configs/forest06-spheres.json",
+                                      [a] { return cmd_validate(*a, false); });
+  add_experiment_options(validate, a->experiment);
+}
+
+void add_plan_command(CommandLine& cl) {
+  const auto a = std::make_shared<ValidateArgs>("plan");
+  CLI::App* plan = cl.add_command(
+      cl.app(), "plan", "List every job of CONFIG: to run, or skipped and why. No GL is used.",
+      "shadowbench plan configs/scenes.json", [a] { return cmd_validate(*a, true); });
+  add_experiment_options(plan, a->experiment);
+  plan->add_option("--shards", a->shards,
+                   "also lay the jobs out in N shards balanced by estimated cost, as `run` "
+                   "runs them one by one")
+      ->type_name("N")
+      ->check(whole_check(1, 10000, "expected a whole number of shards in [1, 10000]"));
+  plan->add_flag("--json", a->plan_json,
+                 "print the plan as JSON instead (every job's outcome, cost and shard; the "
+                 "plan.json `run` writes, docs/results.md)");
 }
 
 }  // namespace sb::cli

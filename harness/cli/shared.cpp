@@ -1,4 +1,5 @@
-// What several commands share: the plugins, run folder names, CI outputs.
+#include "cli/shared.h"
+
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -6,7 +7,6 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "cli/commands.h"
 #include "config/map_sizes.h"
 #include "config/unread_params.h"
 #include "core/error.h"
@@ -44,9 +44,9 @@ bool holds_no_plugin(const std::string& dir) {
 
 }  // namespace
 
-Registry load_registry(const Args& a) {
+Registry load_registry(const std::string& plugins) {
   Registry r;
-  std::vector<std::string> dirs = {a.plugins.empty() ? default_plugin_dir() : a.plugins};
+  std::vector<std::string> dirs = {plugins.empty() ? default_plugin_dir() : plugins};
   for (const std::string& dir : extra_plugin_dirs()) dirs.push_back(dir);
   int from_path = 0;  // modules loaded from $SHADOWBENCH_PLUGIN_PATH
   try {
@@ -88,17 +88,17 @@ Registry load_registry(const Args& a) {
   return r;
 }
 
-std::string one_config(const Args& a) {
-  if (a.config.empty())
+std::string one_config(const std::string& config, const std::string& command) {
+  if (config.empty())
     throw InputError("", "command line",
-                     "expected exactly one CONFIG file (see shadowbench " + a.command + " --help)");
-  return a.config;
+                     "expected exactly one CONFIG file (see shadowbench " + command + " --help)");
+  return config;
 }
 
-Experiment load_checked_experiment(const Args& a, const Registry& r) {
+Experiment load_checked_experiment(const ExperimentArgs& a, const Registry& r) {
   ExperimentLimits limits;
   limits.max_jobs = uint64_t(a.max_jobs);
-  Experiment e = load_experiment(one_config(a), r, limits);
+  Experiment e = load_experiment(one_config(a.config, a.command), r, limits);
   for (const std::string& w : unread_parameter_warnings(e))
     std::fprintf(stderr, "shadowbench: warning: %s\n", w.c_str());
   for (const std::string& w : unequal_map_size_warnings(e))
@@ -115,14 +115,14 @@ std::string default_run_id(const std::string& name) {
   return name + "-" + buf;
 }
 
-void write_ci_outputs(const Args& a, const std::vector<JobRecord>& records) {
-  if (!a.benchmark_out.empty()) {
-    write_benchmark_json(a.benchmark_out, records);
-    std::printf("Google Benchmark JSON: %s\n", a.benchmark_out.c_str());
+void write_ci_outputs(const CiOutputs& outputs, const std::vector<JobRecord>& records) {
+  if (!outputs.benchmark_out.empty()) {
+    write_benchmark_json(outputs.benchmark_out, records);
+    std::printf("Google Benchmark JSON: %s\n", outputs.benchmark_out.c_str());
   }
-  if (!a.bencher_out.empty()) {
-    write_bencher_json(a.bencher_out, records);
-    std::printf("Bencher Metric Format JSON: %s\n", a.bencher_out.c_str());
+  if (!outputs.bencher_out.empty()) {
+    write_bencher_json(outputs.bencher_out, records);
+    std::printf("Bencher Metric Format JSON: %s\n", outputs.bencher_out.c_str());
   }
 }
 

@@ -6,6 +6,7 @@
 #include "config/param_table.h"
 #include "reference/adaptive.h"
 #include "reference/embree_isa.h"
+#include "reference/settings.h"
 
 namespace sb::config {
 
@@ -15,41 +16,13 @@ using core::Decides;
 using core::float_param;
 using core::int_param;
 using core::ParamSpec;
-using core::ParamType;
+using core::read_param_value;
 using core::string_param;
 using core::to_string;
 
 namespace {
 
 using json = nlohmann::json;
-
-// A key's value, checked against its spec; integers must be written as
-// integers (2.0 is refused, unlike a technique parameter's).
-json checked(const ConfigReader& r, const ParamSpec& s, const json& v, const std::string& p) {
-  json out;
-  switch (s.type) {
-    case ParamType::Int:
-      out = r.integer(v, p, static_cast<long long>(s.min), static_cast<long long>(s.max));
-      break;
-    case ParamType::Float:
-      out = r.number(v, p, s.min, s.max);
-      break;
-    case ParamType::Bool:
-      out = r.boolean(v, p);
-      break;
-    case ParamType::String:
-      out = r.string(v, p);
-      break;
-    case ParamType::Choice:
-      out = r.choice(v, p, s.choices);
-      break;
-  }
-  if (s.rule) {
-    const std::string expected = s.rule(out);
-    if (!expected.empty()) r.refuse(v, p, expected);
-  }
-  return out;
-}
 
 ConfigBlock frames_block() {
   ConfigBlock b{"frames", "frame counts", {}, nullptr, nullptr, nullptr};
@@ -129,7 +102,7 @@ ConfigBlock reference_block() {
          return json(*e.reference.second_exact ? "exact" : "monte_carlo");
        }},
       {Decides::Error,
-       int_param("spp", 256, 1, 1 << 20,
+       int_param("spp", 256, 1, reference::kMaxSpp,
                  "samples per pixel of the Monte Carlo reference; with 1 the standard error is "
                  "unknown and reported as 0.5; adaptive: at most, and then `pilot_spp` × 4^K"),
        [](Experiment& e, const json& v) { e.reference.settings.spp = v.get<int>(); },
@@ -148,7 +121,8 @@ ConfigBlock reference_block() {
        [](Experiment& e, const json& v) { e.reference.settings.adaptive = v.get<bool>(); },
        [](const Experiment& e) { return json(e.reference.settings.adaptive); }},
       {Decides::Error,
-       int_param("pilot_spp", 4, 1, 1 << 20, "the adaptive reference's pilot: 4, 16 or 64"),
+       int_param("pilot_spp", 4, 1, reference::kMaxSpp,
+                 "the adaptive reference's pilot: 4, 16 or 64"),
        [](Experiment& e, const json& v) { e.reference.settings.pilot_spp = v.get<int>(); },
        [](const Experiment& e) { return json(e.reference.settings.pilot_spp); }},
       {Decides::Error,
@@ -277,7 +251,10 @@ void read_config_blocks(const ConfigReader& r, const json& doc, Experiment& e) {
     if (b.present) b.present(e);
     for (const BlockKey& k : b.keys)
       if (k.store && given.contains(k.spec.name))
-        k.store(e, checked(r, k.spec, given[k.spec.name], b.pointer() + "/" + k.spec.name));
+        // Integers must be written as integers: 2.0 is refused, unlike in a
+        // technique parameter.
+        k.store(e, read_param_value(r, k.spec, given[k.spec.name], b.pointer() + "/" + k.spec.name,
+                                    false));
     if (b.finish) b.finish(e, given, r);
   }
 }

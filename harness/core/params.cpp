@@ -162,35 +162,41 @@ std::int64_t int_bound(double v) {
   return static_cast<std::int64_t>(v);
 }
 
-nlohmann::json check_type_and_range(const JsonReader& r, const ParamSpec& spec,
-                                    const nlohmann::json& value, const std::string& pointer) {
-  switch (spec.type) {
-    case ParamType::Int:
-      return r.integer(value, pointer, int_bound(spec.min), int_bound(spec.max), true);
-    case ParamType::Float:
-      return r.number(value, pointer, spec.min, spec.max);
-    case ParamType::Bool:
-      return r.boolean(value, pointer);
-    case ParamType::String:
-      if (r.string(value, pointer).empty() && spec.is_path) r.refuse(value, pointer, "a file path");
-      return value;
-    case ParamType::Choice:
-      return r.choice(value, pointer, spec.choices);
-  }
-  return value;
-}
-
 }  // namespace
 
-nlohmann::json check_param_value(const ParamSpec& spec, const nlohmann::json& value,
-                                 const std::string& file, const std::string& pointer) {
-  const JsonReader r = param_reader(file, spec.name);
-  nlohmann::json v = check_type_and_range(r, spec, value, pointer);
+nlohmann::json read_param_value(const JsonReader& r, const ParamSpec& spec,
+                                const nlohmann::json& value, const std::string& pointer,
+                                bool whole_floats) {
+  nlohmann::json v;
+  switch (spec.type) {
+    case ParamType::Int:
+      v = r.integer(value, pointer, int_bound(spec.min), int_bound(spec.max), whole_floats);
+      break;
+    case ParamType::Float:
+      v = r.number(value, pointer, spec.min, spec.max);
+      break;
+    case ParamType::Bool:
+      v = r.boolean(value, pointer);
+      break;
+    case ParamType::String:
+      v = r.string(value, pointer);
+      if (spec.is_path && v.get_ref<const std::string&>().empty())
+        r.refuse(value, pointer, "a file path");
+      break;
+    case ParamType::Choice:
+      v = r.choice(value, pointer, spec.choices);
+      break;
+  }
   if (spec.rule) {
     const std::string expected = spec.rule(v);
     if (!expected.empty()) r.refuse(value, pointer, expected);
   }
   return v;
+}
+
+nlohmann::json check_param_value(const ParamSpec& spec, const nlohmann::json& value,
+                                 const std::string& file, const std::string& pointer) {
+  return read_param_value(param_reader(file, spec.name), spec, value, pointer, true);
 }
 
 Params resolve_params(const std::vector<ParamSpec>& specs, const nlohmann::json& given,

@@ -11,6 +11,8 @@
 
 namespace sb::core {
 
+class JsonReader;
+
 enum class ParamType { Int, Float, Bool, Choice, String };
 
 // Which of a job's numbers a setting decides: its errors (what is rendered
@@ -99,6 +101,14 @@ class Params {
 // and `pointer` (the value's JSON pointer) with what was expected and found.
 nlohmann::json check_param_value(const ParamSpec& spec, const nlohmann::json& value,
                                  const std::string& file, const std::string& pointer);
+
+// The one check of a value against its spec (type, range or choices, then
+// its rule), failing through `reader`, which says where and how. With
+// `whole_floats` an Int may be written 2.0, as technique and scene
+// parameters may; a config's own settings (config/config_blocks.h) may not.
+nlohmann::json read_param_value(const JsonReader& reader, const ParamSpec& spec,
+                                const nlohmann::json& value, const std::string& pointer,
+                                bool whole_floats);
 
 // Fills defaults into `given` (already-scalar values) and rejects unknown keys.
 Params resolve_params(const std::vector<ParamSpec>& specs, const nlohmann::json& given,

@@ -45,7 +45,7 @@ using detail::FtzDazScope;
 using detail::method_of;
 
 void check_inputs(const ImageF& positions, const ImageF& normals, const Settings& s) {
-  if (s.spp < 1 || s.spp > (1 << 20))
+  if (s.spp < 1 || s.spp > kMaxSpp)
     throw std::invalid_argument("reference: spp must be in [1, 2^20], got " +
                                 std::to_string(s.spp));
   check_embree_config(embree_config_of(s));

@@ -7,6 +7,10 @@
 
 namespace sb::reference {
 
+// The most samples per pixel a reference takes (spp, and an adaptive
+// reference's pilot_spp): the config's bound, checked again by the reference.
+inline constexpr int kMaxSpp = 1 << 20;
+
 struct Settings {
   Settings(int spp_ = 256, uint64_t seed_ = 1, std::string embree_config_ = "")
       : spp(spp_), seed(seed_), embree_config(std::move(embree_config_)) {}

@@ -4,12 +4,14 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "../config/cli_runner.h"
+#include "cli/command_line.h"
 
 namespace sb::test {
 namespace {
@@ -63,6 +65,32 @@ TEST_F(BashCompletion, CommandsAndSubcommands) {
   EXPECT_EQ(complete({"shadowbench", "scene", ""}), Words({"export", "info"}));
   EXPECT_EQ(complete({"shadowbench", "--ver"}), Words({"--version"}));
   EXPECT_EQ(complete({"shadowbench", "help", "rep"}), Words({"report"}));
+}
+
+// Every command the command line registers completes, and after it every
+// option it declares: both lists come from the registration, not by hand.
+TEST_F(BashCompletion, EveryRegisteredCommandWithItsOptions) {
+  cli::CommandLine command_line;
+  Words top = {"--help", "--help-all", "--version"};
+  for (const CLI::App* c : command_line.app().get_subcommands(nullptr))
+    top.push_back(c->get_name());
+  std::sort(top.begin(), top.end());
+  EXPECT_EQ(complete({"shadowbench", ""}), top);
+  for (CLI::App* c : cli::all_commands(command_line.app())) {
+    const std::string path = cli::command_path(*c);
+    Words words = {"shadowbench"};
+    std::istringstream names(path);
+    for (std::string name; names >> name;) words.push_back(name);
+    const Words named = complete(words);
+    EXPECT_NE(std::find(named.begin(), named.end(), c->get_name()), named.end()) << path;
+    Words options = {"--help"};
+    for (const CLI::Option* o : c->get_options())
+      if (!o->get_positional() && !o->get_group().empty() && o->get_lnames()[0] != "help")
+        options.push_back("--" + o->get_lnames()[0]);
+    std::sort(options.begin(), options.end());
+    words.push_back("--");
+    EXPECT_EQ(complete(words), options) << path;
+  }
 }
 
 TEST_F(BashCompletion, EachCommandsOwnOptions) {

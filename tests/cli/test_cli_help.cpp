@@ -20,9 +20,8 @@ std::string long_name(const CLI::Option* o) {
 }
 
 TEST(CliHelp, EveryCommandPrintsItsOwnOptionsDefaultsAndAnExample) {
-  cli::Args args;
-  const auto app = cli::make_command_line(args);
-  const auto commands = cli::all_commands(*app);
+  cli::CommandLine command_line;
+  const auto commands = cli::all_commands(command_line.app());
   ASSERT_GE(commands.size(), 12u);  // run ... completion, scene export and info
   std::set<std::string> every_option;
   for (CLI::App* c : commands)
@@ -89,9 +88,8 @@ TEST(CliHelp, TheReferenceIsTheParsersSnapshot) {
   EXPECT_EQ(file.str(), r.output)
       << "regenerate it: build/shadowbench help --markdown > docs/cli.md";
   // Every visible option of every command is in it, under its command.
-  cli::Args args;
-  const auto app = cli::make_command_line(args);
-  for (CLI::App* c : cli::all_commands(*app)) {
+  cli::CommandLine command_line;
+  for (CLI::App* c : cli::all_commands(command_line.app())) {
     const size_t section = r.output.find("\n## " + cli::command_path(*c) + "\n");
     ASSERT_NE(section, std::string::npos) << cli::command_path(*c);
     const size_t end = r.output.find("\n## ", section + 4);

@@ -182,6 +182,10 @@ const BadCase
             {"bad_frames",
              R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "frames": {"timed": 0}})",
              "/frames/timed", "expected an integer in [1, 100000], found 0"},
+            // Unlike a technique parameter, a config's own integer is not taken as 10.0.
+            {"integral_float_frames",
+             R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "frames": {"timed": 10.0}})",
+             "/frames/timed", "expected an integer, found number 10.0"},
             {"swept_control",
              R"({"scenes": [{"type": "sphere_grid"}], "techniques": ["none"], "resolutions": [[8, 8]], "frames": {"control": {"name": "pcf_box", "params": {"k": [3, 5]}}}})",
              "/frames/control/params", "expected one control variant, found a sweep of 2"},
