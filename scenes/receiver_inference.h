@@ -34,7 +34,7 @@ bool can_shadow_nothing(const core::Scene& scene, size_t mesh);
 // not change: the scene's bounds and a box tree over its vertices are made
 // once, so that M planar meshes cost O(V log V) and M tree queries, not
 // O(M·V) (a 200,000-node glTF of one instanced triangle took minutes in
-// `validate` and `run`; issue 42).
+// `validate` and `run`).
 class ShadowNothingTest {
  public:
   explicit ShadowNothingTest(const core::Scene& scene);

@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 shift || true
-# From docs/ci.md, "What the gate catches" (2026-12-04, fixed_workload
+# From docs/ci.md, "What the gate catches" (fixed_workload
 # control): the largest shift of a job's ratio under the stand-ins for
 # another machine (15.2 %) plus the 95th percentile of its run-to-run change
 # (6.1 %), with margin. As committed: 0 of 20 unchanged runs failed, 20 of 20

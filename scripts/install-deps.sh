@@ -35,7 +35,7 @@ if [[ "${1:-}" == "--test" || "${1:-}" == "--test-only" ]]; then
   # poppler renders and reads the PDFs (tests/report/test_latex_pdflatex.cpp):
   # booktabs is in texlive-latex-recommended, pgfplots in texlive-pictures.
   # 19 packages, 230 MB installed, 39 s with --no-install-recommends (2-core
-  # VM while a build ran, 2026-12-06).
+  # VM while a build ran).
   packages+=(texlive-latex-base texlive-latex-recommended texlive-pictures poppler-utils)
   # The Debian package's test (tests/install): CPack's DEB generator with
   # dpkg-shlibdeps (dpkg-dev, file), readelf (binutils) and man for the page.
@@ -63,7 +63,7 @@ export DEBIAN_FRONTEND=noninteractive
 "${sudo_cmd[@]}" apt-get update -q
 # --force-unsafe-io: dpkg skips its fsync of every unpacked file (as Debian's
 # own container images do). The 332 packages of a fresh install took 275 s
-# instead of 405 s (debootstrapped Debian 12, 2-core VM under load,
-# 2026-12-06); a machine that crashes mid-install is repaired by running this
+# instead of 405 s (debootstrapped Debian 12, 2-core VM under load);
+# a machine that crashes mid-install is repaired by running this
 # again.
 "${sudo_cmd[@]}" apt-get install -o Dpkg::Options::=--force-unsafe-io -y -q --no-install-recommends "${missing[@]}"

@@ -76,7 +76,7 @@ if [[ $sanitize == 1 ]]; then
     # -g1 (line tables): the sanitizers' reports keep file and line, and a
     # heavy file compiles in 28 s instead of 36 s (harness/run/runner.cpp).
     # -O1, the level ASan's documentation suggests: tests/gltf/test_gltf_import.cpp
-    # compiles in 25 s instead of 40 s at -O2 (2-core VM, 2026-12-03), and
+    # compiles in 25 s instead of 40 s at -O2 (2-core VM), and
     # this build is most of CI's time.
     cmake -S . -B build-asan "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
       -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \

@@ -1,5 +1,5 @@
 #pragma once
-// Change points of one performance-history series (issue 44): the runs, in
+// Change points of one performance-history series: the runs, in
 // commit order, where a series (scene, resolution, technique variant) moved
 // to a new level and stayed there.
 //

@@ -220,7 +220,7 @@ HistoryDb::HistoryDb(const std::string& path) : path_(path), db_(std::make_uniqu
   // The version and the tables are read, and a new file's tables made, in
   // one write transaction (a read one when the file is read-only): a writer
   // that opens a new file while another makes its tables sees both before
-  // or both after (issue 59: read apart, one saw user_version 0 and the
+  // or both after (read apart, one saw user_version 0 and the
   // tables, and refused the file). A file that is not SQLite fails here.
   const bool read_only = sqlite3_db_readonly(db_->db, "main") == 1;
   std::int64_t version = 0;

@@ -1,5 +1,5 @@
 #pragma once
-// The history of many runs across commits (issue 44): one SQLite file
+// The history of many runs across commits: one SQLite file
 // (Debian's libsqlite3, no server) that `shadowbench history add` fills
 // run by run and `history report` reads. Its tables, described in
 // docs/ci.md ("History across commits"):

@@ -1,6 +1,6 @@
 #pragma once
 // `shadowbench history report`: a history of runs (history_db.h) as a static
-// site that works offline (issue 44):
+// site that works offline:
 //   index.html   every step found, newest first; a table of every series
 //                (scene, resolution, technique variant) with its latest time
 //                and error, a sparkline of each with its steps marked, and

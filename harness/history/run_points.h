@@ -1,5 +1,5 @@
 #pragma once
-// What the history keeps of one run (issue 44): per job, the series it
+// What the history keeps of one run: per job, the series it
 // belongs to and its numbers, each named by a quantity:
 //   time.frame_ratio   the job's frames over the control's next to them
 //                      (timing.control.frame_ratio.median): comparable

@@ -1,6 +1,6 @@
 #pragma once
 // Each series of a history with the figures a report plots and the steps
-// found in them (issue 44): one time quantity (time.frame_ratio by default:
+// found in them: one time quantity (time.frame_ratio by default:
 // comparable across hosts) on the relative scale, and one error metric on
 // the absolute scale (errors can be 0), one value per run in run order.
 #include <string>

@@ -1,6 +1,6 @@
 // core/atomic_file: a file appears whole under its name or not at all,
 // nothing is left behind that results/store.cpp would not recognise, no
-// write goes through a symlink planted in the folder (issue 59, item 1), and
+// write goes through a symlink planted in the folder, and
 // a failed write names the reason (item 11).
 #include <gtest/gtest.h>
 #include <sys/mount.h>

@@ -1,5 +1,5 @@
 // core::bounded_text, the one function through which text quoted from input
-// reaches a terminal or a record (issue 59, items 7 and 8): cut by
+// reaches a terminal or a record: cut by
 // characters, never inside one; control characters, terminal escapes and
 // bidirectional overrides escaped; bytes that are not UTF-8 escaped; the
 // result valid UTF-8 on one line.

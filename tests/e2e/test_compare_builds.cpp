@@ -66,7 +66,7 @@ TEST(CompareBuilds, AnInjectedSlowdownInTheNewBuildIsItsJobsRegressionOnly) {
   const fs::path dir = fresh_test_folder("compare_builds_slow_");
   // Twelve frames a job: with six, p could not go below 0.002, and a
   // couple of base frames slowed by whatever else ran on the machine put
-  // it above alpha (CI, 2026-12-04: p = 0.041 at a +3726 % change).
+  // it above alpha (in CI: p = 0.041 at a +3726 % change).
   const std::string config = write_config(dir, 12);
   // The "new build": the same binary, 60 ms slower per shadow_map frame.
   const fs::path slower = dir / "slower.sh";

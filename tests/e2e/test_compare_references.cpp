@@ -1,4 +1,4 @@
-// `compare` on real runs and the reference each names (issue 40, item 5):
+// `compare` on real runs and the reference each names:
 // a run without the reference cache and one with it name the same
 // reference (record["reference"]["cache_key"] is written either way), so
 // their errors compare; a run against a reference of other spp is refused

@@ -1,4 +1,4 @@
-// A failed job carries no numbers (issue 58, item 7): a technique that
+// A failed job carries no numbers: a technique that
 // writes NaN, inf and V outside [0, 1] fails its visibility check, and
 // `run`'s stdout, summary.md, results.csv, the HTML report and the charts'
 // data show its status and reason only; its record keeps what it measured

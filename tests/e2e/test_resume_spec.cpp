@@ -1,10 +1,9 @@
 // A rerun into the same --out keeps a finished job only when nothing that
-// decides its numbers changed, and says which setting did (issue 40, item
-// 2): one test per field of the record's spec (run/job_identity.h). Each
-// changes one setting of a tiny finished run and reruns it through the CLI.
-// Settings a test cannot change from outside (the build, the reference
-// method's version, a backend this machine may lack) are changed in the
-// stored record instead, which is what a record of another build holds.
+// decides its numbers changed, and says which setting did: one test per field of the record's spec
+// (run/job_identity.h). Each changes one setting of a tiny finished run and reruns it through the
+// CLI. Settings a test cannot change from outside (the build, the reference method's version, a
+// backend this machine may lack) are changed in the stored record instead, which is what a record
+// of another build holds.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -434,7 +433,7 @@ TEST(ResumeSpec, AGltfFileEditedInPlaceRerunsNamingIt) {
   ASSERT_EQ(before["scene"]["caster_triangles"], 8) << before.dump(2);
   // The record's spec holds the file's SHA-256, as sha256sum computes it,
   // and the buffer read through it; not the path. (A record of the path
-  // alone resumed after the edit below: issue 58.)
+  // alone resumed after the edit below.)
   const json identity = before["spec"]["scene"]["params"]["file"];
   EXPECT_TRUE(identity.is_object()) << identity.dump();
   const std::string was = identity.is_object() ? identity.value("sha256", "") : "";

@@ -132,7 +132,7 @@ TEST(ShadowMapFamily, ConvolutionMapsKeepLitLeavesLit) {
 }
 
 // Sphere grid, light side 2, 320×240, 1024² maps, 256-spp reference.
-// Penumbra RMSE measured on 2026-11-22 (llvmpipe, OSMesa; deterministic):
+// Penumbra RMSE measured (llvmpipe, OSMesa; deterministic):
 //   shadow_map 0.252 | pcf_box k7 0.216 | pcf_gauss k9 0.223 | pcf_jitter 0.212
 //   pcss 0.106 | vsm 0.206 | esm 0.211 | evsm 0.204 | msm 0.201 | csm 0.231
 // The light is wide for this close view: fixed kernels are too narrow, and

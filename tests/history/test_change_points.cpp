@@ -1,4 +1,4 @@
-// The change-point detector of the performance history (issue 44), tested
+// The change-point detector of the performance history, tested
 // against the steps the synthetic series were built with: seeded lognormal
 // noise around known levels (value = level * exp(noise * z), z ~ N(0, 1)),
 // and, for PELT alone, an exhaustive search over every segmentation.
@@ -100,7 +100,7 @@ TEST(ChangePoints, TwentyPercentStepAfterThreeRunsIsFoundAtItsRunIn95PercentOfSe
 }
 
 TEST(ChangePoints, ThirtyPercentStepIsFoundAtItsRunAndNoOther) {
-  // The done-when of issue 44: every allowed position in 20 runs, 3 % noise.
+  // What the detector was built to do: every allowed position in 20 runs, 3 % noise.
   std::mt19937_64 rng(303);
   int exact = 0;
   for (int k = 0; k < 200; ++k) {

@@ -1,4 +1,4 @@
-// Issue 44's end-to-end case: a history of ten real runs of configs/ci.json,
+// The end-to-end case: a history of ten real runs of configs/ci.json,
 // the last five with pcss 30 % slower (SHADOWBENCH_INJECT_DELAY, 30 % of each
 // of its frames), added at ten commits; `shadowbench history report` must
 // flag that job's time at the sixth commit and nothing else.

@@ -1,5 +1,5 @@
-// A history file is data that may come from anyone (issue 59, items 4 and 5;
-// docs/robustness.md "History files"): concurrent `history add` into a new
+// A history file is data that may come from anyone (docs/robustness.md,
+// "History files"): concurrent `history add` into a new
 // file, commits that are not printable or not UTF-8, and crafted files
 // (orphan rows, extreme run orders, values that are not finite numbers,
 // huge strings, a commit whose UTF-8 is split) give a stored run or exit 2
@@ -68,7 +68,7 @@ void expect_refused(const CliRun& r, const fs::path& db, const std::string& plac
   EXPECT_LT(r.output.size(), 2000u) << "the message quotes a huge value whole";
 }
 
-// Issue 59 item 4: four `history add` at once into one new file, 60 times.
+// Four `history add` at once into one new file, 60 times.
 // Before the schema check moved into the write transaction, one writer
 // could read user_version before another's creation committed and the
 // table count after it, and refuse the file ("PRAGMA user_version is 0").

@@ -200,8 +200,8 @@ for f in sorted(os.listdir(GLTF_CORPUS)):
 
 # 200,000 nodes of one instanced triangle, as a chain 200,000 deep and as
 # 200,000 roots: receiver inference asked each planar instance about every
-# vertex of the scene, O(n²), and `validate` did not finish in 10 minutes
-# (issue 42). Now about 2 s for validate and 4 s for run, idle 2-core VM.
+# vertex of the scene, O(n²), and `validate` did not finish in 10 minutes.
+# Now about 2 s for validate and 4 s for run, idle 2-core VM.
 def many_nodes(count, chain):
     doc = tri_gltf([0, 0, 0, 1, 0, 0, 0, 1, 0])
     if chain:

@@ -1,4 +1,4 @@
-// Run folders from elsewhere (issue 59, items 2 and 3): what report, merge
+// Run folders from elsewhere: what report, merge
 // and the image viewer read stays inside the folder a record names it from,
 // and what they delete or replace is only what they made. Each case plants
 // what a hostile folder would hold and checks the file system afterwards: a

@@ -186,7 +186,7 @@ INSTANTIATE_TEST_SUITE_P(Corpus, HostileInput, ::testing::ValuesIn(cases()),
 
 TEST(HostileCorpus, HasCases) { EXPECT_GE(cases().size(), 100u) << SHADOWBENCH_HOSTILE_DIR; }
 
-// Issue 59, item 8: glTF node and mesh names reached the terminal raw (an
+// glTF node and mesh names reached the terminal raw (an
 // OSC sequence set the terminal's title, CSI 2J cleared it) and were cut at
 // byte 77, inside a character. `scene info` and `run` print them escaped and
 // cut between characters.
@@ -242,14 +242,14 @@ TEST(HostileMessages, GltfNamesReachTheTerminalEscapedAndWhole) {
   }
 }
 
-// Issue 59, item 7: tinygltf's error for an undecodable data URI quotes the
+// tinygltf's error for an undecodable data URI quotes the
 // whole URI. A 50 MiB one (made here, not in the corpus: the build tree
 // would keep it) once made a 56 MB stderr line, a 56 MB reason in every
 // failed job and a run folder of 909 MB at 1.5 GB resident. Messages that
 // quote input are cut (core/bounded_text.h: 200 characters a quote, 2000 a
 // reason), so the terminal output, each reason and the folder stay small, and
-// the peak resident set is what reading the file costs (measured 2026-12-07
-// on the 2-core development VM: 362 MiB).
+// the peak resident set is what reading the file costs (measured on the
+// 2-core development VM: 362 MiB).
 TEST(HostileMessages, FiftyMegabyteBadDataUriGivesBoundedMessagesAndFolder) {
   const fs::path dir = fs::temp_directory_path() / "hostile_big_data_uri";
   std::error_code ec;

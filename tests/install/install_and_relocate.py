@@ -82,7 +82,7 @@ def main():
     for name in ("build", "source", "plugin-source", "cmake", "cxx"):
         a.add_argument("--" + name, required=True)
     # Two ctest entries, each under the 30 s of scripts/check-test-times.py
-    # (the whole took 30-33 s in a clean-clone CI run, 2026-12-06): "run"
+    # (the whole took 30-33 s in a clean-clone CI run): "run"
     # runs and reports from the moved prefix, "plugins" builds against it.
     a.add_argument("--part", choices=("run", "plugins"), required=True)
     a = a.parse_args()
@@ -135,7 +135,7 @@ def run_from_prefix(a, prefix, exe, env):
     # at an eighth of its resolutions, two timed frames and a 16-spp
     # reference, since what is checked here (the moved prefix runs every job
     # and reports) does not depend on sizes: 9 s of CPU instead of 25 s
-    # (2026-12-06), of this test's 33-47 s.
+    # of this test's 33-47 s.
     run_dir = os.path.join(a.work, "quick")
     with open(os.path.join(prefix, "share", "shadowbench", "configs", "quick.json")) as f:
         quick = json.load(f)

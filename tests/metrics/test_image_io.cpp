@@ -137,7 +137,7 @@ TEST(metrics_image_io, FailuresThrowJobErrorNamingThePath) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("five.png")));
 }
 
-// Issue 59, item 11: an image that does not fit says why ("No space left
+// An image that does not fit says why ("No space left
 // on device"), for OpenImageIO's writers too. A 16 KiB tmpfs mounted on a
 // test folder: root only, skipped elsewhere (core's FailedWriteNamesTheReason
 // covers the reason without privileges).

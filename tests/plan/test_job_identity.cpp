@@ -1,6 +1,6 @@
 // A job's identity (run/job_identity.h, the spec a rerun compares) is
 // generated from what each setting declares it decides (core::Decides), not
-// listed by hand (issue 58): these tests walk every described setting (each
+// listed by hand: these tests walk every described setting (each
 // config block key, each parameter of each scene type and of each registered
 // technique), change it, and check that the spec changes exactly when the
 // setting says it decides a number. A new key or parameter is walked without

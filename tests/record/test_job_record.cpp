@@ -393,7 +393,7 @@ TEST(JobRecord, FailedSceneRecordHasNoSceneData) {
 // A job that failed after timing (a visibility check): what it got to stays,
 // under "partial", and no figure at the top level. A failed record written
 // before "partial" existed, with its figures at the top level, reads the
-// same way (issue 58, item 7).
+// same way.
 TEST(JobRecord, AFailedJobsMeasurementsAreUnderPartial) {
   JobRecord r = full_record();
   r.status = JobStatus::Failed;

@@ -227,7 +227,7 @@ TEST(ReportColumns, GpuMemoryIsTheTotalInMibAndAppearsOnlyWhenARecordHasIt) {
 
 // A failed job shows its status and reason only, even from a record that
 // keeps figures where an ok one has them (one made in memory, or read
-// whole by an older build): every figure cell is empty (issue 58, item 7).
+// whole by an older build): every figure cell is empty.
 TEST(ReportColumns, AFailedJobsFigureCellsAreEmptyWhateverItsRecordHolds) {
   auto rs = records();
   JobRecord failed = rs[0];
@@ -330,7 +330,7 @@ TEST(ReportColumns, NoiseShareNeedsOneExactAndOneMonteCarloReference) {
             std::string::npos);
 }
 
-// Issue 59, item 8: summary.md writes fields a record holds, and a record
+// summary.md writes fields a record holds, and a record
 // may come from anyone. Every character that opens markup in CommonMark
 // (code, links, images, HTML, entities) must reach the file escaped (an odd
 // number of backslashes before it), and no control character but the line

@@ -72,7 +72,7 @@ TEST_F(report_chromium, PageLoadsEveryImageWithoutConsoleErrorsAndRenders) {
   EXPECT_GT(colours.size(), 100u);
 }
 
-// Issue 59, item 6: a technique label "<!--<script>" in the viewer's JSON
+// A technique label "<!--<script>" in the viewer's JSON
 // once put the HTML parser in its double-escaped script state: the rest of
 // the page became script text, the page's scripts never ran and the Images
 // section was empty. With '<' as \u003c the page is whole: its script ran

@@ -1,4 +1,4 @@
-// Issue 59, item 1: a run folder from elsewhere may hold symlinks at the
+// A run folder from elsewhere may hold symlinks at the
 // names report and merge write (the final names and the temporary names
 // next to them), pointing at a file of the user's. Each such write must
 // replace the symlink with a regular file of its own and leave the file it

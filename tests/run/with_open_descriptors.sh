@@ -3,7 +3,7 @@
 # descriptors FIRST to LAST open (on /dev/null), as some CI runners and IDEs
 # start a process. The take-turns tests run once so (tests/run/CMakeLists.txt):
 # compare-builds' pipes then land above 9, and must still reach a build at 3
-# and 4 (issue 59, item 10).
+# and 4.
 set -euo pipefail
 first=$1 last=$2
 shift 2

@@ -24,7 +24,7 @@ inline std::filesystem::path test_folder() { return test_folder("sb_scale_out_")
 // 16-spp reference, written once per process; its path. Which jobs a shard
 // runs, what each record holds and how shards merge do not depend on the
 // sizes, and a run of quick.json itself took about 20 s, three of them
-// and three shards most of this executable's 104 s (2026-12-06).
+// and three shards most of this executable's 104 s.
 inline std::string small_quick() {
   static const std::string path = [] {
     const auto dir = std::filesystem::temp_directory_path() /
