@@ -85,14 +85,13 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
                             "jitter each point inside its stratum (Hammersley: one random "
                             "toroidal shift)"),
                  int_param("seed", 1, 0, 2147483647, "jitter seed")});
-  TechniqueInfo info{"accumulation",
-                     "accumulation",
-                     "average of N hard shadow maps from stratified points on the area light",
-                     Needs{need::kCasterClosedness},
-                     std::move(params),
-                     [](const Params& p) { return std::make_unique<shadow::Accumulation>(p); }};
-  // 64 samples took 10.2× a hard shadow map's job at 320×240 and 7.7× at
-  // 640×480 (configs/quick.json, 2-core VM): about 1 + N/8.
-  info.cost_weight = [](const Params& p) { return 1.0 + p.get_int("samples") / 8.0; };
-  registry.add(std::move(info));
+  registry.add({.name = "accumulation",
+                .family = "accumulation",
+                .summary = "average of N hard shadow maps from stratified points on the area light",
+                .needs = Needs{need::kCasterClosedness},
+                .params = std::move(params),
+                .create = [](const Params& p) { return std::make_unique<shadow::Accumulation>(p); },
+                // 64 samples took 10.2× a hard shadow map's job at 320×240 and 7.7× at
+                // 640×480 (configs/quick.json, 2-core VM): about 1 + N/8.
+                .cost_weight = [](const Params& p) { return 1.0 + p.get_int("samples") / 8.0; }});
 }

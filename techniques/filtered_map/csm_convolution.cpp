@@ -106,12 +106,12 @@ TechniqueInfo csm_convolution_info() {
                              "receiver moved towards the light by receiver_offset/(2M) in "
                              "normalised depth (Annen et al. 2007), so lit unculled surfaces "
                              "do not read their own depth as ½")});
-  return {"csm_convolution",
-          "filtered_map",
-          "convolution shadow map, M Fourier terms (Annen et al. 2007)",
-          Needs{need::kCasterClosedness},
-          std::move(params),
-          [](const Params& p) { return std::make_unique<ConvolutionShadowMap>(p); }};
+  return {.name = "csm_convolution",
+          .family = "filtered_map",
+          .summary = "convolution shadow map, M Fourier terms (Annen et al. 2007)",
+          .needs = Needs{need::kCasterClosedness},
+          .params = std::move(params),
+          .create = [](const Params& p) { return std::make_unique<ConvolutionShadowMap>(p); }};
 }
 
 }  // namespace sb::shadow

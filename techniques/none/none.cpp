@@ -22,10 +22,10 @@ class NoShadows final : public Technique {
 }  // namespace sb
 
 SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
-  registry.add({"none",
-                "none",
-                "no shadows: visibility 1 everywhere",
-                sb::Needs{},
-                {},
-                [](const sb::Params&) { return std::make_unique<sb::NoShadows>(); }});
+  registry.add({.name = "none",
+                .family = "none",
+                .summary = "no shadows: visibility 1 everywhere",
+                .needs = sb::Needs{},
+                .params = {},
+                .create = [](const sb::Params&) { return std::make_unique<sb::NoShadows>(); }});
 }

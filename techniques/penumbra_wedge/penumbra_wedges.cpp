@@ -274,16 +274,18 @@ std::vector<ParamSpec> wedge::umbra_params() {
 }
 
 TechniqueInfo wedge::penumbra_wedges_info() {
-  return {"penumbra_wedges",
-          "penumbra_wedge",
+  return {
+      .name = "penumbra_wedges",
+      .family = "penumbra_wedge",
+      .summary =
           "soft shadow volumes (Akenine-Möller & Assarsson 2002): an umbra from the light centre's "
           "shadow volumes, then one wedge per silhouette edge whose fragments add the light area "
           "that the edge, projected from the point, uncovers or covers (analytic clipping to the "
           "rectangle)",
-          Needs{need::kRectangularLight, need::kClosedCasters, need::kOpaqueCasters,
-                need::kCasterEdges},
-          umbra_params(),
-          [](const Params& p) { return std::make_unique<PenumbraWedges>(p); }};
+      .needs = Needs{need::kRectangularLight, need::kClosedCasters, need::kOpaqueCasters,
+                     need::kCasterEdges},
+      .params = umbra_params(),
+      .create = [](const Params& p) { return std::make_unique<PenumbraWedges>(p); }};
 }
 
 }  // namespace sb

@@ -388,15 +388,16 @@ class PenumbraWedgesBlend final : public Technique {
 }  // namespace
 
 TechniqueInfo wedge::penumbra_wedges_blend_info() {
-  return {"penumbra_wedges_blend",
-          "penumbra_wedge",
-          "penumbra-wedge blending (Forest, Barthe & Paulin 2006): each silhouette's wedges "
-          "into its own buffers (occluded area and bounding rectangle per quadrant of the "
-          "light), blended with an estimate of the overlap instead of summed",
-          Needs{need::kRectangularLight, need::kClosedCasters, need::kOpaqueCasters,
-                need::kCasterEdges},
-          umbra_params(),
-          [](const Params& p) { return std::make_unique<PenumbraWedgesBlend>(p); }};
+  return {.name = "penumbra_wedges_blend",
+          .family = "penumbra_wedge",
+          .summary =
+              "penumbra-wedge blending (Forest, Barthe & Paulin 2006): each silhouette's wedges "
+              "into its own buffers (occluded area and bounding rectangle per quadrant of the "
+              "light), blended with an estimate of the overlap instead of summed",
+          .needs = Needs{need::kRectangularLight, need::kClosedCasters, need::kOpaqueCasters,
+                         need::kCasterEdges},
+          .params = umbra_params(),
+          .create = [](const Params& p) { return std::make_unique<PenumbraWedgesBlend>(p); }};
 }
 
 }  // namespace sb

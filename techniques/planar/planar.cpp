@@ -183,28 +183,32 @@ class Planar final : public Technique {
 
 SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
   using namespace sb;
-  registry.add({"planar",
-                "planar",
-                "Blinn's projected shadow: casters flattened onto the receiver plane from the "
-                "light's centre; hard, on the plane only",
-                Needs{need::kPlanarReceiver, need::kOpaqueCasters, need::kCasterClosedness},
-                {},
-                [](const Params&) {
-                  return std::make_unique<Planar>("planar", shadow::LightSampleLayouts{});
-                }});
   registry.add(
-      {"planar_soft",
-       "planar",
-       "N projected planar shadows from stratified points on the area light, averaged; on the "
-       "plane only",
-       Needs{need::kPlanarReceiver, need::kOpaqueCasters, need::kCasterClosedness},
-       {int_param("samples", 64, 1, 65536,
-                  "light points: an m×n grid of strata if N = m·n with n <= 2m, else the "
-                  "Hammersley set"),
-        bool_param("jitter", true,
-                   "jitter each point inside its stratum (Hammersley: one random toroidal shift)"),
-        int_param("seed", 1, 0, 2147483647, "jitter seed")},
-       [](const Params& p) {
+      {.name = "planar",
+       .family = "planar",
+       .summary = "Blinn's projected shadow: casters flattened onto the receiver plane from the "
+                  "light's centre; hard, on the plane only",
+       .needs = Needs{need::kPlanarReceiver, need::kOpaqueCasters, need::kCasterClosedness},
+       .params = {},
+       .create = [](const Params&) {
+         return std::make_unique<Planar>("planar", shadow::LightSampleLayouts{});
+       }});
+  registry.add(
+      {.name = "planar_soft",
+       .family = "planar",
+       .summary =
+           "N projected planar shadows from stratified points on the area light, averaged; on the "
+           "plane only",
+       .needs = Needs{need::kPlanarReceiver, need::kOpaqueCasters, need::kCasterClosedness},
+       .params =
+           {int_param("samples", 64, 1, 65536,
+                      "light points: an m×n grid of strata if N = m·n with n <= 2m, else the "
+                      "Hammersley set"),
+            bool_param(
+                "jitter", true,
+                "jitter each point inside its stratum (Hammersley: one random toroidal shift)"),
+            int_param("seed", 1, 0, 2147483647, "jitter seed")},
+       .create = [](const Params& p) {
          // Where the points lie on the light, in its own (s, t): parameters
          // only, so computed here; placed in the world per frame.
          return std::make_unique<Planar>(

@@ -215,15 +215,16 @@ class Plateaus final : public Technique {
 }  // namespace
 
 TechniqueInfo plateaus_info() {
-  return {"plateaus",
-          "planar",
-          "Haines's plateaus: the hard planar shadow plus penumbra bands on the receiver plane "
-          "around the light centre's silhouette edges, as wide as the occluder's height sets; "
-          "outer penumbra only",
-          Needs{need::kRectangularLight, need::kPlanarReceiver, need::kOpaqueCasters,
-                need::kSilhouetteEdges},
-          {},
-          [](const Params&) { return std::make_unique<Plateaus>(); }};
+  return {.name = "plateaus",
+          .family = "planar",
+          .summary =
+              "Haines's plateaus: the hard planar shadow plus penumbra bands on the receiver plane "
+              "around the light centre's silhouette edges, as wide as the occluder's height sets; "
+              "outer penumbra only",
+          .needs = Needs{need::kRectangularLight, need::kPlanarReceiver, need::kOpaqueCasters,
+                         need::kSilhouetteEdges},
+          .params = {},
+          .create = [](const Params&) { return std::make_unique<Plateaus>(); }};
 }
 
 }  // namespace sb

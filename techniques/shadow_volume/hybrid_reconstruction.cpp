@@ -114,13 +114,16 @@ TechniqueInfo hybrid_reconstruction_info() {
                                "a step between neighbouring texels is a silhouette when it, and "
                                "its distance from each side's linear extrapolation, exceed this "
                                "fraction of the nearer depth"));
-  return {"hybrid_reconstruction", "shadow_volume",
-          "shadow volumes reconstructed from a depth map's discontinuities on the CPU, counted "
-          "in the stencil; open and alpha-tested casters too (McCool 2000)",
-          // Closedness decides which casters `cull` may cull: asked for
+  return {.name = "hybrid_reconstruction",
+          .family = "shadow_volume",
+          .summary =
+              "shadow volumes reconstructed from a depth map's discontinuities on the CPU, counted "
+              "in the stencil; open and alpha-tested casters too (McCool 2000)",
+          .needs =  // Closedness decides which casters `cull` may cull: asked for
           // always, so that the map does not depend on what else the plan runs.
-          Needs{need::kCasterClosedness}, std::move(params),
-          [](const Params& p) { return std::make_unique<HybridReconstruction>(p); }};
+          Needs{need::kCasterClosedness},
+          .params = std::move(params),
+          .create = [](const Params& p) { return std::make_unique<HybridReconstruction>(p); }};
 }
 
 }  // namespace sb::shadow

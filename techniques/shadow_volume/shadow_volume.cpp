@@ -167,34 +167,37 @@ class ShadowVolume final : public Technique {
 
 SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
   using namespace sb;
-  TechniqueInfo info{
-      "shadow_volume",
-      "shadow_volume",
-      "stencil shadow volumes from the light's centre (z-pass, z-fail with caps, or auto per "
-      "caster); discrete silhouettes in a geometry shader, or discrete, accurate or smooth "
-      "silhouettes (Mattausch et al. 2012) on the CPU",
-      Needs{need::kClosedCasters, need::kEdgeAdjacency, need::kOpaqueCasters, need::kCasterEdges},
-      {choice_param("mode", "zfail", {"zpass", "zfail", "auto"},
-                    "zpass counts in front of the surface; zfail behind (robust); auto uses zfail "
-                    "only for casters whose volume can reach the camera's near plane"),
-       float_param("offset", 1.0, -1e6, 1e6,
-                   "glPolygonOffset units pushing volume faces away from the camera"),
-       choice_param("silhouettes", "gpu", {"gpu", "cpu"},
-                    "where silhouettes are found and extruded: a geometry shader, or the CPU "
-                    "with the volume uploaded every frame")},
-      [](const Params& p) { return std::make_unique<ShadowVolume>(p); }};
+  std::vector<ParamSpec> params = {
+      choice_param("mode", "zfail", {"zpass", "zfail", "auto"},
+                   "zpass counts in front of the surface; zfail behind (robust); auto uses zfail "
+                   "only for casters whose volume can reach the camera's near plane"),
+      float_param("offset", 1.0, -1e6, 1e6,
+                  "glPolygonOffset units pushing volume faces away from the camera"),
+      choice_param("silhouettes", "gpu", {"gpu", "cpu"},
+                   "where silhouettes are found and extruded: a geometry shader, or the CPU "
+                   "with the volume uploaded every frame")};
   for (ParamSpec& spec : volume::silhouette_params(
            "discrete: edges between lit and unlit faces; accurate: where the vertex normals' "
            "n·(l−v) crosses zero; smooth: accurate lifted onto the curved surface and subdivided "
            "(cpu only)"))
-    info.params.push_back(std::move(spec));
-  info.check = [](const Params& p) -> std::pair<std::string, std::string> {
-    if (p.get_string("silhouettes") == "gpu" && p.get_string("silhouette") != "discrete")
-      return {"silhouette",
-              "'" + p.get_string("silhouette") +
-                  "' silhouettes are found on the CPU only; set silhouettes to \"cpu\""};
-    return {};
-  };
-  registry.add(std::move(info));
+    params.push_back(std::move(spec));
+  registry.add(
+      {.name = "shadow_volume",
+       .family = "shadow_volume",
+       .summary =
+           "stencil shadow volumes from the light's centre (z-pass, z-fail with caps, or auto per "
+           "caster); discrete silhouettes in a geometry shader, or discrete, accurate or smooth "
+           "silhouettes (Mattausch et al. 2012) on the CPU",
+       .needs = Needs{need::kClosedCasters, need::kEdgeAdjacency, need::kOpaqueCasters,
+                      need::kCasterEdges},
+       .params = std::move(params),
+       .create = [](const Params& p) { return std::make_unique<ShadowVolume>(p); },
+       .check = [](const Params& p) -> std::pair<std::string, std::string> {
+         if (p.get_string("silhouettes") == "gpu" && p.get_string("silhouette") != "discrete")
+           return {"silhouette",
+                   "'" + p.get_string("silhouette") +
+                       "' silhouettes are found on the CPU only; set silhouettes to \"cpu\""};
+         return {};
+       }});
   registry.add(shadow::hybrid_reconstruction_info());
 }

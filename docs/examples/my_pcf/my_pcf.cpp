@@ -80,16 +80,14 @@ sb::TechniqueInfo my_pcf_info() {
   std::vector<sb::ParamSpec> params = {
       sb::shadow::kernel_size_param(3, "kernel side (odd): k*k depth comparisons")};
   for (auto& p : sb::shadow::depth_map_params(2048)) params.push_back(std::move(p));
-  sb::TechniqueInfo info;
-  info.name = "my_pcf";
-  info.family = "my_pcf";
-  info.summary = "k×k box PCF on the shadow-map kit, pcf_box's filter as a plugin";
-  // The depth pass culls only casters known to be closed, and they are
-  // known only when a technique asks (common/depth_pass.h).
-  info.needs = sb::Needs{sb::need::kCasterClosedness};
-  info.params = std::move(params);
-  info.create = [](const sb::Params& p) { return std::make_unique<MyPcf>(p); };
-  return info;
+  return {.name = "my_pcf",
+          .family = "my_pcf",
+          .summary = "k×k box PCF on the shadow-map kit, pcf_box's filter as a plugin",
+          // The depth pass culls only casters known to be closed, and they are
+          // known only when a technique asks (common/depth_pass.h).
+          .needs = sb::Needs{sb::need::kCasterClosedness},
+          .params = std::move(params),
+          .create = [](const sb::Params& p) { return std::make_unique<MyPcf>(p); }};
 }
 
 }  // namespace
