@@ -12,8 +12,8 @@
 // there to show that the shape does not change the cost.
 //
 // Each iteration times apply() + glFinish() with steady_clock (llvmpipe's
-// GL_TIME_ELAPSED is wrong, see shared FINDINGS). The filter works in place,
-// so the data gets smoother from one iteration to the next; the shader has no
+// GL_TIME_ELAPSED reads about one tile's time: docs/design.md, "Fairness rules"). The filter works
+// in place, so the data gets smoother from one iteration to the next; the shader has no
 // data-dependent branch, so the cost does not change. Per apply and over the
 // measured time, "Mtaps/s" counts size²·2·k texel reads and "Mtexel-taps/s"
 // size²·2·k·ch channel reads (the shader works on vec4 whatever the format).
