@@ -25,8 +25,8 @@
 
 namespace {
 
-using sb::occlusion::Filter;
-using sb::occlusion::FilterPyramid;
+using sb::techniques::occlusion_texture::Filter;
+using sb::techniques::occlusion_texture::FilterPyramid;
 
 void BM_Filter(benchmark::State& state, Filter filter, bool half) {
   const int size = int(state.range(0));

@@ -28,7 +28,7 @@
 #include "common/filtered_map.h"
 #include "filtered_map/filtered_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::filtered_map {
 namespace {
 
 // Layer l holds terms 2l and 2l + 1 (0-based): cos, sin, cos, sin.
@@ -114,4 +114,4 @@ TechniqueInfo csm_convolution_info() {
           .create = [](const Params& p) { return std::make_unique<ConvolutionShadowMap>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::filtered_map

@@ -14,7 +14,7 @@
 #include "common/filtered_map.h"
 #include "filtered_map/filtered_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::filtered_map {
 namespace {
 
 const char* const kLogSpace = R"(
@@ -117,4 +117,4 @@ TechniqueInfo esm_info() {
           .create = [](const Params& p) { return std::make_unique<Esm>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::filtered_map

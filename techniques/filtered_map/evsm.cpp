@@ -19,7 +19,7 @@
 #include "filtered_map/chebyshev.h"
 #include "filtered_map/filtered_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::filtered_map {
 namespace {
 
 const char* const kEvsmBasis = R"(
@@ -112,4 +112,4 @@ TechniqueInfo evsm_info() {
           .create = [](const Params& p) { return std::make_unique<Evsm>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::filtered_map

@@ -14,7 +14,7 @@
 #include "common/filtered_map.h"
 #include "filtered_map/filtered_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::filtered_map {
 namespace {
 
 const char* const kMsmBasis = R"(
@@ -93,4 +93,4 @@ TechniqueInfo msm_info() {
           .create = [](const Params& p) { return std::make_unique<Msm>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::filtered_map

@@ -14,7 +14,7 @@
 #include "filtered_map/chebyshev.h"
 #include "filtered_map/filtered_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::filtered_map {
 namespace {
 
 const char* const kVsmLookup = R"(
@@ -68,4 +68,4 @@ TechniqueInfo vsm_info() {
           .create = [](const Params& p) { return std::make_unique<Vsm>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::filtered_map

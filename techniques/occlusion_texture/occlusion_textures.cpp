@@ -38,7 +38,7 @@
 #include "occlusion_texture/slab_rasterizer.h"
 #include "occlusion_texture/slicing.h"
 
-namespace sb::occlusion {
+namespace sb::techniques::occlusion_texture {
 namespace {
 
 enum class Combine { Probabilistic, Sum, Max };
@@ -266,4 +266,4 @@ TechniqueInfo occlusion_textures_info() {
       .create = [](const Params& p) { return std::make_unique<OcclusionTextures>(p); }};
 }
 
-}  // namespace sb::occlusion
+}  // namespace sb::techniques::occlusion_texture

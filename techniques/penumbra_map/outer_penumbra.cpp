@@ -48,7 +48,7 @@
 #include "gl/debug.h"
 #include "penumbra_map/outer_penumbra_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::penumbra_map {
 namespace {
 
 const char* const kBandVertex = R"(
@@ -292,4 +292,4 @@ TechniqueInfo smoothies_info() {
       .create = [](const Params& p) { return std::make_unique<OuterPenumbra>(p, Kind::Smoothie); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::penumbra_map

@@ -52,16 +52,12 @@
 #include "planar/projected_shadow.h"
 #include "plugin/registry.h"
 
-namespace sb {
+namespace sb::techniques::planar {
 
 using core::JobError;
 using gl::DrawInfo;
 
 namespace {
-
-using planar::kProjectFragment;
-using planar::kProjectVertex;
-using planar::planar_projection;
 
 // Reads the count of unshadowed light points in the visibility target itself
 // (after glTextureBarrier; each fragment reads only its own texel) and writes
@@ -79,7 +75,7 @@ void main() {
 class Planar final : public Technique {
  public:
   // points: (s, t) on the light; empty for the light's centre.
-  Planar(std::string name, shadow::LightSampleLayouts points)
+  Planar(std::string name, accumulation::LightSampleLayouts points)
       : name_(std::move(name)), points_(std::move(points)) {}
 
   void prepare(const FrameInputs& in) override {
@@ -172,17 +168,18 @@ class Planar final : public Technique {
   }
 
   std::string name_;
-  shadow::LightSampleLayouts points_;
+  accumulation::LightSampleLayouts points_;
   float tolerance_ = 0.0f;
   gl::Program project_;
   gl::Program resolve_;
 };
 
 }  // namespace
-}  // namespace sb
+}  // namespace sb::techniques::planar
 
 SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
   using namespace sb;
+  using namespace sb::techniques::planar;
   registry.add(
       {.name = "planar",
        .family = "planar",
@@ -191,7 +188,7 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
        .needs = Needs{need::kPlanarReceiver, need::kOpaqueCasters, need::kCasterClosedness},
        .params = {},
        .create = [](const Params&) {
-         return std::make_unique<Planar>("planar", shadow::LightSampleLayouts{});
+         return std::make_unique<Planar>("planar", techniques::accumulation::LightSampleLayouts{});
        }});
   registry.add(
       {.name = "planar_soft",
@@ -212,8 +209,9 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
          // Where the points lie on the light, in its own (s, t): parameters
          // only, so computed here; placed in the world per frame.
          return std::make_unique<Planar>(
-             "planar_soft", shadow::light_sample_layouts(p.get_int("samples"), p.get_bool("jitter"),
-                                                         unsigned(p.get_int("seed"))));
+             "planar_soft",
+             techniques::accumulation::light_sample_layouts(
+                 p.get_int("samples"), p.get_bool("jitter"), unsigned(p.get_int("seed"))));
        }});
   registry.add(plateaus_info());
 }

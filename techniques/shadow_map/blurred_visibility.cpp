@@ -40,7 +40,7 @@
 #include "gl/debug.h"
 #include "shadow_map/shadow_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 namespace {
 
 // The lookup of space = "light": unit 4 holds the blurred mask.
@@ -218,4 +218,4 @@ TechniqueInfo blurred_visibility_info() {
       .create = [](const Params& p) { return std::make_unique<BlurredVisibility>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

@@ -5,7 +5,7 @@
 
 #include "gl/debug.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 
 using gl::DrawInfo;
 using gl::GpuScene;
@@ -159,4 +159,4 @@ float alpha8_lit(vec3 t, float bias_steps) {
 }
 )";
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

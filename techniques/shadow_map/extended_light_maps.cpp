@@ -16,7 +16,7 @@
 #include "shadow_map/extended_light_map.h"
 #include "shadow_map/shadow_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 namespace {
 
 const char* const kDepthLookup = R"(
@@ -117,4 +117,4 @@ TechniqueInfo extended_light_maps_info() {
       .create = [](const Params& p) { return std::make_unique<ExtendedLightMaps>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

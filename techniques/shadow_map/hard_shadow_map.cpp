@@ -10,7 +10,7 @@
 #include "common/map_lookup.h"
 #include "shadow_map/shadow_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 
 TechniqueInfo hard_shadow_map_info() {
   return {.name = "shadow_map",
@@ -25,4 +25,4 @@ TechniqueInfo hard_shadow_map_info() {
           }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

@@ -41,7 +41,7 @@
 #include "shadow_map/linear_light_skins.h"
 #include "shadow_map/shadow_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 namespace {
 
 const char* const kSkinVertex = R"(#version 450 core
@@ -342,4 +342,4 @@ TechniqueInfo heidrich_linear_info() {
           .create = [](const Params& p) { return std::make_unique<HeidrichLinear>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

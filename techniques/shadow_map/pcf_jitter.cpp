@@ -15,7 +15,7 @@
 #include "shadow_map/jittered_disk.h"
 #include "shadow_map/shadow_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 namespace {
 
 const char* const kJitteredPcf = R"(
@@ -93,4 +93,4 @@ TechniqueInfo pcf_jitter_info() {
           }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

@@ -10,7 +10,7 @@
 #include "common/map_lookup.h"
 #include "shadow_map/shadow_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 namespace {
 
 const char* const kKernelPcf = R"(
@@ -80,4 +80,4 @@ TechniqueInfo pcf_gauss_info() {
       .create = [](const Params& p) { return std::make_unique<KernelPcf>(p, KernelShape::Gauss); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

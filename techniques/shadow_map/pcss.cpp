@@ -14,7 +14,7 @@
 #include "common/map_lookup.h"
 #include "shadow_map/shadow_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 namespace {
 
 const char* const kPcss = R"(
@@ -113,4 +113,4 @@ TechniqueInfo pcss_info() {
           .create = [](const Params& p) { return std::make_unique<Pcss>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

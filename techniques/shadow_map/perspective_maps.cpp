@@ -16,7 +16,7 @@
 #include "shadow_map/perspective_warp.h"
 #include "shadow_map/shadow_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 namespace {
 
 const char* const kHardCompare = "float lit_fraction(vec3 t) { return texture(shadow_map, t); }\n";
@@ -85,4 +85,4 @@ TechniqueInfo lispsm_info() {
           }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

@@ -54,7 +54,7 @@
 #include "two_map/apex_placement.h"
 #include "two_map/penumbra_buffer.h"
 
-namespace sb::shadow {
+namespace sb::techniques::two_map {
 namespace {
 
 // The penumbra apex's map is the lookup's own (shadow_map, light_view…);
@@ -239,4 +239,4 @@ TechniqueInfo two_map_bound_info() {
           }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::two_map
