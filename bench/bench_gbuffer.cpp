@@ -4,7 +4,7 @@
 // (scene, resolution); the restore of its depth-stencil, which every frame
 // pays whatever the technique (run/gbuffer.h); and the shading pass. Each iteration times the pass
 // plus glFinish() with steady_clock, as the harness's CPU-finish brackets do (llvmpipe's
-// GL_TIME_ELAPSED is wrong, see shared FINDINGS).
+// GL_TIME_ELAPSED reads about one tile's time: docs/design.md, "Fairness rules").
 //
 // The harness's own records hold the figure the target is about
 // (timing.shared.gbuffer against timing.frame of a hard shadow map at

@@ -8,9 +8,9 @@
 // per doubling of the side, not absolute times.
 //
 // Each iteration times build() + glFinish() with steady_clock (llvmpipe's
-// GL_TIME_ELAPSED is wrong, see shared FINDINGS), on an RGBA8 texture of
-// random binary texels (the pyramids' cost does not depend on the data).
-// A subset: build/bench/bench_occlusion_filters --benchmark_filter='BM_Filter/sat/'
+// GL_TIME_ELAPSED reads about one tile's time: docs/design.md, "Fairness rules"), on an RGBA8
+// texture of random binary texels (the pyramids' cost does not depend on the data). A subset:
+// build/bench/bench_occlusion_filters --benchmark_filter='BM_Filter/sat/'
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -25,8 +25,8 @@
 
 namespace {
 
-using sb::occlusion::Filter;
-using sb::occlusion::FilterPyramid;
+using sb::techniques::occlusion_texture::Filter;
+using sb::techniques::occlusion_texture::FilterPyramid;
 
 void BM_Filter(benchmark::State& state, Filter filter, bool half) {
   const int size = int(state.range(0));

@@ -1,5 +1,5 @@
 // Cost of the separable prefilter of the filterable shadow maps
-// (sb::shadow::SeparableFilter: VSM, ESM, EVSM, MSM, CSM) against map size,
+// (sb::techniques::SeparableFilter: VSM, ESM, EVSM, MSM, CSM) against map size,
 // kernel side k and channel count, on one headless OSMesa context.
 //
 // Arguments: size (map side, texels) × ch (1 = R32F as ESM, 2 = RG32F as VSM,
@@ -12,8 +12,8 @@
 // there to show that the shape does not change the cost.
 //
 // Each iteration times apply() + glFinish() with steady_clock (llvmpipe's
-// GL_TIME_ELAPSED is wrong, see shared FINDINGS). The filter works in place,
-// so the data gets smoother from one iteration to the next; the shader has no
+// GL_TIME_ELAPSED reads about one tile's time: docs/design.md, "Fairness rules"). The filter works
+// in place, so the data gets smoother from one iteration to the next; the shader has no
 // data-dependent branch, so the cost does not change. Per apply and over the
 // measured time, "Mtaps/s" counts size²·2·k texel reads and "Mtexel-taps/s"
 // size²·2·k·ch channel reads (the shader works on vec4 whatever the format).
@@ -48,8 +48,8 @@
 
 namespace {
 
-using sb::shadow::KernelShape;
-using sb::shadow::SeparableFilter;
+using sb::techniques::KernelShape;
+using sb::techniques::SeparableFilter;
 
 struct Variant {
   SeparableFilter::Mode mode;
@@ -105,7 +105,7 @@ struct Fixture {
   void prepare(int new_size, int new_channels, int new_k, Variant v) {
     if (new_size != size || new_channels != channels) {
       filter.reset();
-      map = sb::shadow::make_array_texture(internal_format(new_channels), new_size, 1);
+      map = sb::techniques::make_array_texture(internal_format(new_channels), new_size, 1);
       const std::vector<float> data = moment_data(new_size, new_channels);
       glTextureSubImage3D(map.get(), 0, 0, 0, 0, new_size, new_size, 1, pixel_format(new_channels),
                           GL_FLOAT, data.data());
@@ -115,7 +115,7 @@ struct Fixture {
     if (!filter || new_k != k || variant->mode != v.mode || variant->shape != v.shape) {
       filter.reset();
       filter.emplace(map.get(), internal_format(channels), size, 1,
-                     sb::shadow::kernel_weights(v.shape, new_k, 0.0f), v.mode, kEsmExponent);
+                     sb::techniques::kernel_weights(v.shape, new_k, 0.0f), v.mode, kEsmExponent);
       k = new_k;
       variant = v;
       // The first draw compiles llvmpipe's shader variant: keep it untimed.

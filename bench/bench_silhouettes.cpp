@@ -12,23 +12,23 @@
 
 namespace {
 
-using sb::volume::SilhouetteMode;
+using sb::techniques::shadow_volume::SilhouetteMode;
 
 void silhouette_and_volume(benchmark::State& state, SilhouetteMode mode) {
   // 2·slices·(stacks − 1) triangles, slices = 2·stacks.
   const int stacks = int(state.range(0));
   const sb::core::Mesh sphere = sb::make_uv_sphere("s", {0, 1.2f, 0}, 0.5f, 2 * stacks, stacks);
-  const sb::volume::SilhouetteMesh shape =
-      sb::volume::make_silhouette_mesh(sphere, sb::mesh_edges(sphere));
-  sb::volume::SilhouetteSettings settings;
+  const sb::techniques::shadow_volume::SilhouetteMesh shape =
+      sb::techniques::shadow_volume::make_silhouette_mesh(sphere, sb::mesh_edges(sphere));
+  sb::techniques::shadow_volume::SilhouetteSettings settings;
   settings.mode = mode;
   const glm::vec3 light(3.5f, 10.0f, 2.5f);
-  sb::volume::Silhouette silhouette;
-  sb::volume::VolumeVertices volume;
+  sb::techniques::shadow_volume::Silhouette silhouette;
+  sb::techniques::shadow_volume::VolumeVertices volume;
   for (auto _ : state) {
-    sb::volume::extract_silhouette(shape, light, settings, silhouette);
+    sb::techniques::shadow_volume::extract_silhouette(shape, light, settings, silhouette);
     volume.clear();
-    sb::volume::append_volume(silhouette, light, true, volume);
+    sb::techniques::shadow_volume::append_volume(silhouette, light, true, volume);
     benchmark::DoNotOptimize(volume.vertices.data());
   }
   state.counters["triangles"] = double(sphere.triangle_count());

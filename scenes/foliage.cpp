@@ -18,6 +18,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/counter_rng.h"
 #include "scenes/leaf.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/sphere_grid.h"
@@ -37,23 +38,19 @@ using core::SceneType;
 
 namespace {
 
-// splitmix64: a small, portable generator (std distributions differ between
-// standard libraries, and the same seed must give the same trees everywhere).
+// The trees' draws, one after another from the project's portable generator
+// (core/counter_rng.h: std distributions differ between standard libraries,
+// and the same seed must give the same trees everywhere).
 class Random {
  public:
-  explicit Random(uint64_t seed) : state_(seed * 0x9e3779b97f4a7c15ull + 1) {}
+  explicit Random(uint64_t seed) : stream_(seed * core::kSplitMix64Gamma + 1) {}
   float uniform(float lo, float hi) {
-    return lo + (hi - lo) * float(next() >> 40) / float(1 << 24);
+    return lo + (hi - lo) * core::uniform_float(stream_, next_++);
   }
 
  private:
-  uint64_t next() {
-    uint64_t z = (state_ += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
-  uint64_t state_;
+  uint64_t stream_;
+  uint64_t next_ = 0;
 };
 
 glm::vec3 any_perpendicular(const glm::vec3& a) {

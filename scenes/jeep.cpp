@@ -25,6 +25,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/counter_rng.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/sphere_grid.h"
 #include "scenes/triangle_budget.h"
@@ -197,15 +198,6 @@ std::vector<Mesh> make_jeep(const std::string& prefix, int tessellation) {
 
 namespace {
 
-// splitmix64: a deterministic stream per (seed, jeep), independent of the library.
-float unit_random(uint64_t& state) {
-  uint64_t v = (state += 0x9E3779B97F4A7C15ull);
-  v = (v ^ (v >> 30)) * 0xBF58476D1CE4E5B9ull;
-  v = (v ^ (v >> 27)) * 0x94D049BB133111EBull;
-  v ^= v >> 31;
-  return float(v >> 40) / float(1ull << 24);
-}
-
 // Camera distance along -forward from `target` at which every point lies
 // inside a frame of half-angle tangents (tan_x, tan_y).
 float fit_distance(const std::vector<glm::vec3>& points, glm::vec3 target, glm::vec3 forward,
@@ -254,10 +246,11 @@ Scene build_jeeps(const Params& p) {
                   (0.5f * float(rows - 1) - float(row)) * pitch_z);  // row 0 in front
     float yaw = 0.0f;
     if (seed != 0) {
-      uint64_t state = uint64_t(uint32_t(seed)) * 0x100000001B3ull + uint64_t(i);
-      yaw = (2.0f * unit_random(state) - 1.0f) * max_yaw;
-      pos.x += (2.0f * unit_random(state) - 1.0f) * jitter;
-      pos.z += (2.0f * unit_random(state) - 1.0f) * jitter;
+      // One stream per (seed, jeep), independent of the library (core/counter_rng.h).
+      const uint64_t stream = uint64_t(uint32_t(seed)) * 0x100000001B3ull + uint64_t(i);
+      yaw = (2.0f * core::uniform_float(stream, 0) - 1.0f) * max_yaw;
+      pos.x += (2.0f * core::uniform_float(stream, 1) - 1.0f) * jitter;
+      pos.z += (2.0f * core::uniform_float(stream, 2) - 1.0f) * jitter;
     }
     const glm::mat4 place = glm::rotate(glm::translate(glm::mat4(1.0f), pos), yaw, {0, 1, 0});
     for (auto& m : make_jeep("jeep_" + std::to_string(i), tessellation)) {

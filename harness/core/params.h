@@ -44,7 +44,7 @@ struct ParamSpec {
   // The side of a shadow map the technique renders, in texels: techniques
   // compared in one experiment should render maps of one size, or time and
   // error compare unequal work (config/map_sizes.h warns). Declared once,
-  // where the parameter is (shadow::depth_map_params).
+  // where the parameter is (sb::techniques::depth_map_params).
   bool map_size = false;
   // What it decides (Decides). A technique's or a scene's parameters decide
   // both unless declared otherwise. A path parameter (is_path) is part of a

@@ -2,7 +2,8 @@
 // One headless GL 4.5 core context. Two backends: OSMesa (default) and EGL
 // (device platform where a GPU exists, surfaceless otherwise). Every GL entry
 // point is loaded through glad from the backend's GetProcAddress; nothing is
-// linked against libGL/libOpenGL (see shared FINDINGS: libglvnd pitfall).
+// linked against libGL/libOpenGL: with libglvnd loaded, calling gl* by
+// symbol makes every OSMesa call a silent no-op (docs/design.md, "GL").
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -24,8 +25,9 @@ class Context {
 
   std::string renderer() const;
   std::string version() const;
-  // llvmpipe/softpipe: GL_TIME_ELAPSED is unreliable there (FINDINGS), so
-  // passes are timed with glFinish-bracketed CPU clocks.
+  // llvmpipe/softpipe: GL_TIME_ELAPSED is wrong there (each rasterizer
+  // thread overwrites the query's timestamps, so it reads about one tile's
+  // time), so passes are timed with glFinish-bracketed CPU clocks.
   bool is_software() const;
 
  protected:

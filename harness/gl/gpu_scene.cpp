@@ -163,4 +163,20 @@ void GpuScene::draw_casters_adjacency(const std::function<bool(size_t mesh)>& in
     if (include(r.mesh)) draw(r, GL_TRIANGLES_ADJACENCY);
 }
 
+const char* const kSceneVertexShader = R"(#version 450 core
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+layout(location = 2) in vec2 uv;
+uniform mat4 view_projection;
+out vec3 v_world;
+out vec3 v_normal;
+out vec2 v_uv;
+void main() {
+  v_world = position;
+  v_normal = normal;
+  v_uv = uv;
+  gl_Position = view_projection * vec4(position, 1.0);
+}
+)";
+
 }  // namespace sb::gl

@@ -100,4 +100,11 @@ class GpuScene {
   std::int64_t adjacency_bytes_ = 0;
 };
 
+// A vertex shader for draw_all and draw_casters: the scene's vertices
+// projected by `uniform mat4 view_projection`, their world position, normal
+// and texture coordinate passed on as v_world, v_normal and v_uv. It is the
+// G-buffer's own vertex stage, here so that a technique passing on the same
+// attributes (from the light or the camera) need not copy it.
+extern const char* const kSceneVertexShader;
+
 }  // namespace sb::gl

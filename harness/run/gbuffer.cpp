@@ -14,22 +14,6 @@ using plugin::FrameInputs;
 
 namespace {
 
-const char* const kGBufferVertex = R"(#version 450 core
-layout(location = 0) in vec3 position;
-layout(location = 1) in vec3 normal;
-layout(location = 2) in vec2 uv;
-uniform mat4 view_projection;
-out vec3 v_world;
-out vec3 v_normal;
-out vec2 v_uv;
-void main() {
-  v_world = position;
-  v_normal = normal;
-  v_uv = uv;
-  gl_Position = view_projection * vec4(position, 1.0);
-}
-)";
-
 // The geometric normal comes from the triangle itself, exactly as the ray
 // tracer sees it, so the reference can offset its rays consistently.
 const char* const kGBufferGeometry = R"(#version 450 core
@@ -125,7 +109,8 @@ FrameTargets::FrameTargets(int width, int height) : width_(width), height_(heigh
   visibility_fb_ =
       gl::make_framebuffer({visibility_.get()}, depth_stencil_.get(), GL_DEPTH_STENCIL_ATTACHMENT);
   shaded_fb_ = gl::make_framebuffer({shaded_.get()}, 0);
-  gbuffer_program_ = gl::Program("gbuffer", {kGBufferVertex, kGBufferGeometry, kGBufferFragment});
+  gbuffer_program_ =
+      gl::Program("gbuffer", {gl::kSceneVertexShader, kGBufferGeometry, kGBufferFragment});
   shading_program_ = gl::Program("shading", {gl::kFullscreenVertexShader, "", kShadingFragment});
   gl::throw_if_errors("creating frame targets");
 }

@@ -14,7 +14,7 @@
 #include "gl/program.h"
 #include "plugin/registry.h"
 
-namespace sb::shadow {
+namespace sb::techniques::accumulation {
 namespace {
 
 class Accumulation final : public Technique {
@@ -72,11 +72,12 @@ class Accumulation final : public Technique {
 };
 
 }  // namespace
-}  // namespace sb::shadow
+}  // namespace sb::techniques::accumulation
 
 SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
   using namespace sb;
-  auto params = shadow::depth_map_params(1024);
+  using namespace sb::techniques::accumulation;
+  auto params = techniques::depth_map_params(1024);
   params.insert(params.begin(),
                 {int_param("samples", 256, 1, 65536,
                            "light points: an m×n grid of strata if N = m·n with n <= 2m, "
@@ -85,14 +86,13 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
                             "jitter each point inside its stratum (Hammersley: one random "
                             "toroidal shift)"),
                  int_param("seed", 1, 0, 2147483647, "jitter seed")});
-  TechniqueInfo info{"accumulation",
-                     "accumulation",
-                     "average of N hard shadow maps from stratified points on the area light",
-                     Needs{need::kCasterClosedness},
-                     std::move(params),
-                     [](const Params& p) { return std::make_unique<shadow::Accumulation>(p); }};
-  // 64 samples took 10.2× a hard shadow map's job at 320×240 and 7.7× at
-  // 640×480 (configs/quick.json, 2-core VM): about 1 + N/8.
-  info.cost_weight = [](const Params& p) { return 1.0 + p.get_int("samples") / 8.0; };
-  registry.add(std::move(info));
+  registry.add({.name = "accumulation",
+                .family = "accumulation",
+                .summary = "average of N hard shadow maps from stratified points on the area light",
+                .needs = Needs{need::kCasterClosedness},
+                .params = std::move(params),
+                .create = [](const Params& p) { return std::make_unique<Accumulation>(p); },
+                // 64 samples took 10.2× a hard shadow map's job at 320×240 and 7.7× at
+                // 640×480 (configs/quick.json, 2-core VM): about 1 + N/8.
+                .cost_weight = [](const Params& p) { return 1.0 + p.get_int("samples") / 8.0; }});
 }

@@ -6,7 +6,7 @@
 
 #include "core/counter_rng.h"
 
-namespace sb::shadow {
+namespace sb::techniques::accumulation {
 
 using core::uniform_float;
 
@@ -91,4 +91,4 @@ LightSampleLayouts light_sample_layouts(int n, bool jitter, unsigned seed) {
   return {light_samples(n, jitter, seed), segment_samples(n, jitter, seed)};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::accumulation

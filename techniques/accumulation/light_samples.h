@@ -21,7 +21,7 @@
 #include <glm/vec2.hpp>
 #include <vector>
 
-namespace sb::shadow {
+namespace sb::techniques::accumulation {
 
 // N >= 1 points; the same (n, jitter, seed) always gives the same points.
 std::vector<glm::vec2> light_samples(int n, bool jitter, unsigned seed);
@@ -41,4 +41,4 @@ struct LightSampleLayouts {
 };
 LightSampleLayouts light_sample_layouts(int n, bool jitter, unsigned seed);
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::accumulation

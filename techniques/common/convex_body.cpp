@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 using core::Bounds;
 using core::Mesh;
@@ -117,4 +117,4 @@ std::vector<glm::vec3> visible_body(const std::vector<Bounds>& boxes,
   return points;
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

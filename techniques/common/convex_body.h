@@ -13,7 +13,7 @@
 
 #include "core/scene.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 class ConvexBody {
  public:
@@ -43,4 +43,4 @@ std::vector<core::Bounds> mesh_boxes(const core::Scene& scene);
 std::vector<glm::vec3> visible_body(const std::vector<core::Bounds>& boxes,
                                     const std::vector<glm::vec4>& planes);
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

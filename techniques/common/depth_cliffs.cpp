@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 using core::Bounds;
 
@@ -79,4 +79,4 @@ std::vector<uint8_t> find_depth_cliffs(const DepthMapGeometry& map, float thresh
   return cliff;
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

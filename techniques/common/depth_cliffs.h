@@ -26,7 +26,7 @@
 #include "common/light_frustum.h"
 #include "core/scene.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 // World points of a size×size map's texel corners at given window depths.
 // `depth`: the window depths, row-major, row 0 at v = 0 (as
@@ -72,4 +72,4 @@ float past_every_receiver(const core::Bounds& scene_box, const glm::vec3& eye);
 // step to (x + 1, y) and 2·(y·size + x) + 1 for the step to (x, y + 1).
 std::vector<uint8_t> find_depth_cliffs(const DepthMapGeometry& map, float threshold);
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

@@ -6,7 +6,7 @@
 #include "core/error.h"
 #include "gl/debug.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 using core::as_map_size;
 using core::bool_param;
@@ -189,4 +189,4 @@ float depth01(float view_z) {
 }
 )";
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

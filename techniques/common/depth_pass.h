@@ -31,7 +31,7 @@
 #include "gl/objects.h"
 #include "gl/program.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 enum class CullMode { None, Back, Front };
 CullMode cull_mode_from_string(const std::string& s);  // "none" | "back" | "front"
@@ -109,4 +109,4 @@ extern const char* const kLightLookupGlsl;
 // `depth01(z)` maps it linearly to [0,1] (far and beyond: 1).
 extern const char* const kLightDepthGlsl;
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

@@ -2,7 +2,7 @@
 
 #include "gl/debug.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 using core::choice_param;
 using core::Params;
@@ -123,4 +123,4 @@ void FilteredMapTechnique::render(const FrameInputs& in, gl::PassTimer& timer) {
   lookup_.draw(in, frustum, settings_.depth, map_.texture());
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

@@ -35,7 +35,7 @@
 #include "common/map_lookup.h"
 #include "common/separable_filter.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 struct FilteredMapSettings {
   DepthMapSettings depth;
@@ -95,4 +95,4 @@ class FilteredMapTechnique : public plugin::Technique {
   MapLookupPass lookup_;
 };
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

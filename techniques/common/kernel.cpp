@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 using core::float_param;
 using core::int_param;
@@ -51,4 +51,4 @@ ParamSpec kernel_sigma_param() {
       0.0);
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

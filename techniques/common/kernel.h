@@ -16,7 +16,7 @@
 
 #include "core/params.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 enum class KernelShape { Box, Gauss };
 KernelShape kernel_shape_from_string(const std::string& s);  // "box" | "gauss"
@@ -35,4 +35,4 @@ constexpr int kMaxKernelTaps = 63;
 core::ParamSpec kernel_size_param(int default_k, const std::string& doc);
 core::ParamSpec kernel_sigma_param();
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

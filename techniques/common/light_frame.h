@@ -13,7 +13,7 @@
 
 #include "core/scene.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 struct LightFrame {
   glm::vec3 center{0.0f};
@@ -64,4 +64,4 @@ struct LightFrame {
   }
 };
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

@@ -8,7 +8,7 @@
 
 #include "core/error.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 using core::Bounds;
 using core::JobError;
@@ -155,4 +155,4 @@ LightFrustum fit_light_frustum(const Scene& scene, const glm::vec3& eye, bool wi
   return f;
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

@@ -25,7 +25,7 @@
 
 #include "core/scene.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 struct LightFrustum {
   glm::mat4 view{1.0f};
@@ -49,4 +49,4 @@ struct LightFrustum {
 LightFrustum fit_light_frustum(const core::Scene& scene, const glm::vec3& eye,
                                bool widen_for_light = true);
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

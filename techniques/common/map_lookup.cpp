@@ -2,7 +2,7 @@
 
 #include "gl/debug.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 using core::Params;
 using plugin::FrameInputs;
@@ -133,4 +133,4 @@ void SingleMapTechnique::render(const FrameInputs& in, gl::PassTimer& timer) {
   lookup_.draw(in, frustum, settings_, map_.texture());
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

@@ -47,7 +47,7 @@
 #include "gl/program.h"
 #include "plugin/technique.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 class MapLookupPass {
  public:
@@ -99,4 +99,4 @@ class SingleMapTechnique : public plugin::Technique {
   MapLookupPass lookup_;
 };
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

@@ -5,7 +5,7 @@
 #include "core/error.h"
 #include "gl/debug.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 using core::JobError;
 
@@ -104,4 +104,4 @@ void SeparableFilter::apply() const {
   }
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

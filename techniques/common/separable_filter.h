@@ -25,7 +25,7 @@
 #include "gl/objects.h"
 #include "gl/program.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 class SeparableFilter {
  public:
@@ -55,4 +55,4 @@ class SeparableFilter {
 gl::Texture make_array_texture(GLenum internal_format, int size, int layers);
 std::vector<gl::Framebuffer> layer_framebuffers(GLuint array_texture, int layers);
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

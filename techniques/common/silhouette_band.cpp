@@ -2,7 +2,7 @@
 
 #include "plugin/silhouette_edges.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 using plugin::FrameInputs;
 using plugin::SilhouetteEdges;
@@ -130,4 +130,4 @@ void draw_silhouette_bands(const FrameInputs& in) {
   glDrawArrays(GL_TRIANGLES, 0, 6 * edges.edge_count);
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

@@ -23,7 +23,7 @@
 #include "gl/program.h"
 #include "plugin/technique.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 // GLSL for vertex shaders (binding 0: the edge buffer):
 //   struct Edge, edges[]          the buffer's records
@@ -71,4 +71,4 @@ void set_fragment_image_uniforms(const gl::Program& program, const LightFrustum&
 // Binds the edge buffer and draws 6 vertices per edge with the bound program.
 void draw_silhouette_bands(const plugin::FrameInputs& in);
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques

@@ -17,7 +17,7 @@
 #include "gl/program.h"
 #include "plugin/registry.h"
 
-namespace sb {
+namespace sb::techniques::control {
 namespace {
 
 // grid × grid quads of a wavy heightfield over [-1, 1]², two triangles each,
@@ -99,17 +99,21 @@ class FixedWorkload final : public Technique {
 };
 
 }  // namespace
-}  // namespace sb
+}  // namespace sb::techniques::control
 
 SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
+  using namespace sb;
+  using namespace sb::techniques::control;
   registry.add(
-      {"fixed_workload",
-       "control",
-       "control for timing ratios: a fixed grid drawn into a depth map, read back per pixel; "
-       "V = 1 (shares no code with any technique)",
-       sb::Needs{},
-       {sb::int_param("grid", 128, 1, 2048, "the heightfield's quads per side (2 grid² triangles)"),
-        sb::int_param("size", 1024, 16, 8192, "the depth map's side in texels"),
-        sb::int_param("taps", 3, 1, 15, "texels read per pixel along each axis")},
-       [](const sb::Params& p) { return std::make_unique<sb::FixedWorkload>(p); }});
+      {.name = "fixed_workload",
+       .family = "control",
+       .summary =
+           "control for timing ratios: a fixed grid drawn into a depth map, read back per pixel; "
+           "V = 1 (shares no code with any technique)",
+       .needs = Needs{},
+       .params = {int_param("grid", 128, 1, 2048,
+                            "the heightfield's quads per side (2 grid² triangles)"),
+                  int_param("size", 1024, 16, 8192, "the depth map's side in texels"),
+                  int_param("taps", 3, 1, 15, "texels read per pixel along each axis")},
+       .create = [](const Params& p) { return std::make_unique<FixedWorkload>(p); }});
 }

@@ -1,6 +1,6 @@
 #pragma once
 // The one-tailed Chebyshev bound shared by VSM and EVSM.
-namespace sb::shadow {
+namespace sb::techniques::filtered_map {
 
 // `chebyshev_upper_bound(m, t, min_variance, bleeding_reduction)`: the most
 // light a receiver at depth t can see given the filtered first two moments
@@ -17,4 +17,4 @@ float chebyshev_upper_bound(vec2 m, float t, float min_variance, float bleeding_
 }
 )";
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::filtered_map

@@ -28,7 +28,7 @@
 #include "common/filtered_map.h"
 #include "filtered_map/filtered_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::filtered_map {
 namespace {
 
 // Layer l holds terms 2l and 2l + 1 (0-based): cos, sin, cos, sin.
@@ -106,12 +106,12 @@ TechniqueInfo csm_convolution_info() {
                              "receiver moved towards the light by receiver_offset/(2M) in "
                              "normalised depth (Annen et al. 2007), so lit unculled surfaces "
                              "do not read their own depth as ½")});
-  return {"csm_convolution",
-          "filtered_map",
-          "convolution shadow map, M Fourier terms (Annen et al. 2007)",
-          Needs{need::kCasterClosedness},
-          std::move(params),
-          [](const Params& p) { return std::make_unique<ConvolutionShadowMap>(p); }};
+  return {.name = "csm_convolution",
+          .family = "filtered_map",
+          .summary = "convolution shadow map, M Fourier terms (Annen et al. 2007)",
+          .needs = Needs{need::kCasterClosedness},
+          .params = std::move(params),
+          .create = [](const Params& p) { return std::make_unique<ConvolutionShadowMap>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::filtered_map

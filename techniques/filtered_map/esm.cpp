@@ -14,7 +14,7 @@
 #include "common/filtered_map.h"
 #include "filtered_map/filtered_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::filtered_map {
 namespace {
 
 const char* const kLogSpace = R"(
@@ -109,12 +109,12 @@ TechniqueInfo esm_info() {
                  bool_param("log_space", true,
                             "store z and filter in log space; false stores exp(c·z) "
                             "(overflows fp32 for c·z > 88.7)")});
-  return {"esm",
-          "filtered_map",
-          "exponential shadow map, log-space filtered (Annen et al. 2008, Salvi 2008)",
-          Needs{need::kCasterClosedness},
-          std::move(params),
-          [](const Params& p) { return std::make_unique<Esm>(p); }};
+  return {.name = "esm",
+          .family = "filtered_map",
+          .summary = "exponential shadow map, log-space filtered (Annen et al. 2008, Salvi 2008)",
+          .needs = Needs{need::kCasterClosedness},
+          .params = std::move(params),
+          .create = [](const Params& p) { return std::make_unique<Esm>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::filtered_map

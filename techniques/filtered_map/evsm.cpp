@@ -19,7 +19,7 @@
 #include "filtered_map/chebyshev.h"
 #include "filtered_map/filtered_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::filtered_map {
 namespace {
 
 const char* const kEvsmBasis = R"(
@@ -104,12 +104,12 @@ TechniqueInfo evsm_info() {
                  float_param("negative_exponent", 5.0, 0.1, 1000.0,
                              "c− of −exp(−c−·(2z−1)); clamped to 42 (32f) or 5.54 (16f)")});
   for (auto& p : bleeding_params(1e-4)) params.push_back(std::move(p));
-  return {"evsm",
-          "filtered_map",
-          "exponential variance shadow map, 2 or 4 components (Lauritzen & McCool 2008)",
-          Needs{need::kCasterClosedness},
-          std::move(params),
-          [](const Params& p) { return std::make_unique<Evsm>(p); }};
+  return {.name = "evsm",
+          .family = "filtered_map",
+          .summary = "exponential variance shadow map, 2 or 4 components (Lauritzen & McCool 2008)",
+          .needs = Needs{need::kCasterClosedness},
+          .params = std::move(params),
+          .create = [](const Params& p) { return std::make_unique<Evsm>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::filtered_map

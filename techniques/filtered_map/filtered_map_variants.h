@@ -4,7 +4,7 @@
 #include "common/filtered_map.h"
 #include "plugin/registry.h"
 
-namespace sb::shadow {
+namespace sb::techniques::filtered_map {
 plugin::TechniqueInfo vsm_info();
 plugin::TechniqueInfo esm_info();
 plugin::TechniqueInfo evsm_info();
@@ -14,4 +14,4 @@ plugin::TechniqueInfo csm_convolution_info();
 BasisShader esm_shader(bool log_space, float exponent);
 // light_bleeding_reduction and min_variance, shared by vsm and evsm.
 std::vector<core::ParamSpec> bleeding_params(double default_min_variance);
-}  // namespace sb::shadow
+}  // namespace sb::techniques::filtered_map

@@ -14,7 +14,7 @@
 #include "common/filtered_map.h"
 #include "filtered_map/filtered_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::filtered_map {
 namespace {
 
 const char* const kMsmBasis = R"(
@@ -85,12 +85,12 @@ TechniqueInfo msm_info() {
   auto params = filtered_map_params(2048, {"32f"});
   params.insert(params.begin(), float_param("moment_bias", 3e-5, 0.0, 0.5,
                                             "alpha: moments are biased towards a uniform depth"));
-  return {"msm",
-          "filtered_map",
-          "moment shadow map, Hamburger 4-moment reconstruction (Peters & Klein 2015)",
-          Needs{need::kCasterClosedness},
-          std::move(params),
-          [](const Params& p) { return std::make_unique<Msm>(p); }};
+  return {.name = "msm",
+          .family = "filtered_map",
+          .summary = "moment shadow map, Hamburger 4-moment reconstruction (Peters & Klein 2015)",
+          .needs = Needs{need::kCasterClosedness},
+          .params = std::move(params),
+          .create = [](const Params& p) { return std::make_unique<Msm>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::filtered_map

@@ -2,9 +2,9 @@
 #include "filtered_map/filtered_map_variants.h"
 
 SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
-  registry.add(sb::shadow::vsm_info());
-  registry.add(sb::shadow::esm_info());
-  registry.add(sb::shadow::evsm_info());
-  registry.add(sb::shadow::msm_info());
-  registry.add(sb::shadow::csm_convolution_info());
+  registry.add(sb::techniques::filtered_map::vsm_info());
+  registry.add(sb::techniques::filtered_map::esm_info());
+  registry.add(sb::techniques::filtered_map::evsm_info());
+  registry.add(sb::techniques::filtered_map::msm_info());
+  registry.add(sb::techniques::filtered_map::csm_convolution_info());
 }

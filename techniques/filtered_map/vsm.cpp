@@ -14,7 +14,7 @@
 #include "filtered_map/chebyshev.h"
 #include "filtered_map/filtered_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::filtered_map {
 namespace {
 
 const char* const kVsmLookup = R"(
@@ -59,12 +59,13 @@ std::vector<ParamSpec> bleeding_params(double default_min_variance) {
 TechniqueInfo vsm_info() {
   auto params = filtered_map_params(1024, {"32f", "16f"});
   for (auto& p : bleeding_params(1e-5)) params.push_back(std::move(p));
-  return {"vsm",
-          "filtered_map",
-          "variance shadow map: filtered (z, z²), Chebyshev bound (Donnelly & Lauritzen 2006)",
-          Needs{need::kCasterClosedness},
-          std::move(params),
-          [](const Params& p) { return std::make_unique<Vsm>(p); }};
+  return {.name = "vsm",
+          .family = "filtered_map",
+          .summary =
+              "variance shadow map: filtered (z, z²), Chebyshev bound (Donnelly & Lauritzen 2006)",
+          .needs = Needs{need::kCasterClosedness},
+          .params = std::move(params),
+          .create = [](const Params& p) { return std::make_unique<Vsm>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::filtered_map

@@ -5,7 +5,7 @@
 
 #include "plugin/registry.h"
 
-namespace sb {
+namespace sb::techniques::none {
 namespace {
 
 class NoShadows final : public Technique {
@@ -19,13 +19,15 @@ class NoShadows final : public Technique {
 };
 
 }  // namespace
-}  // namespace sb
+}  // namespace sb::techniques::none
 
 SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
-  registry.add({"none",
-                "none",
-                "no shadows: visibility 1 everywhere",
-                sb::Needs{},
-                {},
-                [](const sb::Params&) { return std::make_unique<sb::NoShadows>(); }});
+  using namespace sb;
+  using namespace sb::techniques::none;
+  registry.add({.name = "none",
+                .family = "none",
+                .summary = "no shadows: visibility 1 everywhere",
+                .needs = Needs{},
+                .params = {},
+                .create = [](const Params&) { return std::make_unique<NoShadows>(); }});
 }

@@ -5,7 +5,7 @@
 
 #include "gl/debug.h"
 
-namespace sb::occlusion {
+namespace sb::techniques::occlusion_texture {
 namespace {
 
 constexpr int kGroup = 8;  // compute work-group side
@@ -167,9 +167,9 @@ GLuint FilterPyramid::filtered() const {
   return 0;
 }
 
-}  // namespace sb::occlusion
+}  // namespace sb::techniques::occlusion_texture
 
-namespace sb::occlusion {
+namespace sb::techniques::occlusion_texture {
 namespace {
 
 const char* const kMipmapBoxMean = R"(
@@ -250,4 +250,4 @@ std::string box_mean_glsl(Filter filter) {
   return "";
 }
 
-}  // namespace sb::occlusion
+}  // namespace sb::techniques::occlusion_texture

@@ -22,7 +22,7 @@
 #include "gl/objects.h"
 #include "gl/program.h"
 
-namespace sb::occlusion {
+namespace sb::techniques::occlusion_texture {
 
 enum class Filter { Mipmap, NBuffers, Sat };
 
@@ -81,4 +81,4 @@ class FilterPyramid {
   GLenum sat_format_ = GL_RGBA32F;
 };
 
-}  // namespace sb::occlusion
+}  // namespace sb::techniques::occlusion_texture

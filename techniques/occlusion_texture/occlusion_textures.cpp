@@ -38,7 +38,7 @@
 #include "occlusion_texture/slab_rasterizer.h"
 #include "occlusion_texture/slicing.h"
 
-namespace sb::occlusion {
+namespace sb::techniques::occlusion_texture {
 namespace {
 
 enum class Combine { Probabilistic, Sum, Max };
@@ -226,38 +226,44 @@ ParamSpec slab_count(ParamSpec spec) {
 
 TechniqueInfo occlusion_textures_info() {
   return {
-      "occlusion_textures",
-      "occlusion_texture",
-      "prefiltered occlusion textures of light-parallel slices, combined as independent "
-      "probabilities (Eisemann & Decoret 2008)",
-      Needs{need::kRectangularLight, need::kCasterClosedness},
-      {slab_count(int_param("slices", 16, 4, 16,
-                            "slices between the light and the scene, four per RGBA texture")),
-       power_of_two(int_param("size", 512, 16, 4096, "occlusion texture side in texels")),
-       choice_param("filter", "sat", {"mipmap", "nbuffers", "sat"},
-                    "prefiltering: mip chain (trilinear), N-buffers, or summed-area table"),
-       choice_param("sat_precision", "32", {"32", "16"},
-                    "float bits of the summed-area table (16 shows the loss)"),
-       choice_param("combine", "probabilistic", {"probabilistic", "sum", "max"},
-                    "how slices' occlusions combine: product of (1 - a), sum, or largest"),
-       choice_param("projection", "central", {"central", "orthographic"},
-                    "slices projected from a centre behind the light whose frustum fits the light, "
-                    "or along the light's normal"),
-       choice_param("faces", "light_facing", {"light_facing", "all"},
-                    "faces of closed casters drawn into the slices (open ones draw all)"),
-       float_param("self_shadow_offset", 1.0, 0.0, 4.0,
-                   "slices a point skips towards the light before the slices it reads (the slice "
-                   "holding it, and the fade of the one in front)"),
-       choice_param("self_slab", "receiver_aware", {"receiver_aware", "skip"},
-                    "who skips self_shadow_offset slices: every point (paper), or casters only, "
-                    "receivers that cast nothing reading their own slice up to their depth"),
-       choice_param("lookup_plane", "mid", {"mid", "far"},
-                    "plane each slice is read through: its middle, or its far side from the light "
-                    "(paper)"),
-       bool_param("thin_occluder_fix", false,
-                  "also mark each slice's occluders in the next slice away from the light (the "
-                  "paper's fix for light leaking between slices)")},
-      [](const Params& p) { return std::make_unique<OcclusionTextures>(p); }};
+      .name = "occlusion_textures",
+      .family = "occlusion_texture",
+      .summary =
+          "prefiltered occlusion textures of light-parallel slices, combined as independent "
+          "probabilities (Eisemann & Decoret 2008)",
+      .needs = Needs{need::kRectangularLight, need::kCasterClosedness},
+      .params =
+          {slab_count(int_param("slices", 16, 4, 16,
+                                "slices between the light and the scene, four per RGBA texture")),
+           power_of_two(int_param("size", 512, 16, 4096, "occlusion texture side in texels")),
+           choice_param("filter", "sat", {"mipmap", "nbuffers", "sat"},
+                        "prefiltering: mip chain (trilinear), N-buffers, or summed-area table"),
+           choice_param("sat_precision", "32", {"32", "16"},
+                        "float bits of the summed-area table (16 shows the loss)"),
+           choice_param("combine", "probabilistic", {"probabilistic", "sum", "max"},
+                        "how slices' occlusions combine: product of (1 - a), sum, or largest"),
+           choice_param(
+               "projection", "central", {"central", "orthographic"},
+               "slices projected from a centre behind the light whose frustum fits the light, "
+               "or along the light's normal"),
+           choice_param("faces", "light_facing", {"light_facing", "all"},
+                        "faces of closed casters drawn into the slices (open ones draw all)"),
+           float_param(
+               "self_shadow_offset", 1.0, 0.0, 4.0,
+               "slices a point skips towards the light before the slices it reads (the slice "
+               "holding it, and the fade of the one in front)"),
+           choice_param(
+               "self_slab", "receiver_aware", {"receiver_aware", "skip"},
+               "who skips self_shadow_offset slices: every point (paper), or casters only, "
+               "receivers that cast nothing reading their own slice up to their depth"),
+           choice_param(
+               "lookup_plane", "mid", {"mid", "far"},
+               "plane each slice is read through: its middle, or its far side from the light "
+               "(paper)"),
+           bool_param("thin_occluder_fix", false,
+                      "also mark each slice's occluders in the next slice away from the light (the "
+                      "paper's fix for light leaking between slices)")},
+      .create = [](const Params& p) { return std::make_unique<OcclusionTextures>(p); }};
 }
 
-}  // namespace sb::occlusion
+}  // namespace sb::techniques::occlusion_texture

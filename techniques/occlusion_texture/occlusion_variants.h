@@ -1,6 +1,6 @@
 #pragma once
 #include "plugin/registry.h"
 
-namespace sb::occlusion {
+namespace sb::techniques::occlusion_texture {
 plugin::TechniqueInfo occlusion_textures_info();
-}  // namespace sb::occlusion
+}  // namespace sb::techniques::occlusion_texture

@@ -3,5 +3,5 @@
 #include "occlusion_texture/occlusion_variants.h"
 
 SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
-  registry.add(sb::occlusion::occlusion_textures_info());
+  registry.add(sb::techniques::occlusion_texture::occlusion_textures_info());
 }

@@ -6,7 +6,7 @@
 #include "core/error.h"
 #include "gl/debug.h"
 
-namespace sb::occlusion {
+namespace sb::techniques::occlusion_texture {
 
 using core::JobError;
 using gl::DrawInfo;
@@ -157,4 +157,4 @@ void SlabRasterizer::render(const GpuScene& gpu, const Slicing& slicing) const {
   glCullFace(GL_BACK);
 }
 
-}  // namespace sb::occlusion
+}  // namespace sb::techniques::occlusion_texture

@@ -35,7 +35,7 @@
 #include "gl/program.h"
 #include "occlusion_texture/slicing.h"
 
-namespace sb::occlusion {
+namespace sb::techniques::occlusion_texture {
 
 class SlabRasterizer {
  public:
@@ -61,4 +61,4 @@ class SlabRasterizer {
 void set_slicing_uniforms(const gl::Program& program, const Slicing& slicing);
 extern const char* const kSlicingUniformsGlsl;
 
-}  // namespace sb::occlusion
+}  // namespace sb::techniques::occlusion_texture

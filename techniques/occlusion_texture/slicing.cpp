@@ -8,7 +8,7 @@
 
 #include "core/error.h"
 
-namespace sb::occlusion {
+namespace sb::techniques::occlusion_texture {
 
 using core::JobError;
 using core::Mesh;
@@ -61,7 +61,7 @@ SlabShare Slicing::share(float z, int k, float offset, LookupPlane plane) const 
 
 Slicing fit_slicing(const Scene& scene, int slabs, Projection projection) {
   Slicing s;
-  s.light = shadow::LightFrame(scene.light);
+  s.light = LightFrame(scene.light);
   s.slabs = slabs;
   const float scene_scale = std::max(scene.bounds().radius(), 1e-6f);
   constexpr float kMax = std::numeric_limits<float>::max();
@@ -130,4 +130,4 @@ Slicing fit_slicing(const Scene& scene, int slabs, Projection projection) {
   return s;
 }
 
-}  // namespace sb::occlusion
+}  // namespace sb::techniques::occlusion_texture

@@ -45,7 +45,7 @@
 #include "common/light_frame.h"
 #include "core/scene.h"
 
-namespace sb::occlusion {
+namespace sb::techniques::occlusion_texture {
 
 enum class Projection { Central, Orthographic };
 Projection projection_from_string(const std::string& s);  // "central" | "orthographic"
@@ -71,7 +71,7 @@ struct SlabShare {
 };
 
 struct Slicing {
-  shadow::LightFrame light;
+  LightFrame light;
   int slabs = 0;
   float z0 = 0.0f;         // the first slab's near side
   float thickness = 1.0f;  // t
@@ -95,4 +95,4 @@ struct Slicing {
 // Throws JobError, naming the mesh, when a caster reaches the light's plane.
 Slicing fit_slicing(const core::Scene& scene, int slabs, Projection projection);
 
-}  // namespace sb::occlusion
+}  // namespace sb::techniques::occlusion_texture

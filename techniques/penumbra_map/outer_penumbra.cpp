@@ -48,7 +48,7 @@
 #include "gl/debug.h"
 #include "penumbra_map/outer_penumbra_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::penumbra_map {
 namespace {
 
 const char* const kBandVertex = R"(
@@ -262,14 +262,17 @@ class OuterPenumbra final : public Technique {
 }  // namespace
 
 TechniqueInfo penumbra_maps_info() {
-  return {"penumbra_maps",
-          "penumbra_map",
-          "a hard shadow map plus a penumbra map drawn from the light centre's silhouette "
-          "edges (cones and sheets): the outer penumbra only (Wyman & Hansen 2003)",
-          Needs{need::kRectangularLight, need::kOpaqueCasters, need::kCasterClosedness,
-                need::kSilhouetteEdges},
-          depth_map_params(1024),
-          [](const Params& p) { return std::make_unique<OuterPenumbra>(p, Kind::PenumbraMap); }};
+  return {.name = "penumbra_maps",
+          .family = "penumbra_map",
+          .summary =
+              "a hard shadow map plus a penumbra map drawn from the light centre's silhouette "
+              "edges (cones and sheets): the outer penumbra only (Wyman & Hansen 2003)",
+          .needs = Needs{need::kRectangularLight, need::kOpaqueCasters, need::kCasterClosedness,
+                         need::kSilhouetteEdges},
+          .params = depth_map_params(1024),
+          .create = [](const Params& p) {
+            return std::make_unique<OuterPenumbra>(p, Kind::PenumbraMap);
+          }};
 }
 
 TechniqueInfo smoothies_info() {
@@ -277,14 +280,16 @@ TechniqueInfo smoothies_info() {
       "width_texels", 32.0, 0.5, 4096.0,
       "the smoothies' fixed width in map texels: the widest outer penumbra they can show")};
   for (auto& p : depth_map_params(1024)) params.push_back(std::move(p));
-  return {"smoothies",
-          "penumbra_map",
+  return {
+      .name = "smoothies",
+      .family = "penumbra_map",
+      .summary =
           "a hard shadow map plus fixed-width smoothies on the light centre's silhouette edges, "
           "rescaled by the receiver's depth: the outer penumbra only (Chan & Durand 2003)",
-          Needs{need::kRectangularLight, need::kOpaqueCasters, need::kCasterClosedness,
-                need::kSilhouetteEdges},
-          std::move(params),
-          [](const Params& p) { return std::make_unique<OuterPenumbra>(p, Kind::Smoothie); }};
+      .needs = Needs{need::kRectangularLight, need::kOpaqueCasters, need::kCasterClosedness,
+                     need::kSilhouetteEdges},
+      .params = std::move(params),
+      .create = [](const Params& p) { return std::make_unique<OuterPenumbra>(p, Kind::Smoothie); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::penumbra_map

@@ -3,6 +3,6 @@
 #include "penumbra_map/outer_penumbra_variants.h"
 
 SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
-  registry.add(sb::shadow::penumbra_maps_info());
-  registry.add(sb::shadow::smoothies_info());
+  registry.add(sb::techniques::penumbra_map::penumbra_maps_info());
+  registry.add(sb::techniques::penumbra_map::smoothies_info());
 }

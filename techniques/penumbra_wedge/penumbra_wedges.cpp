@@ -50,7 +50,7 @@
 #include "plugin/registry.h"
 #include "shadow_volume/caster_volumes.h"
 
-namespace sb {
+namespace sb::techniques::penumbra_wedge {
 namespace {
 
 // The fragment's term: its edge's fan term over the light's area (kWedgeGlsl
@@ -131,14 +131,14 @@ class PenumbraWedges final : public Technique {
 
   void prepare(const FrameInputs& in) override {
     wedges_.prepare(in);
-    umbra_ = gl::Program("penumbra_wedges_umbra", {gl::kFullscreenVertexShader, "",
-                                                   std::string("#version 450 core\n") +
-                                                       wedge::kStencilCountGlsl + kUmbraMain});
+    umbra_ = gl::Program("penumbra_wedges_umbra",
+                         {gl::kFullscreenVertexShader, "",
+                          std::string("#version 450 core\n") + kStencilCountGlsl + kUmbraMain});
     umbra_framebuffer_ = gl::make_framebuffer({in.visibility_texture}, 0);
-    stencil_view_ = wedge::make_stencil_view(in.depth_stencil);
+    stencil_view_ = make_stencil_view(in.depth_stencil);
     wedge_program_ = gl::Program(
-        "penumbra_wedges", {wedge::kWedgeVertex, "",
-                            std::string("#version 450 core\n") + wedge::kWedgeGlsl + kWedgeMain});
+        "penumbra_wedges",
+        {kWedgeVertex, "", std::string("#version 450 core\n") + kWedgeGlsl + kWedgeMain});
     combine_ =
         gl::Program("penumbra_wedges_combine", {gl::kFullscreenVertexShader, "", kCombineFragment});
     owner_program_ = gl::Program("penumbra_wedges_owners", {kOwnerVertex, "", kOwnerFragment});
@@ -157,12 +157,12 @@ class PenumbraWedges final : public Technique {
     glViewport(0, 0, in.width, in.height);
     {
       auto pass = timer.scope("stencil");
-      volume::begin_stencil_count(offset_);
+      shadow_volume::begin_stencil_count(offset_);
       for (const bool zfail : {false, true}) {
-        volume::set_stencil_ops(zfail);
+        shadow_volume::set_stencil_ops(zfail);
         wedges_.volumes().draw(in, zfail);
       }
-      volume::end_stencil_count();
+      shadow_volume::end_stencil_count();
     }
     {
       auto pass = timer.scope("owners");
@@ -184,19 +184,19 @@ class PenumbraWedges final : public Technique {
       glBindFramebuffer(GL_FRAMEBUFFER, delta_framebuffer_.get());
       const std::array<float, 4> zero{0.0f, 0.0f, 0.0f, 0.0f};
       glClearBufferfv(GL_COLOR, 0, zero.data());
-      wedge::begin_hull_draw();
+      begin_hull_draw();
       glEnable(GL_BLEND);
       glBlendEquation(GL_FUNC_ADD);
       glBlendFunc(GL_ONE, GL_ONE);
       wedge_program_.use();
-      wedge::set_wedge_uniforms(wedge_program_, wedges_.frame(), in.view_projection);
+      set_wedge_uniforms(wedge_program_, wedges_.frame(), in.view_projection);
       glBindTextureUnit(0, in.gbuffer_position);
       glBindTextureUnit(1, in.visibility_texture);
       glBindTextureUnit(2, owners_.get());
       wedges_.stream().bind();
-      wedge::WedgeStream::draw({0, uint32_t(wedges_.batch().indices.size())});
+      WedgeStream::draw({0, uint32_t(wedges_.batch().indices.size())});
       glDisable(GL_BLEND);
-      wedge::end_hull_draw();
+      end_hull_draw();
     }
     auto pass = timer.scope("combine");
     glBindFramebuffer(GL_FRAMEBUFFER, in.visibility_framebuffer);
@@ -243,7 +243,7 @@ class PenumbraWedges final : public Technique {
   }
 
   float offset_;
-  wedge::SilhouetteWedges wedges_;
+  SilhouetteWedges wedges_;
   gl::Program umbra_;
   gl::Program wedge_program_;
   gl::Program combine_;
@@ -258,7 +258,7 @@ class PenumbraWedges final : public Technique {
 
 }  // namespace
 
-std::vector<ParamSpec> wedge::umbra_params() {
+std::vector<ParamSpec> umbra_params() {
   std::vector<ParamSpec> params{
       choice_param("mode", "zfail", {"zpass", "zfail", "auto"},
                    "umbra volumes: zpass counts in front of the surface; zfail behind (robust); "
@@ -266,24 +266,26 @@ std::vector<ParamSpec> wedge::umbra_params() {
                    "plane"),
       float_param("offset", 1.0, -1e6, 1e6,
                   "glPolygonOffset units pushing umbra volume faces away from the camera")};
-  for (ParamSpec& spec : volume::silhouette_params(
+  for (ParamSpec& spec : shadow_volume::silhouette_params(
            "the light centre's silhouette (shadow_volume's modes, Mattausch et al. 2012); the "
            "wedges follow the same loops"))
     params.push_back(std::move(spec));
   return params;
 }
 
-TechniqueInfo wedge::penumbra_wedges_info() {
-  return {"penumbra_wedges",
-          "penumbra_wedge",
+TechniqueInfo penumbra_wedges_info() {
+  return {
+      .name = "penumbra_wedges",
+      .family = "penumbra_wedge",
+      .summary =
           "soft shadow volumes (Akenine-Möller & Assarsson 2002): an umbra from the light centre's "
           "shadow volumes, then one wedge per silhouette edge whose fragments add the light area "
           "that the edge, projected from the point, uncovers or covers (analytic clipping to the "
           "rectangle)",
-          Needs{need::kRectangularLight, need::kClosedCasters, need::kOpaqueCasters,
-                need::kCasterEdges},
-          umbra_params(),
-          [](const Params& p) { return std::make_unique<PenumbraWedges>(p); }};
+      .needs = Needs{need::kRectangularLight, need::kClosedCasters, need::kOpaqueCasters,
+                     need::kCasterEdges},
+      .params = umbra_params(),
+      .create = [](const Params& p) { return std::make_unique<PenumbraWedges>(p); }};
 }
 
-}  // namespace sb
+}  // namespace sb::techniques::penumbra_wedge

@@ -52,7 +52,7 @@
 #include "plugin/registry.h"
 #include "shadow_volume/caster_volumes.h"
 
-namespace sb {
+namespace sb::techniques::penumbra_wedge {
 namespace {
 
 // Quadrants q = 0..3: signs (+,+), (−,+), (−,−), (+,−). Mid-sides m = 0..3:
@@ -238,12 +238,11 @@ class PenumbraWedgesBlend final : public Technique {
 
   void prepare(const FrameInputs& in) override {
     wedges_.prepare(in);
-    const std::string header =
-        std::string("#version 450 core\n") + wedge::kWedgeGlsl + kQuadrantGlsl;
+    const std::string header = std::string("#version 450 core\n") + kWedgeGlsl + kQuadrantGlsl;
     silhouette_program_ = gl::Program("penumbra_wedges_blend_silhouette",
-                                      {wedge::kWedgeVertex, "", header + kSilhouetteMain});
+                                      {kWedgeVertex, "", header + kSilhouetteMain});
     std::string merge = kMergeFragment;
-    merge.insert(merge.find('\n') + 1, std::string(kQuadrantGlsl) + wedge::kStencilCountGlsl);
+    merge.insert(merge.find('\n') + 1, std::string(kQuadrantGlsl) + kStencilCountGlsl);
     merge_ = gl::Program("penumbra_wedges_blend_merge", {gl::kFullscreenVertexShader, "", merge});
     resolve_ = gl::Program("penumbra_wedges_blend_resolve",
                            {gl::kFullscreenVertexShader, "", kResolveFragment});
@@ -260,7 +259,7 @@ class PenumbraWedgesBlend final : public Technique {
         gl::make_framebuffer({accumulated_[0].get(), accumulated_[1].get(), accumulated_[2].get(),
                               accumulated_[3].get(), accumulated_[4].get()},
                              0);
-    stencil_view_ = wedge::make_stencil_view(in.depth_stencil);
+    stencil_view_ = make_stencil_view(in.depth_stencil);
     gl::throw_if_errors("penumbra_wedges_blend prepare");
   }
 
@@ -275,7 +274,7 @@ class PenumbraWedgesBlend final : public Technique {
       // What every silhouette's passes share: uniforms, and the textures on
       // the units the programs read (a program never reads the targets it
       // draws into).
-      wedge::set_wedge_uniforms(silhouette_program_, wedges_.frame(), in.view_projection);
+      set_wedge_uniforms(silhouette_program_, wedges_.frame(), in.view_projection);
       merge_.set("half_size", glm::vec2(wedges_.frame().half_width, wedges_.frame().half_height));
       glBindTextureUnit(0, in.gbuffer_position);
       for (int k = 0; k < 7; ++k)
@@ -308,7 +307,7 @@ class PenumbraWedgesBlend final : public Technique {
   // The screen rectangle (x, y, width, height) of a silhouette's wedge
   // hulls, which hold its umbra too: the whole screen when a hull vertex
   // lies behind the camera; false when empty or off screen.
-  bool screen_rectangle(const FrameInputs& in, const wedge::IndexRange& wedges,
+  bool screen_rectangle(const FrameInputs& in, const IndexRange& wedges,
                         std::array<int, 4>& scissor) const {
     if (wedges.count == 0) {  // its umbra alone (a point light): wherever it falls
       scissor = {0, 0, in.width, in.height};
@@ -348,11 +347,11 @@ class PenumbraWedgesBlend final : public Technique {
     for (int k = 0; k < kSilhouetteTargets; ++k)
       glClearBufferfv(GL_COLOR, k, k < 3 ? zero.data() : empty.data());
     // This silhouette's umbra alone, in the stencil.
-    volume::begin_stencil_count(offset_);
+    shadow_volume::begin_stencil_count(offset_);
     wedges_.volumes().draw_caster(in, caster);
-    volume::end_stencil_count();
+    shadow_volume::end_stencil_count();
     // Its wedges.
-    wedge::begin_hull_draw();
+    begin_hull_draw();
     for (int k = 0; k < kSilhouetteTargets; ++k) {
       glEnablei(GL_BLEND, GLuint(k));
       glBlendEquationi(GLuint(k), k < 3 ? GL_FUNC_ADD : GL_MAX);
@@ -362,9 +361,9 @@ class PenumbraWedgesBlend final : public Technique {
     glDisable(GL_STENCIL_TEST);
     silhouette_program_.use();
     wedges_.stream().bind();
-    wedge::WedgeStream::draw(wedges_.caster_wedges()[caster]);
+    WedgeStream::draw(wedges_.caster_wedges()[caster]);
     for (int k = 0; k < kSilhouetteTargets; ++k) glDisablei(GL_BLEND, GLuint(k));
-    wedge::end_hull_draw();
+    end_hull_draw();
     // Blend into the accumulated buffers, each pixel reading its own texels.
     glBindFramebuffer(GL_FRAMEBUFFER, accumulated_framebuffer_.get());
     glTextureBarrier();
@@ -374,7 +373,7 @@ class PenumbraWedgesBlend final : public Technique {
   }
 
   float offset_;
-  wedge::SilhouetteWedges wedges_;
+  SilhouetteWedges wedges_;
   gl::Program silhouette_program_;
   gl::Program merge_;
   gl::Program resolve_;
@@ -387,16 +386,17 @@ class PenumbraWedgesBlend final : public Technique {
 
 }  // namespace
 
-TechniqueInfo wedge::penumbra_wedges_blend_info() {
-  return {"penumbra_wedges_blend",
-          "penumbra_wedge",
-          "penumbra-wedge blending (Forest, Barthe & Paulin 2006): each silhouette's wedges "
-          "into its own buffers (occluded area and bounding rectangle per quadrant of the "
-          "light), blended with an estimate of the overlap instead of summed",
-          Needs{need::kRectangularLight, need::kClosedCasters, need::kOpaqueCasters,
-                need::kCasterEdges},
-          umbra_params(),
-          [](const Params& p) { return std::make_unique<PenumbraWedgesBlend>(p); }};
+TechniqueInfo penumbra_wedges_blend_info() {
+  return {.name = "penumbra_wedges_blend",
+          .family = "penumbra_wedge",
+          .summary =
+              "penumbra-wedge blending (Forest, Barthe & Paulin 2006): each silhouette's wedges "
+              "into its own buffers (occluded area and bounding rectangle per quadrant of the "
+              "light), blended with an estimate of the overlap instead of summed",
+          .needs = Needs{need::kRectangularLight, need::kClosedCasters, need::kOpaqueCasters,
+                         need::kCasterEdges},
+          .params = umbra_params(),
+          .create = [](const Params& p) { return std::make_unique<PenumbraWedgesBlend>(p); }};
 }
 
-}  // namespace sb
+}  // namespace sb::techniques::penumbra_wedge

@@ -1,6 +1,6 @@
 #include "penumbra_wedge/silhouette_wedges.h"
 
-namespace sb::wedge {
+namespace sb::techniques::penumbra_wedge {
 
 using core::AreaLight;
 using core::Bounds;
@@ -8,8 +8,8 @@ using core::Params;
 using plugin::FrameInputs;
 
 SilhouetteWedges::SilhouetteWedges(const Params& p)
-    : volumes_(volume::count_mode_from_string(p.get_string("mode")), /*cpu=*/true,
-               volume::silhouette_settings(p)) {}
+    : volumes_(shadow_volume::count_mode_from_string(p.get_string("mode")), /*cpu=*/true,
+               shadow_volume::silhouette_settings(p)) {}
 
 void SilhouetteWedges::prepare(const FrameInputs& in) {
   volumes_.prepare(in);
@@ -81,4 +81,4 @@ float stencil_count(usampler2D stencil, ivec2 pixel) {
 }
 )";
 
-}  // namespace sb::wedge
+}  // namespace sb::techniques::penumbra_wedge

@@ -12,7 +12,7 @@
 #include "plugin/technique.h"
 #include "shadow_volume/caster_volumes.h"
 
-namespace sb::wedge {
+namespace sb::techniques::penumbra_wedge {
 
 class SilhouetteWedges {
  public:
@@ -22,7 +22,7 @@ class SilhouetteWedges {
   void build(const plugin::FrameInputs& in, gl::PassTimer& timer);
 
   const LightFrame& frame() const { return frame_; }
-  volume::CasterVolumes& volumes() { return volumes_; }
+  shadow_volume::CasterVolumes& volumes() { return volumes_; }
   const WedgeBatch& batch() const { return batch_; }
   // Per caster (volumes().casters()' order): its wedges' indices; their
   // vertices have the same numbers (every index is its own vertex).
@@ -30,7 +30,7 @@ class SilhouetteWedges {
   const WedgeStream& stream() const { return stream_; }
 
  private:
-  volume::CasterVolumes volumes_;
+  shadow_volume::CasterVolumes volumes_;
   LightFrame frame_;
   WedgeBatch batch_;
   std::vector<IndexRange> caster_wedges_;
@@ -51,4 +51,4 @@ gl::Texture make_stencil_view(GLuint depth_stencil);
 // GLSL: the signed count from such a view's texel.
 extern const char* const kStencilCountGlsl;
 
-}  // namespace sb::wedge
+}  // namespace sb::techniques::penumbra_wedge

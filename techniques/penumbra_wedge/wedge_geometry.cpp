@@ -6,7 +6,7 @@
 #include <tuple>
 #include <utility>
 
-namespace sb::wedge {
+namespace sb::techniques::penumbra_wedge {
 
 using core::Bounds;
 
@@ -244,7 +244,8 @@ bool append_wedge(const LightFrame& frame, const glm::vec3& a, const glm::vec3& 
   return true;
 }
 
-IndexRange append_silhouette_wedges(const LightFrame& frame, const volume::Silhouette& silhouette,
+IndexRange append_silhouette_wedges(const LightFrame& frame,
+                                    const shadow_volume::Silhouette& silhouette,
                                     const WedgeRange& range, float tag, WedgeBatch& out) {
   IndexRange r;
   r.first = uint32_t(out.indices.size());
@@ -256,4 +257,4 @@ IndexRange append_silhouette_wedges(const LightFrame& frame, const volume::Silho
   return r;
 }
 
-}  // namespace sb::wedge
+}  // namespace sb::techniques::penumbra_wedge

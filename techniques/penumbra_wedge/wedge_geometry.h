@@ -28,9 +28,7 @@
 #include "core/scene.h"
 #include "shadow_volume/silhouette.h"
 
-namespace sb::wedge {
-
-using shadow::LightFrame;
+namespace sb::techniques::penumbra_wedge {
 
 // One wedge as the fragment shader reads it (std430: five vec4).
 struct WedgeRecord {
@@ -98,7 +96,8 @@ struct IndexRange {
   uint32_t count = 0;
 };
 // Each record's a.w holds `tag`.
-IndexRange append_silhouette_wedges(const LightFrame& frame, const volume::Silhouette& silhouette,
+IndexRange append_silhouette_wedges(const LightFrame& frame,
+                                    const shadow_volume::Silhouette& silhouette,
                                     const WedgeRange& range, float tag, WedgeBatch& out);
 
-}  // namespace sb::wedge
+}  // namespace sb::techniques::penumbra_wedge

@@ -2,7 +2,7 @@
 
 #include <cstddef>
 
-namespace sb::wedge {
+namespace sb::techniques::penumbra_wedge {
 
 void WedgeStream::create() {
   vertices_ = gl::make_stream_buffer();
@@ -192,4 +192,4 @@ float beyond_area(vec2 a, vec2 b) {
 }
 )";
 
-}  // namespace sb::wedge
+}  // namespace sb::techniques::penumbra_wedge

@@ -6,7 +6,7 @@
 #include "gl/program.h"
 #include "penumbra_wedge/wedge_geometry.h"
 
-namespace sb::wedge {
+namespace sb::techniques::penumbra_wedge {
 
 class WedgeStream {
  public:
@@ -45,4 +45,4 @@ void set_wedge_uniforms(const gl::Program& program, const LightFrame& frame,
 // passed on flat.
 extern const char* const kWedgeVertex;
 
-}  // namespace sb::wedge
+}  // namespace sb::techniques::penumbra_wedge

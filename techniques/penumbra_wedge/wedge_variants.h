@@ -4,9 +4,9 @@
 
 #include "plugin/registry.h"
 
-namespace sb::wedge {
+namespace sb::techniques::penumbra_wedge {
 plugin::TechniqueInfo penumbra_wedges_info();
 plugin::TechniqueInfo penumbra_wedges_blend_info();
 // The umbra volumes' and silhouettes' parameters, which both share.
 std::vector<core::ParamSpec> umbra_params();
-}  // namespace sb::wedge
+}  // namespace sb::techniques::penumbra_wedge

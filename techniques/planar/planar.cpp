@@ -52,16 +52,12 @@
 #include "planar/projected_shadow.h"
 #include "plugin/registry.h"
 
-namespace sb {
+namespace sb::techniques::planar {
 
 using core::JobError;
 using gl::DrawInfo;
 
 namespace {
-
-using planar::kProjectFragment;
-using planar::kProjectVertex;
-using planar::planar_projection;
 
 // Reads the count of unshadowed light points in the visibility target itself
 // (after glTextureBarrier; each fragment reads only its own texel) and writes
@@ -79,7 +75,7 @@ void main() {
 class Planar final : public Technique {
  public:
   // points: (s, t) on the light; empty for the light's centre.
-  Planar(std::string name, shadow::LightSampleLayouts points)
+  Planar(std::string name, accumulation::LightSampleLayouts points)
       : name_(std::move(name)), points_(std::move(points)) {}
 
   void prepare(const FrameInputs& in) override {
@@ -172,44 +168,50 @@ class Planar final : public Technique {
   }
 
   std::string name_;
-  shadow::LightSampleLayouts points_;
+  accumulation::LightSampleLayouts points_;
   float tolerance_ = 0.0f;
   gl::Program project_;
   gl::Program resolve_;
 };
 
 }  // namespace
-}  // namespace sb
+}  // namespace sb::techniques::planar
 
 SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
   using namespace sb;
-  registry.add({"planar",
-                "planar",
-                "Blinn's projected shadow: casters flattened onto the receiver plane from the "
-                "light's centre; hard, on the plane only",
-                Needs{need::kPlanarReceiver, need::kOpaqueCasters, need::kCasterClosedness},
-                {},
-                [](const Params&) {
-                  return std::make_unique<Planar>("planar", shadow::LightSampleLayouts{});
-                }});
+  using namespace sb::techniques::planar;
   registry.add(
-      {"planar_soft",
-       "planar",
-       "N projected planar shadows from stratified points on the area light, averaged; on the "
-       "plane only",
-       Needs{need::kPlanarReceiver, need::kOpaqueCasters, need::kCasterClosedness},
-       {int_param("samples", 64, 1, 65536,
-                  "light points: an m×n grid of strata if N = m·n with n <= 2m, else the "
-                  "Hammersley set"),
-        bool_param("jitter", true,
-                   "jitter each point inside its stratum (Hammersley: one random toroidal shift)"),
-        int_param("seed", 1, 0, 2147483647, "jitter seed")},
-       [](const Params& p) {
+      {.name = "planar",
+       .family = "planar",
+       .summary = "Blinn's projected shadow: casters flattened onto the receiver plane from the "
+                  "light's centre; hard, on the plane only",
+       .needs = Needs{need::kPlanarReceiver, need::kOpaqueCasters, need::kCasterClosedness},
+       .params = {},
+       .create = [](const Params&) {
+         return std::make_unique<Planar>("planar", techniques::accumulation::LightSampleLayouts{});
+       }});
+  registry.add(
+      {.name = "planar_soft",
+       .family = "planar",
+       .summary =
+           "N projected planar shadows from stratified points on the area light, averaged; on the "
+           "plane only",
+       .needs = Needs{need::kPlanarReceiver, need::kOpaqueCasters, need::kCasterClosedness},
+       .params =
+           {int_param("samples", 64, 1, 65536,
+                      "light points: an m×n grid of strata if N = m·n with n <= 2m, else the "
+                      "Hammersley set"),
+            bool_param(
+                "jitter", true,
+                "jitter each point inside its stratum (Hammersley: one random toroidal shift)"),
+            int_param("seed", 1, 0, 2147483647, "jitter seed")},
+       .create = [](const Params& p) {
          // Where the points lie on the light, in its own (s, t): parameters
          // only, so computed here; placed in the world per frame.
          return std::make_unique<Planar>(
-             "planar_soft", shadow::light_sample_layouts(p.get_int("samples"), p.get_bool("jitter"),
-                                                         unsigned(p.get_int("seed"))));
+             "planar_soft",
+             techniques::accumulation::light_sample_layouts(
+                 p.get_int("samples"), p.get_bool("jitter"), unsigned(p.get_int("seed"))));
        }});
   registry.add(plateaus_info());
 }

@@ -57,7 +57,7 @@
 #include "planar/projected_shadow.h"
 #include "plugin/registry.h"
 
-namespace sb {
+namespace sb::techniques::planar {
 
 using core::JobError;
 using gl::DrawInfo;
@@ -134,12 +134,11 @@ class Plateaus final : public Technique {
   void prepare(const FrameInputs& in) override {
     if (!in.has_receiver_plane) throw JobError("plateaus: the scene has no planar receiver");
     tolerance_ = 1e-4f * std::max(in.scene->bounds().radius(), 1e-6f);
-    project_ =
-        gl::Program("plateaus_project", {planar::kProjectVertex, "", planar::kProjectFragment});
+    project_ = gl::Program("plateaus_project", {kProjectVertex, "", kProjectFragment});
     bands_ = gl::Program(
         "plateaus_bands",
-        {std::string("#version 450 core\n") + shadow::kSilhouetteBandVertexGlsl + kBandVertex, "",
-         std::string("#version 450 core\n") + shadow::kSilhouetteBandFragmentGlsl + kBandFragment});
+        {std::string("#version 450 core\n") + kSilhouetteBandVertexGlsl + kBandVertex, "",
+         std::string("#version 450 core\n") + kSilhouetteBandFragmentGlsl + kBandFragment});
     // The plane's own frame: scene geometry, not the light.
     const glm::vec3 n(in.receiver_plane);
     const glm::vec3 across = std::fabs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
@@ -173,8 +172,7 @@ class Plateaus final : public Technique {
         project_.set("receiver_plane", in.receiver_plane);
         project_.set("on_plane_tolerance", tolerance_);
         project_.set("darkening_value", 0.0f);
-        project_.set("shadow_projection",
-                     planar::planar_projection(in.receiver_plane, light.center));
+        project_.set("shadow_projection", planar_projection(in.receiver_plane, light.center));
         glDisable(GL_CULL_FACE);
         in.gpu->draw_casters([](const DrawInfo&) {});
         glDisable(GL_CLIP_DISTANCE0);
@@ -183,7 +181,7 @@ class Plateaus final : public Technique {
       const glm::vec2 hu = on_plane(light.half_u), hv = on_plane(light.half_v);
       // A light without area, or seen edge-on from the plane, has no penumbra here.
       const float area = std::fabs(hu.x * hv.y - hu.y * hv.x);
-      if (shadow::LightFrame(light).has_area() && area > 1e-12f * glm::dot(hu + hv, hu + hv)) {
+      if (LightFrame(light).has_area() && area > 1e-12f * glm::dot(hu + hv, hu + hv)) {
         bands_.use();
         bands_.set("view_projection", in.view_projection);
         bands_.set("light_center", light.center);
@@ -194,7 +192,7 @@ class Plateaus final : public Technique {
         bands_.set("plane_e2", e2_);
         bands_.set("light_hu", hu);
         bands_.set("light_hv", hv);
-        shadow::draw_silhouette_bands(in);
+        draw_silhouette_bands(in);
       }
     }
     glDisable(GL_BLEND);
@@ -215,15 +213,16 @@ class Plateaus final : public Technique {
 }  // namespace
 
 TechniqueInfo plateaus_info() {
-  return {"plateaus",
-          "planar",
-          "Haines's plateaus: the hard planar shadow plus penumbra bands on the receiver plane "
-          "around the light centre's silhouette edges, as wide as the occluder's height sets; "
-          "outer penumbra only",
-          Needs{need::kRectangularLight, need::kPlanarReceiver, need::kOpaqueCasters,
-                need::kSilhouetteEdges},
-          {},
-          [](const Params&) { return std::make_unique<Plateaus>(); }};
+  return {.name = "plateaus",
+          .family = "planar",
+          .summary =
+              "Haines's plateaus: the hard planar shadow plus penumbra bands on the receiver plane "
+              "around the light centre's silhouette edges, as wide as the occluder's height sets; "
+              "outer penumbra only",
+          .needs = Needs{need::kRectangularLight, need::kPlanarReceiver, need::kOpaqueCasters,
+                         need::kSilhouetteEdges},
+          .params = {},
+          .create = [](const Params&) { return std::make_unique<Plateaus>(); }};
 }
 
-}  // namespace sb
+}  // namespace sb::techniques::planar

@@ -1,7 +1,7 @@
 #pragma once
 #include "plugin/registry.h"
 
-namespace sb {
+namespace sb::techniques::planar {
 // Haines's plateaus (plateaus.cpp), registered by the planar family.
 plugin::TechniqueInfo plateaus_info();
-}  // namespace sb
+}  // namespace sb::techniques::planar

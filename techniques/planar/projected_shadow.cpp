@@ -1,6 +1,6 @@
 #include "planar/projected_shadow.h"
 
-namespace sb::planar {
+namespace sb::techniques::planar {
 
 const char* const kProjectVertex = R"(#version 450 core
 layout(location = 0) in vec3 position;
@@ -44,4 +44,4 @@ glm::mat4 planar_projection(const glm::vec4& plane, const glm::vec3& l) {
   return m;
 }
 
-}  // namespace sb::planar
+}  // namespace sb::techniques::planar

@@ -5,7 +5,7 @@
 // lies on the plane.
 #include <glm/glm.hpp>
 
-namespace sb::planar {
+namespace sb::techniques::planar {
 
 // Vertex shader: `position` (location 0) through `shadow_projection` (the
 // matrix below) and `view_projection`; gl_ClipDistance[0] clips the part of
@@ -18,4 +18,4 @@ extern const char* const kProjectFragment;
 // Blinn's projection onto n·x + d = 0 from the point l: M = (π·L) I − L πᵀ.
 glm::mat4 planar_projection(const glm::vec4& plane, const glm::vec3& l);
 
-}  // namespace sb::planar
+}  // namespace sb::techniques::planar

@@ -40,7 +40,7 @@
 #include "gl/debug.h"
 #include "shadow_map/shadow_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 namespace {
 
 // The lookup of space = "light": unit 4 holds the blurred mask.
@@ -207,13 +207,15 @@ TechniqueInfo blurred_visibility_info() {
       int_param("radius", 4, 1, (kMaxKernelTaps - 1) / 2,
                 "Gaussian radius in pixels (screen) or map texels (light); σ = radius / 2")};
   for (auto& p : depth_map_params(2048)) params.push_back(std::move(p));
-  return {"blurred_visibility",
-          "shadow_map",
+  return {
+      .name = "blurred_visibility",
+      .family = "shadow_map",
+      .summary =
           "the hard shadow map's visibility blurred by a fixed-radius Gaussian in screen or light "
           "space (Shypula 2008 §5.2)",
-          Needs{need::kCasterClosedness},
-          std::move(params),
-          [](const Params& p) { return std::make_unique<BlurredVisibility>(p); }};
+      .needs = Needs{need::kCasterClosedness},
+      .params = std::move(params),
+      .create = [](const Params& p) { return std::make_unique<BlurredVisibility>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

@@ -5,28 +5,12 @@
 
 #include "gl/debug.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 
 using gl::DrawInfo;
 using gl::GpuScene;
 
 namespace {
-
-const char* const kVertex = R"(#version 450 core
-layout(location = 0) in vec3 position;
-layout(location = 1) in vec3 normal;
-layout(location = 2) in vec2 uv;
-uniform mat4 light_view_projection;
-out vec3 v_world;
-out vec3 v_normal;
-out vec2 v_uv;
-void main() {
-  v_world = position;
-  v_normal = normal;
-  v_uv = uv;
-  gl_Position = light_view_projection * vec4(position, 1.0);
-}
-)";
 
 // The channels as functions of the fragment's world point and normal.
 const char* const kChannels = R"(#version 450 core
@@ -66,8 +50,8 @@ void mask() {}
 ExtendedLightMap::Programs programs(const std::string& name, const char* body) {
   const std::string opaque = std::string(kChannels) + kNoMask + body;
   const std::string masked = std::string(kChannels) + kMask + body;
-  return {gl::Program(name, {kVertex, "", opaque}),
-          gl::Program(name + "_masked", {kVertex, "", masked})};
+  return {gl::Program(name, {gl::kSceneVertexShader, "", opaque}),
+          gl::Program(name + "_masked", {gl::kSceneVertexShader, "", masked})};
 }
 
 GLenum depth_format(ShadowChannel s) {
@@ -90,8 +74,9 @@ void main() { mask(); color = vec4(0.0, 0.0, 0.0, depth01()); }
 void main() { mask(); float e = irradiance(); color = vec4(e, e, e, 0.0); }
 )");
   // Opaque meshes need no fragment shader for depth alone.
-  depth_only_ = {gl::Program("elm_depth", {kVertex, "", ""}),
-                 gl::Program("elm_depth_masked", {kVertex, "", std::string(kChannels) + kMask + R"(
+  depth_only_ = {gl::Program("elm_depth", {gl::kSceneVertexShader, "", ""}),
+                 gl::Program("elm_depth_masked",
+                             {gl::kSceneVertexShader, "", std::string(kChannels) + kMask + R"(
 void main() { mask(); }
 )"})};
   gl::throw_if_errors("creating an extended light map");
@@ -112,7 +97,7 @@ void ExtendedLightMap::draw(const GpuScene& gpu, const LightFrustum& f, const Pr
     glPolygonOffset(settings_.bias.slope, settings_.bias.constant);
   }
   for (const gl::Program* program : {&programs.opaque, &programs.masked}) {
-    program->set_if_active("light_view_projection", f.view_projection);
+    program->set_if_active("view_projection", f.view_projection);
     program->set_if_active("light_view", f.view);
     program->set_if_active("light_point", f.eye);
     program->set_if_active("light_depth_range", glm::vec2(f.near_plane, f.far_plane));
@@ -174,4 +159,4 @@ float alpha8_lit(vec3 t, float bias_steps) {
 }
 )";
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

@@ -27,7 +27,7 @@
 #include "gl/objects.h"
 #include "gl/program.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 
 enum class ShadowChannel { Alpha8, Depth24, Depth32f };
 enum class LightChannel { None, SamePass, SeparatePass };
@@ -74,4 +74,4 @@ class ExtendedLightMap {
 // `float alpha8_lit(vec3 t, float bias_steps)`, the 8-bit comparison.
 extern const char* const kAlpha8LookupGlsl;
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

@@ -16,7 +16,7 @@
 #include "shadow_map/extended_light_map.h"
 #include "shadow_map/shadow_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 namespace {
 
 const char* const kDepthLookup = R"(
@@ -90,27 +90,31 @@ class ExtendedLightMaps final : public Technique {
 
 TechniqueInfo extended_light_maps_info() {
   return {
-      "extended_light_maps",
-      "shadow_map",
-      "extended light maps: shadow and light channels in one pass from the light, depth in the "
-      "8-bit alpha channel or a 24/32-bit depth buffer (Brabec & Seidel 2000)",
-      Needs{need::kCasterClosedness},
-      {as_map_size(int_param("size", 1024, 16, 16384, "light-map side in texels")),
-       choice_param("shadow_channel", "alpha8", {"alpha8", "24", "32f"},
-                    "where the depth is compared: 8-bit linear depth in the alpha channel (as "
-                    "published), or a 24-bit or 32-bit float depth buffer"),
-       choice_param("light_channel", "same_pass", {"same_pass", "separate_pass", "none"},
-                    "the light channel (irradiance) written in the shadow channel's pass, in a "
-                    "second pass over the scene, or not at all"),
-       float_param("alpha_bias", 1.0, 0.0, 255.0,
-                   "8-bit steps a receiver may lie behind the stored depth and stay lit "
-                   "(alpha8 only)"),
-       float_param("constant_bias", 4.0, -1e6, 1e6, "glPolygonOffset units (map pass)"),
-       float_param("slope_bias", 2.0, -1e3, 1e3, "glPolygonOffset factor (map pass)"),
-       choice_param("cull", "none", {"none", "back", "front"},
-                    "faces culled when rendering the map, closed casters only (none: every face "
-                    "the light sees, as published)")},
-      [](const Params& p) { return std::make_unique<ExtendedLightMaps>(p); }};
+      .name = "extended_light_maps",
+      .family = "shadow_map",
+      .summary =
+          "extended light maps: shadow and light channels in one pass from the light, depth in the "
+          "8-bit alpha channel or a 24/32-bit depth buffer (Brabec & Seidel 2000)",
+      .needs = Needs{need::kCasterClosedness},
+      .params = {as_map_size(int_param("size", 1024, 16, 16384, "light-map side in texels")),
+                 choice_param(
+                     "shadow_channel", "alpha8", {"alpha8", "24", "32f"},
+                     "where the depth is compared: 8-bit linear depth in the alpha channel (as "
+                     "published), or a 24-bit or 32-bit float depth buffer"),
+                 choice_param(
+                     "light_channel", "same_pass", {"same_pass", "separate_pass", "none"},
+                     "the light channel (irradiance) written in the shadow channel's pass, in a "
+                     "second pass over the scene, or not at all"),
+                 float_param("alpha_bias", 1.0, 0.0, 255.0,
+                             "8-bit steps a receiver may lie behind the stored depth and stay lit "
+                             "(alpha8 only)"),
+                 float_param("constant_bias", 4.0, -1e6, 1e6, "glPolygonOffset units (map pass)"),
+                 float_param("slope_bias", 2.0, -1e3, 1e3, "glPolygonOffset factor (map pass)"),
+                 choice_param(
+                     "cull", "none", {"none", "back", "front"},
+                     "faces culled when rendering the map, closed casters only (none: every face "
+                     "the light sees, as published)")},
+      .create = [](const Params& p) { return std::make_unique<ExtendedLightMaps>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

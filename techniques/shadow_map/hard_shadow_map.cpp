@@ -10,19 +10,19 @@
 #include "common/map_lookup.h"
 #include "shadow_map/shadow_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 
 TechniqueInfo hard_shadow_map_info() {
-  return {"shadow_map",
-          "shadow_map",
-          "hard shadow map from the light's centre (Williams 1978)",
-          Needs{need::kCasterClosedness},
-          depth_map_params(2048),
-          [](const Params& p) {
+  return {.name = "shadow_map",
+          .family = "shadow_map",
+          .summary = "hard shadow map from the light's centre (Williams 1978)",
+          .needs = Needs{need::kCasterClosedness},
+          .params = depth_map_params(2048),
+          .create = [](const Params& p) {
             return std::make_unique<SingleMapTechnique>(
                 p, "shadow_map", "float lit_fraction(vec3 t) { return texture(shadow_map, t); }\n",
                 /*linear_compare=*/false);
           }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

@@ -41,7 +41,7 @@
 #include "shadow_map/linear_light_skins.h"
 #include "shadow_map/shadow_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 namespace {
 
 const char* const kSkinVertex = R"(#version 450 core
@@ -329,14 +329,17 @@ TechniqueInfo heidrich_linear_info() {
   params.push_back(float_param("lit", 0.5, 0.0, 1.0,
                                "visibility of a point seen from one end only where no skin "
                                "falls (the visibility maps' clear value; 0.5 as in the survey)"));
-  return {"heidrich_linear", "shadow_map",
-          "soft shadow maps for linear lights: depth maps at the segment's ends, their "
-          "discontinuities' skins Gouraud-shaded from the other end into visibility maps "
-          "(Heidrich, Brabec & Seidel 2000)",
-          // Closedness decides which casters `cull` may cull: asked for
+  return {.name = "heidrich_linear",
+          .family = "shadow_map",
+          .summary =
+              "soft shadow maps for linear lights: depth maps at the segment's ends, their "
+              "discontinuities' skins Gouraud-shaded from the other end into visibility maps "
+              "(Heidrich, Brabec & Seidel 2000)",
+          .needs =  // Closedness decides which casters `cull` may cull: asked for
           // always, so that the maps do not depend on what else the plan runs.
-          Needs{need::kLinearLight, need::kCasterClosedness}, std::move(params),
-          [](const Params& p) { return std::make_unique<HeidrichLinear>(p); }};
+          Needs{need::kLinearLight, need::kCasterClosedness},
+          .params = std::move(params),
+          .create = [](const Params& p) { return std::make_unique<HeidrichLinear>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

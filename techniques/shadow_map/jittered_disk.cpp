@@ -6,7 +6,7 @@
 
 #include "core/counter_rng.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 
 using core::uniform_float;
 
@@ -22,4 +22,4 @@ std::vector<glm::vec2> jittered_disk(int n, unsigned seed) {
   return points;
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

@@ -12,8 +12,8 @@
 #include <glm/vec2.hpp>
 #include <vector>
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 
 std::vector<glm::vec2> jittered_disk(int n, unsigned seed);
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

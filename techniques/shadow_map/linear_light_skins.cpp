@@ -5,7 +5,7 @@
 
 #include "common/depth_cliffs.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 
 size_t append_linear_light_skins(const std::vector<float>& depth, int size, const LightFrustum& f,
                                  float threshold, float reach, std::vector<SkinVertex>& out) {
@@ -29,4 +29,4 @@ size_t append_linear_light_skins(const std::vector<float>& depth, int size, cons
   return count;
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

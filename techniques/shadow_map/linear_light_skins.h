@@ -24,7 +24,7 @@
 
 #include "common/light_frustum.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 
 struct SkinVertex {
   glm::vec4 position;  // world, w = 1
@@ -37,4 +37,4 @@ struct SkinVertex {
 size_t append_linear_light_skins(const std::vector<float>& depth, int size, const LightFrustum& f,
                                  float threshold, float reach, std::vector<SkinVertex>& out);
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

@@ -15,7 +15,7 @@
 #include "shadow_map/jittered_disk.h"
 #include "shadow_map/shadow_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 namespace {
 
 const char* const kJitteredPcf = R"(
@@ -77,20 +77,20 @@ TechniqueInfo pcf_jitter_info() {
       int_param("seed", 1, 0, 2147483647, "jitter of the tap positions"),
       receiver_plane_param()};
   for (auto& p : depth_map_params(2048)) params.push_back(std::move(p));
-  TechniqueInfo info{"pcf_jitter",
-                     "shadow_map",
-                     "jittered-disk percentage-closer filtering with an early-out (Shypula 2008)",
-                     Needs{need::kCasterClosedness},
-                     std::move(params),
-                     [](const Params& p) { return std::make_unique<JitteredPcf>(p); }};
-  info.check = [](const Params& p) -> std::pair<std::string, std::string> {
-    const int taps = p.get_int("taps"), early = p.get_int("early_out_taps");
-    if (early >= taps)
-      return {"early_out_taps", "expected fewer early-out taps than taps (" + std::to_string(taps) +
-                                    "), found " + std::to_string(early)};
-    return {};
-  };
-  return info;
+  return {.name = "pcf_jitter",
+          .family = "shadow_map",
+          .summary = "jittered-disk percentage-closer filtering with an early-out (Shypula 2008)",
+          .needs = Needs{need::kCasterClosedness},
+          .params = std::move(params),
+          .create = [](const Params& p) { return std::make_unique<JitteredPcf>(p); },
+          .check = [](const Params& p) -> std::pair<std::string, std::string> {
+            const int taps = p.get_int("taps"), early = p.get_int("early_out_taps");
+            if (early >= taps)
+              return {"early_out_taps", "expected fewer early-out taps than taps (" +
+                                            std::to_string(taps) + "), found " +
+                                            std::to_string(early)};
+            return {};
+          }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

@@ -10,7 +10,7 @@
 #include "common/map_lookup.h"
 #include "shadow_map/shadow_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 namespace {
 
 const char* const kKernelPcf = R"(
@@ -61,21 +61,23 @@ std::vector<ParamSpec> kernel_pcf_params(int default_k, bool gauss) {
 }  // namespace
 
 TechniqueInfo pcf_box_info() {
-  return {"pcf_box",
-          "shadow_map",
-          "box percentage-closer filtering, k×k taps (Reeves et al. 1987)",
-          Needs{need::kCasterClosedness},
-          kernel_pcf_params(3, false),
-          [](const Params& p) { return std::make_unique<KernelPcf>(p, KernelShape::Box); }};
+  return {
+      .name = "pcf_box",
+      .family = "shadow_map",
+      .summary = "box percentage-closer filtering, k×k taps (Reeves et al. 1987)",
+      .needs = Needs{need::kCasterClosedness},
+      .params = kernel_pcf_params(3, false),
+      .create = [](const Params& p) { return std::make_unique<KernelPcf>(p, KernelShape::Box); }};
 }
 
 TechniqueInfo pcf_gauss_info() {
-  return {"pcf_gauss",
-          "shadow_map",
-          "Gaussian-weighted percentage-closer filtering, k×k taps",
-          Needs{need::kCasterClosedness},
-          kernel_pcf_params(5, true),
-          [](const Params& p) { return std::make_unique<KernelPcf>(p, KernelShape::Gauss); }};
+  return {
+      .name = "pcf_gauss",
+      .family = "shadow_map",
+      .summary = "Gaussian-weighted percentage-closer filtering, k×k taps",
+      .needs = Needs{need::kCasterClosedness},
+      .params = kernel_pcf_params(5, true),
+      .create = [](const Params& p) { return std::make_unique<KernelPcf>(p, KernelShape::Gauss); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

@@ -14,7 +14,7 @@
 #include "common/map_lookup.h"
 #include "shadow_map/shadow_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 namespace {
 
 const char* const kPcss = R"(
@@ -103,13 +103,14 @@ TechniqueInfo pcss_info() {
   // 1024² map: penumbra RMSE 0.194 without, 0.155 with).
   params.back().default_value = true;
   for (auto& p : depth_map_params(2048)) params.push_back(std::move(p));
-  return {"pcss",
-          "shadow_map",
-          "percentage-closer soft shadows: blocker search, then PCF as wide as the penumbra "
-          "(Fernando 2005)",
-          Needs{need::kRectangularLight, need::kCasterClosedness},
-          std::move(params),
-          [](const Params& p) { return std::make_unique<Pcss>(p); }};
+  return {.name = "pcss",
+          .family = "shadow_map",
+          .summary =
+              "percentage-closer soft shadows: blocker search, then PCF as wide as the penumbra "
+              "(Fernando 2005)",
+          .needs = Needs{need::kRectangularLight, need::kCasterClosedness},
+          .params = std::move(params),
+          .create = [](const Params& p) { return std::make_unique<Pcss>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

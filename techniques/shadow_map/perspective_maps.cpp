@@ -16,7 +16,7 @@
 #include "shadow_map/perspective_warp.h"
 #include "shadow_map/shadow_map_variants.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 namespace {
 
 const char* const kHardCompare = "float lit_fraction(vec3 t) { return texture(shadow_map, t); }\n";
@@ -57,13 +57,15 @@ class PerspectiveMap : public SingleMapTechnique {
 }  // namespace
 
 TechniqueInfo psm_info() {
-  return {"psm",
-          "shadow_map",
+  return {
+      .name = "psm",
+      .family = "shadow_map",
+      .summary =
           "perspective shadow map: the hard map in the camera's post-perspective space, with the "
           "inverted projection for lights behind the camera (Stamminger & Drettakis 2002)",
-          Needs{need::kCasterClosedness},
-          warped_map_params(),
-          [](const Params& p) { return std::make_unique<PerspectiveMap>(p, "psm", 1.0f); }};
+      .needs = Needs{need::kCasterClosedness},
+      .params = warped_map_params(),
+      .create = [](const Params& p) { return std::make_unique<PerspectiveMap>(p, "psm", 1.0f); }};
 }
 
 TechniqueInfo lispsm_info() {
@@ -71,15 +73,16 @@ TechniqueInfo lispsm_info() {
   params.push_back(float_param("n_scale", 1.0, 0.01, 1e4,
                                "the warp's near distance over the paper's n_opt (larger: nearer "
                                "to the uniform shadow_map)"));
-  return {"lispsm",
-          "shadow_map",
-          "light-space perspective shadow map with the paper's n_opt (Wimmer, Scherzer & "
-          "Purgathofer 2004)",
-          Needs{need::kCasterClosedness},
-          std::move(params),
-          [](const Params& p) {
+  return {.name = "lispsm",
+          .family = "shadow_map",
+          .summary =
+              "light-space perspective shadow map with the paper's n_opt (Wimmer, Scherzer & "
+              "Purgathofer 2004)",
+          .needs = Needs{need::kCasterClosedness},
+          .params = std::move(params),
+          .create = [](const Params& p) {
             return std::make_unique<PerspectiveMap>(p, "lispsm", p.get_float("n_scale"));
           }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

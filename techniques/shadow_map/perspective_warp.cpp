@@ -10,7 +10,7 @@
 #include "common/convex_body.h"
 #include "core/error.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 
 using core::Bounds;
 using core::JobError;
@@ -310,4 +310,4 @@ LightFrustum fit_lispsm(const Scene& scene, const std::vector<Bounds>& boxes,
   return f;
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

@@ -24,7 +24,7 @@
 #include "common/light_frustum.h"
 #include "core/scene.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 
 struct CameraView {
   glm::mat4 view{1.0f};
@@ -51,4 +51,4 @@ LightFrustum fit_psm(const core::Scene& scene, const std::vector<core::Bounds>& 
 LightFrustum fit_lispsm(const core::Scene& scene, const std::vector<core::Bounds>& boxes,
                         const CameraView& camera, float n_scale, WarpInfo* info = nullptr);
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

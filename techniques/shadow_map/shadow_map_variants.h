@@ -1,7 +1,7 @@
 #pragma once
 #include "plugin/registry.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 plugin::TechniqueInfo hard_shadow_map_info();
 plugin::TechniqueInfo pcf_box_info();
 plugin::TechniqueInfo pcf_gauss_info();
@@ -12,4 +12,4 @@ plugin::TechniqueInfo psm_info();
 plugin::TechniqueInfo lispsm_info();
 plugin::TechniqueInfo extended_light_maps_info();
 plugin::TechniqueInfo heidrich_linear_info();
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

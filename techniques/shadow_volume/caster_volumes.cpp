@@ -8,7 +8,7 @@
 #include "plugin/need_data.h"
 #include "shadow_volume/near_plane_pyramid.h"
 
-namespace sb::volume {
+namespace sb::techniques::shadow_volume {
 
 using core::choice_param;
 using core::float_param;
@@ -195,4 +195,4 @@ void CasterVolumes::draw_caster(const FrameInputs& in, size_t caster, const gl::
   glDrawArrays(GL_TRIANGLES, c.range.first, c.zfail ? c.range.sides + c.range.caps : c.range.sides);
 }
 
-}  // namespace sb::volume
+}  // namespace sb::techniques::shadow_volume

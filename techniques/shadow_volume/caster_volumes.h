@@ -19,7 +19,7 @@
 #include "shadow_volume/silhouette.h"
 #include "shadow_volume/volume_mesh.h"
 
-namespace sb::volume {
+namespace sb::techniques::shadow_volume {
 
 // The parameters that the volume techniques share, with one help text for
 // the silhouette's mode: "silhouette", "epsilon" and "smooth_offset".
@@ -107,4 +107,4 @@ class CasterVolumes {
   gl::VertexArray vao_;
 };
 
-}  // namespace sb::volume
+}  // namespace sb::techniques::shadow_volume

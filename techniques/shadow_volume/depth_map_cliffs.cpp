@@ -7,7 +7,7 @@
 
 #include "common/depth_cliffs.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_volume {
 namespace {
 
 // Watertight by construction: every vertex is a function of a texel corner
@@ -134,4 +134,4 @@ size_t append_depth_map_cliffs(const std::vector<float>& depth, int size, const 
   return cliffs;
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_volume

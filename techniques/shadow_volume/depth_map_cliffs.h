@@ -19,7 +19,7 @@
 
 #include "common/light_frustum.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_volume {
 
 // `depth`: the window depths of a size×size map, row-major, row 0 at
 // v = 0 (as glGetTextureImage returns them); 1 where no occluder was drawn.
@@ -30,4 +30,4 @@ namespace sb::shadow {
 size_t append_depth_map_cliffs(const std::vector<float>& depth, int size, const LightFrustum& f,
                                float threshold, float reach, std::vector<glm::vec4>& out);
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_volume

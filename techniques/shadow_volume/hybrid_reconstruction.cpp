@@ -28,7 +28,7 @@
 #include "shadow_volume/caster_volumes.h"
 #include "shadow_volume/depth_map_cliffs.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_volume {
 namespace {
 
 class HybridReconstruction final : public Technique {
@@ -40,10 +40,10 @@ class HybridReconstruction final : public Technique {
     bounds_ = in.scene->bounds();  // the scene's, not the light's: immutable
     map_ = DepthMap(settings_.size, settings_.depth_format);
     depths_.assign(size_t(settings_.size) * size_t(settings_.size), 1.0f);
-    program_ = gl::Program("hybrid_reconstruction_cliffs", {volume::kVolumeVertex, "", ""});
+    program_ = gl::Program("hybrid_reconstruction_cliffs", {kVolumeVertex, "", ""});
     resolve_ = gl::Program("hybrid_reconstruction_resolve",
-                           {gl::kFullscreenVertexShader, "", volume::kStencilResolveFragment});
-    volume::make_vec4_stream(vertices_, vao_);
+                           {gl::kFullscreenVertexShader, "", kStencilResolveFragment});
+    make_vec4_stream(vertices_, vao_);
     gl::throw_if_errors("hybrid_reconstruction prepare");
   }
 
@@ -74,18 +74,18 @@ class HybridReconstruction final : public Technique {
     glViewport(0, 0, in.width, in.height);
     {
       auto pass = timer.scope("stencil");
-      volume::begin_stencil_count(0.0f);
-      volume::set_stencil_ops(/*zfail=*/false);
+      begin_stencil_count(0.0f);
+      set_stencil_ops(/*zfail=*/false);
       if (!cliffs_.empty()) {
         program_.use();
         program_.set("view_projection", in.view_projection);
         glBindVertexArray(vao_.get());
         glDrawArrays(GL_TRIANGLES, 0, GLsizei(cliffs_.size()));
       }
-      volume::end_stencil_count();
+      end_stencil_count();
     }
     auto pass = timer.scope("resolve");
-    volume::resolve_stencil(in, resolve_);
+    resolve_stencil(in, resolve_);
   }
 
  private:
@@ -114,13 +114,16 @@ TechniqueInfo hybrid_reconstruction_info() {
                                "a step between neighbouring texels is a silhouette when it, and "
                                "its distance from each side's linear extrapolation, exceed this "
                                "fraction of the nearer depth"));
-  return {"hybrid_reconstruction", "shadow_volume",
-          "shadow volumes reconstructed from a depth map's discontinuities on the CPU, counted "
-          "in the stencil; open and alpha-tested casters too (McCool 2000)",
-          // Closedness decides which casters `cull` may cull: asked for
+  return {.name = "hybrid_reconstruction",
+          .family = "shadow_volume",
+          .summary =
+              "shadow volumes reconstructed from a depth map's discontinuities on the CPU, counted "
+              "in the stencil; open and alpha-tested casters too (McCool 2000)",
+          .needs =  // Closedness decides which casters `cull` may cull: asked for
           // always, so that the map does not depend on what else the plan runs.
-          Needs{need::kCasterClosedness}, std::move(params),
-          [](const Params& p) { return std::make_unique<HybridReconstruction>(p); }};
+          Needs{need::kCasterClosedness},
+          .params = std::move(params),
+          .create = [](const Params& p) { return std::make_unique<HybridReconstruction>(p); }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_volume

@@ -1,6 +1,6 @@
 #include "shadow_volume/near_plane_pyramid.h"
 
-namespace sb::volume {
+namespace sb::techniques::shadow_volume {
 
 using core::Bounds;
 
@@ -50,4 +50,4 @@ bool NearPlanePyramid::may_intersect(const Bounds& box) const {
   return true;
 }
 
-}  // namespace sb::volume
+}  // namespace sb::techniques::shadow_volume

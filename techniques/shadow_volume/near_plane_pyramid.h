@@ -11,7 +11,7 @@
 
 #include "core/scene.h"
 
-namespace sb::volume {
+namespace sb::techniques::shadow_volume {
 
 class NearPlanePyramid {
  public:
@@ -25,4 +25,4 @@ class NearPlanePyramid {
   bool degenerate_ = false;            // the light on the near plane: assume it may
 };
 
-}  // namespace sb::volume
+}  // namespace sb::techniques::shadow_volume

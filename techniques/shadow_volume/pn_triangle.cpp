@@ -1,6 +1,6 @@
 #include "shadow_volume/pn_triangle.h"
 
-namespace sb::volume {
+namespace sb::techniques::shadow_volume {
 
 namespace {
 // The control point one third along the edge from corner a towards b,
@@ -40,4 +40,4 @@ glm::vec3 PnTriangle::normal(const glm::vec3& b) const {
   return len > 0.0f ? n / len : n_[0];
 }
 
-}  // namespace sb::volume
+}  // namespace sb::techniques::shadow_volume

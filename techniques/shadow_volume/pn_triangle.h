@@ -9,7 +9,7 @@
 #include <array>
 #include <glm/glm.hpp>
 
-namespace sb::volume {
+namespace sb::techniques::shadow_volume {
 
 class PnTriangle {
  public:
@@ -27,4 +27,4 @@ class PnTriangle {
   std::array<glm::vec3, 10> c_;
 };
 
-}  // namespace sb::volume
+}  // namespace sb::techniques::shadow_volume

@@ -32,13 +32,13 @@
 #include "shadow_volume/caster_volumes.h"
 #include "shadow_volume/hybrid_reconstruction.h"
 
-namespace sb {
+namespace sb::techniques::shadow_volume {
 
 using core::JobError;
 
 namespace {
 
-const char* const kVolumeVertex = R"(#version 450 core
+const char* const kWorldVertex = R"(#version 450 core
 layout(location = 0) in vec3 position;
 out vec3 v_world;
 void main() { v_world = position; }
@@ -90,8 +90,7 @@ class ShadowVolume final : public Technique {
   explicit ShadowVolume(const Params& p)
       : offset_(p.get_float("offset")),
         cpu_(p.get_string("silhouettes") == "cpu"),
-        volumes_(volume::count_mode_from_string(p.get_string("mode")), cpu_,
-                 volume::silhouette_settings(p)) {}
+        volumes_(count_mode_from_string(p.get_string("mode")), cpu_, silhouette_settings(p)) {}
 
   void prepare(const FrameInputs& in) override {
     // A scene without casters (a lone ground, inferred a receiver) has no
@@ -99,9 +98,9 @@ class ShadowVolume final : public Technique {
     if (!cpu_ && !in.gpu->has_adjacency() && in.scene->caster_triangle_count() > 0)
       throw JobError("shadow_volume: the scene has no adjacency");
     volumes_.prepare(in);
-    if (!cpu_) volume_ = gl::Program("shadow_volume", {kVolumeVertex, kVolumeGeometry, ""});
+    if (!cpu_) volume_ = gl::Program("shadow_volume", {kWorldVertex, kVolumeGeometry, ""});
     resolve_ = gl::Program("shadow_volume_resolve",
-                           {gl::kFullscreenVertexShader, "", volume::kStencilResolveFragment});
+                           {gl::kFullscreenVertexShader, "", kStencilResolveFragment});
     gl::throw_if_errors("shadow_volume prepare");
   }
 
@@ -125,18 +124,18 @@ class ShadowVolume final : public Technique {
     {
       auto pass = timer.scope("stencil");
       if (!cpu_) volumes_.choose_zfail(in);
-      volume::begin_stencil_count(offset_);
+      begin_stencil_count(offset_);
       for (const bool zfail : {false, true}) {
-        volume::set_stencil_ops(zfail);
+        set_stencil_ops(zfail);
         if (cpu_)
           volumes_.draw(in, zfail);
         else
           draw_gpu_volumes(in, zfail);
       }
-      volume::end_stencil_count();
+      end_stencil_count();
     }
     auto pass = timer.scope("resolve");
-    volume::resolve_stencil(in, resolve_);
+    resolve_stencil(in, resolve_);
   }
 
  private:
@@ -156,45 +155,49 @@ class ShadowVolume final : public Technique {
 
   float offset_;
   bool cpu_;
-  volume::CasterVolumes volumes_;
+  CasterVolumes volumes_;
   std::vector<char> include_;
   gl::Program volume_;
   gl::Program resolve_;
 };
 
 }  // namespace
-}  // namespace sb
+}  // namespace sb::techniques::shadow_volume
 
 SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
   using namespace sb;
-  TechniqueInfo info{
-      "shadow_volume",
-      "shadow_volume",
-      "stencil shadow volumes from the light's centre (z-pass, z-fail with caps, or auto per "
-      "caster); discrete silhouettes in a geometry shader, or discrete, accurate or smooth "
-      "silhouettes (Mattausch et al. 2012) on the CPU",
-      Needs{need::kClosedCasters, need::kEdgeAdjacency, need::kOpaqueCasters, need::kCasterEdges},
-      {choice_param("mode", "zfail", {"zpass", "zfail", "auto"},
-                    "zpass counts in front of the surface; zfail behind (robust); auto uses zfail "
-                    "only for casters whose volume can reach the camera's near plane"),
-       float_param("offset", 1.0, -1e6, 1e6,
-                   "glPolygonOffset units pushing volume faces away from the camera"),
-       choice_param("silhouettes", "gpu", {"gpu", "cpu"},
-                    "where silhouettes are found and extruded: a geometry shader, or the CPU "
-                    "with the volume uploaded every frame")},
-      [](const Params& p) { return std::make_unique<ShadowVolume>(p); }};
-  for (ParamSpec& spec : volume::silhouette_params(
+  using namespace sb::techniques::shadow_volume;
+  std::vector<ParamSpec> params = {
+      choice_param("mode", "zfail", {"zpass", "zfail", "auto"},
+                   "zpass counts in front of the surface; zfail behind (robust); auto uses zfail "
+                   "only for casters whose volume can reach the camera's near plane"),
+      float_param("offset", 1.0, -1e6, 1e6,
+                  "glPolygonOffset units pushing volume faces away from the camera"),
+      choice_param("silhouettes", "gpu", {"gpu", "cpu"},
+                   "where silhouettes are found and extruded: a geometry shader, or the CPU "
+                   "with the volume uploaded every frame")};
+  for (ParamSpec& spec : silhouette_params(
            "discrete: edges between lit and unlit faces; accurate: where the vertex normals' "
            "n·(l−v) crosses zero; smooth: accurate lifted onto the curved surface and subdivided "
            "(cpu only)"))
-    info.params.push_back(std::move(spec));
-  info.check = [](const Params& p) -> std::pair<std::string, std::string> {
-    if (p.get_string("silhouettes") == "gpu" && p.get_string("silhouette") != "discrete")
-      return {"silhouette",
-              "'" + p.get_string("silhouette") +
-                  "' silhouettes are found on the CPU only; set silhouettes to \"cpu\""};
-    return {};
-  };
-  registry.add(std::move(info));
-  registry.add(shadow::hybrid_reconstruction_info());
+    params.push_back(std::move(spec));
+  registry.add(
+      {.name = "shadow_volume",
+       .family = "shadow_volume",
+       .summary =
+           "stencil shadow volumes from the light's centre (z-pass, z-fail with caps, or auto per "
+           "caster); discrete silhouettes in a geometry shader, or discrete, accurate or smooth "
+           "silhouettes (Mattausch et al. 2012) on the CPU",
+       .needs = Needs{need::kClosedCasters, need::kEdgeAdjacency, need::kOpaqueCasters,
+                      need::kCasterEdges},
+       .params = std::move(params),
+       .create = [](const Params& p) { return std::make_unique<ShadowVolume>(p); },
+       .check = [](const Params& p) -> std::pair<std::string, std::string> {
+         if (p.get_string("silhouettes") == "gpu" && p.get_string("silhouette") != "discrete")
+           return {"silhouette",
+                   "'" + p.get_string("silhouette") +
+                       "' silhouettes are found on the CPU only; set silhouettes to \"cpu\""};
+         return {};
+       }});
+  registry.add(hybrid_reconstruction_info());
 }

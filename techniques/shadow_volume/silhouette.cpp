@@ -11,7 +11,7 @@
 
 #include "shadow_volume/pn_triangle.h"
 
-namespace sb::volume {
+namespace sb::techniques::shadow_volume {
 
 using core::Mesh;
 using plugin::MeshEdge;
@@ -385,4 +385,4 @@ void extract_silhouette(const SilhouetteMesh& mesh, const glm::vec3& light,
   Extractor(mesh, light, settings, out).run();
 }
 
-}  // namespace sb::volume
+}  // namespace sb::techniques::shadow_volume

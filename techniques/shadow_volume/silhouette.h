@@ -36,7 +36,7 @@
 #include "core/scene.h"
 #include "plugin/need_data.h"
 
-namespace sb::volume {
+namespace sb::techniques::shadow_volume {
 
 enum class SilhouetteMode { Discrete, Accurate, Smooth };
 // "discrete", "accurate" or "smooth"; throws std::invalid_argument otherwise.
@@ -105,4 +105,4 @@ struct Silhouette {
 void extract_silhouette(const SilhouetteMesh& mesh, const glm::vec3& light,
                         const SilhouetteSettings& settings, Silhouette& out);
 
-}  // namespace sb::volume
+}  // namespace sb::techniques::shadow_volume

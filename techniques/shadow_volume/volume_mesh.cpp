@@ -1,6 +1,6 @@
 #include "shadow_volume/volume_mesh.h"
 
-namespace sb::volume {
+namespace sb::techniques::shadow_volume {
 
 VolumeVertices::Range append_volume(const Silhouette& silhouette, const glm::vec3& light, bool caps,
                                     VolumeVertices& out) {
@@ -45,4 +45,4 @@ VolumeVertices::Range append_volume(const Silhouette& silhouette, const glm::vec
   return range;
 }
 
-}  // namespace sb::volume
+}  // namespace sb::techniques::shadow_volume

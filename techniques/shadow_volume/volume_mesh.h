@@ -18,7 +18,7 @@
 
 #include "shadow_volume/silhouette.h"
 
-namespace sb::volume {
+namespace sb::techniques::shadow_volume {
 
 struct VolumeVertices {
   std::vector<glm::vec4> vertices;  // triangle list
@@ -36,4 +36,4 @@ struct VolumeVertices {
 VolumeVertices::Range append_volume(const Silhouette& silhouette, const glm::vec3& light, bool caps,
                                     VolumeVertices& out);
 
-}  // namespace sb::volume
+}  // namespace sb::techniques::shadow_volume

@@ -6,7 +6,7 @@
 
 #include "core/error.h"
 
-namespace sb::shadow {
+namespace sb::techniques::two_map {
 
 using core::Bounds;
 using core::JobError;
@@ -49,4 +49,4 @@ TwoApexes place_apexes(const LightFrame& light, const Bounds& casters) {
   return a;
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::two_map

@@ -33,7 +33,7 @@
 #include "common/light_frame.h"
 #include "core/scene.h"
 
-namespace sb::shadow {
+namespace sb::techniques::two_map {
 
 inline constexpr float kFarthestUmbraApex = 100.0f;
 
@@ -50,4 +50,4 @@ struct TwoApexes {
 // it reaches the light's plane (D <= 0).
 TwoApexes place_apexes(const LightFrame& light, const core::Bounds& casters);
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::two_map

@@ -6,7 +6,7 @@
 #include "common/silhouette_band.h"
 #include "gl/debug.h"
 
-namespace sb::shadow {
+namespace sb::techniques::two_map {
 
 using core::AreaLight;
 using plugin::FrameInputs;
@@ -131,4 +131,4 @@ void PenumbraBuffer::render(const FrameInputs& in, const LightFrustum& frustum,
   glDisable(GL_DEPTH_TEST);
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::two_map

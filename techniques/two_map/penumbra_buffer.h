@@ -18,7 +18,7 @@
 #include "gl/program.h"
 #include "plugin/technique.h"
 
-namespace sb::shadow {
+namespace sb::techniques::two_map {
 
 // GLSL: uniforms `apex_view` (A's view), `inner_apex` (E, world),
 // `light_centre`, `light_axis`; `vec2 apex_image(vec3 world)` (A's image
@@ -46,4 +46,4 @@ class PenumbraBuffer {
   gl::Program program_;
 };
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::two_map

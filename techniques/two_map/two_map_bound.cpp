@@ -54,7 +54,7 @@
 #include "two_map/apex_placement.h"
 #include "two_map/penumbra_buffer.h"
 
-namespace sb::shadow {
+namespace sb::techniques::two_map {
 namespace {
 
 // The penumbra apex's map is the lookup's own (shadow_map, light_view…);
@@ -220,20 +220,23 @@ TechniqueInfo two_map_bound_info() {
   // On by default: the search's taps reach far from the pixel (as PCSS's).
   params.back().default_value = true;
   for (auto& p : depth_map_params(2048)) params.push_back(std::move(p));
-  TechniqueInfo info{
-      "two_map_bound", "two_map",
-      "Shypula's two-map penumbra bound: hard maps from the penumbra and umbra frusta's "
-      "apexes classify lit, umbra and penumbra; the penumbra is shaded by a texel search or a "
-      "silhouette gradient",
+  return {
+      .name = "two_map_bound",
+      .family = "two_map",
+      .summary =
+          "Shypula's two-map penumbra bound: hard maps from the penumbra and umbra frusta's "
+          "apexes classify lit, umbra and penumbra; the penumbra is shaded by a texel search or a "
+          "silhouette gradient",
       // The edges for the gradient's penumbra buffer.
-      Needs{need::kCasterClosedness, need::kSilhouetteEdges}, std::move(params),
-      [](const Params& p) { return std::make_unique<TwoMapBound>(p); }};
-  // The gradient's edges are the meshes', and a mask's outline is none: on a
-  // masked scene every leaf quad's outline would bound a penumbra.
-  info.needs_of_params = [](const Params& p) {
-    return p.get_string("shade") == "gradient" ? Needs{need::kOpaqueCasters} : Needs{};
-  };
-  return info;
+      .needs = Needs{need::kCasterClosedness, need::kSilhouetteEdges},
+      .params = std::move(params),
+      .create = [](const Params& p) { return std::make_unique<TwoMapBound>(p); },
+      // The gradient's edges are the meshes', and a mask's outline is none: on a
+      // masked scene every leaf quad's outline would bound a penumbra.
+      .needs_of_params =
+          [](const Params& p) {
+            return p.get_string("shade") == "gradient" ? Needs{need::kOpaqueCasters} : Needs{};
+          }};
 }
 
-}  // namespace sb::shadow
+}  // namespace sb::techniques::two_map

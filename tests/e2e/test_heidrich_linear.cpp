@@ -77,7 +77,8 @@ float two_texels_on_ground(float length, bool along_x) {
   scene.meshes.push_back(make_box("plate0", {-1.5f, kPlate.h, 0.0f}, {1.5f, 1e-4f, 3.0f}));
   scene.light = make_area_light({0.0f, kLightHeight, 0.0f}, glm::vec3(0.0f),
                                 along_x ? 0.0f : length, along_x ? length : 0.0f);
-  const shadow::LightFrustum f = shadow::fit_light_frustum(scene, scene.light.segment_end(0.0f));
+  const techniques::LightFrustum f =
+      techniques::fit_light_frustum(scene, scene.light.segment_end(0.0f));
   return 2.0f * f.texel_per_distance(kHeidrichMapSize) * kLightHeight;
 }
 

@@ -27,6 +27,7 @@ using core::AreaLight;
 using core::ImageF;
 using core::Mesh;
 using core::Scene;
+namespace occlusion_texture = techniques::occlusion_texture;
 
 namespace {
 
@@ -81,8 +82,8 @@ TEST(OcclusionTextures, TheSummedAreaTableGivesTheExactBoxFilteredOcclusionOfAPl
   scene.meshes.push_back(
       make_box("plate", {0.5f * (plate.x0 + plate.x1), plate.h, 0.5f * (plate.z0 + plate.z1)},
                {0.5f * (plate.x1 - plate.x0), plate.half_thickness, 0.5f * (plate.z1 - plate.z0)}));
-  const occlusion::Slicing slicing =
-      occlusion::fit_slicing(scene, 4, occlusion::Projection::Central);
+  const occlusion_texture::Slicing slicing =
+      occlusion_texture::fit_slicing(scene, 4, occlusion_texture::Projection::Central);
   const float top = plate.h + plate.half_thickness;
   const glm::vec2 a = slicing.texture_coords(slicing.light.to_light({plate.x0, top, plate.z0}));
   const glm::vec2 b = slicing.texture_coords(slicing.light.to_light({plate.x1, top, plate.z1}));
@@ -115,11 +116,11 @@ TEST(OcclusionTextures, TheSummedAreaTableGivesTheExactBoxFilteredOcclusionOfAPl
       if (k != top_slab) continue;  // the bottom face is not light-facing: not drawn
       // The ground lies more than a slice below the plate: the skip rule's
       // offset leaves it the whole slab, read through the slice's far plane.
-      const occlusion::SlabShare share =
-          slicing.share(pl.z, k, occlusion::point_offset(occlusion::SelfSlab::Skip, false, 1.0f),
-                        occlusion::LookupPlane::Far);
+      const occlusion_texture::SlabShare share = slicing.share(
+          pl.z, k, occlusion_texture::point_offset(occlusion_texture::SelfSlab::Skip, false, 1.0f),
+          occlusion_texture::LookupPlane::Far);
       const float w = share.weight;
-      const occlusion::TextureBox box = slicing.kernel(pl, share.plane);
+      const occlusion_texture::TextureBox box = slicing.kernel(pl, share.plane);
       const glm::vec2 lo = box.lo * float(texels), hi = box.hi * float(texels);
       const double area = double(hi.x - lo.x) * double(hi.y - lo.y);
       box_filtered = 1.0 - w * covered(lo.x, hi.x, face_lo.x, face_hi.x) *
@@ -283,14 +284,15 @@ RunOutput run_on_plates(const std::vector<Plate>& plates, float size, const glm:
 }
 
 // The slicing the technique fits to these plates.
-occlusion::Slicing plate_slicing(const std::vector<Plate>& plates, float light_size, int slices) {
+occlusion_texture::Slicing plate_slicing(const std::vector<Plate>& plates, float light_size,
+                                         int slices) {
   Scene scene;
   scene.light = plate_light(light_size);
   for (const Plate& p : plates)
     scene.meshes.push_back(
         make_box("plate", {0.5f * (p.x0 + p.x1), p.h, 0.5f * (p.z0 + p.z1)},
                  {0.5f * (p.x1 - p.x0), p.half_thickness, 0.5f * (p.z1 - p.z0)}));
-  return occlusion::fit_slicing(scene, slices, occlusion::Projection::Central);
+  return occlusion_texture::fit_slicing(scene, slices, occlusion_texture::Projection::Central);
 }
 
 // A high plate (off to the side, its shadow off the picture) and a low one
@@ -311,7 +313,7 @@ TEST(OcclusionTextures, TheFarPlaneLookupGivesTheExactPenumbraOfAPlateOnItsSlice
                                   {"lookup_plane", json::array({"far", "mid"})}},
                                  160, 120, "occlusion_far_plane");
   ASSERT_EQ(out.summary.ok, 2) << out.records.at(0).value("reason", "");
-  const occlusion::Slicing slicing = plate_slicing({high, low}, size, 4);
+  const occlusion_texture::Slicing slicing = plate_slicing({high, low}, size, 4);
   const float low_top_depth = kLightHeight - (low.h + low.half_thickness);
   ASSERT_NEAR(slicing.far_plane(3), low_top_depth, 0.02f * slicing.thickness)
       << "the low plate is not on the last slice's far plane";
@@ -357,7 +359,7 @@ TEST(OcclusionTextures, TheSkipRuleFadesTheSliceInFrontOfAReceiverAsItDoesForACa
                     {{"slices", 4}, {"self_slab", json::array({"skip", "receiver_aware"})}}, 320,
                     240, "occlusion_self_slab");
   ASSERT_EQ(out.summary.ok, 2) << out.records.at(0).value("reason", "");
-  const occlusion::Slicing slicing = plate_slicing({high, low}, size, 4);
+  const occlusion_texture::Slicing slicing = plate_slicing({high, low}, size, 4);
   const double weight = (double(kLightHeight) - double(slicing.far_plane(3))) / slicing.thickness;
   ASSERT_GT(weight, 0.1);
   ASSERT_LT(weight, 0.9);

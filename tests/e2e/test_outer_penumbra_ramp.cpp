@@ -87,7 +87,8 @@ TEST(OuterPenumbraRamp, TechniquesDrawThePapersRampAndMissTheTruthByItsClosedFor
   ASSERT_EQ(plates.meshes.front().name, "plate");
   const EdgePenumbra edge = edge_penumbra(plates);
   // The map's texel on the ground (depth H below the light, along its axis).
-  const shadow::LightFrustum frustum = shadow::fit_light_frustum(plates, plates.light.center);
+  const techniques::LightFrustum frustum =
+      techniques::fit_light_frustum(plates, plates.light.center);
   const double texel = double(frustum.texel_per_distance(kMapSize)) * plates.light.center.y;
   const double slope = 1.0 / (edge.outer - edge.hard);
 

@@ -17,7 +17,11 @@ every #include "folder/..." of the project and fails when
     (sb::<folder>::detail), never sb itself nor another folder's, except to
     forward-declare another folder's class (`namespace sb::gl { class GpuScene; }`);
     plugin/api_names.h alone opens sb, to keep the plugin API's names there.
-    Namespaces of other libraries (CLI, std) are theirs.
+    Namespaces of other libraries (CLI, std) are theirs,
+  - a source of techniques/ (header or .cpp) declares its names outside its
+    folder's namespace: techniques/<family>/ in sb::techniques::<family> (or
+    a namespace within it), the kit, techniques/common/, in sb::techniques
+    itself (or sb::techniques::detail); forward declarations aside, as above.
 `check_layout.py --self-test` checks that check."""
 import collections
 import os
@@ -123,6 +127,35 @@ def namespace_problem(where, folder, text):
     return None
 
 
+def technique_namespace_problem(where, folder, text):
+    """Why the source `where` (in techniques/`folder`/) declares names outside
+    its folder's namespace, or None."""
+    own = "sb::techniques" if folder == SHADOW_KIT else f"sb::techniques::{folder}"
+    within = own + "::detail" if folder == SHADOW_KIT else own
+    for name, body in top_level_namespaces(text):
+        if name != "sb" and not name.startswith("sb::"):
+            continue  # another library's
+        if name == own or name == within or name.startswith(within + "::"):
+            continue
+        if name != "sb" and FORWARD_DECLARATION.match(body):
+            continue  # another folder's class, declared ahead
+        allowed = f"{own} or {within}" if folder == SHADOW_KIT else f"{own} (or a namespace within it)"
+        return (f"{where} declares names in namespace {name}: a source of techniques/{folder}/ "
+                f"declares its names in {allowed}; harness/README.md, \"Namespaces\"")
+    return None
+
+
+def check_technique_namespaces(root):
+    for path in sorted(sources(root, "techniques")):
+        parts = os.path.relpath(path, root).split(os.sep)
+        if len(parts) < 3:
+            continue  # techniques/*.cpp, if any: no family
+        with open(path, encoding="utf-8") as f:
+            problem = technique_namespace_problem(os.path.relpath(path, root), parts[1], f.read())
+        if problem:
+            sys.exit(problem)
+
+
 def check_namespaces(root):
     for folder in sorted(os.listdir(os.path.join(root, "harness"))):
         base = os.path.join(root, "harness", folder)
@@ -137,8 +170,18 @@ def check_namespaces(root):
                 sys.exit(problem)
 
 
+def expect(rule, ok, bad):
+    """`rule` (a *namespace_problem function) on made-up sources: None for
+    each of `ok`, a reason for each of `bad`."""
+    for where, folder, text in ok:
+        problem = rule(where, folder, text)
+        assert problem is None, f"refused, should accept: {text!r}: {problem}"
+    for where, folder, text in bad:
+        assert rule(where, folder, text), f"accepted, should refuse: {text!r}"
+
+
 def self_test():
-    """The namespace rule on made-up headers: what it accepts and refuses."""
+    """The namespace rules on made-up sources: what they accept and refuse."""
     ok = [("harness/run/a.h", "run", "namespace sb::run {\nstruct A {};\n}  // namespace sb::run"),
           ("harness/run/a.h", "run", "namespace sb::run::detail { int f(); }"),
           ("harness/run/a.h", "run", "namespace CLI { class App; }\nnamespace sb::run { }"),
@@ -151,12 +194,27 @@ def self_test():
            ("harness/run/a.h", "run", "namespace sb::runner { }"),
            ("harness/core/a.h", "core", "namespace sb { using core::Scene; }"),
            ("harness/run/a.h", "run", "namespace sb::run { }\nnamespace sb { class A; }")]
-    for where, folder, text in ok:
-        problem = namespace_problem(where, folder, text)
-        assert problem is None, f"refused, should accept: {text!r}: {problem}"
-    for where, folder, text in bad:
-        assert namespace_problem(where, folder, text), f"accepted, should refuse: {text!r}"
-    print(f"namespace rule: {len(ok)} accepted, {len(bad)} refused, as expected")
+    expect(namespace_problem, ok, bad)
+    technique_ok = [
+        ("techniques/planar/a.cpp", "planar",
+         "namespace sb::techniques::planar {\nnamespace {\nint f();\n}\n}\nSHADOWBENCH_PLUGIN_ENTRY(x) {}"),
+        ("techniques/planar/a.h", "planar", "namespace sb::techniques::planar::detail { int f(); }"),
+        ("techniques/common/a.h", "common", "namespace sb::techniques { struct DepthMap {}; }"),
+        ("techniques/common/a.h", "common", "namespace sb::techniques::detail { int f(); }"),
+        ("techniques/common/a.h", "common",
+         "namespace sb::gl {\nclass GpuScene;\n}\nnamespace sb::techniques { }"),
+        ("techniques/planar/a.cpp", "planar", "namespace glm { }\nusing namespace sb;")]
+    technique_bad = [
+        ("techniques/planar/a.cpp", "planar", "namespace sb {\nnamespace {\nint f();\n}\n}"),
+        ("techniques/planar/a.h", "planar", "namespace sb::shadow { int f(); }"),
+        ("techniques/planar/a.h", "planar", "namespace sb::techniques { int f(); }"),
+        ("techniques/planar/a.h", "planar", "namespace sb::techniques::accumulation { int f(); }"),
+        ("techniques/planar/a.h", "planar", "namespace sb::techniques::planar_x { int f(); }"),
+        ("techniques/common/a.h", "common", "namespace sb::techniques::shadow_map { int f(); }"),
+        ("techniques/common/a.h", "common", "namespace sb::techniques::common { int f(); }")]
+    expect(technique_namespace_problem, technique_ok, technique_bad)
+    print(f"namespace rule: {len(ok) + len(technique_ok)} accepted, "
+          f"{len(bad) + len(technique_bad)} refused, as expected")
 
 
 def main():
@@ -210,6 +268,7 @@ def main():
                 sys.exit(f"{where[(src, dst)]}: {src}/ (rank {ranks[src]}) includes {dst}/ "
                          f"(rank {ranks[dst]}), which harness/README.md puts after it")
     check_namespaces(root)
+    check_technique_namespaces(root)
     for src in sorted(graph):
         print(f"{src} -> {' '.join(sorted(graph[src]))}")
 

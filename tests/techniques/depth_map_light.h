@@ -6,7 +6,7 @@
 
 #include "common/light_frustum.h"
 
-namespace sb::shadow::test {
+namespace sb::techniques::test {
 
 constexpr int kSize = 16;
 constexpr float kNear = 1.0f, kFar = 10.0f;
@@ -28,4 +28,4 @@ inline float window(float z) {
   return 0.5f * (c.z / c.w) + 0.5f;
 }
 
-}  // namespace sb::shadow::test
+}  // namespace sb::techniques::test

@@ -9,7 +9,7 @@
 #include "core/error.h"
 #include "two_map/apex_placement.h"
 
-namespace sb::shadow {
+namespace sb::techniques::two_map {
 
 using core::AreaLight;
 using core::Bounds;
@@ -127,4 +127,4 @@ TEST(ApexPlacement, CastersReachingTheLightsPlaneAreAJobError) {
 }
 
 }  // namespace
-}  // namespace sb::shadow
+}  // namespace sb::techniques::two_map

@@ -12,7 +12,7 @@
 #include "depth_map_light.h"
 #include "shadow_volume/depth_map_cliffs.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_volume {
 namespace {
 
 using test::kSize;
@@ -82,4 +82,4 @@ TEST(DepthMapCliffs, ASteepSmoothSlopeIsNoCliffAndAPlateauOverItIs) {
 }
 
 }  // namespace
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_volume

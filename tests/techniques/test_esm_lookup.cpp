@@ -18,7 +18,7 @@
 #include "gl/objects.h"
 #include "gl/program.h"
 
-namespace sb::shadow {
+namespace sb::techniques::filtered_map {
 namespace {
 
 constexpr int kMap = 4;       // texels per side
@@ -176,4 +176,4 @@ TEST_F(EsmLookup, LinearStorageMatchesTheSameExpectation) {
 }
 
 }  // namespace
-}  // namespace sb::shadow
+}  // namespace sb::techniques::filtered_map

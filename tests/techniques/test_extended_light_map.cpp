@@ -17,7 +17,7 @@
 #include "gl/gpu_scene.h"
 #include "shadow_map/extended_light_map.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 
 using core::find_scene_type;
 using core::Mesh;
@@ -130,4 +130,4 @@ TEST_F(ExtendedLightMapPass, ALightChannelOfItsOwnPassWritesTheSameTexels) {
 }
 
 }  // namespace
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

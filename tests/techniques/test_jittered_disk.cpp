@@ -10,7 +10,7 @@
 #include "shadow_map/jittered_disk.h"
 #include "splitmix64_sequence.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 namespace {
 
 // Tap i (before the outermost-first reversal) is at radius
@@ -49,4 +49,4 @@ TEST(JitteredDisk, OneTapPerEqualAreaRingOutermostFirst) {
 }
 
 }  // namespace
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

@@ -5,7 +5,7 @@
 
 #include "common/kernel.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 namespace {
 
 TEST(Kernel, BoxWeightsAreEqualAndSumToOne) {
@@ -41,4 +41,4 @@ TEST(Kernel, RejectsEvenAndOversizedKernels) {
 }
 
 }  // namespace
-}  // namespace sb::shadow
+}  // namespace sb::techniques

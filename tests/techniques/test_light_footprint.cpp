@@ -19,7 +19,7 @@
 #include "gl/objects.h"
 #include "gl/program.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 namespace {
 
 constexpr int kGrid = 32;        // points per side
@@ -137,4 +137,4 @@ TEST_F(LightFootprint, LeastRatioAlongASegmentMatchesADenseSearch) {
 }
 
 }  // namespace
-}  // namespace sb::shadow
+}  // namespace sb::techniques

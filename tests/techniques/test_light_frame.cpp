@@ -12,7 +12,7 @@
 #include "common/light_frame.h"
 #include "core/scene_types.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 using core::AreaLight;
 using core::make_area_light;
@@ -58,4 +58,4 @@ TEST(LightFrame, EachShapeKeepsItsAxesAlongTheLightsSides) {
 }
 
 }  // namespace
-}  // namespace sb::shadow
+}  // namespace sb::techniques

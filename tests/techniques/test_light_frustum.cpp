@@ -8,7 +8,7 @@
 #include "core/error.h"
 #include "core/scene_types.h"
 
-namespace sb::shadow {
+namespace sb::techniques {
 
 using core::Bounds;
 using core::find_scene_type;
@@ -214,4 +214,4 @@ TEST(SceneBounds, OnlyReferencedVerticesCount) {
 }
 
 }  // namespace
-}  // namespace sb::shadow
+}  // namespace sb::techniques

@@ -11,7 +11,7 @@
 #include "accumulation/light_samples.h"
 #include "splitmix64_sequence.h"
 
-namespace sb::shadow {
+namespace sb::techniques::accumulation {
 namespace {
 
 // Star discrepancy by brute force: the largest |share of points in [0,a)×[0,b)
@@ -192,4 +192,4 @@ TEST(LightSamples, JitterIsTheDocumentedFunctionOfSeedAndIndex) {
 }
 
 }  // namespace
-}  // namespace sb::shadow
+}  // namespace sb::techniques::accumulation

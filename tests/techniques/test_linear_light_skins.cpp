@@ -12,7 +12,7 @@
 #include "depth_map_light.h"
 #include "shadow_map/linear_light_skins.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 namespace {
 
 using test::kSize;
@@ -85,4 +85,4 @@ TEST(LinearLightSkins, WithNothingBehindTheSkinReachesPastEveryReceiver) {
 }
 
 }  // namespace
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

@@ -16,7 +16,7 @@
 #include "gl/debug.h"
 #include "occlusion_texture/filter_pyramid.h"
 
-namespace sb::occlusion {
+namespace sb::techniques::occlusion_texture {
 namespace {
 
 class OcclusionFilters : public ::testing::Test {
@@ -138,4 +138,4 @@ TEST_F(OcclusionFilters, ThirtyTwoBitSatIsExactAndSixteenBitIsNot) {
 }
 
 }  // namespace
-}  // namespace sb::occlusion
+}  // namespace sb::techniques::occlusion_texture

@@ -15,7 +15,7 @@
 #include "core/error.h"
 #include "occlusion_texture/slicing.h"
 
-namespace sb::occlusion {
+namespace sb::techniques::occlusion_texture {
 
 using core::AreaLight;
 using core::JobError;
@@ -244,4 +244,4 @@ TEST(OcclusionSlicing, ACasterOnTheLightsPlaneIsAJobErrorNamingTheMesh) {
 }
 
 }  // namespace
-}  // namespace sb::occlusion
+}  // namespace sb::techniques::occlusion_texture

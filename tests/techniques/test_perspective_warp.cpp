@@ -15,7 +15,7 @@
 #include "core/scene_types.h"
 #include "shadow_map/perspective_warp.h"
 
-namespace sb::shadow {
+namespace sb::techniques::shadow_map {
 
 using core::find_scene_type;
 using core::Mesh;
@@ -167,4 +167,4 @@ TEST(PerspectiveWarp, LispsmLookingAlongTheLightIsTheUniformMap) {
 }
 
 }  // namespace
-}  // namespace sb::shadow
+}  // namespace sb::techniques::shadow_map

@@ -14,7 +14,7 @@
 #include "shadow_volume/silhouette.h"
 #include "shadow_volume/volume_mesh.h"
 
-namespace sb::volume {
+namespace sb::techniques::shadow_volume {
 
 using core::Bounds;
 using core::Camera;
@@ -251,4 +251,4 @@ TEST(NearPlanePyramid, FindsCastersBetweenTheLightAndTheNearPlaneOnly) {
 }
 
 }  // namespace
-}  // namespace sb::volume
+}  // namespace sb::techniques::shadow_volume

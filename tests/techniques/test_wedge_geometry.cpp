@@ -13,7 +13,7 @@
 
 #include "penumbra_wedge/wedge_geometry.h"
 
-namespace sb::wedge {
+namespace sb::techniques::penumbra_wedge {
 
 using core::AreaLight;
 using core::Bounds;
@@ -219,4 +219,4 @@ TEST(WedgeGeometry, APointLightHasAFiniteFrameAndNoArea) {
 }
 
 }  // namespace
-}  // namespace sb::wedge
+}  // namespace sb::techniques::penumbra_wedge

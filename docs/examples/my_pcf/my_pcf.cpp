@@ -47,20 +47,20 @@ class MyPcf final : public sb::Technique {
  public:
   // Reads every parameter it declares, and makes no GL call.
   explicit MyPcf(const sb::Params& p)
-      : settings_(sb::shadow::depth_map_settings(p)), radius_(p.get_int("k") / 2) {}
+      : settings_(sb::techniques::depth_map_settings(p)), radius_(p.get_int("k") / 2) {}
 
   void prepare(const sb::FrameInputs& /*in*/) override {
-    map_ = sb::shadow::DepthMap(settings_.size, settings_.depth_format);
-    lookup_ = sb::shadow::MapLookupPass("my_pcf_lookup", kBoxPcf);
+    map_ = sb::techniques::DepthMap(settings_.size, settings_.depth_format);
+    lookup_ = sb::techniques::MapLookupPass("my_pcf_lookup", kBoxPcf);
     lookup_.program().set("radius", radius_);
     sb::gl::throw_if_errors("my_pcf prepare");
   }
 
   void render(const sb::FrameInputs& in, sb::gl::PassTimer& timer) override {
-    sb::shadow::LightFrustum frustum;
+    sb::techniques::LightFrustum frustum;
     {
       auto pass = timer.scope("shadow_map");
-      frustum = sb::shadow::fit_light_frustum(*in.scene, in.scene->light.center);
+      frustum = sb::techniques::fit_light_frustum(*in.scene, in.scene->light.center);
       map_.render(*in.gpu, frustum, settings_.cull, settings_.bias);
     }
     auto pass = timer.scope("lookup");
@@ -68,28 +68,26 @@ class MyPcf final : public sb::Technique {
   }
 
  private:
-  sb::shadow::DepthMapSettings settings_;
+  sb::techniques::DepthMapSettings settings_;
   int radius_;
-  sb::shadow::DepthMap map_;
-  sb::shadow::MapLookupPass lookup_;
+  sb::techniques::DepthMap map_;
+  sb::techniques::MapLookupPass lookup_;
 };
 
 sb::TechniqueInfo my_pcf_info() {
   // k, then the depth map's own parameters (size, depth_format,
   // constant_bias, slope_bias, cull, normal_offset) with pcf_box's defaults.
   std::vector<sb::ParamSpec> params = {
-      sb::shadow::kernel_size_param(3, "kernel side (odd): k*k depth comparisons")};
-  for (auto& p : sb::shadow::depth_map_params(2048)) params.push_back(std::move(p));
-  sb::TechniqueInfo info;
-  info.name = "my_pcf";
-  info.family = "my_pcf";
-  info.summary = "k×k box PCF on the shadow-map kit, pcf_box's filter as a plugin";
-  // The depth pass culls only casters known to be closed, and they are
-  // known only when a technique asks (common/depth_pass.h).
-  info.needs = sb::Needs{sb::need::kCasterClosedness};
-  info.params = std::move(params);
-  info.create = [](const sb::Params& p) { return std::make_unique<MyPcf>(p); };
-  return info;
+      sb::techniques::kernel_size_param(3, "kernel side (odd): k*k depth comparisons")};
+  for (auto& p : sb::techniques::depth_map_params(2048)) params.push_back(std::move(p));
+  return {.name = "my_pcf",
+          .family = "my_pcf",
+          .summary = "k×k box PCF on the shadow-map kit, pcf_box's filter as a plugin",
+          // The depth pass culls only casters known to be closed, and they are
+          // known only when a technique asks (common/depth_pass.h).
+          .needs = sb::Needs{sb::need::kCasterClosedness},
+          .params = std::move(params),
+          .create = [](const sb::Params& p) { return std::make_unique<MyPcf>(p); }};
 }
 
 }  // namespace

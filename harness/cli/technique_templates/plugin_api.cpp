@@ -175,18 +175,22 @@ class PcfShadowMap final : public sb::Technique {
 }  // namespace @NAME@_plugin
 
 SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
-  registry.add(
-      {"@NAME@",  // the name configs use
-       "@NAME@",  // the family: this plugin
-       "shadow map with k×k percentage-closer filtering (plugin template)",
-       // Which casters are closed (culled in the depth pass); and no
-       // alpha-tested ones (leaves), which would need a masked depth pass.
-       sb::Needs{sb::need::kCasterClosedness, sb::need::kOpaqueCasters},
-       {sb::int_param("size", 1024, 16, 8192, "shadow map size (texels a side)"),
-        sb::odd(sb::int_param("k", 3, 1, 15, "kernel side (odd): k*k depth comparisons")),
-        sb::float_param("constant_bias", 4.0, -1e6, 1e6, "glPolygonOffset units (depth pass)"),
-        sb::float_param("slope_bias", 2.0, -1e3, 1e3, "glPolygonOffset factor (depth pass)")},
-       [](const sb::Params& p) { return std::make_unique<@NAME@_plugin::PcfShadowMap>(p); }});
+  registry.add({
+      .name = "@NAME@",    // the name configs use
+      .family = "@NAME@",  // this plugin
+      .summary = "shadow map with k×k percentage-closer filtering (plugin template)",
+      // Which casters are closed (culled in the depth pass); and no
+      // alpha-tested ones (leaves), which would need a masked depth pass.
+      .needs = sb::Needs{sb::need::kCasterClosedness, sb::need::kOpaqueCasters},
+      .params = {sb::int_param("size", 1024, 16, 8192, "shadow map size (texels a side)"),
+                 sb::odd(sb::int_param("k", 3, 1, 15, "kernel side (odd): k*k depth comparisons")),
+                 sb::float_param("constant_bias", 4.0, -1e6, 1e6,
+                                 "glPolygonOffset units (depth pass)"),
+                 sb::float_param("slope_bias", 2.0, -1e3, 1e3,
+                                 "glPolygonOffset factor (depth pass)")},
+      .create = [](const sb::Params& p) {
+        return std::make_unique<@NAME@_plugin::PcfShadowMap>(p);
+      }});
 }
 )FILE"});
   t.files.push_back(

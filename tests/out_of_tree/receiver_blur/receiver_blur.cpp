@@ -193,12 +193,16 @@ class BlurredVisibility final : public sb::Technique {
 SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
   registry.add_provider(blurred::receiver_basis_provider());
   registry.add(
-      {"receiver_blur",
-       "receiver_blur",
-       "hard shadow projected onto the planar receiver, blurred through a compute-built "
-       "mip chain (plugin demo; the receiver only)",
-       sb::Needs{sb::need::kPlanarReceiver, sb::need::kOpaqueCasters, blurred::kReceiverBasis},
-       {sb::int_param("size", 512, 16, 4096, "occlusion texture size (texels a side)"),
-        sb::float_param("blur", 0.2, 0.0, 100.0, "blur width on the receiver, world units")},
-       [](const sb::Params& p) { return std::make_unique<blurred::BlurredVisibility>(p); }});
+      {.name = "receiver_blur",
+       .family = "receiver_blur",
+       .summary = "hard shadow projected onto the planar receiver, blurred through a compute-built "
+                  "mip chain (plugin demo; the receiver only)",
+       .needs =
+           sb::Needs{sb::need::kPlanarReceiver, sb::need::kOpaqueCasters, blurred::kReceiverBasis},
+       .params = {sb::int_param("size", 512, 16, 4096, "occlusion texture size (texels a side)"),
+                  sb::float_param("blur", 0.2, 0.0, 100.0,
+                                  "blur width on the receiver, world units")},
+       .create = [](const sb::Params& p) {
+         return std::make_unique<blurred::BlurredVisibility>(p);
+       }});
 }
