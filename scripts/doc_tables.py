@@ -295,21 +295,26 @@ def run_config(config, build, runs, fresh_root):
             raise SystemExit(f"doc_tables: {' '.join(cmd)} exited with {done.returncode}")
         # What else ran shapes the times (not the errors): kept beside the
         # records so that a table read from the folder later says it too.
-        run = {"seconds": round(seconds, 1), "load_average": round(os.getloadavg()[0], 1)}
+        run = {"seconds": round(seconds, 1), "load_average": round(os.getloadavg()[0], 1), "commit": git_commit()}
         with open(os.path.join(out, RUN_NOTE), "w", encoding="utf-8") as f:
             json.dump(run, f)
         print(f"doc_tables: {config}: ran in {seconds:.1f} s", file=sys.stderr)
     return out
 
 
-def run_conditions(out):
-    """' in N s, load average L at its end' when this script ran the folder."""
+def run_note(out):
+    """What this script noted when it ran the folder: {} for another's."""
     try:
         with open(os.path.join(out, RUN_NOTE), encoding="utf-8") as f:
-            run = json.load(f)
-        return f" (the run took {run['seconds']:.0f} s; load average {run['load_average']} at its end)"
-    except (OSError, ValueError, KeyError):
+            return json.load(f)
+    except (OSError, ValueError):
+        return {}
+
+
+def run_conditions(run):
+    if "seconds" not in run or "load_average" not in run:
         return ""
+    return f" (the run took {run['seconds']:.0f} s; load average {run['load_average']} at its end)"
 
 
 def main(argv=None):
@@ -355,8 +360,9 @@ def process(args, found, fresh_root):
             runs[spec.config] = run_config(spec.config, args.build, args.runs, fresh_root)
         out = runs[spec.config]
         records = read_records(out)
+        run = run_note(out)
         note = (f"Written by `scripts/doc_tables.py` from `build/shadowbench run {spec.config}` at commit "
-                f"{commit}; times measured on {host_of(records)}{run_conditions(out)}, not checked.")
+                f"{run.get('commit', commit)}; times measured on {host_of(records)}{run_conditions(run)}, not checked.")
         if path not in edits:
             edits[path] = (find_tables(path)[0], [])
         lines, replacements = edits[path]
