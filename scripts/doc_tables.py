@@ -361,8 +361,9 @@ def process(args, found, fresh_root):
         out = runs[spec.config]
         records = read_records(out)
         run = run_note(out)
+        times = "; times are not checked" if any(is_time(p) for p, _ in spec.cells) else ""
         note = (f"Written by `scripts/doc_tables.py` from `build/shadowbench run {spec.config}` at commit "
-                f"{run.get('commit', commit)}; times measured on {host_of(records)}{run_conditions(run)}, not checked.")
+                f"{run.get('commit', commit)} on {host_of(records)}{run_conditions(run)}{times}.")
         if path not in edits:
             edits[path] = (find_tables(path)[0], [])
         lines, replacements = edits[path]
