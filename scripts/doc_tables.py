@@ -18,7 +18,9 @@ The begin marker says what the table holds:
     resolution;
   - cells=PATH:FORMAT,...: what each cell prints, a path into the record
     (metrics.visibility.all.rmse; a path under timing. is a time) and a
-    Python format spec (.4f, ,.1f). An error figure of 0 prints as 0.
+    Python format spec (.4f, ,.1f). An error figure of 0 prints as 0, a
+    list as its items with " / " between;
+  - where=KEY:VALUE (optional): only the records whose key has that value.
 
 Timings are measured on this host: they are written, never checked. Error
 figures are deterministic (reruns are bit-identical on one build), so
@@ -28,7 +30,9 @@ figures are deterministic (reruns are bit-identical on one build), so
     scripts/doc_tables.py --check [FILE.md ...]     exit 1 when a committed error figure differs
     scripts/doc_tables.py --list [FILE.md ...]      the tables and their configs, nothing run
 
---runs DIR keeps the run folders (DIR/<config stem>) and reads one that is
+--keep-times keeps the committed tables' times (rows matched by label,
+columns by position) and writes only the errors: for a run on a loaded
+machine. --runs DIR keeps the run folders (DIR/<config stem>) and reads one that is
 already there instead of running its config again; without it every config
 runs afresh in a temporary folder. --self-test checks the parser and the
 comparison on a made-up table (no shadowbench run): an edited figure fails.
@@ -73,7 +77,7 @@ class Spec:
         if not words:
             raise SystemExit(f"{where}: doc-table marker without a config")
         self.config = words[0]
-        self.rows, self.columns, self.cells = [], [], []
+        self.rows, self.columns, self.cells, self.where = [], [], [], {}
         for word in words[1:]:
             key, sep, value = word.partition("=")
             if not sep:
@@ -86,8 +90,13 @@ class Spec:
                 setattr(self, key, keys)
             elif key == "cells":
                 self.cells = parse_cells(value, where)
+            elif key == "where":
+                k, sep, v = value.partition(":")
+                if not sep or k not in ROW_KEYS:
+                    raise SystemExit(f"{where}: where: expected KEY:VALUE with KEY one of {', '.join(ROW_KEYS)}")
+                self.where[k] = v
             else:
-                raise SystemExit(f"{where}: unknown setting '{key}' (expected rows, columns, cells)")
+                raise SystemExit(f"{where}: unknown setting '{key}' (expected rows, columns, cells, where)")
         if not self.rows or not self.cells:
             raise SystemExit(f"{where}: a doc-table needs rows= and cells=")
 
@@ -149,6 +158,8 @@ def format_value(value, fmt):
         return "–"
     if isinstance(value, str):
         return value
+    if isinstance(value, list):
+        return " / ".join(format_value(v, fmt) for v in value)
     if value == 0:
         return "0"
     return format(value, fmt)
@@ -174,6 +185,8 @@ def table_lines(spec, records, run_note):
     """The Markdown of one table (header, rows, the line under it)."""
     rows, columns, by_cell = [], [], {}
     for r in records:
+        if any(r.get(ROW_KEYS[k]) != v for k, v in spec.where.items()):
+            continue
         row, col = key_of(r, spec.rows), key_of(r, spec.columns)
         if row not in rows:
             rows.append(row)
@@ -238,6 +251,29 @@ def compare_tables(spec, committed, produced):
     for label in rows_ours:
         diffs.append((" ".join(label), "", "a row", "missing"))
     return diffs
+
+
+def keep_times(spec, committed, produced):
+    """produced with the time cells of committed's rows of the same label.
+
+    For a run on a loaded machine: its errors are as good as any run's, its
+    times are not. Columns are matched by position, so a table typed before
+    it was generated keeps its times when it had the same layout."""
+    n = len(spec.rows)
+    ours = {tuple(split_row(l)[:n]): split_row(l) for l in committed[2:] if l.startswith("|")}
+    out = list(produced)
+    for k, line in enumerate(produced[2:], start=2):
+        if not line.startswith("|"):
+            break
+        cells = split_row(line)
+        mine = ours.get(tuple(cells[:n]))
+        if mine is None or len(mine) != len(cells):
+            continue
+        for i in range(n, len(cells)):
+            if is_time(spec.cells[(i - n) % len(spec.cells)][0]) and mine[i]:
+                cells[i] = mine[i]
+        out[k] = "| " + " | ".join(cells) + " |"
+    return out
 
 
 def find_tables(path):
@@ -325,6 +361,8 @@ def main(argv=None):
     ap.add_argument("--build", default=os.path.join(ROOT, "build"), help="the build folder holding shadowbench")
     ap.add_argument("--runs", help="keep run folders here, and read one already there instead of running")
     ap.add_argument("--only", help="only the tables of this config")
+    ap.add_argument("--keep-times", action="store_true",
+                    help="keep the committed tables' times (a loaded machine's errors are good, its times are not)")
     ap.add_argument("--self-test", action="store_true", help="check the parser and comparison on a made-up table")
     args = ap.parse_args(argv)
     if args.self_test:
@@ -361,7 +399,11 @@ def process(args, found, fresh_root):
         out = runs[spec.config]
         records = read_records(out)
         run = run_note(out)
-        times = "; times are not checked" if any(is_time(p) for p, _ in spec.cells) else ""
+        times = ""
+        if any(is_time(p) for p, _ in spec.cells):
+            times = "; times are not checked"
+            if args.keep_times:
+                times = "; times kept from the table before (`--keep-times`, the run the text describes), not checked"
         note = (f"Written by `scripts/doc_tables.py` from `build/shadowbench run {spec.config}` at commit "
                 f"{run.get('commit', commit)} on {host_of(records)}{run_conditions(run)}{times}.")
         if path not in edits:
@@ -369,6 +411,8 @@ def process(args, found, fresh_root):
         lines, replacements = edits[path]
         produced = table_lines(spec, records, note)
         committed = lines[begin + 1:end]
+        if args.keep_times:
+            produced = keep_times(spec, committed, produced)
         if args.check:
             diffs = compare_tables(spec, committed, produced)
             rel = os.path.relpath(path, ROOT)
@@ -410,6 +454,9 @@ def self_test():
     retimed = [l.replace("12.3", "99.9") for l in produced]
     if compare_tables(spec, retimed, produced):
         problems.append("a different time was reported (times are not checked)")
+    kept = keep_times(spec, retimed, produced)
+    if "| `t/size=1` | 99.9 | 0.0123 |" not in kept:
+        problems.append(f"--keep-times did not keep the committed time: {kept}")
     for p in problems:
         print(f"doc_tables self-test: {p}", file=sys.stderr)
     return 1 if problems else 0
