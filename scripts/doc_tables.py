@@ -52,6 +52,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BEGIN = re.compile(r"^<!-- doc-table: (?P<spec>.+) begin -->$")
 END = "<!-- doc-table: end -->"
 RUN_NOTE = "doc-tables-run.json"
+STATUSES = ("skipped", "failed")
 ROW_KEYS = {"technique": "technique_variant", "scene": "scene_variant", "resolution": "resolution"}
 # What a reader compares a column with: summary.md's columns by their
 # record field (harness/results/report_columns.cpp).
@@ -267,11 +268,13 @@ def keep_times(spec, committed, produced):
             break
         cells = split_row(line)
         mine = ours.get(tuple(cells[:n]))
-        if mine is None or len(mine) != len(cells):
-            continue
+        if mine is not None and len(mine) != len(cells):
+            mine = None
         for i in range(n, len(cells)):
-            if is_time(spec.cells[(i - n) % len(spec.cells)][0]) and mine[i]:
-                cells[i] = mine[i]
+            # A row the table did not have gets no time: this run's would
+            # not compare with the kept ones.
+            if is_time(spec.cells[(i - n) % len(spec.cells)][0]) and cells[i] not in STATUSES:
+                cells[i] = mine[i] if mine else ""
         out[k] = "| " + " | ".join(cells) + " |"
     return out
 
@@ -403,7 +406,8 @@ def process(args, found, fresh_root):
         if any(is_time(p) for p, _ in spec.cells):
             times = "; times are not checked"
             if args.keep_times:
-                times = "; times kept from the table before (`--keep-times`, the run the text describes), not checked"
+                times = ("; times kept from the table before (`--keep-times`, the run the text describes; none for a"
+                         " row it did not have), not checked")
         note = (f"Written by `scripts/doc_tables.py` from `build/shadowbench run {spec.config}` at commit "
                 f"{run.get('commit', commit)} on {host_of(records)}{run_conditions(run)}{times}.")
         if path not in edits:
