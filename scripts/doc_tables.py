@@ -17,7 +17,8 @@ The begin marker says what the table holds:
     keys: technique (the record's technique_variant), scene (scene_variant),
     resolution;
   - cells=PATH:FORMAT,...: what each cell prints, a path into the record
-    (metrics.visibility.all.rmse; a path under timing. is a time) and a
+    (metrics.visibility.all.rmse; a path under timing. is a time; report.COLUMN
+    is a column of the run's results.csv, such as report.mc_noise_share) and a
     Python format spec (.4f, ,.1f). An error figure of 0 prints as 0, a
     list as its items with " / " between;
   - where=KEY:VALUE (optional): only the records whose key has that value.
@@ -38,6 +39,7 @@ runs afresh in a temporary folder. --self-test checks the parser and the
 comparison on a made-up table (no shadowbench run): an edited figure fails.
 """
 import argparse
+import csv
 import glob
 import json
 import os
@@ -125,9 +127,11 @@ def cell_label(path):
     parts = path.split(".")
     if is_time(path):
         return "ms" if parts[1] == "frame" else f"{parts[1]} ms"
-    if len(parts) == 4 and parts[0] == "metrics":
+    if len(parts) == 4 and parts[0] in ("metrics", "second_reference"):
         label = f"{STAT_LABELS.get(parts[3], parts[3])} {parts[2]}"
-        return label if parts[1] == "visibility" else f"{label} ({parts[1]})"
+        if parts[1] != "visibility":
+            label += f" ({parts[1]})"
+        return label if parts[0] == "metrics" else f"{label}, second reference"
     return parts[-1]
 
 
@@ -135,6 +139,8 @@ def field_note(path):
     """How the line under a table names one cell's field."""
     if is_time(path):
         return f"`{path}`"
+    if path.startswith("report."):
+        return f"summary.md's `{path[len('report.'):]}` column"
     summary = SUMMARY_COLUMNS.get(path)
     if summary:
         return f"`{path}` (summary.md's `{summary}`)"
@@ -175,7 +181,29 @@ def read_records(run_dir):
             if line.strip():
                 r = json.loads(line)
                 records[r["job_id"]] = r
+    columns = report_columns(run_dir)
+    for r in records.values():
+        r["report"] = columns.get((r.get("scene_variant"), r.get("resolution"), r.get("technique_variant")), {})
     return sorted(records.values(), key=lambda r: r.get("job_index", 0))
+
+
+def report_columns(run_dir):
+    """results.csv's row of each job, by (scene, resolution, technique): the
+    report's own columns (mc_noise_share, ...), as numbers where they are."""
+    rows = {}
+    try:
+        with open(os.path.join(run_dir, "results.csv"), encoding="utf-8", newline="") as f:
+            for row in csv.DictReader(f):
+                values = {}
+                for k, v in row.items():
+                    try:
+                        values[k] = float(v)
+                    except (TypeError, ValueError):
+                        values[k] = v if v else None
+                rows[(row.get("scene"), row.get("resolution"), row.get("technique"))] = values
+    except OSError:
+        pass
+    return rows
 
 
 def key_of(record, keys):
@@ -322,8 +350,10 @@ def run_config(config, build, runs, fresh_root):
     stem = os.path.splitext(os.path.basename(config))[0]
     base = runs if runs else fresh_root
     out = os.path.join(base, stem)
-    if not (runs and os.path.isfile(os.path.join(out, "results.jsonl"))):
-        if os.path.exists(out):
+    if not (runs and run_complete(out)):
+        # shadowbench resumes a folder it left part-way (its records name
+        # what each job ran with, so a changed config reruns what changed).
+        if not runs and os.path.exists(out):
             shutil.rmtree(out)
         cmd = [os.path.join(build, "shadowbench"), "run", os.path.join(ROOT, config), "--out", out,
                "--no-images", "--quiet", "--cache-dir", os.path.join(base, "cache")]
@@ -339,6 +369,16 @@ def run_config(config, build, runs, fresh_root):
             json.dump(run, f)
         print(f"doc_tables: {config}: ran in {seconds:.1f} s", file=sys.stderr)
     return out
+
+
+def run_complete(out):
+    """Whether out holds a record for every job of its plan."""
+    try:
+        with open(os.path.join(out, "plan.json"), encoding="utf-8") as f:
+            jobs = len(json.load(f)["jobs"])
+        return len(read_records(out)) >= jobs
+    except (OSError, ValueError, KeyError):
+        return False
 
 
 def run_note(out):
