@@ -326,6 +326,15 @@ def find_tables(path):
     return lines, tables
 
 
+def locate(lines, spec, path, start):
+    """(begin, end) of the first table at or after line start whose marker is spec's."""
+    marker = f"<!-- doc-table: {spec.text} begin -->"
+    begin = lines.index(marker, start) if marker in lines[start:] else None
+    if begin is None or END not in lines[begin:]:
+        raise SystemExit(f"{os.path.relpath(path, ROOT)}: the table of '{spec.text}' is gone")
+    return begin, lines.index(END, begin)
+
+
 def git_commit():
     try:
         head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, check=True,
@@ -436,9 +445,13 @@ def process(args, found, fresh_root):
     commit = git_commit()
     runs, failures = {}, 0
     edits = {}  # path -> (lines, [(begin, end, produced)])
-    for path, spec, begin, end in found:
+    searched = {}  # path -> where the next table's marker is looked for
+    # Every run first, then the files as they are after them (a long run
+    # must not write back a file as it was before someone edited it).
+    for _, spec, _, _ in found:
         if spec.config not in runs:
             runs[spec.config] = run_config(spec.config, args.build, args.runs, fresh_root)
+    for path, spec, _, _ in found:
         out = runs[spec.config]
         records = read_records(out)
         run = run_note(out)
@@ -453,6 +466,9 @@ def process(args, found, fresh_root):
         if path not in edits:
             edits[path] = (find_tables(path)[0], [])
         lines, replacements = edits[path]
+        # The file as it is now: it may have been edited while the config ran.
+        begin, end = locate(lines, spec, path, searched.get(path, 0))
+        searched[path] = end
         produced = table_lines(spec, records, note)
         committed = lines[begin + 1:end]
         if args.keep_times:
