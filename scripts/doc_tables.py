@@ -33,9 +33,11 @@ figures are deterministic (reruns are bit-identical on one build), so
 
 --keep-times keeps the committed tables' times (rows matched by label,
 columns by position) and writes only the errors: for a run on a loaded
-machine. --runs DIR keeps the run folders (DIR/<config stem>) and reads one that is
-already there instead of running its config again; without it every config
-runs afresh in a temporary folder. --self-test checks the parser and the
+machine. --runs DIR keeps the run folders (DIR/<config stem>) and reads one
+that holds a record for every job of its plan instead of running its config
+again (one left part-way is resumed); without it every config runs afresh in
+a temporary folder. The whole docs' --check takes about 50 minutes on the
+2-core VM; CI checks the reduced-size twin (tests/doc_tables/check.md). --self-test checks the parser and the
 comparison on a made-up table (no shadowbench run): an edited figure fails.
 """
 import argparse
