@@ -23,7 +23,7 @@
 #include "core/names.h"
 #include "record/job_record.h"
 #include "results/pareto.h"
-#include "results/store.h"
+#include "store/results_store.h"
 
 extern char** environ;
 
@@ -39,6 +39,7 @@ using record::JobStatus;
 using record::MetricPath;
 using record::Series;
 using record::TimingRecord;
+using store::json_text;
 
 namespace {
 

@@ -21,7 +21,6 @@
 #include "results/mixed_hosts.h"
 #include "results/report_columns.h"
 #include "results/stability_table.h"
-#include "results/store.h"
 
 namespace sb::results {
 
