@@ -13,9 +13,9 @@
 #include "cli/shared.h"
 #include "core/error.h"
 #include "results/compare.h"
-#include "results/store.h"
 #include "run/runner.h"
 #include "run/take_turns.h"
+#include "store/results_store.h"
 
 namespace sb::cli {
 
@@ -31,11 +31,11 @@ using results::compare_runs;
 using results::CompareOptions;
 using results::CompareResult;
 using results::format_comparison;
-using results::read_job_records;
 using run::RunOptions;
 using run::take_turns;
 using run::TurnCommand;
 using run::TurnsResult;
+using store::read_job_records;
 
 namespace {
 

@@ -20,7 +20,7 @@
 #include "results/latex_export.h"
 #include "results/latex_tables.h"
 #include "results/report.h"
-#include "results/store.h"
+#include "store/results_store.h"
 
 namespace sb::cli {
 
@@ -32,12 +32,12 @@ using results::latex_columns;
 using results::LatexFiles;
 using results::LatexOptions;
 using results::make_markdown;
-using results::read_job_records;
 using results::ReportChart;
 using results::write_charts;
 using results::write_html_report;
 using results::write_latex;
 using results::write_reports;
+using store::read_job_records;
 
 namespace {
 

@@ -14,9 +14,9 @@
 #include "gl/pass_timer.h"
 #include "plan/shards.h"
 #include "results/report.h"
-#include "results/store.h"
 #include "run/runner.h"
 #include "run/take_turns.h"
+#include "store/results_store.h"
 
 namespace sb::cli {
 
@@ -29,13 +29,13 @@ using core::kExitOk;
 using plan::parse_shard;
 using plugin::Registry;
 using results::make_markdown;
-using results::read_job_records;
 using run::Isolation;
 using run::isolation_from_string;
 using run::run_experiment;
 using run::RunOptions;
 using run::RunSummary;
 using run::TurnTaker;
+using store::read_job_records;
 
 namespace {
 

@@ -16,7 +16,7 @@
 #include "plan/plan.h"
 #include "plan/plan_json.h"
 #include "plan/shards.h"
-#include "results/store.h"
+#include "store/results_store.h"
 
 namespace sb::cli {
 
@@ -34,7 +34,7 @@ using plan::plan_to_json;
 using plan::PlannedJob;
 using plan::ScenePlan;
 using plugin::Registry;
-using results::json_text;
+using store::json_text;
 
 namespace {
 

@@ -10,7 +10,7 @@
 // it. Every error names the file and the reason (strerror's words: "No space
 // left on device", "Permission denied", "Read-only file system"). A process killed before the
 // rename leaves only a temporary file, which is_atomic_temp_name() tells
-// apart so that a later run can remove it (results/store.cpp).
+// apart so that a later run can remove it (store/results_store.cpp).
 //
 // No fsync: what is guarded against is a killed writer, not a lost machine.
 #include <string>

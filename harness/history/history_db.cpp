@@ -16,7 +16,7 @@
 #include "history/run_points.h"
 #include "history/stored_text.h"
 #include "record/job_record.h"
-#include "results/store.h"
+#include "store/results_store.h"
 
 namespace sb::history {
 
@@ -355,7 +355,7 @@ AddedRun HistoryDb::add_run(const std::string& run_dir, const std::string& commi
   if (commit.empty()) throw InputError(run_dir, "--commit", "no commit to store the run at");
   check_commit(run_dir, commit);
   // Refuses another schema_version, naming the file, line and pointer.
-  const std::vector<JobRecord> records = results::read_job_records(run_dir);
+  const std::vector<JobRecord> records = store::read_job_records(run_dir);
   if (records.empty())
     throw InputError((fs::path(run_dir) / "results.jsonl").string(), "",
                      "holds no job record: nothing to add to the history");

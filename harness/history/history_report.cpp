@@ -14,7 +14,7 @@
 #include "history/stored_text.h"
 #include "results/charts.h"
 #include "results/html_page.h"
-#include "results/store.h"
+#include "store/results_store.h"
 
 namespace sb::history {
 
@@ -191,8 +191,7 @@ class Site {
     for (std::size_t i = 0; i < series_.size(); ++i)
       write_file_atomically((out_ / page(i)).string(), series_page(i));
     write_file_atomically((out_ / "index.html").string(), index_page());
-    write_file_atomically((out_ / "steps.json").string(),
-                          results::json_text(steps_json(), 1) + "\n");
+    write_file_atomically((out_ / "steps.json").string(), store::json_text(steps_json(), 1) + "\n");
 
     HistoryReport report;
     report.index = (out_ / "index.html").string();
@@ -277,7 +276,7 @@ class Site {
               {"panels",
                {panel(q().time, s.time, s.time_steps), panel(q().error, s.error, s.error_steps)}}};
     std::string file = stem.string() + ".json";
-    write_file_atomically(file, results::json_text(d, 1) + "\n");
+    write_file_atomically(file, store::json_text(d, 1) + "\n");
     return file;
   }
 

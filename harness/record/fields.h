@@ -4,7 +4,7 @@
 // place: "at /timing/frame/median_ms: expected a number (or \"nan\", \"inf\",
 // \"-inf\"), found string \"fast\"". The checks and their messages are the one
 // JSON reader's (core/json_reader.h); the reader of a file adds the file's
-// name (results/store.h).
+// name (store/results_store.h).
 //
 // Numbers: NaN and ±inf have no JSON spelling, so a record writes them as the
 // strings "nan", "inf" and "-inf" (json_number); reading a number accepts

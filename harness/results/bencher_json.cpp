@@ -4,7 +4,7 @@
 
 #include "core/atomic_file.h"
 #include "results/compare.h"
-#include "results/store.h"
+#include "store/results_store.h"
 
 namespace sb::results {
 
@@ -12,6 +12,7 @@ using core::write_file_atomically;
 using record::JobRecord;
 using record::JobStatus;
 using record::Series;
+using store::json_text;
 
 using nlohmann::json;
 

@@ -10,13 +10,14 @@
 #include <numeric>
 
 #include "core/atomic_file.h"
-#include "results/store.h"
+#include "store/results_store.h"
 
 namespace sb::results {
 
 using core::write_file_atomically;
 using record::JobRecord;
 using record::JobStatus;
+using store::json_text;
 
 namespace {
 

@@ -23,7 +23,8 @@
 #include "core/names.h"
 #include "record/job_record.h"
 #include "results/pareto.h"
-#include "results/store.h"
+#include "results/record_groups.h"
+#include "store/results_store.h"
 
 extern char** environ;
 
@@ -39,6 +40,7 @@ using record::JobStatus;
 using record::MetricPath;
 using record::Series;
 using record::TimingRecord;
+using store::json_text;
 
 namespace {
 
@@ -93,21 +95,6 @@ const Series* shared_pass(const JobRecord& r, const std::string& name) {
   return it == r.timing->shared.end() ? nullptr : &it->second;
 }
 
-// Records grouped by a key, groups and members in first-appearance order.
-template <class Key>
-std::vector<std::pair<std::string, std::vector<const JobRecord*>>> group_by(
-    const std::vector<const JobRecord*>& records, Key key) {
-  std::vector<std::pair<std::string, std::vector<const JobRecord*>>> groups;
-  std::map<std::string, std::size_t> index;
-  for (const JobRecord* r : records) {
-    const std::string k = key(*r);
-    const auto [it, added] = index.emplace(k, groups.size());
-    if (added) groups.push_back({k, {}});
-    groups[it->second].second.push_back(r);
-  }
-  return groups;
-}
-
 // Ordinal of each name in first-appearance order (stable colours and markers
 // for a technique variant or a pass across every chart).
 class Palette {
@@ -154,10 +141,6 @@ Chart make_chart(const std::string& kind, const std::string& stem, const std::st
 }
 
 // Charts of one (scene variant, resolution): <kind>__<scene>__<WxH>.
-auto by_scene_and_resolution(const std::vector<const JobRecord*>& ok) {
-  return group_by(ok, [](const JobRecord& r) { return r.scene_variant + "\n" + r.resolution; });
-}
-
 Chart scene_chart(const std::string& kind, const std::string& what, const JobRecord& r,
                   const std::string& out_dir) {
   const std::string scene = r.scene_variant, res = r.resolution;

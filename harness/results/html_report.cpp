@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <map>
 #include <optional>
 #include <set>
 #include <string_view>
@@ -19,9 +18,9 @@
 #include "results/html_page.h"
 #include "results/image_viewer.h"
 #include "results/mixed_hosts.h"
+#include "results/record_groups.h"
 #include "results/report_columns.h"
 #include "results/stability_table.h"
-#include "results/store.h"
 
 namespace sb::results {
 
@@ -68,16 +67,8 @@ class Page {
         run_from_out_(run_from_out),
         charts_(charts),
         title_(title),
-        viewer_data_(viewer_data) {
-    for (size_t i = 0; i < records.size(); ++i) {
-      const std::string key = records[i].scene_variant + " @ " + records[i].resolution;
-      if (!group_index_.count(key)) {
-        group_index_[key] = groups_.size();
-        groups_.push_back({key, {}});
-      }
-      groups_[group_index_[key]].rows.push_back(i);
-    }
-  }
+        viewer_data_(viewer_data),
+        groups_(by_scene_and_resolution(records)) {}
 
   std::string render() {
     out_ = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
@@ -97,11 +88,6 @@ class Page {
   }
 
  private:
-  struct Group {
-    std::string key;
-    std::vector<size_t> rows;  // indices into records_
-  };
-
   // A path relative to the run directory, as a URL relative to the report.
   std::string run_link(const std::string& rel) const {
     return html_escape(url_path((run_from_out_ / rel).lexically_normal().generic_string()));
@@ -164,18 +150,18 @@ class Page {
         out_ += std::string("<th") + (c->numeric() ? " class=\"num\"" : "") + ">" +
                 html_escape(c->header) + "</th>";
       out_ += "</tr></thead>\n<tbody>\n";
-      for (size_t r : groups_[g].rows) {
+      for (const JobRecord* r : groups_[g].records) {
         out_ += "<tr>";
         for (const ReportColumn* c : shown) {
           const std::string name = c->name;
           if (name == "status")
-            out_ += "<td>" + status_badge(records_[r].status) + "</td>";
+            out_ += "<td>" + status_badge(r->status) + "</td>";
           else if (name == "technique")
-            out_ += "<td class=\"name\">" + html_escape(c->cell(records_[r])) + "</td>";
+            out_ += "<td class=\"name\">" + html_escape(c->cell(*r)) + "</td>";
           else if (name == "reason")
-            out_ += "<td class=\"reason\">" + html_escape(c->cell(records_[r])) + "</td>";
+            out_ += "<td class=\"reason\">" + html_escape(c->cell(*r)) + "</td>";
           else
-            out_ += "<td class=\"num\">" + html_escape(c->cell(records_[r])) + "</td>";
+            out_ += "<td class=\"num\">" + html_escape(c->cell(*r)) + "</td>";
         }
         out_ += "</tr>\n";
       }
@@ -303,13 +289,11 @@ class Page {
               "<a href=\"#summary-" + std::to_string(g) + "\">table</a></h3>\n";
       std::set<double> scales;
       const JobRecord* ref = nullptr;
-      for (size_t i : groups_[g].rows) {
-        const JobRecord& r = records_[i];
-        if (r.images.error_heatmap_full_scale) scales.insert(*r.images.error_heatmap_full_scale);
-        if (!ref && r.images.reference_shaded) ref = &r;
+      for (const JobRecord* r : groups_[g].records) {
+        if (r->images.error_heatmap_full_scale) scales.insert(*r->images.error_heatmap_full_scale);
+        if (!ref && r->images.reference_shaded) ref = r;
       }
-      ViewerGroup viewer{static_cast<int>(g), groups_[g].key, {}};
-      for (size_t i : groups_[g].rows) viewer.jobs.push_back(&records_[i]);
+      const ViewerGroup viewer{static_cast<int>(g), groups_[g].key, groups_[g].records};
       out_ += image_viewer(viewer, run_dir_, out_dir_, run_from_out_, viewer_data_);
       for (double s : scales) legend(s);
       out_ += "<div class=\"grid\">\n";
@@ -321,14 +305,13 @@ class Page {
             image(*ref, ref->images.reference_shaded, "reference, shaded", "shaded") +
             (ref->reference ? reference_facts(*ref->reference) : "") + "</div></figure>\n";
       }
-      for (size_t i : groups_[g].rows) card(i, scales.size() > 1);
+      for (const JobRecord* r : groups_[g].records) card(*r, scales.size() > 1);
       out_ += "</div>\n";
     }
     out_ += "</section>\n";
   }
 
-  void card(size_t i, bool label_scale) {
-    const JobRecord& r = records_[i];
+  void card(const JobRecord& r, bool label_scale) {
     const std::string& name = r.technique_variant;
     std::string nums;
     for (const auto& [column, label, unit] :
@@ -342,7 +325,8 @@ class Page {
     std::string heat_caption = "error heat map";
     if (label_scale && r.images.error_heatmap_full_scale)
       heat_caption += ", full scale " + fmt_g(*r.images.error_heatmap_full_scale);
-    out_ += "<figure class=\"card\" id=\"job-" + std::to_string(i) +
+    // The job's place in the run, as the stability table links to it.
+    out_ += "<figure class=\"card\" id=\"job-" + std::to_string(&r - records_.data()) +
             "\"><div class=\"card-head\"><span class=\"name\">" + html_escape(name) + "</span>" +
             status_badge(r.status) + "<span class=\"nums\">" + nums + "</span></div>";
     if (r.images.shaded || r.images.error_heatmap)
@@ -367,8 +351,7 @@ class Page {
   const std::vector<ReportChart>& charts_;
   std::string title_;
   bool viewer_data_;
-  std::vector<Group> groups_;
-  std::map<std::string, size_t> group_index_;
+  std::vector<RecordGroup> groups_;  // by scene and resolution
   std::string out_;
 };
 

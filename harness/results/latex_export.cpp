@@ -1,12 +1,12 @@
 #include "results/latex_export.h"
 
 #include <filesystem>
-#include <map>
 #include <set>
 
 #include "core/atomic_file.h"
 #include "results/latex_tables.h"
 #include "results/pgf_csv.h"
+#include "results/record_groups.h"
 
 namespace sb::results {
 
@@ -39,20 +39,16 @@ struct LatexGroup {
 
 std::vector<LatexGroup> latex_groups(const std::vector<JobRecord>& records) {
   std::vector<LatexGroup> groups;
-  std::map<std::string, size_t> index;
   std::set<std::string> stems;
-  for (const JobRecord& r : records) {
-    const std::string key = r.scene_variant + "\n" + r.resolution;
-    auto [it, added] = index.emplace(key, groups.size());
-    if (added) {
-      LatexGroup g;
-      g.name = r.scene_variant + " @ " + r.resolution;
-      const std::string base = latex_file_stem(r.scene_variant + "-" + r.resolution);
-      g.stem = base;
-      for (int n = 2; !stems.insert(g.stem).second; ++n) g.stem = base + "-" + std::to_string(n);
-      groups.push_back(std::move(g));
-    }
-    groups[it->second].records.push_back(&r);
+  for (RecordGroup& group : by_scene_and_resolution(records)) {
+    LatexGroup g;
+    const JobRecord& r = *group.records.front();
+    g.name = std::move(group.key);
+    const std::string base = latex_file_stem(r.scene_variant + "-" + r.resolution);
+    g.stem = base;
+    for (int n = 2; !stems.insert(g.stem).second; ++n) g.stem = base + "-" + std::to_string(n);
+    g.records = std::move(group.records);
+    groups.push_back(std::move(g));
   }
   return groups;
 }

@@ -17,8 +17,8 @@
 #include "record/job_record.h"
 #include "results/mixed_hosts.h"
 #include "results/report.h"
-#include "results/run_lock.h"
-#include "results/store.h"
+#include "store/results_store.h"
+#include "store/run_lock.h"
 
 namespace sb::results {
 
@@ -30,6 +30,9 @@ using record::JobRecord;
 using record::plan_difference;
 using record::PlannedJobRecord;
 using record::PlanRecord;
+using store::read_job_records;
+using store::ResultsStore;
+using store::RunFolderLock;
 
 namespace fs = std::filesystem;
 

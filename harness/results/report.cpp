@@ -1,15 +1,14 @@
 #include "results/report.h"
 
 #include <filesystem>
-#include <map>
 #include <string_view>
 
 #include "core/atomic_file.h"
 #include "core/bounded_text.h"
 #include "results/mixed_hosts.h"
+#include "results/record_groups.h"
 #include "results/report_columns.h"
 #include "results/stability_table.h"
-#include "results/store.h"
 
 namespace sb::results {
 
@@ -79,23 +78,16 @@ std::string make_markdown(const std::vector<JobRecord>& records, const std::stri
              "; mc_noise_share is the share of the penumbra MSE against the Monte Carlo " +
              "reference that its noise explains.\n";
   }
-  std::map<std::string, std::vector<const JobRecord*>> groups;
-  std::vector<std::string> order;
-  for (const auto& r : records) {
-    const std::string key = r.scene_variant + " @ " + r.resolution;
-    if (!groups.count(key)) order.push_back(key);
-    groups[key].push_back(&r);
-  }
   const std::vector<const ReportColumn*> columns = group_table_columns(records);
-  for (const auto& key : order) {
-    out += "\n## " + markdown_text(key) + "\n\n|";
+  for (const RecordGroup& g : by_scene_and_resolution(records)) {
+    out += "\n## " + markdown_text(g.key) + "\n\n|";
     std::string rule = "|";
     for (const ReportColumn* c : columns) {
       out += std::string(" ") + markdown_text(c->header) + " |";
       rule += c->numeric() ? "---:|" : "---|";
     }
     out += "\n" + rule + "\n";
-    for (const JobRecord* r : groups[key]) {
+    for (const JobRecord* r : g.records) {
       out += "|";
       for (const ReportColumn* c : columns) out += " " + markdown_text(c->cell(*r)) + " |";
       out += "\n";

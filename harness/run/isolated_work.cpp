@@ -19,9 +19,9 @@
 #include "core/error.h"
 #include "core/format_number.h"
 #include "core/names.h"
-#include "results/store.h"
 #include "run/child_process.h"
 #include "run/io_trace.h"
+#include "store/results_store.h"
 
 namespace sb::run {
 
@@ -32,7 +32,7 @@ using core::format_number;
 using plan::PlannedJob;
 using record::JobRecord;
 using record::JobStatus;
-using results::json_text;
+using store::json_text;
 
 using json = nlohmann::json;
 using Clock = std::chrono::steady_clock;

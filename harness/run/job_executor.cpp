@@ -13,11 +13,11 @@
 #include "plugin/need_data.h"
 #include "plugin/needs.h"
 #include "record/job_record.h"
-#include "run/baseline.h"
 #include "run/gbuffer.h"
 #include "run/injected_delay.h"
 #include "run/job_identity.h"
 #include "run/job_run.h"
+#include "run/measurement_basis.h"
 #include "run/scene_upload.h"
 #include "run/stability_probe.h"
 #include "run/technique_frames.h"
@@ -158,8 +158,8 @@ class JobExecutor::Impl {
     const glm::mat4 view = st.scene.camera.view();
     const glm::mat4 projection = st.scene.camera.projection(aspect);
     targets.render_gbuffer(gpu, projection * view);
-    const Baseline baseline =
-        make_baseline(e_, o_, embree_, events_, sv.name, st.scene, res, targets);
+    const MeasurementBasis basis =
+        make_measurement_basis(e_, o_, embree_, events_, sv.name, st.scene, res, targets);
 
     FrameInputs in = targets.inputs(st.scene, gpu, view, projection);
     in.derived = &derived;
@@ -177,17 +177,17 @@ class JobExecutor::Impl {
         gl::PassTimer timer(timing_source_);
         render_frame(timer, t, "stability frame", gl::PassDetail::Coarse, f, nullptr);
         ImageF v = targets.read_visibility();
-        metrics::apply_attached_shadow(baseline.regions.attached, v);
+        metrics::apply_attached_shadow(basis.regions.attached, v);
         reset_gl_state();
         return v;
       };
       auto reference = [&](const Scene& moved) {
-        reference::Result out = baseline.reference_of(moved);
-        metrics::apply_attached_shadow(baseline.regions.attached, out.visibility);
+        reference::Result out = basis.reference_of(moved);
+        metrics::apply_attached_shadow(basis.regions.attached, out.visibility);
         return std::move(out.visibility);
       };
       stability.emplace(*e_.stability, sv.max_rmse.value_or(e_.stability->max_rmse), st.scene, in,
-                        baseline.regions.measured, render, reference);
+                        basis.regions.measured, render, reference);
     }
     std::optional<Control> control;
     if (e_.control) control = prepare_control(*e_.control, frame, timing_source_);
@@ -197,20 +197,20 @@ class JobExecutor::Impl {
                              timing_source_,
                              injected_delay_ ? &*injected_delay_ : nullptr,
                              frame,
-                             baseline,
+                             basis,
                              control ? &*control : nullptr,
                              stability ? &*stability : nullptr};
     for (size_t i : pending) {
       const TechniqueVariant& tv = e_.techniques[i];
       JobRecord r = base_record(sv, &st, res, tv);
       r.started_at = now_iso8601();
-      r.reference = baseline.ref_record;
+      r.reference = basis.ref_record;
       events_.job_started(r);
       const auto t0 = std::chrono::steady_clock::now();
       PhasesRecord phases;
       try {
         run_job(setting, tv, uploaded.gpu_bytes_held_for(st.needs.at(i)), r, phases);
-        r.images.add(baseline.ref_images);
+        r.images.add(basis.ref_images);
         r.status = JobStatus::Ok;
       } catch (const std::exception& ex) {
         r.status = JobStatus::Failed;

@@ -12,9 +12,9 @@
 #include "plugin/registry.h"
 #include "reference/embree_isa.h"
 #include "reference/reference.h"
-#include "results/store.h"
 #include "run/host_info.h"
 #include "run/injected_delay.h"
+#include "store/results_store.h"
 
 namespace sb::run {
 
@@ -38,7 +38,7 @@ using record::BuiltScene;
 using record::JobRecord;
 using record::PluginRecord;
 using record::TechniqueRecord;
-using results::json_text;
+using store::json_text;
 
 using json = nlohmann::json;
 

@@ -97,7 +97,7 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv,
   const bool invalid = check.nonfinite + check.below_0 + check.above_1 > 0;
   // V as checked, before the attached-shadow mask hides some offending pixels.
   const ImageF checked = invalid && s.o.write_images ? visibility : ImageF{};
-  const Baseline& b = s.baseline;
+  const MeasurementBasis& b = s.basis;
   metrics::apply_attached_shadow(b.regions.attached, visibility);
   // Shaded from the same V as the metrics, as the reference is: untimed.
   const ImageF shaded = shade(s.frame, visibility);

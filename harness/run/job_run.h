@@ -1,8 +1,8 @@
 #pragma once
 // One job on GL: prepare the technique, render and time its frame schedule
 // (run/frame_schedule.h) next to the control's, check and measure its V
-// against the baseline, write its images and, with the "stability" block,
-// its stability figures.
+// against its measurement basis (run/measurement_basis.h), write its images
+// and, with the "stability" block, its stability figures.
 #include <cstdint>
 #include <map>
 #include <string>
@@ -11,8 +11,8 @@
 #include "gl/pass_timer.h"
 #include "record/job_record.h"
 #include "record/phases_record.h"
-#include "run/baseline.h"
 #include "run/injected_delay.h"
+#include "run/measurement_basis.h"
 #include "run/run_events.h"
 #include "run/runner.h"
 #include "run/stability_probe.h"
@@ -28,7 +28,7 @@ struct JobSetting {
   gl::TimingSource timing_source;
   const InjectedDelay* injected_delay = nullptr;  // SHADOWBENCH_INJECT_DELAY, for any job
   const FrameSetup& frame;
-  const Baseline& baseline;
+  const MeasurementBasis& basis;
   Control* control = nullptr;
   StabilityProbe* stability = nullptr;
 };

@@ -17,14 +17,14 @@
 #include "plan/plan_json.h"
 #include "record/spec_changes.h"
 #include "results/report.h"
-#include "results/run_lock.h"
-#include "results/store.h"
 #include "run/io_trace.h"
 #include "run/isolated_work.h"
 #include "run/job_executor.h"
 #include "run/job_identity.h"
 #include "run/job_line.h"
 #include "run/progress.h"
+#include "store/results_store.h"
+#include "store/run_lock.h"
 
 namespace sb::run {
 
@@ -37,10 +37,10 @@ using plan::PlannedJob;
 using record::JobRecord;
 using record::JobStatus;
 using record::rerun_reason;
-using results::json_text;
-using results::ResultsStore;
-using results::RunFolderLock;
 using results::write_reports;
+using store::json_text;
+using store::ResultsStore;
+using store::RunFolderLock;
 
 Isolation isolation_from_string(const std::string& s) {
   if (s == "none") return Isolation::None;

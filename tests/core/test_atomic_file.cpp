@@ -1,5 +1,5 @@
 // core/atomic_file: a file appears whole under its name or not at all,
-// nothing is left behind that results/store.cpp would not recognise, no
+// nothing is left behind that store/results_store.cpp would not recognise, no
 // write goes through a symlink planted in the folder, and
 // a failed write names the reason (item 11).
 #include <gtest/gtest.h>

@@ -11,7 +11,7 @@
 #include "config/experiment.h"
 #include "metrics/image_io.h"
 #include "plugin/registry.h"
-#include "results/store.h"
+#include "store/results_store.h"
 
 namespace sb::test {
 
@@ -19,9 +19,9 @@ using config::Experiment;
 using config::parse_experiment;
 using core::ImageF;
 using plugin::Registry;
-using results::read_run_records;
 using run::run_experiment;
 using run::RunOptions;
+using store::read_run_records;
 
 namespace fs = std::filesystem;
 

@@ -8,12 +8,12 @@
 
 #include "../config/cli_runner.h"
 #include "e2e_util.h"
-#include "results/store.h"
+#include "store/results_store.h"
 
 namespace sb::test {
 
 using record::JobStatus;
-using results::read_job_records;
+using store::read_job_records;
 
 namespace {
 

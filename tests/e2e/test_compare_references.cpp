@@ -11,11 +11,11 @@
 
 #include "../config/cli_runner.h"
 #include "e2e_util.h"
-#include "results/store.h"
+#include "store/results_store.h"
 
 namespace sb::test {
 
-using results::read_job_records;
+using store::read_job_records;
 
 namespace {
 

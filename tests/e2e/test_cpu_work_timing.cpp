@@ -16,8 +16,8 @@
 #include "gl/gl.h"
 #include "gl/pass_timer.h"
 #include "plugin/registry.h"
-#include "results/store.h"
 #include "run/runner.h"
+#include "store/results_store.h"
 
 namespace sb::test {
 
@@ -28,9 +28,9 @@ using plugin::FrameInputs;
 using plugin::Needs;
 using plugin::Registry;
 using plugin::Technique;
-using results::read_run_records;
 using run::run_experiment;
 using run::RunOptions;
+using store::read_run_records;
 
 namespace {
 

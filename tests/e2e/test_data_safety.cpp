@@ -14,13 +14,13 @@
 
 #include "../config/cli_runner.h"
 #include "e2e_util.h"
-#include "results/run_lock.h"
-#include "results/store.h"
+#include "store/results_store.h"
+#include "store/run_lock.h"
 
 namespace sb::test {
 
-using results::read_run_records;
-using results::RunFolderLock;
+using store::read_run_records;
+using store::RunFolderLock;
 
 namespace {
 

@@ -12,8 +12,8 @@
 #include "gl/gl.h"
 #include "gl/objects.h"
 #include "plugin/registry.h"
-#include "results/store.h"
 #include "run/runner.h"
+#include "store/results_store.h"
 
 namespace sb::test {
 
@@ -26,10 +26,10 @@ using plugin::Needs;
 using plugin::Registry;
 using plugin::Technique;
 using plugin::TechniqueInfo;
-using results::read_run_records;
 using run::run_experiment;
 using run::RunOptions;
 using run::RunSummary;
+using store::read_run_records;
 
 namespace {
 

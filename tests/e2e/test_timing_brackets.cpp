@@ -15,8 +15,8 @@
 #include "gl/context.h"
 #include "gl/gl.h"
 #include "plugin/registry.h"
-#include "results/store.h"
 #include "run/runner.h"
+#include "store/results_store.h"
 
 namespace sb::test {
 
@@ -27,9 +27,9 @@ using plugin::FrameInputs;
 using plugin::Needs;
 using plugin::Registry;
 using plugin::Technique;
-using results::read_run_records;
 using run::run_experiment;
 using run::RunOptions;
+using store::read_run_records;
 
 namespace {
 

@@ -19,7 +19,7 @@
 #include "metrics/image_io.h"
 #include "results/html_report.h"
 #include "results/image_viewer.h"
-#include "results/store.h"
+#include "store/results_store.h"
 
 namespace sb {
 
@@ -75,7 +75,7 @@ std::string all_bytes_under(const fs::path& dir) {
 // The synthetic run with its records in results.jsonl (as a run writes it).
 test::SyntheticRun stored_run(const fs::path& root) {
   test::SyntheticRun run = test::make_synthetic_run(root);
-  results::ResultsStore(run.run_dir.string()).put_all(run.records);
+  store::ResultsStore(run.run_dir.string()).put_all(run.records);
   return run;
 }
 
@@ -198,7 +198,7 @@ TEST(HostileFolders, MergeRefusesImagesOutsideTheRunFolder) {
     const fs::path root = test::test_folder("sb_hostile_merge_outside_");
     test::SyntheticRun run = test::make_synthetic_run(root);
     run.records[0].images.shaded = bad;
-    results::ResultsStore(run.run_dir.string()).put_all(run.records);
+    store::ResultsStore(run.run_dir.string()).put_all(run.records);
     const CliRun merge = shadowbench("merge " + q(root / "merged") + " " + q(run.run_dir));
     EXPECT_EQ(merge.exit_code, 2) << bad << merge.output;
     EXPECT_TRUE(has(merge.output, "outside its run folder")) << merge.output;

@@ -40,7 +40,7 @@ char kind(int x, bool cut) {
   return 'g';
 }
 
-// The regions as the job executor builds them (run/baseline.cpp).
+// The regions as the job executor builds them (run/measurement_basis.cpp).
 Regions regions_of(bool cut, const ImageF& ref_visibility) {
   ImageF positions(kW, kH, 4), normals(kW, kH, 3);
   for (int y = 0; y < kH; ++y)

@@ -13,8 +13,8 @@
 #include "core/error.h"
 #include "full_record.h"
 #include "record/job_record.h"
-#include "results/store.h"
 #include "sample_records.h"
+#include "store/results_store.h"
 
 namespace sb {
 
@@ -28,7 +28,7 @@ using record::MetricPath;
 using record::PluginRecord;
 using record::RecordError;
 using record::SecondReferenceRecord;
-using results::read_job_records;
+using store::read_job_records;
 
 namespace {
 

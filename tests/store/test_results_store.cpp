@@ -1,4 +1,4 @@
-// The results store (results/store.h): after every record it stores,
+// The results store (store/results_store.h): after every record it stores,
 // results.jsonl holds every record once, in plan order, each line the
 // record's own JSON; a record stored again replaces its line, and a store
 // reopened on the folder writes the same lines. Opening a store removes
@@ -12,15 +12,15 @@
 
 #include "../record/sample_records.h"
 #include "core/atomic_file.h"
-#include "results/store.h"
+#include "store/results_store.h"
 
 namespace sb {
 
 using core::AtomicFile;
 using record::JobRecord;
 using record::JobStatus;
-using results::json_text;
-using results::ResultsStore;
+using store::json_text;
+using store::ResultsStore;
 
 namespace {
 

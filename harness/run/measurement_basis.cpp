@@ -1,4 +1,4 @@
-#include "run/baseline.h"
+#include "run/measurement_basis.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -75,7 +75,7 @@ std::string describe(const reference::Result& ref) {
 // The pixels whose tangent plane cuts the light are left out of every
 // region but their own (`terminator`); those wholly facing away from it are
 // attached shadow.
-metrics::Regions regions_of(const Baseline& b, const Scene& scene, bool distance_thirds,
+metrics::Regions regions_of(const MeasurementBasis& b, const Scene& scene, bool distance_thirds,
                             FrameTargets& targets) {
   const auto horizon = metrics::classify_light_horizon(b.positions, b.normals, scene.light);
   metrics::Regions regions;
@@ -98,7 +98,7 @@ metrics::Regions regions_of(const Baseline& b, const Scene& scene, bool distance
 
 // The reference of `scene` at the G-buffer's points: from the cache when
 // there is one.
-reference::Result reference_at(const Baseline& b, const Scene& scene,
+reference::Result reference_at(const MeasurementBasis& b, const Scene& scene,
                                const reference::Settings& settings) {
   return b.cache_dir.empty() ? reference::compute(scene, b.positions, b.normals, settings)
                              : reference::get(scene, b.positions, b.normals, settings, b.cache_dir);
@@ -106,14 +106,15 @@ reference::Result reference_at(const Baseline& b, const Scene& scene,
 
 }  // namespace
 
-reference::Result Baseline::reference_of(const Scene& scene) const {
+reference::Result MeasurementBasis::reference_of(const Scene& scene) const {
   return reference_at(*this, scene, settings);
 }
 
-Baseline make_baseline(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
-                       RunEvents& events, const std::string& scene_name, const Scene& scene,
-                       const Resolution& res, FrameTargets& targets) {
-  Baseline b;
+MeasurementBasis make_measurement_basis(const Experiment& e, const RunOptions& o,
+                                        const EmbreeChoice& embree, RunEvents& events,
+                                        const std::string& scene_name, const Scene& scene,
+                                        const Resolution& res, FrameTargets& targets) {
+  MeasurementBasis b;
   b.positions = targets.read_positions();
   b.normals = targets.read_geometric_normals();
   // Reference at the G-buffer's very points.

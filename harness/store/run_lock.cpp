@@ -1,4 +1,4 @@
-#include "results/run_lock.h"
+#include "store/run_lock.h"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-namespace sb::results {
+namespace sb::store {
 
 RunFolderLock::RunFolderLock(const std::string& run_dir) {
   std::filesystem::create_directories(run_dir);
@@ -52,4 +52,4 @@ RunFolderLock::~RunFolderLock() {
   if (fd_ >= 0) ::close(fd_);  // closing drops the flock
 }
 
-}  // namespace sb::results
+}  // namespace sb::store

@@ -1,4 +1,4 @@
-#include "results/store.h"
+#include "store/results_store.h"
 
 #include <filesystem>
 #include <fstream>
@@ -11,7 +11,7 @@
 #include "core/error.h"
 #include "core/folder_file.h"
 
-namespace sb::results {
+namespace sb::store {
 
 using config::parse_json_text;
 using config::read_json_file;
@@ -150,4 +150,4 @@ std::vector<nlohmann::json> read_run_records(const std::string& run_dir) {
   return out;
 }
 
-}  // namespace sb::results
+}  // namespace sb::store

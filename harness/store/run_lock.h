@@ -4,7 +4,7 @@
 // naming who holds the folder.
 #include <string>
 
-namespace sb::results {
+namespace sb::store {
 
 class RunFolderLock {
  public:
@@ -21,4 +21,4 @@ class RunFolderLock {
   int fd_ = -1;
 };
 
-}  // namespace sb::results
+}  // namespace sb::store

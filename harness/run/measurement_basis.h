@@ -20,7 +20,7 @@
 
 namespace sb::run {
 
-struct Baseline {
+struct MeasurementBasis {
   core::ImageF positions, normals;  // the G-buffer's
   reference::Settings settings;     // the first reference's
   std::string cache_dir;            // where references are cached; "" when they are not
@@ -41,8 +41,9 @@ struct Baseline {
 // `targets` holds the G-buffer of `scene` (FrameTargets::render_gbuffer);
 // shading the reference leaves its V in the visibility target. Tells
 // `events` each reference's phase and logs how it was made.
-Baseline make_baseline(const config::Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
-                       RunEvents& events, const std::string& scene_name, const core::Scene& scene,
-                       const config::Resolution& res, FrameTargets& targets);
+MeasurementBasis make_measurement_basis(const config::Experiment& e, const RunOptions& o,
+                                        const EmbreeChoice& embree, RunEvents& events,
+                                        const std::string& scene_name, const core::Scene& scene,
+                                        const config::Resolution& res, FrameTargets& targets);
 
 }  // namespace sb::run

@@ -11,7 +11,7 @@
 
 #include "record/job_record.h"
 
-namespace sb::results {
+namespace sb::store {
 
 class ResultsStore {
  public:
@@ -63,4 +63,4 @@ std::vector<nlohmann::json> read_run_records(const std::string& run_dir);
 // making nlohmann throw and the run lose its records.
 std::string json_text(const nlohmann::json& value, int indent = -1);
 
-}  // namespace sb::results
+}  // namespace sb::store
