@@ -12,6 +12,7 @@
 #include "core/format_number.h"
 #include "core/names.h"
 #include "history/stored_text.h"
+#include "record/figures.h"
 #include "results/charts.h"
 #include "results/html_page.h"
 #include "store/results_store.h"
@@ -57,9 +58,7 @@ std::string short_commit(const std::string& commit) { return utf8_prefix(commit,
 
 // A quantity as a column heading: "frame / control", "frame ms", the metric path.
 std::string quantity_label(const std::string& quantity) {
-  if (quantity == "time.frame_ratio") return "frame time / control";
-  if (quantity == "time.frame_ms") return "frame time (ms)";
-  if (quantity == "time.technique_ms") return "technique time (ms)";
+  if (const record::TimeSeries* t = record::find_time_series(quantity)) return t->heading;
   return quantity.substr(quantity.find('.') + 1);  // metrics.<path>
 }
 

@@ -1,7 +1,9 @@
 #include "history/run_points.h"
 
+#include <algorithm>
 #include <cmath>
-#include <nlohmann/json.hpp>
+
+#include "record/figures.h"
 
 namespace sb::history {
 
@@ -10,20 +12,22 @@ using record::JobStatus;
 
 namespace {
 
-// Every finite number under `j`, by its dotted path below `prefix`.
-void add_numbers(const nlohmann::json& j, const std::string& prefix,
-                 std::vector<std::pair<std::string, double>>& out) {
-  if (j.is_object()) {
-    for (const auto& [key, value] : j.items()) {
-      std::string path = prefix;
-      path += '.';
-      path += key;
-      add_numbers(value, path, out);
-    }
-  } else if (j.is_number()) {
-    const double v = j.get<double>();
-    if (std::isfinite(v)) out.emplace_back(prefix, v);
-  }
+// Every finite number of the catalogue (record/figures.h) that the record's
+// metrics hold, by its dotted path below "metrics", in the order of the
+// paths (as the record's JSON has them).
+void add_metrics(const record::MetricsRecord& m, std::vector<std::pair<std::string, double>>& out) {
+  std::vector<std::pair<std::string, double>> all;
+  for (const record::WholeImageFigure& f : record::whole_image_figures())
+    if (const std::optional<double> v = f.value(m)) all.emplace_back("metrics." + f.key, *v);
+  for (const record::Image& image : record::images())
+    for (const record::Region& region : record::regions())
+      if (const record::RegionStats* s = region.of(m.*image.member))
+        for (const record::Statistic& statistic : record::statistics())
+          all.emplace_back("metrics." + image.key + "." + region.key + "." + statistic.key,
+                           statistic.value(*s));
+  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [path, value] : all)
+    if (std::isfinite(value)) out.emplace_back(path, value);
 }
 
 void add_if_finite(const std::string& quantity, double v,
@@ -52,15 +56,11 @@ std::vector<JobPoints> run_points(const std::vector<JobRecord>& records) {
     p.reason = r.reason.value_or("");
     p.host_fingerprint = r.host.fingerprint.value_or("");
     p.build_fingerprint = r.build.fingerprint.value_or("");
-    if (r.status == JobStatus::Ok && r.timing) {
-      const record::TimingRecord& t = *r.timing;
-      if (t.control && t.control->frame_ratio.count > 0)
-        add_if_finite("time.frame_ratio", t.control->frame_ratio.median, p.values);
-      if (t.frame.count > 0) add_if_finite("time.frame_ms", t.frame.median, p.values);
-      if (t.technique.count > 0) add_if_finite("time.technique_ms", t.technique.median, p.values);
-    }
-    if (r.status == JobStatus::Ok && r.metrics)
-      add_numbers(r.metrics->to_json(), "metrics", p.values);
+    if (r.status == JobStatus::Ok && r.timing)
+      for (const record::TimeSeries& t : record::time_series())
+        if (const record::Series* s = t.series(*r.timing); s != nullptr && s->count > 0)
+          add_if_finite(t.key, s->median, p.values);
+    if (r.status == JobStatus::Ok && r.metrics) add_metrics(*r.metrics, p.values);
     out.push_back(std::move(p));
   }
   return out;

@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "core/error.h"
+#include "record/figures.h"
 #include "record/metrics_record.h"
 
 namespace sb::history {
@@ -15,20 +16,29 @@ namespace {
 
 constexpr std::string_view kMetricsPrefix = "metrics.";
 
+// "ratio (time.frame_ratio), frame_ms (time.frame_ms) or technique_ms
+// (time.technique_ms)".
+std::string time_quantities() {
+  const auto& all = record::time_series();
+  std::string out;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (i > 0) out += i + 1 == all.size() ? " or " : ", ";
+    out += std::string(all[i].option) + " (" + all[i].key + ")";
+  }
+  return out;
+}
+
 void check_quantities(const HistoryQuantities& q) {
-  bool known_time = false;
-  for (const char* t : kTimeQuantities) known_time = known_time || q.time == t;
-  if (!known_time)
+  if (record::find_time_series(q.time) == nullptr)
     throw InputError("", "--time",
-                     "unknown time quantity \"" + q.time +
-                         "\": expected ratio (time.frame_ratio), frame_ms (time.frame_ms) or "
-                         "technique_ms (time.technique_ms)");
+                     "unknown time quantity \"" + q.time + "\": expected " + time_quantities());
   if (q.error.rfind(kMetricsPrefix, 0) != 0 ||
       !record::MetricPath::parse(q.error.substr(kMetricsPrefix.size())))
     throw InputError("", "--metric",
                      "unknown error metric \"" + q.error +
                          "\": expected a dotted path into a record's \"metrics\", such as "
-                         "visibility.geometry.rmse or shaded.penumbra.ssim");
+                         "visibility.geometry.rmse or shaded.penumbra.ssim: " +
+                         record::metric_path_syntax());
 }
 
 std::map<std::string, std::vector<double>> by_series(std::vector<QuantitySeries> all) {

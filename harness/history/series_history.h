@@ -8,13 +8,9 @@
 
 #include "history/change_points.h"
 #include "history/history_db.h"
+#include "record/figures.h"
 
 namespace sb::history {
-
-// The time quantities a report can plot (run_points.h): the frame's time
-// over the control's next to it, or this host's milliseconds.
-inline constexpr const char* kTimeQuantities[] = {"time.frame_ratio", "time.frame_ms",
-                                                  "time.technique_ms"};
 
 struct SeriesHistory {
   SeriesJobs jobs;            // the series and its job in each run
@@ -25,14 +21,14 @@ struct SeriesHistory {
 
 struct HistoryQuantities {
   std::string time = "time.frame_ratio";
-  std::string error = "metrics.visibility.geometry.rmse";
+  std::string error = std::string("metrics.") + record::kDefaultErrorMetric;
 };
 
 // Every series of `db` (by name) with its values of both quantities and their
 // change points (change_points.h's defaults: relative scale for the time,
-// absolute for the error). InputError for a time quantity not in
-// kTimeQuantities, or an error quantity that is not "metrics." and a metric
-// path (record::MetricPath), naming the option.
+// absolute for the error). InputError for a time quantity not among the
+// catalogue's time series (record/figures.h), or an error quantity that is not "metrics." and a
+// metric path (record::MetricPath), naming the option.
 std::vector<SeriesHistory> series_histories(const HistoryDb& db, const HistoryQuantities& q);
 
 }  // namespace sb::history

@@ -7,6 +7,7 @@
 #include "metrics/geometry_region.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
+#include "record/figures.h"
 
 namespace sb::metrics {
 
@@ -18,74 +19,80 @@ using record::VisibilityCheckRecord;
 
 namespace {
 
-RegionStats region_stats(const ErrorStats& s) {
-  RegionStats r;
-  r.pixel_count = static_cast<std::int64_t>(s.pixel_count);
-  r.rmse = s.rmse;
-  r.mae = s.mae;
-  r.max_error = s.max_error;
-  r.max_x = s.max_x;
-  r.max_y = s.max_y;
-  r.psnr = s.psnr;
-  r.ssim = s.ssim;
-  r.frac_over_001 = s.frac_over_001;
-  r.frac_over_005 = s.frac_over_005;
-  r.frac_over_01 = s.frac_over_01;
-  r.nonfinite_count = static_cast<std::int64_t>(s.nonfinite_count);
-  r.mean_signed = s.mean_signed;
-  return r;
-}
-
 // A region with no pixel: every figure undefined, as compare() gives it.
 RegionStats no_pixels() {
-  ErrorStats s;
+  RegionStats s;
   s.rmse = s.mae = s.max_error = s.psnr = s.ssim = s.mean_signed = std::nan("");
   s.frac_over_001 = s.frac_over_005 = s.frac_over_01 = std::nan("");
-  return region_stats(s);
+  return s;
 }
 
-// Regions, each only over the measured pixels (all but those whose tangent
-// plane cuts the light; see metrics/light_horizon.h): every pixel; the
-// reference's penumbra; the soft pixels of either the technique or the
-// reference (`soft_union`), which also sees light bleeding into a true umbra
-// and blur outside the true penumbra; and, when the view holds any, the
-// pixels on meshes that cast no shadow (`receivers`). `geometry`, the surface
-// outside attached shadow, is measured on its own (metrics/geometry_region.h):
-// its SSIM windows see the reference's values everywhere outside it. So is
-// `terminator`, the pixels whose tangent plane cuts the light, which no other
-// region holds: the technique's own values there, the reference's outside.
+// One region of one job: the region and its pixels (a per-job region's made
+// from the job's V).
+struct JobRegion {
+  const RegionMask* region;
+  std::vector<uint8_t> mask;
+};
+
+// The regions one image of a job is measured over, in catalogue order:
+// `visibility_only` ones when `with_visibility_only`.
+std::vector<JobRegion> job_regions(const Regions& regions, const ImageF& visibility,
+                                   bool with_visibility_only) {
+  std::vector<JobRegion> out;
+  for (const RegionMask& r : regions.masks)
+    if (with_visibility_only || !r.visibility_only)
+      out.push_back({&r, job_mask(r, visibility, regions)});
+  return out;
+}
+
+// How one region of one image is measured (Surround): with the others, on
+// its own, or not at all (no pixel).
+enum class Pass : std::uint8_t { Shared, Own, Empty };
+
+// A Surround::Reference region shares the pass of the technique's measured
+// pixels `t` when it lies within them and `t` already equals the reference
+// outside it (metrics/geometry_region.h); one outside them (`terminator`)
+// has the reference's values in `t` and is measured on the technique's own.
+Pass pass_of(const JobRegion& r, const ImageF& t, const ImageF& ref, const Regions& regions) {
+  if (r.region->surround == Surround::Technique) return Pass::Shared;
+  if (count_ones(r.mask) == 0) return Pass::Empty;
+  return mask_within(r.mask, regions.measured) && matches_outside(t, ref, r.mask) ? Pass::Shared
+                                                                                  : Pass::Own;
+}
+
+// The figures of `test` against `ref` over each region, each in its slot of
+// the record (record::Region::slot).
 //
 // SSIM's windows reach past the mask, so the unmeasured pixels take the
-// reference's values first: they add no error to a neighbour either.
-//
-// `extra` masks are measured too, in the same pass of the SSIM window (the
-// window's cost does not depend on how many masks average it); their stats
-// come back in order.
+// reference's values first: they add no error to a neighbour either. Every
+// region sharing that image is measured in one pass of the SSIM window (the
+// window's cost does not depend on how many masks average it).
 ImageMetrics compare_images(const ImageF& test, const ImageF& ref, const Regions& regions,
-                            const std::vector<uint8_t>& soft_union,
-                            const std::vector<const std::vector<uint8_t>*>& extra = {},
-                            std::vector<RegionStats>* extra_stats = nullptr) {
+                            const std::vector<JobRegion>& job) {
   const ImageF t = with_unmeasured_from(test, ref, regions.measured);
-  std::vector<const std::vector<uint8_t>*> masks = {&regions.measured, &regions.penumbra,
-                                                    &soft_union};
-  if (regions.any_receiver) masks.push_back(&regions.receivers);
-  // Geometry shares the SSIM pass unless the technique wrote something other
-  // than the reference outside it (on the sky, say): then it needs its own.
-  const bool geometry_shares = matches_outside(t, ref, regions.geometry);
-  if (geometry_shares) masks.push_back(&regions.geometry);
-  const size_t first_extra = masks.size();
-  masks.insert(masks.end(), extra.begin(), extra.end());
-  const std::vector<ErrorStats> stats = compare(t, ref, masks);
-  ImageMetrics m{region_stats(stats[0]), region_stats(stats[1]), region_stats(stats[2])};
-  m.geometry = region_stats(geometry_shares ? stats[first_extra - 1]
-                                            : compare_within(t, ref, regions.geometry));
-  if (regions.any_receiver) m.receivers = region_stats(stats[3]);
-  m.terminator = count_ones(regions.terminator) == 0
-                     ? no_pixels()
-                     : region_stats(compare_within(test, ref, regions.terminator));
-  if (extra_stats != nullptr)
-    for (size_t i = first_extra; i < stats.size(); ++i)
-      extra_stats->push_back(region_stats(stats[i]));
+  std::vector<Pass> passes;
+  std::vector<const std::vector<uint8_t>*> shared;
+  for (const JobRegion& r : job) {
+    passes.push_back(pass_of(r, t, ref, regions));
+    if (passes.back() == Pass::Shared) shared.push_back(&r.mask);
+  }
+  const std::vector<ErrorStats> stats = compare(t, ref, shared);
+  ImageMetrics m;
+  size_t next_shared = 0;
+  for (size_t i = 0; i < job.size(); ++i) {
+    RegionStats& slot = record::find_region(job[i].region->key)->slot(m);
+    switch (passes[i]) {
+      case Pass::Shared:
+        slot = stats[next_shared++];
+        break;
+      case Pass::Own:
+        slot = compare_within(test, ref, job[i].mask);
+        break;
+      case Pass::Empty:
+        slot = no_pixels();
+        break;
+    }
+  }
   return m;
 }
 
@@ -98,41 +105,28 @@ double masked_mean(const ImageF& map, const std::vector<uint8_t>& mask) {
   return n == 0 ? std::nan("") : sum / static_cast<double>(n);
 }
 
-// The FLIP map of test against ref with every pixel outside `inside` taking
-// ref's values, as compare_within does for SSIM.
-ImageF flip_within(const ImageF& test, const ImageF& ref, const std::vector<uint8_t>& inside,
-                   double pixels_per_degree) {
-  return flip(ref, with_unmeasured_from(test, ref, inside), pixels_per_degree).error;
-}
-
 // Each region's mean of the FLIP map of test against ref, the map computed
-// as the region's SSIM is (compare_images): with the unmeasured pixels from
-// ref, and for `geometry` and `terminator` with every pixel outside the
-// region from ref. Geometry shares the first map when the technique's values
-// outside it already equal the reference's (every shaded image, say);
-// terminator, the measured pixels being outside it, takes a map of its own
-// when it has pixels.
+// as the region's SSIM is (compare_images): one map of the technique's
+// measured pixels for the regions that share it, and for the others a map
+// with every pixel outside the region from ref. A region with no pixel of
+// its own pass has no FLIP.
 void add_flip_means(ImageMetrics& m, const ImageF& test, const ImageF& ref, const Regions& regions,
-                    const std::vector<uint8_t>& soft_union, double pixels_per_degree) {
+                    const std::vector<JobRegion>& job, double pixels_per_degree) {
   const ImageF t = with_unmeasured_from(test, ref, regions.measured);
   const ImageF map = flip(ref, t, pixels_per_degree).error;
-  m.all.flip_mean = masked_mean(map, regions.measured);
-  m.penumbra.flip_mean = masked_mean(map, regions.penumbra);
-  m.soft_union.flip_mean = masked_mean(map, soft_union);
-  if (m.geometry)
-    m.geometry->flip_mean =
-        masked_mean(matches_outside(t, ref, regions.geometry)
-                        ? map
-                        : flip_within(t, ref, regions.geometry, pixels_per_degree),
-                    regions.geometry);
-  if (m.receivers) m.receivers->flip_mean = masked_mean(map, regions.receivers);
-  if (m.terminator && m.terminator->pixel_count > 0)
-    m.terminator->flip_mean = masked_mean(
-        flip_within(test, ref, regions.terminator, pixels_per_degree), regions.terminator);
-  if (regions.distance_thirds) {
-    std::optional<RegionStats>* thirds[] = {&m.near_third, &m.middle_third, &m.far_third};
-    for (std::size_t i = 0; i < 3; ++i)
-      if (*thirds[i]) (*thirds[i])->flip_mean = masked_mean(map, (*regions.distance_thirds)[i]);
+  for (const JobRegion& r : job) {
+    RegionStats& slot = record::find_region(r.region->key)->slot(m);
+    switch (pass_of(r, t, ref, regions)) {
+      case Pass::Shared:
+        slot.flip_mean = masked_mean(map, r.mask);
+        break;
+      case Pass::Own:
+        slot.flip_mean = masked_mean(
+            flip(ref, with_unmeasured_from(test, ref, r.mask), pixels_per_degree).error, r.mask);
+        break;
+      case Pass::Empty:
+        break;
+    }
   }
 }
 
@@ -199,23 +193,14 @@ ImageF invalid_visibility_image(const ImageF& visibility) {
 MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const ImageF& ref_visibility,
                       const ImageF& ref_shaded, const Regions& regions,
                       double flip_pixels_per_degree, ImageF* flip_map) {
-  const std::vector<uint8_t> soft_union = soft_union_of(visibility, regions);
-  std::vector<const std::vector<uint8_t>*> thirds;
-  if (regions.distance_thirds)
-    for (const auto& third : *regions.distance_thirds) thirds.push_back(&third);
-  std::vector<RegionStats> third_stats;
-  MetricsRecord m{
-      compare_images(visibility, ref_visibility, regions, soft_union, thirds, &third_stats),
-      compare_images(shaded, ref_shaded, regions, soft_union)};
-  if (regions.distance_thirds) {
-    m.visibility.near_third = third_stats[0];
-    m.visibility.middle_third = third_stats[1];
-    m.visibility.far_third = third_stats[2];
-  }
-  add_flip_means(m.visibility, visibility, ref_visibility, regions, soft_union,
+  const std::vector<JobRegion> of_visibility = job_regions(regions, visibility, true);
+  const std::vector<JobRegion> of_shaded = job_regions(regions, visibility, false);
+  MetricsRecord m{compare_images(visibility, ref_visibility, regions, of_visibility),
+                  compare_images(shaded, ref_shaded, regions, of_shaded)};
+  add_flip_means(m.visibility, visibility, ref_visibility, regions, of_visibility,
                  flip_pixels_per_degree);
   const ImageF shaded_png = as_flip_reads_png(shaded), ref_png = as_flip_reads_png(ref_shaded);
-  add_flip_means(m.shaded, shaded_png, ref_png, regions, soft_union, flip_pixels_per_degree);
+  add_flip_means(m.shaded, shaded_png, ref_png, regions, of_shaded, flip_pixels_per_degree);
   // As FLIP's tool compares the two PNGs: every pixel, nothing replaced.
   FlipResult whole = flip(ref_png, shaded_png, flip_pixels_per_degree);
   m.flip_shaded = whole.mean;
@@ -225,9 +210,9 @@ MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const Imag
 
 ImageMetrics measure_visibility(const ImageF& visibility, const ImageF& ref_visibility,
                                 const Regions& regions, double flip_pixels_per_degree) {
-  const std::vector<uint8_t> soft_union = soft_union_of(visibility, regions);
-  ImageMetrics m = compare_images(visibility, ref_visibility, regions, soft_union);
-  add_flip_means(m, visibility, ref_visibility, regions, soft_union, flip_pixels_per_degree);
+  const std::vector<JobRegion> job = job_regions(regions, visibility, false);
+  ImageMetrics m = compare_images(visibility, ref_visibility, regions, job);
+  add_flip_means(m, visibility, ref_visibility, regions, job, flip_pixels_per_degree);
   return m;
 }
 

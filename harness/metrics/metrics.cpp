@@ -153,8 +153,8 @@ std::vector<ErrorStats> compare_errors(const ImageF& test, const ImageF& ref,
     for (size_t y = 0; y < height; ++y) {
       const RowSums& row = rows[m * height + y];
       // Per-row partial sums limit the cancellation error, as OIIO's batches.
-      s.pixel_count += row.pixels;
-      s.nonfinite_count += row.nonfinite;
+      s.pixel_count += static_cast<std::int64_t>(row.pixels);
+      s.nonfinite_count += static_cast<std::int64_t>(row.nonfinite);
       over001 += row.over001;
       over005 += row.over005;
       over01 += row.over01;

@@ -11,38 +11,14 @@
 #include <vector>
 
 #include "core/image.h"
+#include "record/metrics_record.h"
 
 namespace sb::metrics {
 
-struct ErrorStats {
-  size_t pixel_count = 0;  // pixels included (mask applied)
-  // Over all channels of the included pixels, as OIIO's compare():
-  // mae = sum|d| / (n*channels), rmse = sqrt(sum d^2 / (n*channels)),
-  // d = |float(test - ref)| accumulated in double.
-  double rmse = 0, mae = 0, max_error = 0;
-  // mean(test - ref) over the same values: its sign tells over-darkening
-  // (negative for visibility) from leaking light (positive).
-  double mean_signed = 0;
-  // First (row-major, then channel) value with the largest error; -1 when no
-  // included value differs at all (OIIO reports 0,0,0 there).
-  int max_x = -1, max_y = -1, max_channel = -1;
-  // 20*log10(1/rmse) (data range 1); +inf when rmse == 0. Equal to OIIO's
-  // PSNR while no value exceeds 1 in magnitude (OIIO then uses the largest
-  // absolute value as the peak instead of 1).
-  double psnr = 0;
-  // Mean SSIM (see ssim()); NaN when the image is smaller than the 11x11
-  // window or no included pixel lies in the evaluated region.
-  double ssim = 1;
-  // Share of included PIXELS whose error (max over channels) is > 0.01/0.05/0.1.
-  double frac_over_001 = 0, frac_over_005 = 0, frac_over_01 = 0;
-  // Included values where test and ref are not both finite and equal in kind
-  // (NaN vs number, inf vs number, +inf vs -inf). Such a value counts as an
-  // infinite error for max_error and the fractions but is left out of the
-  // rmse/mae sums (which keep their n*channels divisor), so one stray NaN
-  // does not turn every figure into NaN. NaN==NaN and inf==inf (same sign)
-  // count as exact matches.
-  size_t nonfinite_count = 0;
-};
+// The statistics of one image over one region of pixels are the record's own
+// (record::RegionStats, each figure's meaning at its member): compare()
+// computes them straight into it. flip_mean is left unset (metrics/flip.h).
+using ErrorStats = record::RegionStats;
 
 // Error statistics of test against ref. Every figure, SSIM included, is
 // restricted to the masked pixels when a mask is given.

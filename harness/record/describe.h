@@ -9,7 +9,7 @@
 // reader and its documentation in one place, and they cannot drift.
 //
 // What a description may say (V is any of the visitors):
-//   v.field(key, &S::member, {unit, doc, presence, suffixed})
+//   v.field(key, &S::member, {unit, doc, presence, suffixed, display})
 //       a member: a number, integer, bool, string, list, nlohmann::json,
 //       std::array<double, N>, a described struct, std::map<std::string, T>
 //       of those, an std::vector of described structs (a JSON array of
@@ -47,6 +47,19 @@ enum class Presence {
                 // the member's default
 };
 
+// Which way a figure improves: reports mark the best value, comparisons call
+// a change a regression or an improvement by it.
+enum class Better { Neither, Lower, Higher };
+
+// How reports show a figure (record/figures.h): its name in words ("RMSE",
+// "Penumbra"), which way it improves and the printf format of its value.
+// Empty for a member that no report shows.
+struct Display {
+  const char* label = "";
+  Better better = Better::Neither;
+  const char* format = nullptr;
+};
+
 struct FieldInfo {
   const char* unit = "";  // "ms", "s", "px", "degrees"; "" for none
   const char* doc = "";   // one line for docs/results.md
@@ -55,6 +68,7 @@ struct FieldInfo {
   // "median_ms" in a timing series, "median" in a ratio series): what lets
   // one Series type serve both.
   bool suffixed = false;
+  Display display = {};
 };
 
 namespace describe_detail {

@@ -1,47 +1,14 @@
 #include "record/metrics_record.h"
 
 #include <limits>
-#include <type_traits>
 #include <vector>
 
+#include "record/figures.h"
 #include "record/record_json.h"
 
 namespace sb::record {
 
 using json = nlohmann::json;
-
-namespace {
-
-// A number of RegionStats by its record key: the description's members
-// that are numbers.
-class NumberOf {
- public:
-  NumberOf(const RegionStats& s, const std::string& key) : s_(s), key_(key) {}
-  std::optional<double> value;
-
-  template <class M>
-  void field(const char* key, M RegionStats::*member, const FieldInfo& /*info*/ = {}) {
-    if constexpr (std::is_arithmetic_v<M>) {
-      if (key_ == key) value = static_cast<double>(s_.*member);
-    } else if constexpr (std::is_same_v<M, std::optional<double>>) {
-      if (key_ == key) value = (s_.*member).value_or(std::numeric_limits<double>::quiet_NaN());
-    }
-  }
-  template <class W, class R>
-  void custom(const char*, const char*, const FieldInfo&, W&&, R&&) {}
-
- private:
-  const RegionStats& s_;
-  const std::string& key_;
-};
-
-std::optional<double> number_of(const RegionStats& s, const std::string& key) {
-  NumberOf n(s, key);
-  RegionStats::describe(n);
-  return n.value;
-}
-
-}  // namespace
 
 void RegionStats::read_max_pixel(RegionStats& s, const Fields& f) {
   const std::vector<int> max_pixel = f.get<std::vector<int>>("max_pixel");
@@ -62,41 +29,28 @@ std::optional<MetricPath> MetricPath::parse(const std::string& dotted) {
   if (first == std::string::npos) return std::nullopt;
   const size_t second = dotted.find('.', first + 1);
   if (second == std::string::npos) return std::nullopt;
-  const std::string image = dotted.substr(0, first);
-  const std::string region = dotted.substr(first + 1, second - first - 1);
+  const Image* image = find_image(std::string_view(dotted).substr(0, first));
+  const Region* region =
+      find_region(std::string_view(dotted).substr(first + 1, second - first - 1));
+  const Statistic* statistic = find_statistic(std::string_view(dotted).substr(second + 1));
+  if (image == nullptr || region == nullptr || statistic == nullptr) return std::nullopt;
   MetricPath p;
-  p.key_ = dotted.substr(second + 1);
-  if (image == "visibility")
-    p.image_ = &MetricsRecord::visibility;
-  else if (image == "shaded")
-    p.image_ = &MetricsRecord::shaded;
-  if (region == "all")
-    p.region_ = [](const ImageMetrics& m) { return &m.all; };
-  else if (region == "geometry")
-    p.region_ = [](const ImageMetrics& m) { return m.geometry ? &*m.geometry : nullptr; };
-  else if (region == "penumbra")
-    p.region_ = [](const ImageMetrics& m) { return &m.penumbra; };
-  else if (region == "soft_union")
-    p.region_ = [](const ImageMetrics& m) { return &m.soft_union; };
-  else if (region == "receivers")
-    p.region_ = [](const ImageMetrics& m) { return m.receivers ? &*m.receivers : nullptr; };
-  else if (region == "terminator")
-    p.region_ = [](const ImageMetrics& m) { return m.terminator ? &*m.terminator : nullptr; };
-  else if (region == "near_third")
-    p.region_ = [](const ImageMetrics& m) { return m.near_third ? &*m.near_third : nullptr; };
-  else if (region == "middle_third")
-    p.region_ = [](const ImageMetrics& m) { return m.middle_third ? &*m.middle_third : nullptr; };
-  else if (region == "far_third")
-    p.region_ = [](const ImageMetrics& m) { return m.far_third ? &*m.far_third : nullptr; };
-  const bool known = number_of(RegionStats{}, p.key_).has_value();
-  if (p.image_ == nullptr || p.region_ == nullptr || !known) return std::nullopt;
+  p.image_ = image;
+  p.region_ = region;
+  p.statistic_ = statistic;
   return p;
 }
 
+bool MetricPath::holds(const MetricsRecord& m) const {
+  return region_->of(m.*image_->member) != nullptr;
+}
+
+const std::string& MetricPath::key() const { return statistic_->key; }
+
 double MetricPath::of(const MetricsRecord& m) const {
-  const RegionStats* s = region_(m.*image_);
+  const RegionStats* s = region_->of(m.*image_->member);
   if (s == nullptr) return std::numeric_limits<double>::quiet_NaN();
-  return number_of(*s, key_).value_or(0.0);  // parse() admits known keys only
+  return statistic_->value(*s);
 }
 
 }  // namespace sb::record

@@ -21,6 +21,7 @@
 #include "core/error.h"
 #include "core/install_layout.h"
 #include "core/names.h"
+#include "record/figures.h"
 #include "record/job_record.h"
 #include "results/pareto.h"
 #include "results/record_groups.h"
@@ -58,11 +59,8 @@ MetricPath metric_path(const std::string& metric) {
   if (const auto p = MetricPath::parse(metric)) return *p;
   throw InputError("", "--metric",
                    "unknown error metric \"" + metric +
-                       "\": expected a dotted path into a record's \"metrics\", "
-                       "<visibility|shaded>.<geometry|all|penumbra|soft_union|receivers|terminator|"
-                       "near_third|middle_third|far_third>.<key> with key one of rmse, "
-                       "mae, max_error, psnr, ssim, frac_over_0.01, frac_over_0.05, frac_over_0.1, "
-                       "mean_signed, pixel_count, nonfinite_count, flip_mean");
+                       "\": expected a dotted path into a record's \"metrics\", " +
+                       record::metric_path_syntax());
 }
 
 double metric_of(const JobRecord& r, const MetricPath& metric) {
@@ -70,7 +68,7 @@ double metric_of(const JobRecord& r, const MetricPath& metric) {
 }
 
 bool higher_is_better(const MetricPath& metric) {
-  return metric.key() == "psnr" || metric.key() == "ssim";
+  return metric.statistic().info.display.better == record::Better::Higher;
 }
 
 // ---------------------------------------------------------------- records

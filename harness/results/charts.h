@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "record/figures.h"
 #include "record/job_record.h"
 
 namespace sb::results {
@@ -29,7 +30,7 @@ struct ChartOptions {
   // shaded.geometry.ssim, visibility.all.frac_over_0.05. The default region,
   // geometry, does not change with framing (docs/results.md, "Regions").
   // For psnr and ssim higher is better, and the Pareto front follows that.
-  std::string error_metric = "visibility.geometry.rmse";
+  std::string error_metric = record::kDefaultErrorMetric;
   // "default", or "paper": each chart also as vector PDF, 3.3 in wide (a
   // two-column paper's column), 8 pt Computer Modern (matplotlib's mathtext
   // fonts), no title (the caption says it), the legend below the axes.

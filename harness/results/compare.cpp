@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/format_number.h"
+#include "record/figures.h"
 #include "record/timing_stats.h"
 #include "results/mann_whitney.h"
 #include "results/multiple_testing.h"
@@ -118,10 +119,11 @@ std::optional<MetricPath> metric_path(const std::string& option) {
   return MetricPath::parse(option.rfind("metrics.", 0) == 0 ? option.substr(8) : option);
 }
 
-// Metrics where a larger value is better: an increase is an improvement.
+// Metrics where a larger value is better (record/figures.h): an increase is
+// an improvement.
 bool higher_is_better(const std::string& path) {
-  const std::string last = path.substr(path.find_last_of('.') + 1);
-  return last == "psnr" || last == "ssim";
+  const std::optional<MetricPath> p = metric_path(path);
+  return p && p->statistic().info.display.better == record::Better::Higher;
 }
 
 std::string metric_label(const std::string& path) {
@@ -190,9 +192,9 @@ void check_options(const CompareOptions& o) {
     throw InputError("", "--correction", "expected holm, bh or none, found '" + o.correction + "'");
   if (o.metric != "none" && !metric_path(o.metric))
     throw InputError("", "--metric",
-                     "no record has metrics." + o.metric +
-                         ": expected <visibility|shaded>.<all|penumbra|soft_union>.<key> "
-                         "(try visibility.all.rmse, visibility.penumbra.rmse, shaded.all.ssim)");
+                     "no record has metrics." + o.metric + ": expected " +
+                         record::metric_path_syntax() +
+                         " (try visibility.all.rmse, visibility.penumbra.rmse, shaded.all.ssim)");
 }
 
 namespace {

@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "record/figures.h"
 #include "record/job_record.h"
 
 namespace sb::results {
@@ -41,7 +42,7 @@ struct CompareOptions {
   double time_threshold = 0.10;    // relative change of the median frame time
   double error_threshold = 0.005;  // absolute change of the error metric
   // A path under "metrics"; "none": times only.
-  std::string metric = "visibility.geometry.rmse";
+  std::string metric = record::kDefaultErrorMetric;
   // Which samples: "frame", "technique" (its passes' sum) or "none" (errors only).
   std::string timing = "frame";
   // "none": absolute times, same host fingerprint only; "control": the

@@ -7,15 +7,16 @@
 #include <string>
 #include <vector>
 
+#include "record/figures.h"
 #include "record/job_record.h"
 
 namespace sb::results {
 
 struct LatexOptions {
   std::vector<std::string> columns;  // report column names; empty: the default ones
-  std::string error_metric = "visibility.geometry.rmse";  // the CSVs' error (--metric)
-  int digits = 3;                                         // significant digits in the tables
-  std::string title = "shadowbench";                      // tables.tex's heading
+  std::string error_metric = record::kDefaultErrorMetric;  // the CSVs' error (--metric)
+  int digits = 3;                                          // significant digits in the tables
+  std::string title = "shadowbench";                       // tables.tex's heading
 };
 
 struct LatexFiles {

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/format_number.h"
+#include "record/figures.h"
 #include "results/latex_tables.h"
 #include "results/pareto.h"
 
@@ -32,7 +33,7 @@ std::string make_error_time_csv(const std::vector<const JobRecord*>& group,
                                 const std::string& error_metric) {
   const std::optional<MetricPath> path = MetricPath::parse(error_metric);
   if (!path) throw InputError("", "--metric", "unknown error metric \"" + error_metric + "\"");
-  const bool higher = path->key() == "psnr" || path->key() == "ssim";
+  const bool higher = path->statistic().info.display.better == record::Better::Higher;
   std::vector<PgfRow> rows;
   for (const JobRecord* r : group) {
     if (r->status != JobStatus::Ok || !r->timing) continue;

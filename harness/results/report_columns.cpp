@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 #include <stdexcept>
 
 #include "core/format_number.h"
+#include "record/figures.h"
 #include "reference/reference.h"
 
 namespace sb::results {
@@ -17,71 +19,28 @@ using record::JobStatus;
 using record::ReferenceRecord;
 using record::RegionStats;
 using record::Series;
-using record::TimingRecord;
 using record::to_string;
 
 namespace {
 
-// A figure of the visibility buffer's metrics over one region.
-template <RegionStats ImageMetrics::*Region, double RegionStats::*Value>
-std::optional<double> visibility(const JobRecord& r) {
-  if (!r.metrics) return std::nullopt;
-  return r.metrics->visibility.*Region.*Value;
+// The image a column's figure is of: the visibility against the reference,
+// or against the second reference (null where the record has none).
+using ImageOf = const ImageMetrics* (*)(const JobRecord&);
+
+const ImageMetrics* visibility(const JobRecord& r) {
+  return r.metrics ? &r.metrics->visibility : nullptr;
 }
 
-// A figure of the visibility buffer's metrics over the geometry region, the
-// tables' default (absent from records written before it existed).
-template <double RegionStats::*Value>
-std::optional<double> geometry(const JobRecord& r) {
-  if (!r.metrics || !r.metrics->visibility.geometry) return std::nullopt;
-  return *r.metrics->visibility.geometry.*Value;
+const ImageMetrics* second_visibility(const JobRecord& r) {
+  return r.second_reference ? &r.second_reference->visibility : nullptr;
 }
 
-// FLIP of the shaded image over every pixel, as NVIDIA's tool prints it for
-// shaded.png against the reference's (absent from records written before it).
-std::optional<double> shaded_flip(const JobRecord& r) {
-  if (!r.metrics) return std::nullopt;
-  return r.metrics->flip_shaded;
-}
-
-// The visibility's RMSE over the terminator band (absent from records
-// written before it; NaN, an empty cell, where the view has no such pixel).
-std::optional<double> terminator_rmse(const JobRecord& r) {
-  if (!r.metrics || !r.metrics->visibility.terminator) return std::nullopt;
-  return r.metrics->visibility.terminator->rmse;
-}
-
-template <Series TimingRecord::*Member>
-std::optional<double> median_ms(const JobRecord& r) {
-  if (!r.timing) return std::nullopt;
-  return (*r.timing.*Member).median;
-}
-
-// The median of the job's frame time over the control's next to it.
-std::optional<double> ratio_to_control(const JobRecord& r) {
-  if (!r.timing || !r.timing->control) return std::nullopt;
-  return r.timing->control->frame_ratio.median;
-}
-
-// The technique's GPU memory, its own and its needs' (technique.gpu_bytes),
-// in MiB; none for older records, which counted its own only.
+// The GPU memory the technique reports (technique.gpu_bytes): its own and its
+// needs', in MiB; none for older records, which counted its own only.
 std::optional<double> gpu_mib(const JobRecord& r) {
   const auto bytes = r.technique.gpu_total_bytes();
   if (!bytes) return std::nullopt;
   return double(*bytes) / (1024.0 * 1024.0);
-}
-
-// The visibility's figure against the second reference.
-template <RegionStats ImageMetrics::*Region, double RegionStats::*Value>
-std::optional<double> second(const JobRecord& r) {
-  if (!r.second_reference) return std::nullopt;
-  return r.second_reference->visibility.*Region.*Value;
-}
-
-// The visibility's geometry RMSE against the second reference.
-std::optional<double> second_geometry_rmse(const JobRecord& r) {
-  if (!r.second_reference || !r.second_reference->visibility.geometry) return std::nullopt;
-  return r.second_reference->visibility.geometry->rmse;
 }
 
 bool is_exact(const ReferenceRecord& r) { return r.method == reference::kExactMethod; }
@@ -100,14 +59,6 @@ std::optional<double> mc_noise_share(const JobRecord& r) {
   return (mc * mc - exact * exact) / (mc * mc);
 }
 
-// The visibility's RMSE over one distance third (absent unless the config
-// asked for them).
-template <std::optional<RegionStats> ImageMetrics::*Third>
-std::optional<double> third_rmse(const JobRecord& r) {
-  if (!r.metrics || !(r.metrics->visibility.*Third)) return std::nullopt;
-  return (r.metrics->visibility.*Third)->rmse;
-}
-
 // The record's lit / penumbra / umbra confusion against the reference.
 std::optional<double> penumbra_missed(const JobRecord& r) {
   return r.classes ? r.classes->penumbra_missed() : std::nullopt;
@@ -116,9 +67,79 @@ std::optional<double> penumbra_invented(const JobRecord& r) {
   return r.classes ? r.classes->penumbra_invented() : std::nullopt;
 }
 
+// Names and labels made from the catalogue, kept as long as the columns.
+const char* kept(std::string text) {
+  static std::deque<std::string> texts;
+  return texts.emplace_back(std::move(text)).c_str();
+}
+
+ReportColumn figure_column(const char* name, const char* label, const record::FieldInfo& info) {
+  ReportColumn c;
+  c.name = c.header = name;
+  c.label = label;
+  c.unit = info.unit;
+  c.better = info.display.better;
+  c.format = info.display.format;
+  return c;
+}
+
+// A statistic of `image` over a region (record/figures.h): named by its key
+// over the tables' default region, `geometry`, else by the region's column
+// name and its key ("penumbra_rmse", "Penumbra RMSE"); absent where the
+// record lacks the region.
+ReportColumn statistic_column(ImageOf image, const std::string& region_key,
+                              const std::string& statistic_key) {
+  const record::Region& region = *record::find_region(region_key);
+  const record::Statistic& statistic = *record::find_statistic(statistic_key);
+  const bool tables_default = region_key == "geometry";
+  ReportColumn c = figure_column(
+      tables_default ? kept(statistic.key) : kept(region.column + "_" + statistic.key),
+      tables_default
+          ? statistic.info.display.label
+          : kept(std::string(region.info.display.label) + " " + statistic.info.display.label),
+      statistic.info);
+  c.number = [image, &region, &statistic](const JobRecord& r) -> std::optional<double> {
+    const ImageMetrics* m = image(r);
+    const RegionStats* s = m != nullptr ? region.of(*m) : nullptr;
+    if (s == nullptr) return std::nullopt;
+    return statistic.value(*s);
+  };
+  return c;
+}
+
+// The same statistic against the second reference: "second_rmse",
+// "RMSE (2nd ref.)".
+ReportColumn second_column(const std::string& region_key, const std::string& statistic_key) {
+  ReportColumn c = statistic_column(second_visibility, region_key, statistic_key);
+  c.name = c.header = kept(std::string("second_") + c.name);
+  c.label = kept(std::string(c.label) + " (2nd ref.)");
+  return c;
+}
+
+// The median of one of the job's time series (record/figures.h).
+ReportColumn time_column(const std::string& key) {
+  const record::TimeSeries& t = *record::find_time_series(key);
+  ReportColumn c = figure_column(t.column, t.info.display.label, t.info);
+  c.number = [&t](const JobRecord& r) -> std::optional<double> {
+    const Series* s = r.timing ? t.series(*r.timing) : nullptr;
+    if (s == nullptr) return std::nullopt;
+    return s->median;
+  };
+  return c;
+}
+
+// A figure of the shaded image as a whole (MetricsRecord's own numbers).
+ReportColumn whole_image_column(const char* name, const std::string& key) {
+  const record::WholeImageFigure& f = *record::find_whole_image_figure(key);
+  ReportColumn c = figure_column(name, f.info.display.label, f.info);
+  c.number = [&f](const JobRecord& r) -> std::optional<double> {
+    if (!r.metrics) return std::nullopt;
+    return f.value(*r.metrics);
+  };
+  return c;
+}
+
 std::vector<ReportColumn> make_columns() {
-  using I = ImageMetrics;
-  using S = RegionStats;
   auto text = [](const char* name, std::string (*get)(const JobRecord&), bool per_group = false) {
     ReportColumn c;
     c.name = c.header = c.label = name;
@@ -126,7 +147,7 @@ std::vector<ReportColumn> make_columns() {
     c.text = get;
     return c;
   };
-  // Lower is better unless said otherwise: times, memory and errors.
+  // Figures no record member holds: lower is better unless said otherwise.
   auto number = [](const char* name, std::optional<double> (*get)(const JobRecord&),
                    const char* format, const char* label, const char* unit = "",
                    Better better = Better::Lower) {
@@ -143,6 +164,10 @@ std::vector<ReportColumn> make_columns() {
     c.optional = true;
     return c;
   };
+  auto geometry = [](const char* statistic) {
+    return statistic_column(visibility, "geometry", statistic);
+  };
+  auto rmse_over = [](const char* region) { return statistic_column(visibility, region, "rmse"); };
   return {
       text(
           "scene", [](const JobRecord& r) { return r.scene_variant; }, true),
@@ -150,27 +175,26 @@ std::vector<ReportColumn> make_columns() {
           "resolution", [](const JobRecord& r) { return r.resolution; }, true),
       text("technique", [](const JobRecord& r) { return r.technique_variant; }),
       text("status", [](const JobRecord& r) { return std::string(to_string(r.status)); }),
-      number("frame_ms", median_ms<&TimingRecord::frame>, "%.3f", "Frame", "ms"),
-      number("technique_ms", median_ms<&TimingRecord::technique>, "%.3f", "Technique", "ms"),
-      number("x_control", ratio_to_control, "%.3f", "Frame / control"),
+      time_column("time.frame_ms"),
+      time_column("time.technique_ms"),
+      time_column("time.frame_ratio"),
       optional(number("gpu_mib", gpu_mib, "%.2f", "GPU memory", "MiB")),
-      number("rmse", geometry<&S::rmse>, "%.5f", "RMSE"),
-      number("mae", geometry<&S::mae>, "%.5f", "MAE"),
-      number("max_error", geometry<&S::max_error>, "%.4f", "Max error"),
-      number("psnr", geometry<&S::psnr>, "%.2f", "PSNR", "dB", Better::Higher),
-      number("ssim", geometry<&S::ssim>, "%.4f", "SSIM", "", Better::Higher),
-      number("frac_over_0.05", geometry<&S::frac_over_005>, "%.4f", "Error > 0.05"),
-      optional(number("flip", shaded_flip, "%.4f", "FLIP")),
-      number("penumbra_rmse", visibility<&I::penumbra, &S::rmse>, "%.5f", "Penumbra RMSE"),
-      optional(number("terminator_rmse", terminator_rmse, "%.5f", "Terminator RMSE")),
-      optional(number("near_rmse", third_rmse<&I::near_third>, "%.5f", "Near RMSE")),
-      optional(number("middle_rmse", third_rmse<&I::middle_third>, "%.5f", "Middle RMSE")),
-      optional(number("far_rmse", third_rmse<&I::far_third>, "%.5f", "Far RMSE")),
+      geometry("rmse"),
+      geometry("mae"),
+      geometry("max_error"),
+      geometry("psnr"),
+      geometry("ssim"),
+      geometry("frac_over_0.05"),
+      optional(whole_image_column("flip", "flip_shaded")),
+      rmse_over("penumbra"),
+      optional(rmse_over("terminator")),
+      optional(rmse_over("near_third")),
+      optional(rmse_over("middle_third")),
+      optional(rmse_over("far_third")),
       optional(number("penumbra_missed", penumbra_missed, "%.3f", "Penumbra missed")),
       optional(number("penumbra_invented", penumbra_invented, "%.3f", "Penumbra invented")),
-      optional(number("second_rmse", second_geometry_rmse, "%.5f", "RMSE (2nd ref.)")),
-      optional(number("second_penumbra_rmse", second<&I::penumbra, &S::rmse>, "%.5f",
-                      "Penumbra RMSE (2nd ref.)")),
+      optional(second_column("geometry", "rmse")),
+      optional(second_column("penumbra", "rmse")),
       optional(
           number("mc_noise_share", mc_noise_share, "%.3f", "MC noise share", "", Better::Neither)),
       text("reason", [](const JobRecord& r) { return r.reason.value_or(""); }),

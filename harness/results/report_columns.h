@@ -2,23 +2,26 @@
 // The columns of every table made from records: results.csv, summary.md and
 // the HTML report's summary tables all take their columns, headers and cell
 // text from this one list (docs/results.md, "Table columns").
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "record/describe.h"
 #include "record/job_record.h"
 
 namespace sb::results {
 
-// Which way a figure improves: the paper tables (results/latex_tables.h)
-// set the best value of a column in bold.
-enum class Better { Neither, Lower, Higher };
+// Which way a figure improves (record/describe.h): the paper tables
+// (results/latex_tables.h) set the best value of a column in bold.
+using record::Better;
 
 struct ReportColumn {
   const char* name = "";    // how code refers to the column ("frame_ms")
   const char* header = "";  // what the tables show above it
   // For a paper's table: the figure in words ("Frame", "RMSE") and its unit
-  // ("ms"; "" for a ratio or a fraction), and which way it improves.
+  // ("ms"; "" for a ratio or a fraction), and which way it improves; the
+  // catalogue's (record/figures.h) for a figure of the record.
   const char* label = "";
   const char* unit = "";
   Better better = Better::Neither;
@@ -30,7 +33,7 @@ struct ReportColumn {
   bool optional = false;
   // Exactly one of the two: a text cell, or a number printed with `format`.
   std::string (*text)(const record::JobRecord&) = nullptr;
-  std::optional<double> (*number)(const record::JobRecord&) = nullptr;
+  std::function<std::optional<double>(const record::JobRecord&)> number;
   const char* format = nullptr;  // printf format of a number
 
   bool numeric() const { return number != nullptr; }

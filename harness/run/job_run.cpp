@@ -108,8 +108,9 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv,
     r.second_reference = SecondReferenceRecord{
         *b.second_record, metrics::measure_visibility(visibility, b.second->visibility, b.regions,
                                                       s.e.flip_pixels_per_degree)};
-  r.classes = ClassesRecord{metrics::confusion_matrix(
-      visibility, b.ref.visibility, b.regions.geometry, 1e-6f, &b.regions.penumbra)};
+  r.classes = ClassesRecord{metrics::confusion_matrix(visibility, b.ref.visibility,
+                                                      b.regions.mask("geometry"), 1e-6f,
+                                                      &b.regions.mask("penumbra"))};
   // Of a job that fails, no figure is compared: nor is its penumbra RMSE.
   if (!invalid)
     if (auto warning = metrics::noise_warning(*r.metrics, b.ref.penumbra_rms_std_error))

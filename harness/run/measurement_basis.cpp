@@ -5,8 +5,6 @@
 #include <utility>
 
 #include "core/names.h"
-#include "metrics/distance_thirds.h"
-#include "metrics/geometry_region.h"
 #include "metrics/light_horizon.h"
 #include "metrics/metrics.h"
 #include "run/run_images.h"
@@ -72,28 +70,19 @@ std::string describe(const reference::Result& ref) {
          ", mean std error " + std::to_string(ref.mean_std_error);
 }
 
-// The pixels whose tangent plane cuts the light are left out of every
-// region but their own (`terminator`); those wholly facing away from it are
-// attached shadow.
+// The regions of the catalogue this view has (metrics/regions.h).
 metrics::Regions regions_of(const MeasurementBasis& b, const Scene& scene, bool distance_thirds,
                             FrameTargets& targets) {
-  const auto horizon = metrics::classify_light_horizon(b.positions, b.normals, scene.light);
-  metrics::Regions regions;
-  regions.attached = metrics::horizon_mask(horizon, metrics::LightHorizon::Below);
-  regions.terminator = metrics::horizon_mask(horizon, metrics::LightHorizon::Cuts);
-  regions.measured = regions.terminator;
-  for (auto& m : regions.measured) m = m ? 0 : 1;
-  regions.geometry = metrics::geometry_mask(horizon);
-  if (distance_thirds)
-    regions.distance_thirds =
-        metrics::distance_thirds(b.positions, scene.camera.eye, regions.measured);
+  metrics::RegionInputs in;
+  in.horizon = metrics::classify_light_horizon(b.positions, b.normals, scene.light);
+  in.reference_penumbra = b.ref.penumbra;
   const ImageF receiver = targets.read_receiver_mask();
-  regions.receivers.resize(receiver.data.size());
-  for (size_t i = 0; i < receiver.data.size(); ++i)
-    regions.receivers[i] = receiver.data[i] != 0.0f && regions.measured[i] ? 1 : 0;
-  regions.any_receiver =
-      std::find(regions.receivers.begin(), regions.receivers.end(), 1) != regions.receivers.end();
-  return regions;
+  in.receiver.resize(receiver.data.size());
+  for (size_t i = 0; i < receiver.data.size(); ++i) in.receiver[i] = receiver.data[i] != 0.0f;
+  in.positions = &b.positions;
+  for (int i = 0; i < 3; ++i) in.eye[i] = scene.camera.eye[i];
+  in.distance_thirds = distance_thirds;
+  return metrics::make_regions(in);
 }
 
 // The reference of `scene` at the G-buffer's points: from the cache when
@@ -145,7 +134,6 @@ MeasurementBasis make_measurement_basis(const Experiment& e, const RunOptions& o
   b.regions = regions_of(b, scene, e.distance_thirds, targets);
   metrics::Regions& regions = b.regions;
   metrics::apply_attached_shadow(regions.attached, b.ref.visibility);
-  regions.penumbra = metrics::mask_and(b.ref.penumbra, regions.measured);
   if (b.second) {
     metrics::apply_attached_shadow(regions.attached, b.second->visibility);
     b.second_record = reference_record(*b.second, e.reference, embree, regions,
@@ -159,7 +147,7 @@ MeasurementBasis make_measurement_basis(const Experiment& e, const RunOptions& o
   b.ref_images =
       write_reference_images(o, "reference/" + file_safe(scene_name) + "__" + res.label(), b.ref,
                              b.ref_shaded, regions, b.positions, b.normals);
-  b.ref_record = reference_record(b.ref, e.reference, embree, regions, regions.penumbra);
+  b.ref_record = reference_record(b.ref, e.reference, embree, regions, regions.mask("penumbra"));
   return b;
 }
 

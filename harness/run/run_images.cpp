@@ -40,21 +40,12 @@ ImagesRecord write_reference_images(const RunOptions& o, const std::string& rel,
   images.reference_stop_bound = rel + "/stop_bound.exr";
   images.reference_shaded = rel + "/shaded.png";
   // Named as the record's metrics.visibility regions; soft_union is each job's own.
-  std::vector<std::pair<std::string, const std::vector<uint8_t>*>> masks = {
-      {"all", &regions.measured},
-      {"geometry", &regions.geometry},
-      {"penumbra", &regions.penumbra},
-      {"terminator", &regions.terminator}};
-  if (regions.any_receiver) masks.emplace_back("receivers", &regions.receivers);
-  if (regions.distance_thirds) {
-    const char* names[3] = {"near_third", "middle_third", "far_third"};
-    for (size_t i = 0; i < 3; ++i) masks.emplace_back(names[i], &(*regions.distance_thirds)[i]);
-  }
-  for (const auto& [region, mask] : masks) {
-    const std::string file = "mask_" + region + ".png";
-    metrics::io::write_mask_png((dir / file).string(), *mask, ref.visibility.width,
+  for (const metrics::RegionMask& r : regions.masks) {
+    if (r.per_job) continue;
+    const std::string file = "mask_" + r.key + ".png";
+    metrics::io::write_mask_png((dir / file).string(), r.mask, ref.visibility.width,
                                 ref.visibility.height);
-    images.masks[region] = (fs::path(rel) / file).generic_string();
+    images.masks[r.key] = (fs::path(rel) / file).generic_string();
   }
   if (o.write_gbuffer) {
     metrics::io::write_exr((dir / "positions.exr").string(), positions);

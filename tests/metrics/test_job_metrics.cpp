@@ -17,6 +17,7 @@
 #include "metrics/light_horizon.h"
 #include "metrics/metrics.h"
 #include "metrics/regions.h"
+#include "record/figures.h"
 
 namespace sb::metrics {
 
@@ -52,16 +53,33 @@ Regions regions_of(bool cut, const ImageF& ref_visibility) {
       if (k == 'a') normals.at(x, y, 1) = -1.0f;
       if (k == 'c') normals.at(x, y, 0) = 1.0f;
     }
-  const auto horizon = classify_light_horizon(positions, normals, AreaLight{});
-  Regions r;
-  r.attached = horizon_mask(horizon, LightHorizon::Below);
-  r.terminator = horizon_mask(horizon, LightHorizon::Cuts);
-  r.measured = r.terminator;
-  for (auto& m : r.measured) m = m ? 0 : 1;
-  r.geometry = geometry_mask(horizon);
-  r.penumbra = mask_and(penumbra_mask(ref_visibility), r.measured);
-  r.receivers.assign(r.measured.size(), 0);
-  return r;
+  RegionInputs in;
+  in.horizon = classify_light_horizon(positions, normals, AreaLight{});
+  in.reference_penumbra = penumbra_mask(ref_visibility);
+  in.receiver.assign(in.horizon.size(), 0);
+  return make_regions(in);
+}
+
+// Every region of the catalogue, in its order, is made when the view has
+// it: receivers and the distance thirds included.
+TEST(JobMetrics, EveryRegionOfTheCatalogueHasItsMask) {
+  ImageF positions(kW, kH, 4), normals(kW, kH, 3);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      positions.at(x, y, 0) = float(x);
+      positions.at(x, y, 3) = 1.0f;
+      normals.at(x, y, 1) = 1.0f;
+    }
+  RegionInputs in;
+  in.horizon = classify_light_horizon(positions, normals, AreaLight{});
+  in.reference_penumbra.assign(in.horizon.size(), 1);
+  in.receiver.assign(in.horizon.size(), 1);
+  in.positions = &positions;
+  in.distance_thirds = true;
+  const Regions regions = make_regions(in);
+  ASSERT_EQ(regions.masks.size(), record::regions().size());
+  for (size_t i = 0; i < regions.masks.size(); ++i)
+    EXPECT_EQ(regions.masks[i].key, record::regions()[i].key);
 }
 
 // The reference's V: 1 on the sky, 0 in attached shadow, a soft ramp across
@@ -128,7 +146,7 @@ TEST(JobMetrics, TheTerminatorRegionIsTheHorizonCutPixelsMeasuredOnTheirOwn) {
   ASSERT_TRUE(m.visibility.terminator.has_value());
   const record::RegionStats& t = *m.visibility.terminator;
   EXPECT_EQ(t.pixel_count, 4 * kH);
-  EXPECT_EQ(t.pixel_count, count_ones(regions.terminator));
+  EXPECT_EQ(t.pixel_count, count_ones(regions.mask("terminator")));
   EXPECT_NEAR(t.rmse, 0.5, 1e-6);
   EXPECT_NEAR(t.mae, 0.5, 1e-6);
   EXPECT_NEAR(t.mean_signed, 0.5, 1e-6);

@@ -81,7 +81,7 @@ TEST(metrics_compare, SingleDifferingPixel) {
   test.at(7, 4, 2) = 0.5625f;  // error exactly 1/16
   const ErrorStats s = compare(test, ref);
   const double n = w * h;
-  EXPECT_EQ(s.pixel_count, static_cast<size_t>(n));
+  EXPECT_EQ(s.pixel_count, static_cast<std::int64_t>(n));
   EXPECT_DOUBLE_EQ(s.max_error, 0.0625);
   EXPECT_EQ(s.max_x, 7);
   EXPECT_EQ(s.max_y, 4);
@@ -136,7 +136,7 @@ TEST(metrics_compare, MaskRestrictsEveryFigure) {
   }
   const ErrorStats all = compare(test, ref);
   const ErrorStats s = compare(test, ref, &right);
-  EXPECT_EQ(s.pixel_count, static_cast<size_t>(w / 2 * h));
+  EXPECT_EQ(s.pixel_count, static_cast<std::int64_t>(w / 2 * h));
   EXPECT_NEAR(all.max_error, 0.5, 1e-6);
   EXPECT_NEAR(s.max_error, 0.02, 1e-6);
   EXPECT_GE(s.max_x, w / 2);
