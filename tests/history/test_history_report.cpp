@@ -20,6 +20,7 @@
 #include "history/history_report.h"
 #include "history_fixture.h"
 #include "metrics/image_io.h"
+#include "record/figures.h"
 
 namespace sb::test {
 namespace {
@@ -225,12 +226,19 @@ TEST(HistoryReport, UnknownQuantitiesAreRefusedNamingTheOption) {
   bad_time.quantities.time = "time.wall_ms";
   HistoryReportOptions bad_metric;
   bad_metric.quantities.error = "metrics.visibility.geometry.rms";
+  // Each message lists what may be given, from the catalogue (record/figures.h).
   for (const auto& [options, option] : {std::pair{bad_time, "--time"}, {bad_metric, "--metric"}}) {
     try {
       history::write_history_report(db, (dir / "site").string(), options);
       ADD_FAILURE() << "no error for " << option;
     } catch (const core::InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(option), std::string::npos) << e.what();
+      const std::string what = e.what();
+      EXPECT_NE(what.find(option), std::string::npos) << what;
+      if (std::string(option) == "--metric")
+        EXPECT_NE(what.find(record::metric_path_syntax()), std::string::npos) << what;
+      else
+        for (const auto& t : record::time_series())
+          EXPECT_NE(what.find(t.key), std::string::npos) << what;
     }
   }
 }

@@ -10,6 +10,7 @@
 #include "../metrics/test_util.h"
 #include "../record/sample_records.h"
 #include "core/error.h"
+#include "record/figures.h"
 #include "results/charts.h"
 
 namespace sb {
@@ -287,6 +288,9 @@ TEST(Charts, UnknownMetricIsAnInputErrorNamingIt) {
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("visibility.all.nope"), std::string::npos) << e.what();
+    // What a path may be, from the catalogue (record/figures.h).
+    EXPECT_NE(std::string(e.what()).find(record::metric_path_syntax()), std::string::npos)
+        << e.what();
   }
   o.error_metric = "visibility";  // an object, not a number
   EXPECT_THROW(write_charts(synthetic_records(), dir.path().string(), o), InputError);
