@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cli/command_line.h"
 #include "cli/commands.h"
@@ -13,6 +14,7 @@
 #include "core/error.h"
 #include "history/history_db.h"
 #include "history/history_report.h"
+#include "record/figures.h"
 #include "results/compare.h"
 
 namespace sb::cli {
@@ -51,7 +53,7 @@ struct HistoryAddArgs {
 struct HistoryReportArgs {
   std::string history_db = kDefaultHistoryDb;
   std::string out;
-  std::string history_time = "ratio";  // the time plotted
+  std::string history_time = record::time_series().front().option;  // the time plotted
   std::string metric = results::CompareOptions{}.metric;
 };
 
@@ -77,8 +79,8 @@ int cmd_history_report(const HistoryReportArgs& a) {
     throw InputError(a.history_db, "--db",
                      "no such history file: `shadowbench history add RUN_DIR --db FILE` makes it");
   HistoryReportOptions options;
-  options.quantities.time =
-      a.history_time == "ratio" ? "time.frame_ratio" : "time." + a.history_time;
+  for (const record::TimeSeries& s : record::time_series())
+    if (a.history_time == s.option) options.quantities.time = s.key;
   options.quantities.error = "metrics." + a.metric;
   const HistoryDb db(a.history_db);
   const std::string out = a.out.empty() ? "results/history" : a.out;
@@ -135,7 +137,9 @@ void add_history_commands(CommandLine& cl) {
       ->capture_default_str();
   report->add_option("--out", reported->out, "the site's folder (default: results/history)")
       ->type_name("DIR");
-  add_choice(report, "--time", reported->history_time, {"ratio", "frame_ms", "technique_ms"},
+  std::vector<std::string> times;
+  for (const record::TimeSeries& s : record::time_series()) times.push_back(s.option);
+  add_choice(report, "--time", reported->history_time, times,
              "the time plotted: the frame's time over the control's next to it (comparable "
              "across hosts), or this host's milliseconds of the frame or the technique");
   add_metric(report, reported->metric, "the error plotted: a path into a record's metrics");

@@ -14,7 +14,9 @@ import re
 import sys
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
-REGISTERED = re.compile(r'registry\.add\(\s*\{\s*"([A-Za-z0-9_]+)"', re.M)
+# A TechniqueInfo's name: its designated `.name = "x"`, or the first field of
+# a positional one handed to registry.add (plugins outside the tree).
+REGISTERED = re.compile(r'(?:registry\.add\(\s*\{\s*|\.name\s*=\s*)"([A-Za-z0-9_]+)"', re.M)
 
 
 def main():
