@@ -57,6 +57,7 @@ CREATE TABLE points(
   job_id TEXT NOT NULL,
   quantity TEXT NOT NULL,
   value REAL NOT NULL,
+  noise REAL,
   PRIMARY KEY(run_key, job_id, quantity),
   FOREIGN KEY(run_key, job_id) REFERENCES jobs(run_key, job_id) ON DELETE CASCADE);
 CREATE INDEX points_by_quantity ON points(quantity, run_key);
@@ -240,18 +241,26 @@ HistoryDb::HistoryDb(const std::string& path) : path_(path), db_(std::make_uniqu
       db_->exec(("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion)).c_str());
       version = kHistorySchemaVersion;
     }
+    // Version 1 had no points.noise: a writer adds the column (NULL: the
+    // runs before it have no own noise); a reader reads NULL for it.
+    if (version == 1 && !read_only) {
+      db_->exec("ALTER TABLE points ADD COLUMN noise REAL");
+      db_->exec(("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion)).c_str());
+      version = kHistorySchemaVersion;
+    }
+    if (version == 1) has_noise_ = false;
     db_->exec("COMMIT");
   } catch (...) {
     sqlite3_exec(db_->db, "ROLLBACK", nullptr, nullptr, nullptr);
     throw;
   }
-  if (version != kHistorySchemaVersion)
-    throw InputError(path, "PRAGMA user_version",
-                     "is " + std::to_string(version) +
-                         "; this build reads and writes history version " +
-                         std::to_string(kHistorySchemaVersion) +
-                         " only (an SQLite file of other tables, or a history of another "
-                         "shadowbench: give another --db)");
+  if (version != kHistorySchemaVersion && version != 1)
+    throw InputError(
+        path, "PRAGMA user_version",
+        "is " + std::to_string(version) + "; this build reads and writes history version " +
+            std::to_string(kHistorySchemaVersion) +
+            " (and reads version 1) only (an SQLite file of other tables, or a history of another "
+            "shadowbench: give another --db)");
 }
 
 HistoryDb::~HistoryDb() = default;
@@ -288,8 +297,12 @@ std::vector<QuantitySeries> HistoryDb::series(const std::string& quantity) const
   std::map<std::string, std::size_t> position;  // run_key -> index in run order
   for (std::size_t i = 0; i < all.size(); ++i) position[all[i].run_key] = i;
   Statement q(db_->db,
-              "SELECT j.series, p.run_key, p.value, p.rowid, j.rowid, p.job_id FROM points p "
-              "LEFT JOIN jobs j USING (run_key, job_id) WHERE p.quantity = ?1 ORDER BY j.series",
+              has_noise_ ? "SELECT j.series, p.run_key, p.value, p.rowid, j.rowid, p.job_id, "
+                           "p.noise FROM points p LEFT JOIN jobs j USING (run_key, job_id) "
+                           "WHERE p.quantity = ?1 ORDER BY j.series"
+                         : "SELECT j.series, p.run_key, p.value, p.rowid, j.rowid, p.job_id, "
+                           "NULL FROM points p LEFT JOIN jobs j USING (run_key, job_id) "
+                           "WHERE p.quantity = ?1 ORDER BY j.series",
               path_);
   q.text(1, quantity);
   std::vector<QuantitySeries> out;
@@ -316,8 +329,15 @@ std::vector<QuantitySeries> HistoryDb::series(const std::string& quantity) const
                                  "; a history holds finite numbers only"
                            : "is not a number; a history holds finite numbers only");
     if (out.empty() || out.back().series != name)
-      out.push_back({name, std::vector<double>(all.size(), std::nan(""))});
+      out.push_back({name, std::vector<double>(all.size(), std::nan("")),
+                     std::vector<double>(all.size(), std::nan(""))});
     out.back().values[at->second] = value;
+    // A noise that is not a finite number >= 0 is no noise (the file was
+    // edited): the run is weighed as a typical one.
+    if (q.column_type(6) == SQLITE_FLOAT || q.column_type(6) == SQLITE_INTEGER) {
+      const double noise = q.column_real(6);
+      if (std::isfinite(noise) && noise >= 0) out.back().noise[at->second] = noise;
+    }
   }
   return out;
 }
@@ -449,7 +469,10 @@ AddedRun HistoryDb::add_run(const std::string& run_dir, const std::string& commi
 
     Statement job(db_->db, "INSERT INTO jobs VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)",
                   path_);
-    Statement point(db_->db, "INSERT INTO points VALUES (?1, ?2, ?3, ?4)", path_);
+    Statement point(db_->db,
+                    "INSERT INTO points (run_key, job_id, quantity, value, noise) "
+                    "VALUES (?1, ?2, ?3, ?4, ?5)",
+                    path_);
     for (const JobPoints& j : jobs) {
       job.text(1, added.run_key)
           .text(2, j.job_id)
@@ -464,7 +487,10 @@ AddedRun HistoryDb::add_run(const std::string& run_dir, const std::string& commi
           .step();
       job.reset();
       for (const auto& [quantity, value] : j.values) {
-        point.text(1, added.run_key).text(2, j.job_id).text(3, quantity).real(4, value).step();
+        point.text(1, added.run_key).text(2, j.job_id).text(3, quantity).real(4, value);
+        if (const auto noise = j.noise.find(quantity); noise != j.noise.end())
+          point.real(5, noise->second);
+        point.step();
         point.reset();
         ++added.points;
       }

@@ -11,9 +11,11 @@
 //           commit, dates, experiment, config hash, run folder, and the
 //           host and build fingerprints of its records (when all agree)
 //   jobs    one row per (run, job): its series, status and fingerprints
-//   points  one row per (run, job, quantity) with its value (run_points.h)
+//   points  one row per (run, job, quantity) with its value and, for a
+//           time, the job's own noise of it (run_points.h; NULL: unknown)
 // The file records its layout's version (PRAGMA user_version); a file of
-// another version, or one that is not a history, is refused naming it.
+// another version, or one that is not a history, is refused naming it;
+// version 1 (no points.noise) is read, and upgraded by a writer.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -22,7 +24,7 @@
 namespace sb::history {
 
 // The layout of the tables above; a change to them changes it.
-inline constexpr int kHistorySchemaVersion = 1;
+inline constexpr int kHistorySchemaVersion = 2;
 
 struct AddedRun {
   std::string run_id;
@@ -46,6 +48,7 @@ struct HistoryRun {
 struct QuantitySeries {
   std::string series;  // "scene @ resolution / technique"
   std::vector<double> values;
+  std::vector<double> noise;  // each run's own noise of its value (run_points.h), NaN: unknown
 };
 
 // One job of a series in one run of the history.
@@ -98,6 +101,7 @@ class HistoryDb {
   struct Connection;
   std::string path_;
   std::unique_ptr<Connection> db_;
+  bool has_noise_ = true;  // points.noise exists (not in a read-only version-1 file)
 };
 
 }  // namespace sb::history

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "record/figures.h"
+#include "record/timing_stats.h"
 
 namespace sb::history {
 
@@ -58,8 +59,12 @@ std::vector<JobPoints> run_points(const std::vector<JobRecord>& records) {
     p.build_fingerprint = r.build.fingerprint.value_or("");
     if (r.status == JobStatus::Ok && r.timing)
       for (const record::TimeSeries& t : record::time_series())
-        if (const record::Series* s = t.series(*r.timing); s != nullptr && s->count > 0)
+        if (const record::Series* s = t.series(*r.timing); s != nullptr && s->count > 0) {
           add_if_finite(t.key, s->median, p.values);
+          if (const double e = record::median_relative_standard_error(s->samples);
+              std::isfinite(e) && std::isfinite(s->median))
+            p.noise[t.key] = e;
+        }
     if (r.status == JobStatus::Ok && r.metrics) add_metrics(*r.metrics, p.values);
     out.push_back(std::move(p));
   }

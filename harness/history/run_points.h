@@ -9,6 +9,7 @@
 //   metrics.<path>     every number under the record's "metrics", by its
 //                      dotted path (metrics.visibility.all.rmse, ...)
 // A job that did not reach a number has no point for it.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,10 @@ struct JobPoints {
   std::string reason;                                  // why skipped or failed
   std::string host_fingerprint, build_fingerprint;     // "" in older records
   std::vector<std::pair<std::string, double>> values;  // (quantity, value), finite only
+  // The job's own noise of a time quantity's value: the relative standard
+  // error of its median from the job's frames
+  // (record::median_relative_standard_error), where it has one.
+  std::map<std::string, double> noise;
 };
 
 std::string series_name(const std::string& scene_variant, const std::string& resolution,

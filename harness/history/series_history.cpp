@@ -41,9 +41,9 @@ void check_quantities(const HistoryQuantities& q) {
                          record::metric_path_syntax());
 }
 
-std::map<std::string, std::vector<double>> by_series(std::vector<QuantitySeries> all) {
-  std::map<std::string, std::vector<double>> out;
-  for (QuantitySeries& s : all) out[s.series] = std::move(s.values);
+std::map<std::string, QuantitySeries> by_series(std::vector<QuantitySeries> all) {
+  std::map<std::string, QuantitySeries> out;
+  for (QuantitySeries& s : all) out[s.series] = std::move(s);
   return out;
 }
 
@@ -66,12 +66,20 @@ std::vector<SeriesHistory> series_histories(const HistoryDb& db, const HistoryQu
   for (SeriesJobs& jobs : db.series_jobs()) {
     SeriesHistory s;
     s.time.assign(runs, std::nan(""));
+    s.time_noise.assign(runs, std::nan(""));
     s.error.assign(runs, std::nan(""));
-    if (auto it = times.find(jobs.series); it != times.end()) s.time = std::move(it->second);
-    if (auto it = errors.find(jobs.series); it != errors.end()) s.error = std::move(it->second);
+    if (auto it = times.find(jobs.series); it != times.end()) {
+      s.time = std::move(it->second.values);
+      s.time_noise = std::move(it->second.noise);
+    }
+    if (auto it = errors.find(jobs.series); it != errors.end())
+      s.error = std::move(it->second.values);
     ChangePointOptions time_options;
-    time_options.scale = all_positive(s.time) ? Scale::kRelative : Scale::kAbsolute;
-    s.time_steps = find_change_points(s.time, time_options);
+    // The runs' own noise is relative: it weighs runs on the relative scale only.
+    const bool relative = all_positive(s.time);
+    time_options.scale = relative ? Scale::kRelative : Scale::kAbsolute;
+    s.time_steps = relative ? find_change_points(s.time, s.time_noise, time_options)
+                            : find_change_points(s.time, time_options);
     ChangePointOptions error_options;
     error_options.scale = Scale::kAbsolute;
     s.error_steps = find_change_points(s.error, error_options);

@@ -13,9 +13,10 @@
 namespace sb::history {
 
 struct SeriesHistory {
-  SeriesJobs jobs;            // the series and its job in each run
-  std::vector<double> time;   // one per run, NaN where the run has no value
-  std::vector<double> error;  // likewise
+  SeriesJobs jobs;                 // the series and its job in each run
+  std::vector<double> time;        // one per run, NaN where the run has no value
+  std::vector<double> time_noise;  // each run's own noise of its time, NaN: unknown
+  std::vector<double> error;       // likewise
   std::vector<ChangePoint> time_steps, error_steps;
 };
 

@@ -322,3 +322,179 @@ TEST(ChangePoints, PeltFindsTheOptimumOfAnExhaustiveSearch) {
 }
 
 }  // namespace
+
+namespace {
+
+// The weighted cost (pelt_mean_shift's, with weights) of values [a, b).
+double weighted_sse(const std::vector<double>& y, const std::vector<double>& w, size_t a,
+                    size_t b) {
+  double sw = 0, swy = 0;
+  for (size_t i = a; i < b; ++i) {
+    sw += w[i];
+    swy += w[i] * y[i];
+  }
+  const double mean = swy / sw;
+  double s = 0;
+  for (size_t i = a; i < b; ++i) s += w[i] * (y[i] - mean) * (y[i] - mean);
+  return s;
+}
+
+// Steady runs count 1 toward the minimum segment, loaded ones (w < 0.5) 1/2.
+bool long_enough(const std::vector<double>& w, size_t a, size_t b, size_t m) {
+  double runs = 0;
+  for (size_t i = a; i < b; ++i) runs += w[i] < 0.5 ? 0.5 : 1.0;
+  return runs >= static_cast<double>(m);
+}
+
+// The least penalised weighted cost and its splits, over every segmentation
+// whose segments are long enough.
+std::pair<double, std::vector<size_t>> exhaustive_weighted(const std::vector<double>& y,
+                                                           const std::vector<double>& w,
+                                                           double penalty, size_t m) {
+  const size_t n = y.size();
+  double best = std::numeric_limits<double>::infinity();
+  std::vector<size_t> best_splits;
+  for (uint32_t mask = 0; mask < (1u << (n - 1)); ++mask) {
+    double total = 0;
+    size_t start = 0;
+    bool ok = true;
+    std::vector<size_t> splits;
+    for (size_t i = 1; i <= n && ok; ++i) {
+      if (i < n && !(mask >> (i - 1) & 1u)) continue;
+      if (!long_enough(w, start, i, m)) ok = false;
+      total += weighted_sse(y, w, start, i) + (i < n ? penalty : 0.0);
+      if (i < n) splits.push_back(i);
+      start = i;
+    }
+    if (ok && total < best) {
+      best = total;
+      best_splits = splits;
+    }
+  }
+  return {best, best_splits};
+}
+
+}  // namespace
+
+TEST(ChangePoints, WeightedPeltWithLoadedRunsFindsTheOptimumOfAnExhaustiveSearch) {
+  std::mt19937_64 rng(910);
+  std::normal_distribution<double> z(0.0, 1.0);
+  std::uniform_int_distribution<int> level(0, 3);
+  std::uniform_real_distribution<double> weight(0.05, 1.0);
+  for (int k = 0; k < 80; ++k) {
+    const size_t n = 6 + static_cast<size_t>(k) % 9;  // 6 to 14
+    const size_t m = 1 + static_cast<size_t>(k) % 3;
+    const double penalty = 0.5 + static_cast<double>(k % 5);
+    std::vector<double> y(n), w(n);
+    double mean = 0;
+    for (size_t i = 0; i < n; ++i) {
+      if (i % 4 == 0) mean = level(rng);
+      y[i] = mean + 0.4 * z(rng);
+      w[i] = weight(rng);  // about half of them loaded
+    }
+    const auto [best, best_splits] = exhaustive_weighted(y, w, penalty, m);
+    const std::vector<size_t> splits = pelt_mean_shift(y, w, penalty, m);
+    std::vector<size_t> bounds{0};
+    bounds.insert(bounds.end(), splits.begin(), splits.end());
+    bounds.push_back(n);
+    double total = penalty * static_cast<double>(splits.size());
+    for (size_t s = 0; s + 1 < bounds.size(); ++s) {
+      EXPECT_TRUE(long_enough(w, bounds[s], bounds[s + 1], m)) << "series " << k;
+      total += weighted_sse(y, w, bounds[s], bounds[s + 1]);
+    }
+    if (std::isinf(best)) {
+      EXPECT_TRUE(splits.empty()) << "series " << k;  // not even one segment is long enough
+    } else {
+      EXPECT_NEAR(total, best, 1e-9) << "series " << k << " n " << n << " m " << m;
+    }
+  }
+}
+
+// Runs' own noise: a steady run's median has a standard error of about
+// `steady`; a run beside a busy machine, `busy`.
+std::vector<double> own_noise(size_t n, double steady, const std::vector<size_t>& busy_runs,
+                              double busy) {
+  std::vector<double> own(n, steady);
+  for (size_t i : busy_runs) own[i] = busy;
+  return own;
+}
+
+// The case that broke CI: three neighbouring runs on a busy machine, their
+// time 18 % off, at the end of the history and in its middle. Without the
+// runs' own noise, that is a level (a step); with it, those runs say they
+// were loaded, weigh less, and count as half a run each toward the three a
+// segment needs, so they make no segment alone.
+TEST(ChangePoints, ABusySpellOfThreeRunsIsNoStepWhenTheRunsSayTheyWereLoaded) {
+  std::mt19937_64 rng(1001);
+  int before = 0, after = 0;
+  constexpr int kSeries = 200;
+  for (int k = 0; k < kSeries; ++k) {
+    const size_t n = 10 + static_cast<size_t>(k) % 11;   // 10 to 20 runs
+    const size_t from = k % 2 == 0 ? n - 3 : n / 2 - 1;  // at the end, or in the middle
+    std::vector<double> v = stepped_series(rng, n, 0.02, n, 0.0);
+    for (size_t i = from; i < from + 3; ++i) v[i] *= k % 4 < 2 ? 1.18 : 1 / 1.18;
+    ChangePointOptions as_it_was;
+    as_it_was.serial_correlation = false;
+    before += find_change_points(v, as_it_was).empty() ? 0 : 1;
+    after +=
+        find_change_points(v, own_noise(n, 0.01, {from, from + 1, from + 2}, 0.06)).empty() ? 0 : 1;
+  }
+  // Measured: 200 of 200 with a step before, none after.
+  EXPECT_GT(before, kSeries * 9 / 10);
+  EXPECT_EQ(after, 0);
+}
+
+TEST(ChangePoints, AStepIsFoundOnceEnoughSteadyRunsFollowItsLoadedOnes) {
+  // A +25 % step at run 10 of 2 % noise; its first three runs were loaded.
+  std::mt19937_64 rng(1002);
+  for (int k = 0; k < 50; ++k) {
+    const std::vector<double> v = stepped_series(rng, 16, 0.02, 10, 0.25);
+    // Three loaded runs count as 1.5: run 13 makes the new level 3 + 1.5 runs long.
+    const std::vector<double> thirteen(v.begin(), v.begin() + 13);
+    EXPECT_TRUE(find_change_points(thirteen, own_noise(13, 0.01, {10, 11, 12}, 0.06)).empty()) << k;
+    const std::vector<double> fifteen(v.begin(), v.begin() + 15);
+    EXPECT_EQ(indices(find_change_points(fifteen, own_noise(15, 0.01, {10, 11, 12}, 0.06))),
+              std::vector<size_t>{10})
+        << k;
+  }
+}
+
+TEST(ChangePoints, RunsOfTypicalOwnNoiseFindWhatTheValuesAloneFind) {
+  std::mt19937_64 rng(1003);
+  for (int k = 0; k < 100; ++k) {
+    const std::vector<double> v =
+        stepped_series(rng, 20, 0.03, 3 + static_cast<size_t>(k) % 14, k % 3 == 0 ? 0.0 : 0.3);
+    EXPECT_EQ(indices(find_change_points(v, own_noise(20, 0.01, {}, 0.0))),
+              indices(find_change_points(v)))
+        << k;
+  }
+}
+
+// AR(1) noise, value = exp(e), e_i = phi e_{i-1} + innovation, marginal
+// spread 5 %: neighbouring runs share their noise, the levels wander, and a
+// detector whose sigma comes from neighbouring differences sees steps.
+TEST(ChangePoints, NoiseCarriedFromRunToRunMakesFarFewerFalseSteps) {
+  std::mt19937_64 rng(1004);
+  std::normal_distribution<double> z(0.0, 1.0);
+  constexpr int kSeries = 600;
+  constexpr double kPhi = 0.7, kSigma = 0.05;
+  int before = 0, after = 0;
+  for (int k = 0; k < kSeries; ++k) {
+    std::vector<double> v(20);
+    double e = kSigma * z(rng);
+    for (double& x : v) {
+      x = std::exp(e);
+      e = kPhi * e + kSigma * std::sqrt(1 - kPhi * kPhi) * z(rng);
+    }
+    ChangePointOptions as_it_was;
+    as_it_was.serial_correlation = false;
+    before += find_change_points(v, as_it_was).empty() ? 0 : 1;
+    after += find_change_points(v).empty() ? 0 : 1;
+  }
+  // Measured with this seed: 177 (29.5 %) before, 90 (15 %) after; over 2000
+  // series in bench/change_point_grid.cpp, 29.2 % and 12.8 %. The issue's
+  // target, 1 %, is out of reach at phi 0.7 without losing the steps that
+  // are there (docs/ci.md, "The detector on a busy machine").
+  EXPECT_GT(before, kSeries / 5);
+  EXPECT_LT(after, before * 2 / 3);
+}

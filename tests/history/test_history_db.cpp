@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -220,7 +221,74 @@ TEST(HistoryDb, AFileThatIsNotAHistoryOfThisVersionIsRefusedNamingIt) {
     sqlite3_close(db);
     const std::string m = message_of([&] { HistoryDb d(other.string()); });
     EXPECT_NE(m.find(other.string()), std::string::npos) << m;
-    EXPECT_NE(m.find("this build reads and writes history version 1 only"), std::string::npos) << m;
+    EXPECT_NE(
+        m.find("this build reads and writes history version " +
+               std::to_string(history::kHistorySchemaVersion) + " (and reads version 1) only"),
+        std::string::npos)
+        << m;
+  }
+}
+
+// The relative standard error of a median, computed here from its
+// definition: sqrt(pi / 2) * 1.4826 * MAD(log x) / sqrt(n).
+double median_standard_error(std::vector<double> x) {
+  for (double& v : x) v = std::log(v);
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const size_t h = v.size() / 2;
+    return v.size() % 2 ? v[h] : (v[h - 1] + v[h]) / 2;
+  };
+  const double m = median(x);
+  for (double& v : x) v = std::abs(v - m);
+  return std::sqrt(std::acos(-1.0) / 2) * 1.4826 * median(x) / std::sqrt(double(x.size()));
+}
+
+TEST(HistoryDb, EachTimeIsStoredWithTheJobsOwnNoiseFromItsFrames) {
+  const fs::path dir = test_folder("sb_history_");
+  const fs::path file = dir / "h.sqlite";
+  const fs::path run = run_folder(dir, "run");
+  HistoryDb(file.string()).add_run(run.string(), "c0ffee");
+  int checked = 0;
+  for (const json& j : jsonl_records(run)) {
+    const json::json_pointer samples("/timing/control/frame_ratio/samples");
+    if (!j.contains(samples)) continue;
+    const std::string id = j["job_id"];
+    const std::optional<double> noise =
+        query_number(file, "SELECT noise FROM points WHERE job_id = '" + id +
+                               "' AND quantity = 'time.frame_ratio'");
+    ASSERT_TRUE(noise) << id;
+    EXPECT_NEAR(*noise, median_standard_error(j[samples].get<std::vector<double>>()), 1e-12) << id;
+    ++checked;
+  }
+  EXPECT_GE(checked, 2);
+  // Errors have no own noise: they do not vary from run to run.
+  EXPECT_EQ(query_number(file, "SELECT count(noise) FROM points WHERE quantity LIKE 'metrics.%'"),
+            0.0);
+}
+
+TEST(HistoryDb, AVersionOneHistoryIsUpgradedAndItsRunsHaveNoOwnNoise) {
+  const fs::path dir = test_folder("sb_history_");
+  const fs::path file = dir / "h.sqlite";
+  HistoryDb(file.string())
+      .add_run(run_folder(dir, "old", [](json& j) { start_on_day(j, 1); }).string(), "aaaa");
+  // What version 1 was: points without the noise column.
+  sqlite3* raw = nullptr;
+  ASSERT_EQ(sqlite3_open(file.c_str(), &raw), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(raw, "ALTER TABLE points DROP COLUMN noise; PRAGMA user_version = 1;",
+                         nullptr, nullptr, nullptr),
+            SQLITE_OK)
+      << sqlite3_errmsg(raw);
+  sqlite3_close(raw);
+
+  HistoryDb db(file.string());
+  EXPECT_EQ(query_number(file, "PRAGMA user_version"), double(history::kHistorySchemaVersion));
+  db.add_run(run_folder(dir, "new", [](json& j) { start_on_day(j, 2); }).string(), "bbbb");
+  const std::vector<history::QuantitySeries> series = db.series("time.frame_ratio");
+  ASSERT_FALSE(series.empty());
+  for (const history::QuantitySeries& s : series) {
+    ASSERT_EQ(s.noise.size(), 2u);
+    EXPECT_TRUE(std::isnan(s.noise[0])) << s.series;  // the old run's
+    EXPECT_GT(s.noise[1], 0.0) << s.series;           // the new run's
   }
 }
 
