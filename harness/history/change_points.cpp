@@ -262,7 +262,14 @@ std::vector<ChangePoint> find_change_points(std::span<const double> values,
 std::vector<ChangePoint> find_change_points(std::span<const double> values,
                                             std::span<const double> run_noise,
                                             const ChangePointOptions& options) {
+  return segment_series(values, run_noise, options).steps;
+}
+
+SeriesSegmentation segment_series(std::span<const double> values, std::span<const double> run_noise,
+                                  const ChangePointOptions& options) {
   cp_check_options(options);
+  SeriesSegmentation detail;
+  detail.loaded.assign(values.size(), false);
   if (!run_noise.empty() && run_noise.size() != values.size())
     throw std::invalid_argument("change points: run_noise must have one entry per value");
   const bool relative = options.scale == Scale::kRelative;
@@ -286,7 +293,7 @@ std::vector<ChangePoint> find_change_points(std::span<const double> values,
   }
   const size_t n = y.size();
   const size_t m = options.min_segment;
-  if (n < 2 * m) return {};
+  if (n < 2 * m) return detail;
 
   double floor = options.noise_floor;
   if (!relative) {
@@ -295,7 +302,7 @@ std::vector<ChangePoint> find_change_points(std::span<const double> values,
     const double typical = cp_median(magnitude);
     const double level =
         typical > 0 ? typical : *std::max_element(magnitude.begin(), magnitude.end());
-    if (level == 0) return {};  // all zero: nothing moved
+    if (level == 0) return detail;  // all zero: nothing moved
     floor = options.noise_floor * level;
   }
   // Centred, so that the prefix sums of squares do not lose the digits that
@@ -323,6 +330,7 @@ std::vector<ChangePoint> find_change_points(std::span<const double> values,
   for (int round = 0; round < rounds && !bounds.empty(); ++round) {
     const std::vector<double> r = cp_residuals(centred, bounds, limit);
     const double phi = options.serial_correlation ? cp_serial_correlation(r, bounds) : 0.0;
+    detail.serial_correlation = std::max(detail.serial_correlation, phi);
     const double marginal =
         std::max(cp_residual_sigma(r, weights, bounds.size() + 1), mad_sigma / std::sqrt(1 - phi));
     const double raised = marginal * std::sqrt((1 + phi) / (1 - phi));
@@ -384,7 +392,10 @@ std::vector<ChangePoint> find_change_points(std::span<const double> values,
     c.runs_after = starts[k + 2] - starts[k + 1];
     out.push_back(c);
   }
-  return out;
+  detail.steps = std::move(out);
+  detail.sigma = sigma;
+  for (size_t i = 0; i < n; ++i) detail.loaded[index[i]] = weights[i] < kCpLoadedWeight;
+  return detail;
 }
 
 }  // namespace sb::history

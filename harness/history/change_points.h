@@ -141,6 +141,17 @@ std::vector<ChangePoint> find_change_points(std::span<const double> values,
                                             std::span<const double> run_noise,
                                             const ChangePointOptions& options = {});
 
+// The steps with what the detector saw: its final sigma, the serial
+// correlation it corrected for, and which runs it took as loaded.
+struct SeriesSegmentation {
+  std::vector<ChangePoint> steps;
+  double sigma = 0;               // on the working scale (log units on the relative scale)
+  double serial_correlation = 0;  // phi corrected for (0: none shown)
+  std::vector<bool> loaded;       // one per value: a loaded run (counted as half a run)
+};
+SeriesSegmentation segment_series(std::span<const double> values, std::span<const double> run_noise,
+                                  const ChangePointOptions& options = {});
+
 // The series' noise as the detector estimates it, before the floor: MAD of
 // the first differences / (sqrt(2) * 0.6745), on the values given (no NaN).
 double noise_sigma(std::span<const double> values);

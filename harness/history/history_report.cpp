@@ -48,6 +48,15 @@ std::string fmt(double v, const char* format = "%.4g") {
   return std::isnan(v) ? "" : format_number(format, v);
 }
 
+// A run's own noise of its time ("±3.1 %"), and "loaded" where the
+// detector took the run as loaded.
+std::string own_noise_cell(const SeriesHistory& s, std::size_t run) {
+  if (run >= s.time_noise.size() || std::isnan(s.time_noise[run])) return "";
+  const bool loaded = run < s.time_loaded.size() && s.time_loaded[run];
+  return "\u00b1" + format_number("%.1f", 100 * s.time_noise[run]) + " %" +
+         (loaded ? " <em>loaded</em>" : "");
+}
+
 std::string percent(double relative_change) {
   if (std::isinf(relative_change)) return relative_change > 0 ? "+inf" : "-inf";
   return format_number("%+.1f", 100.0 * relative_change) + " %";
@@ -436,6 +445,14 @@ class Site {
     for (const ReportedStep& r : steps_)
       if (r.series == s.jobs.series) mine.push_back(&r);
     if (mine.empty()) h += "<p class=\"note\">No step in this series.</p>\n";
+    h += "<p class=\"note\">" + html_escape(quantity_label(q().time)) + ": noise between runs " +
+         fmt(100 * s.time_sigma, "%.2g") + " %" +
+         (s.time_serial_correlation > 0
+              ? ", corrected for a serial correlation of " + fmt(s.time_serial_correlation, "%.2f")
+              : std::string()) +
+         "; a run marked <em>loaded</em> measured more noise of its own than that, weighs "
+         "less and counts as half a run toward the 3 a level needs (docs/ci.md, \"How steps "
+         "are found\").</p>\n";
     for (const ReportedStep* r : mine) {
       const std::size_t after = r->change.index;
       const std::vector<double>& values = r->quantity == q().time ? s.time : s.error;
@@ -454,8 +471,9 @@ class Site {
     }
     h += "<h2>Every run</h2>\n<div class=\"table-wrap\"><table class=\"sortable\"><thead><tr>"
          "<th class=\"num\">run</th><th>commit</th><th>host</th><th>status</th><th class=\"num\">" +
-         html_escape(quantity_label(q().time)) + "</th><th class=\"num\">" +
-         html_escape(quantity_label(q().error)) + "</th></tr></thead><tbody>\n";
+         html_escape(quantity_label(q().time)) + "</th><th class=\"num\">its own noise</th>" +
+         "<th class=\"num\">" + html_escape(quantity_label(q().error)) +
+         "</th></tr></thead><tbody>\n";
     for (std::size_t run = 0; run < runs_.size(); ++run) {
       const SeriesJob& j = s.jobs.runs[run];
       h += "<tr><td class=\"num\">" + std::to_string(runs_[run].run_order) +
@@ -463,7 +481,8 @@ class Site {
            (j.present ? html_escape(hosts_.label(j.host_fingerprint)) : "") + "</td><td>" +
            (j.present ? html_escape(j.status) : "not in this run") +
            (j.reason.empty() ? "" : ": " + html_escape(j.reason)) + "</td><td class=\"num\">" +
-           fmt(s.time[run]) + "</td><td class=\"num\">" + fmt(s.error[run]) + "</td></tr>\n";
+           fmt(s.time[run]) + "</td><td class=\"num\">" + own_noise_cell(s, run) +
+           "</td><td class=\"num\">" + fmt(s.error[run]) + "</td></tr>\n";
     }
     h += "</tbody></table></div>\n";
     return h + page_end();

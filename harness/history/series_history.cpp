@@ -78,8 +78,13 @@ std::vector<SeriesHistory> series_histories(const HistoryDb& db, const HistoryQu
     // The runs' own noise is relative: it weighs runs on the relative scale only.
     const bool relative = all_positive(s.time);
     time_options.scale = relative ? Scale::kRelative : Scale::kAbsolute;
-    s.time_steps = relative ? find_change_points(s.time, s.time_noise, time_options)
-                            : find_change_points(s.time, time_options);
+    SeriesSegmentation time = segment_series(
+        s.time, relative ? std::span<const double>(s.time_noise) : std::span<const double>(),
+        time_options);
+    s.time_steps = std::move(time.steps);
+    s.time_sigma = time.sigma;
+    s.time_serial_correlation = time.serial_correlation;
+    s.time_loaded = std::move(time.loaded);
     ChangePointOptions error_options;
     error_options.scale = Scale::kAbsolute;
     s.error_steps = find_change_points(s.error, error_options);

@@ -18,6 +18,11 @@ struct SeriesHistory {
   std::vector<double> time_noise;  // each run's own noise of its time, NaN: unknown
   std::vector<double> error;       // likewise
   std::vector<ChangePoint> time_steps, error_steps;
+  // What the detector saw in the time: its noise between runs (sigma, log
+  // units on the relative scale), the serial correlation it corrected for,
+  // and the runs it took as loaded (one per run).
+  double time_sigma = 0, time_serial_correlation = 0;
+  std::vector<bool> time_loaded;
 };
 
 struct HistoryQuantities {

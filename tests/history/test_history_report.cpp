@@ -268,3 +268,52 @@ TEST(HistoryReport, TheCommandWritesTheSitePrintsTheStepsAndRefusesAMissingHisto
 
 }  // namespace
 }  // namespace sb::test
+
+namespace sb::test {
+namespace {
+
+// Ten runs; the last three of one job measured beside a busy machine: its
+// time ratio 25 % up, and, when `spread`, its frames' ratios spread as a
+// loaded machine spreads them (each times exp(0.25 z)), as its samples say.
+std::string history_with_a_busy_spell(const fs::path& dir, bool spread) {
+  HistoryDb db((dir / "h.sqlite").string());
+  std::mt19937_64 rng(8);
+  std::normal_distribution<double> z(0.0, 1.0);
+  const json::json_pointer samples("/timing/control/frame_ratio/samples");
+  for (int run = 0; run < 10; ++run) {
+    const fs::path folder = run_folder(dir, "run" + std::to_string(run), [&](json& j) {
+      start_on_day(j, run + 1);
+      const double noise = std::exp(0.02 * z(rng));
+      const bool busy = j["job_id"] == baseline_job(2) && run >= 7;
+      if (j.contains(kRatio)) j[kRatio] = j[kRatio].get<double>() * noise * (busy ? 1.25 : 1);
+      if (busy && spread)
+        for (json& v : j[samples]) v = v.get<double>() * std::exp(0.25 * z(rng));
+    });
+    db.add_run(folder.string(), "c" + std::to_string(run));
+  }
+  return db.path();
+}
+
+TEST(HistoryReport, ThreeRunsThatSayTheyWereLoadedMakeNoStepAndAreMarkedLoaded) {
+  const fs::path dir = test_folder("sb_history_report_");
+  // Without their own noise saying so, the three runs are a level of their own.
+  const HistoryDb quiet(history_with_a_busy_spell(dir / "quiet", false));
+  const HistoryReport stepped = history::write_history_report(quiet, (dir / "quiet_site").string());
+  ASSERT_EQ(stepped.steps.size(), 1u);
+  EXPECT_EQ(steps_of(dir / "quiet_site")["steps"][0]["run_order"], 8);
+
+  const HistoryDb busy(history_with_a_busy_spell(dir / "busy", true));
+  const fs::path site = dir / "busy_site";
+  EXPECT_TRUE(history::write_history_report(busy, site.string()).steps.empty());
+  // The job's page shows each run's own noise and marks the three as loaded.
+  for (const auto& entry : fs::directory_iterator(site / "series")) {
+    if (entry.path().extension() != ".html") continue;
+    const std::string page = read_text(entry.path());
+    const bool the_job = page.find(baseline_technique(2)) != std::string::npos;
+    EXPECT_EQ(count(page, "<em>loaded</em></td>"), the_job ? 3u : 0u) << entry.path();
+    EXPECT_NE(page.find("its own noise"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace sb::test
