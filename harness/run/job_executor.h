@@ -32,7 +32,7 @@ struct ResolutionWork {
   // results store's, which forked children share). Such a job is rendered
   // and timed as any other; its reference, metrics and images are the
   // record's, and nothing is measured against a reference.
-  std::map<std::string, const record::JobRecord*> retime;
+  std::map<std::string, const record::JobRecord*> retime = {};
 };
 
 class JobExecutor {

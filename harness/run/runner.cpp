@@ -223,7 +223,7 @@ class Runner {
           if (retime == nullptr) continue;
         }
         if (work.empty() || work.back().resolution != j.resolution)
-          work.push_back({j.resolution, {}, &plan_.scenes[j.scene].scene.inputs, {}});
+          work.push_back({j.resolution, {}, &plan_.scenes[j.scene].scene.inputs});
         work.back().jobs.push_back(&j);
         if (retime != nullptr) work.back().retime[j.id] = retime;
       }
