@@ -15,6 +15,7 @@
 #include "plan/shards.h"
 #include "results/report.h"
 #include "run/runner.h"
+#include "run/session_info.h"
 #include "run/take_turns.h"
 #include "store/results_store.h"
 
@@ -43,7 +44,7 @@ struct RunArgs {
   ExperimentArgs experiment{"run"};
   std::string out;
   ReferenceArgs reference;
-  bool no_images = false, gbuffer = false, quiet = false;
+  bool no_images = false, gbuffer = false, quiet = false, retime = false;
   CiOutputs ci;
   std::string pass_timing = "coarse";
   int turn_block = RunOptions{}.turn_block_frames;
@@ -54,6 +55,8 @@ struct RunArgs {
 };
 
 int cmd_run(const RunArgs& a) {
+  // The session starts with the command, before plugins and the config load.
+  const record::SessionRecord session = run::start_session();
   const Registry r = load_registry(a.experiment.plugins);
   const Experiment e = load_checked_experiment(a.experiment, r);
   RunOptions o;
@@ -77,6 +80,8 @@ int cmd_run(const RunArgs& a) {
   o.isolation = isolation_from_string(a.isolation);
   if (!a.shard.empty()) o.shard = parse_shard(a.shard);
   o.job_seconds = a.job_timeout;
+  o.session = session;
+  o.retime = a.retime;
   if (o.isolation == Isolation::None && a.job_timeout)
     std::fprintf(stderr,
                  "shadowbench: warning: --job-timeout is enforced only with --isolation group or "
@@ -106,6 +111,7 @@ int cmd_run(const RunArgs& a) {
   for (const auto& [why, count] : s.rerun_reasons)
     std::printf("%d job%s rerun: %s\n", count, count == 1 ? "" : "s", why.c_str());
   std::printf("%d ok, %d skipped, %d failed, %d resumed", s.ok, s.skipped, s.failed, s.resumed);
+  if (s.retimed > 0) std::printf(" (%d of the ok re-timed, their errors kept)", s.retimed);
   if (s.crashed + s.timed_out > 0)
     std::printf(" (of the failed, %d crashed and %d timed out)", s.crashed, s.timed_out);
   if (s.bad_records > 0)
@@ -137,6 +143,10 @@ void add_run_command(CommandLine& cl) {
   run->add_flag("--gbuffer", a->gbuffer, "also write each job's G-buffer positions (EXR)");
   add_plugins(run, a->experiment.plugins);
   run->add_flag("--quiet", a->quiet, "no progress line and no table at the end");
+  run->add_flag("--retime", a->retime,
+                "time the kept ok jobs of an existing run folder again, in this session, keeping "
+                "their reference, errors and images: a resumed run's times then come from one "
+                "session");
   add_ci_outputs(run, a->ci);
   add_max_jobs(run, a->experiment.max_jobs);
   add_choice(run, "--pass-timing", a->pass_timing, {"coarse", "fine"},

@@ -22,6 +22,7 @@
 #include "record/reference_record.h"
 #include "record/scene_record.h"
 #include "record/second_reference_record.h"
+#include "record/session_record.h"
 #include "record/stability_record.h"
 #include "record/timing_record.h"
 
@@ -178,6 +179,9 @@ struct JobRecord {
   std::optional<std::string> shard;  // "K/N" when run with --shard (plan/shards.h)
   HostRecord host;                   // the machine, and its fingerprint (record/host_record.h)
   BuildRecord build;                 // the build, and its fingerprint
+  // The `run` process that timed it (record/session_record.h); absent from
+  // older records.
+  std::optional<SessionRecord> session;
 
   JobStatus status = JobStatus::Ok;
   std::optional<std::string> reason;  // why skipped or failed
@@ -263,6 +267,8 @@ void JobRecord::describe(V& v) {
   v.field("shard", &J::shard, {"", "`\"K/N\"` when the job ran under `run --shard K/N`"});
   v.field("host", &J::host, {"", "the machine that timed the job"});
   v.field("build", &J::build, {"", "the build"});
+  v.field("session", &J::session,
+          {"", "the `run` process that timed the job; absent from older records"});
   v.custom(
       "status", "string", {"", "`ok`, `skipped` or `failed`"},
       [](const J& r) { return std::optional<nlohmann::json>(to_string(r.status)); },

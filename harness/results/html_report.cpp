@@ -15,11 +15,12 @@
 #include "core/image.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
+#include "results/banner.h"
 #include "results/html_page.h"
 #include "results/image_viewer.h"
-#include "results/mixed_hosts.h"
 #include "results/record_groups.h"
 #include "results/report_columns.h"
+#include "results/sessions.h"
 #include "results/stability_table.h"
 
 namespace sb::results {
@@ -102,14 +103,7 @@ class Page {
               "</span>, timing source <span class=\"mono\">" + html_escape(r0.timing_source) +
               "</span>. Reference: " + reference_method(r0) + ".</p>\n";
     }
-    if (const auto hosts = distinct_hosts(records_); hosts.size() > 1) {
-      out_ += "<p class=\"warning\"><strong>Mixed hosts:</strong> these jobs were timed on " +
-              std::to_string(hosts.size()) +
-              " hosts or GL renderers (merged with <span class=\"mono\">--allow-mixed-hosts</span>)"
-              "; compare frame times only between jobs of one host:</p>\n<ul>\n";
-      for (const auto& h : hosts) out_ += "<li>" + html_escape(h) + "</li>\n";
-      out_ += "</ul>\n";
-    }
+    out_ += html_banners(report_banners(records_));  // mixed hosts or sessions
     // ok, skipped, failed, then any other status, each with its count.
     std::string tally;
     for (const JobStatus status : {JobStatus::Ok, JobStatus::Skipped, JobStatus::Failed}) {
@@ -141,7 +135,8 @@ class Page {
     out_ += "which no other figure holds) and flip (the shaded image's FLIP over every pixel, as ";
     out_ += "NVIDIA's tool prints it). Click a column header to sort.</p>\n";
     // Scene and resolution are the group's.
-    const std::vector<const ReportColumn*> shown = group_table_columns(records_);
+    const Sessions sessions(records_);  // a column of their letters when mixed
+    const std::vector<const ReportColumn*> shown = sessions.marked(group_table_columns(records_));
     for (size_t g = 0; g < groups_.size(); ++g) {
       out_ += "<h3 id=\"summary-" + std::to_string(g) + "\">" + html_escape(groups_[g].key) +
               "<a href=\"#images-" + std::to_string(g) + "\">images</a></h3>\n";

@@ -4,9 +4,11 @@
 #include <set>
 
 #include "core/atomic_file.h"
+#include "results/banner.h"
 #include "results/latex_tables.h"
 #include "results/pgf_csv.h"
 #include "results/record_groups.h"
+#include "results/sessions.h"
 
 namespace sb::results {
 
@@ -83,7 +85,9 @@ std::string latex_figure(const std::string& csv, const std::string& metric,
 
 LatexFiles write_latex(const std::vector<JobRecord>& records, const std::string& out_dir,
                        const LatexOptions& options) {
-  const std::vector<const ReportColumn*> columns = latex_columns(options.columns, records);
+  const Sessions sessions(records);  // a column of their letters when mixed
+  const std::vector<const ReportColumn*> columns =
+      sessions.marked(latex_columns(options.columns, records));
   struct Texts {
     std::string table, csv;
     bool plotted = false;
@@ -113,7 +117,7 @@ LatexFiles write_latex(const std::vector<JobRecord>& records, const std::string&
       "\\pgfplotsset{compat=1.18}\n"
       "\\begin{document}\n"
       "\\section*{" +
-      latex_text(options.title) + "}\n";
+      latex_text(options.title) + "}\n" + latex_banners(report_banners(records));
   for (size_t i = 0; i < groups.size(); ++i) {
     const LatexGroup& g = groups[i];
     const std::string table = "table-" + g.stem + ".tex", csv = "error-time-" + g.stem + ".csv";

@@ -24,4 +24,14 @@ std::vector<std::string> distinct_hosts(const std::vector<JobRecord>& records) {
   return labels;
 }
 
+std::optional<Banner> mixed_hosts_banner(const std::vector<JobRecord>& records) {
+  std::vector<std::string> hosts = distinct_hosts(records);
+  if (hosts.size() < 2) return std::nullopt;
+  return Banner{"Mixed hosts",
+                "these jobs were timed on " + std::to_string(hosts.size()) +
+                    " hosts or GL renderers (merged with `--allow-mixed-hosts`); compare frame "
+                    "times only between jobs of one host:",
+                std::move(hosts)};
+}
+
 }  // namespace sb::results

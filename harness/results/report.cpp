@@ -5,9 +5,10 @@
 
 #include "core/atomic_file.h"
 #include "core/bounded_text.h"
-#include "results/mixed_hosts.h"
+#include "results/banner.h"
 #include "results/record_groups.h"
 #include "results/report_columns.h"
+#include "results/sessions.h"
 #include "results/stability_table.h"
 
 namespace sb::results {
@@ -65,20 +66,15 @@ std::string make_markdown(const std::vector<JobRecord>& records, const std::stri
            ". Error is measured on the visibility buffer against the " + "ray-traced reference" +
            (r0.reference ? ": " + markdown_text(reference_label(*r0.reference)) : std::string()) +
            ".\n";
-    if (const auto hosts = distinct_hosts(records); hosts.size() > 1) {
-      out += "\n**Mixed hosts:** these jobs were timed on " + std::to_string(hosts.size()) +
-             " hosts or GL renderers (merged with `--allow-mixed-hosts`); compare frame times "
-             "only between jobs of one host:\n\n";
-      for (const auto& h : hosts) out += "- " + markdown_text(h) + "\n";
-      out += "\n";
-    }
+    out += markdown_banners(report_banners(records));  // mixed hosts or sessions
     if (r0.second_reference)
       out += "The second_ columns are the same errors against a second reference: " +
              markdown_text(reference_label(r0.second_reference->reference)) +
              "; mc_noise_share is the share of the penumbra MSE against the Monte Carlo " +
              "reference that its noise explains.\n";
   }
-  const std::vector<const ReportColumn*> columns = group_table_columns(records);
+  const Sessions sessions(records);  // a column of their letters when mixed
+  const std::vector<const ReportColumn*> columns = sessions.marked(group_table_columns(records));
   for (const RecordGroup& g : by_scene_and_resolution(records)) {
     out += "\n## " + markdown_text(g.key) + "\n\n|";
     std::string rule = "|";

@@ -32,7 +32,7 @@ struct ReportColumn {
   // HTML tables leave the column out when no record has a value for it.
   bool optional = false;
   // Exactly one of the two: a text cell, or a number printed with `format`.
-  std::string (*text)(const record::JobRecord&) = nullptr;
+  std::function<std::string(const record::JobRecord&)> text;
   std::function<std::optional<double>(const record::JobRecord&)> number;
   const char* format = nullptr;  // printf format of a number
 

@@ -179,7 +179,8 @@ IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const Emb
   };
 
   while (!remaining.empty()) {
-    const ResolutionWork chunk{work.resolution, remaining};
+    ResolutionWork chunk = work;
+    chunk.jobs = remaining;
     ReplyChannel replies;
     ChildProcess child = ChildProcess::start([&](int fd) {
       replies.keep_child_end();

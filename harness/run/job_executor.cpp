@@ -1,5 +1,6 @@
 #include "run/job_executor.h"
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 #include <set>
@@ -52,6 +53,24 @@ namespace {
 // Undo whatever state a technique left behind.
 void reset_gl_state() { gl::reset_state(); }
 
+// A job re-timed (run --retime) keeps what its kept record measured against
+// the reference; its timing, host and session are this run's. A warning of
+// an injected delay is the timing's, and is said again if it still applies.
+void keep_measurements(const JobRecord& kept, JobRecord& r) {
+  r.reference = kept.reference;
+  r.visibility_check = kept.visibility_check;
+  r.metrics = kept.metrics;
+  r.second_reference = kept.second_reference;
+  r.stability = kept.stability;
+  r.classes = kept.classes;
+  r.images = kept.images;
+  for (const std::string& w : kept.warnings)
+    if (w.find(kInjectDelayVariable) == std::string::npos) r.warnings.push_back(w);
+  if (r.session)
+    r.session->retimed_from =
+        kept.session ? kept.session->id : std::string(record::kUnrecordedSession);
+}
+
 }  // namespace
 
 class JobExecutor::Impl {
@@ -101,7 +120,7 @@ class JobExecutor::Impl {
         // Both or neither: a failed GPU stage is tried again at the next
         // resolution, like a failed upload.
         if (!uploaded.gpu) uploaded = upload_scene(st);
-        run_resolution(sv, st, uploaded, res, pending);
+        run_resolution(sv, st, uploaded, res, pending, w.retime);
       } catch (const std::exception& ex) {
         // Shared work (G-buffer, reference) failed: every job not yet
         // finished fails.
@@ -149,7 +168,15 @@ class JobExecutor::Impl {
   }
 
   void run_resolution(const SceneVariant& sv, const ScenePlan& st, const UploadedScene& uploaded,
-                      const Resolution& res, const std::vector<size_t>& pending) {
+                      const Resolution& res, const std::vector<size_t>& pending,
+                      const std::map<std::string, const JobRecord*>& retime) {
+    const auto kept_record = [&](size_t i) -> const JobRecord* {
+      const auto it = retime.find(job_id(sv.name, res.label(), e_.techniques[i].name));
+      return it == retime.end() ? nullptr : it->second;
+    };
+    // Re-timed jobs measure nothing: without another job, no reference.
+    const bool measures =
+        std::any_of(pending.begin(), pending.end(), [&](size_t i) { return !kept_record(i); });
     const GpuScene& gpu = *uploaded.gpu;
     const DerivedData& derived = uploaded.derived;
     reset_gl_state();
@@ -159,7 +186,8 @@ class JobExecutor::Impl {
     const glm::mat4 projection = st.scene.camera.projection(aspect);
     targets.render_gbuffer(gpu, projection * view);
     const MeasurementBasis basis =
-        make_measurement_basis(e_, o_, embree_, events_, sv.name, st.scene, res, targets);
+        measures ? make_measurement_basis(e_, o_, embree_, events_, sv.name, st.scene, res, targets)
+                 : MeasurementBasis{};
 
     FrameInputs in = targets.inputs(st.scene, gpu, view, projection);
     in.derived = &derived;
@@ -169,7 +197,7 @@ class JobExecutor::Impl {
     }
     const FrameSetup frame{targets, st.scene, in};
     std::optional<StabilityProbe> stability;
-    if (e_.stability) {
+    if (e_.stability && measures) {
       // Untimed frames under moved lights, measured against references of
       // the same lights at the same points.
       auto render = [&](Technique& t, const FrameInputs& moved) {
@@ -204,13 +232,18 @@ class JobExecutor::Impl {
       const TechniqueVariant& tv = e_.techniques[i];
       JobRecord r = base_record(sv, &st, res, tv);
       r.started_at = now_iso8601();
-      r.reference = basis.ref_record;
+      const JobRecord* kept = kept_record(i);
+      if (kept == nullptr) r.reference = basis.ref_record;
       events_.job_started(r);
       const auto t0 = std::chrono::steady_clock::now();
       PhasesRecord phases;
       try {
-        run_job(setting, tv, uploaded.gpu_bytes_held_for(st.needs.at(i)), r, phases);
-        r.images.add(basis.ref_images);
+        run_job(setting, tv, uploaded.gpu_bytes_held_for(st.needs.at(i)), r, phases,
+                kept != nullptr);
+        if (kept != nullptr)
+          keep_measurements(*kept, r);  // once timed: a failed re-timing has none
+        else
+          r.images.add(basis.ref_images);
         r.status = JobStatus::Ok;
       } catch (const std::exception& ex) {
         r.status = JobStatus::Failed;

@@ -7,7 +7,9 @@
 // to run (resumed ones are not) and in which process is the caller's choice
 // (run/runner.cpp, run/isolated_work.h).
 #include <cstddef>
+#include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "config/experiment.h"
@@ -26,6 +28,11 @@ struct ResolutionWork {
   // The files the plan's build of the scene read (core::Scene::inputs), for
   // the records of jobs that end before a scene is built again.
   const std::vector<core::InputFile>* inputs = nullptr;
+  // run --retime: the kept records of jobs to time again, by job id (the
+  // results store's, which forked children share). Such a job is rendered
+  // and timed as any other; its reference, metrics and images are the
+  // record's, and nothing is measured against a reference.
+  std::map<std::string, const record::JobRecord*> retime = {};
 };
 
 class JobExecutor {

@@ -219,6 +219,7 @@ JobRecord identity_record(const Experiment& e, const RunOptions& o, const Embree
   // The machine and the build, with their fingerprints (run/host_info.h).
   r.host = describe_host(gl_renderer, gl_version, embree.isa);
   r.build = describe_build();
+  r.session = o.session;  // the run's (run/session_info.h)
   // Its place in the plan, so that merged shards list jobs as one run would.
   const auto index_of = [](const auto& item, const auto& all) {
     return std::int64_t(&item - all.data());

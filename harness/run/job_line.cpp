@@ -24,6 +24,7 @@ std::string job_line(const JobRecord& record, size_t done, size_t total) {
     // the geometry region).
     const std::string rmse = report_column("rmse").cell(record);
     if (!rmse.empty()) line += ", geometry RMSE " + rmse;
+    if (record.session && record.session->retimed_from) line += " (re-timed; errors kept)";
   } else if (record.status != JobStatus::Ok) {
     line += " (" + record.reason.value_or("") + ")";
   }

@@ -56,7 +56,7 @@ FrameSchedule schedule_of(const JobSetting& s, const TechniqueVariant& tv) {
 
 void run_job(const JobSetting& s, const TechniqueVariant& tv,
              const std::map<std::string, std::int64_t>& need_gpu_bytes, JobRecord& r,
-             PhasesRecord& phases) {
+             PhasesRecord& phases, bool time_only) {
   Lap lap;
   gl::take_debug_errors();
   const std::string& who = tv.info->name;
@@ -86,6 +86,7 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv,
   r.technique.set_gpu_bytes(allocations.peak_bytes(), need_gpu_bytes);
   phases.frames = lap.seconds();
   if (delay != nullptr) r.warnings.push_back(delay->describe());
+  if (time_only) return;
 
   ImageF visibility = in_technique_phase(who, "read-back", [&] {
     ImageF v = s.frame.targets.read_visibility();

@@ -36,8 +36,10 @@ struct JobSetting {
 // Whatever the job got to stays in `r` and `phases` when it throws.
 // `need_gpu_bytes`: what the harness holds on the GPU for the technique's
 // needs (UploadedScene::gpu_bytes_held_for), charged beside its own storage.
+// `time_only` (run --retime): prepared and timed as any job, then nothing
+// is read back, measured or written; `s.basis` may be empty.
 void run_job(const JobSetting& s, const config::TechniqueVariant& tv,
              const std::map<std::string, std::int64_t>& need_gpu_bytes, record::JobRecord& r,
-             record::PhasesRecord& phases);
+             record::PhasesRecord& phases, bool time_only = false);
 
 }  // namespace sb::run

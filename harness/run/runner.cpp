@@ -23,6 +23,7 @@
 #include "run/job_identity.h"
 #include "run/job_line.h"
 #include "run/progress.h"
+#include "run/session_info.h"
 #include "store/results_store.h"
 #include "store/run_lock.h"
 
@@ -144,7 +145,11 @@ class StoreEvents final : public ParentEvents {
     std::fprintf(stderr, "%s\n", line.c_str());
     progress_.draw();
   }
-  void resumed() {
+  void resumed(bool retimed) {
+    if (retimed) {  // finished again, in this session, by job_finished
+      ++summary_.retimed;
+      return;
+    }
     ++summary_.resumed;
     ++done_;
     progress_.add_done_without_running(1);
@@ -165,7 +170,7 @@ class Runner {
  public:
   Runner(const Experiment& e, const RunOptions& o)
       : e_(e),
-        o_(o),
+        o_(with_session(o)),
         lock_(o.run_dir),
         store_(o.run_dir),
         progress_(stderr, !o.quiet && isatty(fileno(stderr)), 0) {}
@@ -210,13 +215,17 @@ class Runner {
       std::vector<ResolutionWork> work;
       for (; next < jobs.size() && jobs[next]->scene == scene; ++next) {
         const PlannedJob& j = *jobs[next];
+        const JobRecord* retime = nullptr;
         if (resumable(j, events)) {
-          events.resumed();
-          continue;
+          if (o_.retime && store_.finished(j.id)->status == JobStatus::Ok)
+            retime = store_.finished(j.id);
+          events.resumed(retime != nullptr);
+          if (retime == nullptr) continue;
         }
         if (work.empty() || work.back().resolution != j.resolution)
           work.push_back({j.resolution, {}, &plan_.scenes[j.scene].scene.inputs});
         work.back().jobs.push_back(&j);
+        if (retime != nullptr) work.back().retime[j.id] = retime;
       }
       if (!work.empty()) run_scene(scene, work, events);
     }
@@ -242,7 +251,11 @@ class Runner {
       if (o_.isolation == Isolation::Group)
         pieces.push_back(w);
       else
-        for (const PlannedJob* j : w.jobs) pieces.push_back({w.resolution, {j}, w.inputs});
+        for (const PlannedJob* j : w.jobs) {
+          ResolutionWork piece = w;
+          piece.jobs = {j};
+          pieces.push_back(std::move(piece));
+        }
       for (const ResolutionWork& piece : pieces) {
         const IsolatedOutcome out = run_isolated(e_, o_, embree_, scene, piece, limits_, events);
         summary_.crashed += out.crashed;
@@ -289,8 +302,15 @@ class Runner {
     }
   }
 
+  // The options with this run's session: what every record it writes names.
+  static RunOptions with_session(const RunOptions& o) {
+    RunOptions out = o;
+    if (!out.session) out.session = start_session();
+    return out;
+  }
+
   const Experiment& e_;
-  const RunOptions& o_;
+  const RunOptions o_;
   RunFolderLock lock_;  // before store_: nothing is read until the folder is ours
   ResultsStore store_;
   Progress progress_;

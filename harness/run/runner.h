@@ -17,6 +17,7 @@
 #include "gl/pass_timer.h"
 #include "plan/shards.h"
 #include "plugin/registry.h"
+#include "record/session_record.h"
 
 namespace sb::run {
 
@@ -56,6 +57,12 @@ struct RunOptions {
   std::optional<double> job_seconds, setup_seconds;
   // Only this shard's jobs (plan/shards.h); 1/1 runs them all.
   plan::ShardSpec shard;
+  // What every record of this run names as its session; unset: a new one
+  // when the run starts (run/session_info.h).
+  std::optional<record::SessionRecord> session;
+  // `run --retime`: a kept ok job is rendered and timed again in this
+  // session, its metrics, images and reference kept from its record.
+  bool retime = false;
 };
 
 struct RunSummary {
@@ -63,6 +70,7 @@ struct RunSummary {
   int skipped = 0;
   int failed = 0;
   int resumed = 0;      // finished in an earlier run of the same directory
+  int retimed = 0;      // finished earlier, timed again (--retime): in ok, not resumed
   int respecified = 0;  // finished earlier, but with other settings: run again
   // Why they ran again (record/spec_changes.h), each with its count of
   // jobs, in the order first met.

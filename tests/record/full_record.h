@@ -119,6 +119,8 @@ inline record::JobRecord every_member_record() {
   r.build.driver_sha256 = std::string(64, 'd');
   r.build.core_sha256 = std::string(64, 'c');
   r.build.plugin_api_sha256 = std::string(64, 'p');
+  r.session = record::SessionRecord{"0123456789abcdef", "2026-12-07T12:00:00Z", "vm", 0.52,
+                                    "fedcba9876543210"};
   r.reference->exact_fallback = "the scene has no exact reference";
   r.reference->adaptive = record::AdaptiveReferenceRecord{16, 0.01, 123.5, 1024, 7, 0.0223};
   record::ControlTiming control;
