@@ -81,7 +81,7 @@ std::string line_with(const std::string& text, const std::string& needle) {
 TEST(NoisyRun, AJobTimedBesideBusyProcessesIsFlaggedInTheRecordTheConsoleAndTheReport) {
   const fs::path dir = fresh_test_folder("noisy_run_");
   // One job (and the control, "none", timed next to it); a threshold of
-  // ±2 %: what the load makes is several times that (docs/ci.md, "Noise").
+  // ±2 %: what the load makes is several times that (docs/ci.md, "Noisy jobs").
   const json config = {
       {"name", "noisy"},
       {"scenes", {small_scene(2.0)}},
