@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cli/command_line.h"
 #include "cli/commands.h"
@@ -13,6 +14,7 @@
 #include "core/error.h"
 #include "gl/pass_timer.h"
 #include "plan/shards.h"
+#include "results/noisy_jobs.h"
 #include "results/report.h"
 #include "run/runner.h"
 #include "run/session_info.h"
@@ -29,7 +31,9 @@ using core::kExitJobsFailed;
 using core::kExitOk;
 using plan::parse_shard;
 using plugin::Registry;
+using record::JobRecord;
 using results::make_markdown;
+using results::noise_warning;
 using run::Isolation;
 using run::isolation_from_string;
 using run::run_experiment;
@@ -103,8 +107,9 @@ int cmd_run(const RunArgs& a) {
     std::fprintf(stderr, "shadowbench: %s\n", ex.what());
     return kExitInternal;
   }
+  const std::vector<JobRecord> records = read_job_records(o.run_dir);
   if (!a.quiet) {
-    const auto md = make_markdown(read_job_records(o.run_dir), e.name + " (" + o.run_id + ")");
+    const auto md = make_markdown(records, e.name + " (" + o.run_id + ")");
     std::printf("\n%s\n", md.c_str());
   }
   // Why finished jobs ran again, even with --quiet: their old numbers are gone.
@@ -119,8 +124,12 @@ int cmd_run(const RunArgs& a) {
   if (s.respecified > 0)
     std::printf(" (%d earlier records had other settings and were rerun)", s.respecified);
   std::printf("; results in %s\n", o.run_dir.c_str());
-  if (!a.ci.benchmark_out.empty() || !a.ci.bencher_out.empty())
-    write_ci_outputs(a.ci, read_job_records(o.run_dir));
+  if (!a.ci.benchmark_out.empty() || !a.ci.bencher_out.empty()) write_ci_outputs(a.ci, records);
+  // The last line, even with --quiet: tables that rank noisy times mislead.
+  if (const auto warning = noise_warning(records)) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "shadowbench: %s\n", warning->c_str());
+  }
   if (s.bad_input > 0) return kExitBadInput;
   return s.failed > 0 ? kExitJobsFailed : kExitOk;
 }

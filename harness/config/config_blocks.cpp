@@ -51,6 +51,17 @@ ConfigBlock frames_block() {
   b.keys.back().identity = [](const Experiment& e) {
     return e.control ? technique_identity(e, *e.control) : json(nullptr);
   };
+  // A judgement of the times, not a number of them: a rerun with another
+  // threshold keeps the records, which say the threshold they were judged by.
+  b.keys.emplace_back(
+      Decides::None,
+      float_param("noise_threshold", 0.05, 0.0, 1.0,
+                  "a job is noisy when its median frame time's 95 % interval (or its frame "
+                  "ratio's) is wider than ± this fraction of the median (docs/results.md, "
+                  "\"Noise\"); it is marked in the record (`timing.noise`), the console, "
+                  "every table, and counted in the run's last line"),
+      [](Experiment& e, const json& v) { e.noise_threshold = v.get<double>(); },
+      [](const Experiment& e) { return json(e.noise_threshold); });
   return b;
 }
 

@@ -122,6 +122,10 @@ struct Experiment {
   // (record timing.control, docs/ci.md). Absent with "control": null; by
   // default kDefaultControl with its default parameters.
   std::optional<TechniqueVariant> control;
+  // frames.noise_threshold: a job whose frame time's (or frame ratio's)
+  // median has a 95 % interval wider than ± this fraction is noisy (record
+  // timing.noise).
+  double noise_threshold = 0.05;
   ReferenceConfig reference;
   std::optional<StabilityConfig> stability;
   // "metrics": {"distance_thirds": true}: the visibility's error also over

@@ -19,7 +19,23 @@ Series Series::of(const std::vector<double>& samples) {
           s.min,
           s.max,
           s.cv,
+          s.median_ci_lo,
+          s.median_ci_hi,
+          s.median_ci_rel(),
+          s.median_ci_coverage,
           samples};
+}
+
+NoiseRecord NoiseRecord::judge(const TimingRecord& t, double threshold) {
+  NoiseRecord n;
+  n.frame_ci_rel = t.frame.median_ci_rel;
+  if (t.control) {
+    n.control_frame_ci_rel = t.control->frame.median_ci_rel;
+    n.frame_ratio_ci_rel = t.control->frame_ratio.median_ci_rel;
+  }
+  n.threshold = threshold;
+  n.noisy = n.judged_ci_rel() > threshold;
+  return n;
 }
 
 void FineTiming::check(const FineTiming& t, const Fields& f) {

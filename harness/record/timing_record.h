@@ -1,6 +1,7 @@
 #pragma once
 // record["timing"]: how a job's frames were timed, and what they measured
 // (docs/results.md, "timing").
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -26,6 +27,11 @@ struct Series {
   std::int64_t count = 0;
   double median = 0, p10 = 0, p90 = 0, mean = 0, min = 0, max = 0;
   double cv = 0;  // population standard deviation / mean
+  // The median's 95 % interval from order statistics, distribution-free
+  // (record/median_interval.h): its ends, its half-width relative to the
+  // median, and its coverage (below 0.95 with fewer than 6 samples, where
+  // it is the sample range).
+  double median_ci_lo = 0, median_ci_hi = 0, median_ci_rel = 0, median_ci_coverage = 0;
   std::vector<double> samples;
 
   // The statistics of `samples` (record/timing_stats.h), which are kept too.
@@ -41,6 +47,25 @@ struct Series {
     v.field("min", &Series::min, {"", "least sample", Presence::Natural, true});
     v.field("max", &Series::max, {"", "greatest sample", Presence::Natural, true});
     v.field("cv", &Series::cv, {"", "population standard deviation / mean"});
+    v.field("median_ci_lo", &Series::median_ci_lo,
+            {"",
+             "the median's 95 % confidence interval, distribution-free, from order statistics: "
+             "x_(j) of the sorted samples, j the largest rank with P(B ≤ j − 1) ≤ 2.5 %, "
+             "B ~ Binomial(count, ½); with fewer than 6 samples no such j exists and the "
+             "interval is the sample range (see `median_ci_coverage`)",
+             Presence::OlderLack, true});
+    v.field("median_ci_hi", &Series::median_ci_hi,
+            {"", "its upper end, x_(count + 1 − j)", Presence::OlderLack, true});
+    v.field("median_ci_rel", &Series::median_ci_rel,
+            {"",
+             "its half-width relative to the median, (hi − lo) / 2 / median: 0.05 reads "
+             "\"±5 %\"",
+             Presence::OlderLack});
+    v.field("median_ci_coverage", &Series::median_ci_coverage,
+            {"",
+             "how often such an interval holds the median, 1 − 2 P(B ≤ j − 1): at least "
+             "0.95; below it with fewer than 6 samples (0.9375 at 5, 0.75 at 3, 0 at 1)",
+             Presence::OlderLack});
     v.field("samples", &Series::samples,
             {"", "every sample, in frame order", Presence::Natural, true});
   }
@@ -106,6 +131,61 @@ struct ControlTiming {
   }
 };
 
+struct TimingRecord;
+
+// Whether the job's timings were noisy on this run's machine: the 95 %
+// intervals of its medians against the config's `frames.noise_threshold`,
+// and the machine's load while its frames were timed (timing.noise). The
+// tables, the console and the run's last line mark a noisy job: its median,
+// and so its place in a ranking, is not pinned down by its frames.
+struct NoiseRecord {
+  static constexpr RecordDoc kSchema{
+      "NoiseRecord",
+      "whether the job's times were noisy: the half-widths of its medians' 95 % intervals "
+      "(`median_ci_rel` of its series) against `frames.noise_threshold`, and the machine's "
+      "load while its frames were timed"};
+
+  double frame_ci_rel = 0;                     // timing.frame.median_ci_rel
+  std::optional<double> control_frame_ci_rel;  // timing.control.frame's
+  std::optional<double> frame_ratio_ci_rel;    // timing.control.frame_ratio's
+  double threshold = 0;
+  bool noisy = false;
+  std::optional<double> load_average_start, load_average_end;  // 1-minute, /proc/loadavg
+  std::int64_t usable_cores = 0;
+
+  // The judgement of `t`'s series against `threshold`: noisy when the frame's
+  // interval or the frame ratio's is wider. The load and cores are the
+  // caller's to fill.
+  static NoiseRecord judge(const TimingRecord& t, double threshold);
+  // The wider of the judged half-widths, frame and frame ratio: what decides
+  // `noisy`, and what the console and the tables print.
+  double judged_ci_rel() const { return std::max(frame_ci_rel, frame_ratio_ci_rel.value_or(0.0)); }
+
+  template <class V>
+  static void describe(V& v) {
+    v.field("frame_ci_rel", &NoiseRecord::frame_ci_rel,
+            {"", "`timing.frame.median_ci_rel`: the frame time median's relative half-width"});
+    v.field("control_frame_ci_rel", &NoiseRecord::control_frame_ci_rel,
+            {"",
+             "with a control: `timing.control.frame.median_ci_rel`, the control's own frames' "
+             "(the machine's noise, whatever the technique); not judged"});
+    v.field("frame_ratio_ci_rel", &NoiseRecord::frame_ratio_ci_rel,
+            {"", "with a control: `timing.control.frame_ratio.median_ci_rel`"});
+    v.field("threshold", &NoiseRecord::threshold,
+            {"", "`frames.noise_threshold` of the run: the widest relative half-width not noisy"});
+    v.field("noisy", &NoiseRecord::noisy,
+            {"", "`frame_ci_rel` or `frame_ratio_ci_rel` is above `threshold`"});
+    v.field("load_average_start", &NoiseRecord::load_average_start,
+            {"",
+             "the 1-minute load average (/proc/loadavg) before the first timed frame; absent "
+             "where the system does not say"});
+    v.field("load_average_end", &NoiseRecord::load_average_end,
+            {"", "the same after the last timed frame"});
+    v.field("usable_cores", &NoiseRecord::usable_cores,
+            {"", "the CPUs the run may use (its affinity mask): the load to read it against"});
+  }
+};
+
 struct TimingRecord {
   static constexpr RecordDoc kSchema{"TimingRecord",
                                      "how the job's frames were timed, and what they took"};
@@ -119,6 +199,7 @@ struct TimingRecord {
   std::map<std::string, Series> shared;  // "gbuffer", "shading"
   std::optional<FineTiming> fine;        // with pass_timing "fine" only
   std::optional<ControlTiming> control;  // unless the config's frames.control is null
+  std::optional<NoiseRecord> noise;      // absent from older records
 
   template <class V>
   static void describe(V& v) {
@@ -140,6 +221,8 @@ struct TimingRecord {
     v.flatten(&TimingRecord::fine, {"", "with `pass_timing` fine"});
     v.field("control", &TimingRecord::control,
             {"", "when the run timed a control job next to the job's frames"});
+    v.field("noise", &TimingRecord::noise,
+            {"", "whether the times were noisy (below, `NoiseRecord`); absent in older records"});
   }
   // The control's frames pair with the job's.
   static void check(const TimingRecord& t, const Fields& f);

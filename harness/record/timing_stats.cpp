@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "record/median_interval.h"
+
 namespace sb::record {
 
 namespace {
@@ -48,7 +50,15 @@ TimingStats summarize(std::vector<double> samples) {
   for (double v : samples) var += (v - s.mean) * (v - s.mean);
   var /= double(samples.size());
   s.cv = s.mean > 0.0 ? std::sqrt(var) / s.mean : 0.0;
+  const MedianRanks ranks = median_ci_ranks(samples.size());
+  s.median_ci_lo = samples[ranks.lower - 1];
+  s.median_ci_hi = samples[ranks.upper - 1];
+  s.median_ci_coverage = ranks.coverage;
   return s;
+}
+
+double TimingStats::median_ci_rel() const {
+  return median > 0.0 ? (median_ci_hi - median_ci_lo) / 2.0 / median : 0.0;
 }
 
 }  // namespace sb::record

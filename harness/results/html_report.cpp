@@ -18,6 +18,7 @@
 #include "results/banner.h"
 #include "results/html_page.h"
 #include "results/image_viewer.h"
+#include "results/noisy_jobs.h"
 #include "results/record_groups.h"
 #include "results/report_columns.h"
 #include "results/sessions.h"
@@ -161,6 +162,9 @@ class Page {
         out_ += "</tr>\n";
       }
       out_ += "</tbody>\n</table></div>\n";
+      if (const std::string legend = noisy_legend(groups_[g].records); !legend.empty())
+        out_ += std::string("<p class=\"note noisy\">") + kNoisyMark + " " + html_escape(legend) +
+                "</p>\n";
     }
     out_ += "</section>\n";
   }

@@ -7,6 +7,8 @@
 #include <optional>
 
 #include "core/error.h"
+#include "core/format_number.h"
+#include "results/noisy_jobs.h"
 
 namespace sb::results {
 
@@ -291,6 +293,7 @@ std::string make_latex_table(const std::vector<const JobRecord*>& group,
   for (const JobRecord* r : group) {
     out += latex_text(r->technique_variant);
     if (is_control(group, *r)) out += " \\emph{(control)}";
+    if (is_noisy(*r)) out += "\\textsuperscript{\\dag}";
     if (r->status != JobStatus::Ok && !columns.empty()) {
       out += " & \\multicolumn{" + std::to_string(columns.size()) + "}{l}{\\emph{" +
              latex_text(record::to_string(r->status)) + "}}";
@@ -313,7 +316,18 @@ std::string make_latex_table(const std::vector<const JobRecord*>& group,
     }
     out += " \\\\\n";
   }
-  return out + "\\bottomrule\n\\end{tabular}\n";
+  out += "\\bottomrule\n";
+  // The noisy rows' legend, under the rule (results/noisy_jobs.h).
+  if (const auto over = noisy_thresholds(group)) {
+    std::string range = core::format_number("%g", 100.0 * over->first);
+    if (over->second != over->first)
+      range += "--" + core::format_number("%g", 100.0 * over->second);
+    out += "\\multicolumn{" + std::to_string(columns.size() + 1) +
+           "}{l}{\\footnotesize\\dag{} noisy: the median's 95\\,\\% interval is wider than "
+           "$\\pm$" +
+           range + "\\,\\%} \\\\\n";
+  }
+  return out + "\\end{tabular}\n";
 }
 
 }  // namespace sb::results

@@ -6,6 +6,7 @@
 #include "core/atomic_file.h"
 #include "core/bounded_text.h"
 #include "results/banner.h"
+#include "results/noisy_jobs.h"
 #include "results/record_groups.h"
 #include "results/report_columns.h"
 #include "results/sessions.h"
@@ -88,6 +89,8 @@ std::string make_markdown(const std::vector<JobRecord>& records, const std::stri
       for (const ReportColumn* c : columns) out += " " + markdown_text(c->cell(*r)) + " |";
       out += "\n";
     }
+    if (const std::string legend = noisy_legend(g.records); !legend.empty())
+      out += std::string("\n") + kNoisyMark + " " + markdown_text(legend) + "\n";
   }
   return out + stability_markdown(records);
 }

@@ -9,6 +9,7 @@
 #include "core/format_number.h"
 #include "record/figures.h"
 #include "reference/reference.h"
+#include "results/noisy_jobs.h"
 
 namespace sb::results {
 
@@ -128,6 +129,14 @@ ReportColumn time_column(const std::string& key) {
   return c;
 }
 
+// The wider of the job's judged medians' intervals, frame time and frame
+// ratio, relative to the median (record timing.noise); none for older
+// records.
+std::optional<double> time_ci(const JobRecord& r) {
+  if (!r.timing || !r.timing->noise) return std::nullopt;
+  return r.timing->noise->judged_ci_rel();
+}
+
 // A figure of the shaded image as a whole (MetricsRecord's own numbers).
 ReportColumn whole_image_column(const char* name, const std::string& key) {
   const record::WholeImageFigure& f = *record::find_whole_image_figure(key);
@@ -178,6 +187,9 @@ std::vector<ReportColumn> make_columns() {
       time_column("time.frame_ms"),
       time_column("time.technique_ms"),
       time_column("time.frame_ratio"),
+      optional(number("time_ci", time_ci, "%.3f", "Median CI", "", Better::Neither)),
+      optional(text("noisy",
+                    [](const JobRecord& r) { return std::string(is_noisy(r) ? kNoisyMark : ""); })),
       optional(number("gpu_mib", gpu_mib, "%.2f", "GPU memory", "MiB")),
       geometry("rmse"),
       geometry("mae"),

@@ -11,6 +11,7 @@ namespace sb::run {
 
 using record::ControlTiming;
 using record::FineTiming;
+using record::NoiseRecord;
 using record::Series;
 using record::TimingRecord;
 
@@ -55,11 +56,14 @@ TimingRecord time_frames(FrameTarget& target, const FrameSchedule& s) {
     return target.control_frame("control " + *s.control + " next to " + frame_name(i));
   };
   const int frames = s.warmup_frames + s.timed_frames;
+  const auto load = [&]() { return s.load_average ? s.load_average() : std::nullopt; };
+  std::optional<double> load_start;
   // Frame -1 is never timed, whatever the warm-up count: with "warmup": 0
   // compilation would land in a timed frame, and only for the techniques
   // compiled last.
   for (int i = -1; i < frames; ++i) {
     const bool timed = i >= s.warmup_frames;
+    if (i == s.warmup_frames) load_start = load();
     if (timed && s.turn_block_frames > 0 && (i - s.warmup_frames) % s.turn_block_frames == 0)
       target.take_turn();
     const bool control_first = control && i >= 0 && i % 2 == 1;
@@ -73,6 +77,7 @@ TimingRecord time_frames(FrameTarget& target, const FrameSchedule& s) {
     coarse.add(frame);
     if (control) control_ms.push_back((control_first ? before : after).total_ms);
   }
+  const std::optional<double> load_end = load();
   // The visibility read back after the frames must be the job's: when a
   // control frame came last, one more untimed frame of the job.
   if (control && !fine_detail && frames > 0 && (frames - 1) % 2 == 0)
@@ -118,6 +123,10 @@ TimingRecord time_frames(FrameTarget& target, const FrameSchedule& s) {
     c.frame_ratio = Series::of(ratio);
     t.control = std::move(c);
   }
+  t.noise = NoiseRecord::judge(t, s.noise_threshold);
+  t.noise->load_average_start = load_start;
+  t.noise->load_average_end = load_end;
+  t.noise->usable_cores = s.usable_cores;
   return t;
 }
 

@@ -8,6 +8,8 @@
 // visibility read back must be the job's), and with --pass-timing fine as
 // many frames again as timed, each pass its own bracket (docs/design.md,
 // docs/ci.md). The schedule knows nothing of GL: a FrameTarget renders.
+#include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -34,6 +36,12 @@ struct FrameSchedule {
   std::optional<std::string> control;  // the control's technique variant, if any
   gl::PassDetail pass_detail = gl::PassDetail::Coarse;
   int turn_block_frames = 0;  // timed frames per turn; 0: no turns
+  // The record's timing.noise: the threshold its medians' intervals are
+  // judged by, the machine's load before the first timed frame and after the
+  // last (null: not read), and the CPUs the run may use.
+  double noise_threshold = 0.05;
+  std::function<std::optional<double>()> load_average;
+  std::int64_t usable_cores = 0;
 };
 
 // Renders the schedule's frames on `target` and returns their statistics and

@@ -84,15 +84,6 @@ std::vector<std::string> cpu_isa() {
   return out;
 }
 
-// CPUs this process may run on (a container's cpuset, taskset), which is
-// what llvmpipe sizes its threads by; the online count when unknown.
-std::int64_t usable_cpus() {
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  if (sched_getaffinity(0, sizeof set, &set) == 0) return CPU_COUNT(&set);
-  return std::thread::hardware_concurrency();
-}
-
 // What does not change while the process runs, read once.
 HostRecord machine() {
   HostRecord h;
@@ -159,6 +150,19 @@ BuildRecord describe_build() {
   b.core_sha256 = present(code.core_sha256);
   b.plugin_api_sha256 = present(code.plugin_api_sha256);
   return b;
+}
+
+std::int64_t usable_cpus() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0) return CPU_COUNT(&set);
+  return std::thread::hardware_concurrency();
+}
+
+std::optional<double> one_minute_load_average() {
+  double load[1] = {0};
+  if (getloadavg(load, 1) != 1) return std::nullopt;
+  return load[0];
 }
 
 }  // namespace sb::run

@@ -3,6 +3,7 @@
 // (CPU, ISA, cores, OS, llvmpipe's environment knobs, the GL stack) and this
 // build (compiler, build type, flags), each with its fingerprint
 // (record/host_record.h; docs/results.md, "host and build").
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -16,6 +17,14 @@ namespace sb::run {
 // Reads /proc/cpuinfo, /etc/os-release and sysfs once per process.
 record::HostRecord describe_host(const std::string& gl_renderer, const std::string& gl_version,
                                  const std::string& embree_isa);
+
+// CPUs this process may run on (a container's cpuset, taskset), which is
+// what llvmpipe sizes its threads by; the online count when unknown.
+std::int64_t usable_cpus();
+
+// The 1-minute load average (/proc/loadavg, through getloadavg); nullopt
+// where the system does not say.
+std::optional<double> one_minute_load_average();
 
 // This build: SHADOWBENCH_VERSION and what CMake passed to host_info.cpp.
 record::BuildRecord describe_build();

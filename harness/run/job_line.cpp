@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "results/noisy_jobs.h"
 #include "results/report_columns.h"
 
 namespace sb::run {
@@ -25,6 +26,8 @@ std::string job_line(const JobRecord& record, size_t done, size_t total) {
     const std::string rmse = report_column("rmse").cell(record);
     if (!rmse.empty()) line += ", geometry RMSE " + rmse;
     if (record.session && record.session->retimed_from) line += " (re-timed; errors kept)";
+    // The same words as the tables' mark (results/noisy_jobs.h).
+    if (const auto noisy = results::noisy_label(record)) line += "  " + *noisy;
   } else if (record.status != JobStatus::Ok) {
     line += " (" + record.reason.value_or("") + ")";
   }

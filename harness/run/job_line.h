@@ -1,9 +1,9 @@
 #pragma once
 // The console's line for a finished job, e.g.
 // "[3/20] sphere_grid @ 320x240  pcss: ok  frame 1.23 ms, technique 0.45 ms, geometry RMSE
-// 0.03727". Its error is the tables' headline: the `rmse` column of results.csv and summary.md (the
-// visibility over the `geometry` region, docs/results.md "Regions"), printed as the tables print
-// it.
+// 0.03727  noisy ±7.2 %". Its error is the tables' headline: the `rmse` column of results.csv and
+// summary.md (the visibility over the `geometry` region, docs/results.md "Regions"), printed as the
+// tables print it; a noisy job (record timing.noise) says so, with its median's interval.
 #include <cstddef>
 #include <string>
 

@@ -10,6 +10,7 @@
 #include "metrics/job_metrics.h"
 #include "metrics/shadow_classes.h"
 #include "run/frame_schedule.h"
+#include "run/host_info.h"
 #include "run/run_images.h"
 #include "run/technique_phase.h"
 
@@ -49,6 +50,9 @@ FrameSchedule schedule_of(const JobSetting& s, const TechniqueVariant& tv) {
   if (s.control != nullptr) schedule.control = s.control->name;
   schedule.pass_detail = s.o.pass_detail;
   schedule.turn_block_frames = s.o.take_turn ? s.o.turn_block_frames : 0;
+  schedule.noise_threshold = s.e.noise_threshold;
+  schedule.load_average = one_minute_load_average;
+  schedule.usable_cores = usable_cpus();
   return schedule;
 }
 

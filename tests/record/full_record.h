@@ -128,6 +128,10 @@ inline record::JobRecord every_member_record() {
   control.frame = record::Series::of({8, 8, 8});
   control.frame_ratio = record::Series::of({1.25, 1.5, 1.375});
   r.timing->control = control;
+  r.timing->noise = record::NoiseRecord::judge(*r.timing, 0.05);
+  r.timing->noise->load_average_start = 1.25;
+  r.timing->noise->load_average_end = 1.5;
+  r.timing->noise->usable_cores = 2;
   for (record::ImageMetrics* m : {&r.metrics->visibility, &r.metrics->shaded}) {
     m->geometry = region(0.2);
     m->receivers = region(0.125);

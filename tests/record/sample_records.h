@@ -69,6 +69,16 @@ inline record::TimingRecord coarse_timing(const std::vector<double>& frame,
   return t;
 }
 
+// 20 frame times around 10 ms, spread ±`spread` ms in a fixed order
+// (10 + spread × (7i mod 20 − 10) / 10): sorted, 10 − spread, 10 − 0.9
+// spread, ..., 10 + 0.9 spread; so the median's interval, [x_(6), x_(15)],
+// is [10 − 0.5 spread, 10 + 0.4 spread] around a median of 10 − 0.05 spread.
+inline std::vector<double> spread_frames(double spread) {
+  std::vector<double> out;
+  for (int i = 0; i < 20; ++i) out.push_back(10.0 + spread * double((i * 7) % 20 - 10) / 10.0);
+  return out;
+}
+
 // Per-pass detail as `run --pass-timing fine` adds it: `passes` in order,
 // each with its samples.
 inline void add_fine_timing(

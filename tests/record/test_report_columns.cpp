@@ -112,10 +112,11 @@ TEST(ReportColumns, SameHeadersInCsvMarkdownAndHtml) {
   const std::vector<std::string> all = headers(true), shown = headers(false);
   EXPECT_EQ(all.front(), "scene");
   EXPECT_EQ(all.back(), "reason");
-  // Scene and resolution head each table instead; the GPU memory's, FLIP's,
-  // the terminator's, the distance thirds', the classes' and the second
-  // reference's columns are there only when a record has them.
-  EXPECT_EQ(all.size(), shown.size() + 2 + 1 + 1 + 1 + 3 + 2 + 3);
+  // Scene and resolution head each table instead; the median's interval and
+  // the noisy mark, the GPU memory's, FLIP's, the terminator's, the distance
+  // thirds', the classes' and the second reference's columns are there only
+  // when a record has them.
+  EXPECT_EQ(all.size(), shown.size() + 2 + 2 + 1 + 1 + 1 + 3 + 2 + 3);
 
   const std::string csv = make_csv(records());
   EXPECT_EQ(csv.substr(0, csv.find('\n')), join(all, ","));
@@ -145,7 +146,7 @@ TEST(ReportColumns, CellsAgreeAcrossTheTables) {
   // A skipped job has no figures: empty cells, and its reason in the last column.
   EXPECT_EQ(report_column("rmse").cell(rs[1]), "");
   EXPECT_EQ(report_column("reason").cell(rs[1]), "casters are not closed");
-  EXPECT_NE(csv.find(",skipped,,,,,,,,,,,,,,,,,,,,,,casters are not closed\n"), std::string::npos)
+  EXPECT_NE(csv.find(",skipped,,,,,,,,,,,,,,,,,,,,,,,,casters are not closed\n"), std::string::npos)
       << csv;
   EXPECT_THROW(report_column("nonsense"), std::out_of_range);
 }

@@ -5,6 +5,7 @@
 // each block of timed frames), and which frames' times the record keeps.
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -137,6 +138,42 @@ TEST(FrameSchedule, TurnsBeforeEachBlockOfTimedFrames) {
   // compile, warm-up, then blocks of two timed frames (the last one short).
   EXPECT_EQ(target.calls,
             (Calls{"job", "job", "turn", "job", "job", "turn", "job", "job", "turn", "job"}));
+}
+
+TEST(FrameSchedule, TheLoadIsReadBeforeTheFirstTimedFrameAndAfterTheLast) {
+  LoggingTarget target;
+  FrameSchedule s = schedule(2, 3);
+  double load = 0.5;
+  s.load_average = [&]() -> std::optional<double> {
+    target.calls.push_back("load");
+    return load += 1.0;
+  };
+  s.usable_cores = 3;
+  s.noise_threshold = 0.25;
+  const TimingRecord t = time_frames(target, s);
+  EXPECT_EQ(target.calls, (Calls{"job", "job", "job", "load", "job", "job", "job", "load"}));
+  ASSERT_TRUE(t.noise.has_value());
+  EXPECT_EQ(t.noise->load_average_start, 1.5);
+  EXPECT_EQ(t.noise->load_average_end, 2.5);
+  EXPECT_EQ(t.noise->usable_cores, 3);
+  EXPECT_EQ(t.noise->threshold, 0.25);
+}
+
+TEST(FrameSchedule, TheRecordJudgesItsMediansIntervalsByTheThreshold) {
+  // Timed job frames 2, 3, ..., 11 ms (warm-up 0): median 6.5, the interval
+  // [x_(2), x_(9)] = [3, 10], half-width 3.5 / 6.5 = 0.538.
+  LoggingTarget target;
+  FrameSchedule s = schedule(0, 10);
+  s.noise_threshold = 0.5;
+  TimingRecord t = time_frames(target, s);
+  ASSERT_TRUE(t.noise.has_value());
+  EXPECT_DOUBLE_EQ(t.noise->frame_ci_rel, 3.5 / 6.5);
+  EXPECT_TRUE(t.noise->noisy);
+  EXPECT_FALSE(t.noise->load_average_start.has_value());  // no probe: not read
+  LoggingTarget again;
+  s.noise_threshold = 0.6;
+  t = time_frames(again, s);
+  EXPECT_FALSE(t.noise->noisy);
 }
 
 }  // namespace
