@@ -18,6 +18,7 @@
 #include "results/html_page.h"
 #include "results/image_viewer.h"
 #include "results/mixed_hosts.h"
+#include "results/ranking_tables.h"
 #include "results/record_groups.h"
 #include "results/report_columns.h"
 #include "results/stability_table.h"
@@ -166,6 +167,7 @@ class Page {
         out_ += "</tr>\n";
       }
       out_ += "</tbody>\n</table></div>\n";
+      out_ += ranking_html(groups_[g].records);
     }
     out_ += "</section>\n";
   }

@@ -6,6 +6,7 @@
 #include "core/atomic_file.h"
 #include "core/bounded_text.h"
 #include "results/mixed_hosts.h"
+#include "results/ranking_tables.h"
 #include "results/record_groups.h"
 #include "results/report_columns.h"
 #include "results/stability_table.h"
@@ -92,6 +93,7 @@ std::string make_markdown(const std::vector<JobRecord>& records, const std::stri
       for (const ReportColumn* c : columns) out += " " + markdown_text(c->cell(*r)) + " |";
       out += "\n";
     }
+    out += ranking_markdown(g.records);
   }
   return out + stability_markdown(records);
 }
