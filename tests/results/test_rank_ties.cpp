@@ -9,7 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "../common/text.h"
+#include "../metrics/test_util.h"
 #include "control_run.h"
+#include "results/html_report.h"
 #include "results/rank_ties.h"
 #include "results/ranking_tables.h"
 #include "results/report.h"
@@ -155,6 +158,12 @@ TEST(RankTies, SummaryAndHtmlShowTheRankingTiesAndTheLegend) {
       std::string::npos)
       << html;
   EXPECT_NE(html.find("alpha 0.05"), std::string::npos) << html;
+  // index.html holds it under the group's summary table.
+  test::TempDir dir("rank_ties_html");
+  results::write_html_report(records, (dir.path() / "run").string(), (dir.path() / "out").string(),
+                             {}, "t", false);
+  const std::string page = test::read_text(dir.path() / "out" / "index.html");
+  EXPECT_NE(page.find(html), std::string::npos);
   // Without a control the legend says the frame times were ranked.
   const std::string plain = results::ranking_html(test::record_pointers(oracle_records(false)));
   EXPECT_NE(plain.find("timing.frame.samples_ms"), std::string::npos) << plain;
