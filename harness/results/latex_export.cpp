@@ -7,6 +7,7 @@
 #include "core/atomic_file.h"
 #include "results/latex_tables.h"
 #include "results/pgf_csv.h"
+#include "results/ranking_tables.h"
 #include "results/record_groups.h"
 
 namespace sb::results {
@@ -112,6 +113,7 @@ LatexFiles write_latex(const std::vector<JobRecord>& records, const std::string&
   struct Texts {
     std::string table, csv;
     std::vector<ErrorTimeRow> rows;
+    std::string ranking;
     bool plotted = false;
   };
   const std::vector<LatexGroup> groups = latex_groups(records);
@@ -119,7 +121,8 @@ LatexFiles write_latex(const std::vector<JobRecord>& records, const std::string&
   for (const LatexGroup& g : groups) {  // everything made, and checked, before a file is written
     Texts t{make_latex_table(g.records, columns, options.digits),
             make_error_time_csv(g.records, options.error_metric),
-            error_time_rows(g.records, options.error_metric)};
+            error_time_rows(g.records, options.error_metric),
+            ranking_latex(g.records, options.digits)};
     t.plotted = !t.rows.empty();
     texts.push_back(std::move(t));
   }
@@ -156,6 +159,15 @@ LatexFiles write_latex(const std::vector<JobRecord>& records, const std::string&
     write_file_atomically(files.csvs.back(), texts[i].csv);
     doc += "\n\\begin{table}[htbp]\n\\centering\n\\caption{" + latex_text(g.name) +
            "}\n\\small\n\\sbfit{\\input{" + table + "}}\n\\end{table}\n";
+    if (!texts[i].ranking.empty()) {
+      const std::string ranking = "ranking-" + g.stem + ".tex";
+      files.rankings.push_back((fs::path(out_dir) / ranking).string());
+      write_file_atomically(files.rankings.back(), texts[i].ranking);
+      doc +=
+          "\n\\begin{table}[htbp]\n\\centering\n\\caption{Ranking by time: " + latex_text(g.name) +
+          ". " + ranking_latex_legend(g.records) + "}\n\\small\n\\sbfit{\\input{" + ranking +
+          "}}\n\\end{table}\n";
+    }
     // A page now and then: LaTeX holds at most 18 floats in waiting.
     const std::string page_break = (i + 1) % 4 == 0 ? "\\clearpage\n" : "";
     if (!texts[i].plotted) {

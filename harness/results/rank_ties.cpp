@@ -1,6 +1,7 @@
 #include "results/rank_ties.h"
 
 #include <algorithm>
+#include <cmath>
 #include <span>
 
 #include "core/format_number.h"
@@ -44,7 +45,9 @@ Ranking rank_by_time(const std::vector<const JobRecord*>& group, double alpha) {
   std::vector<const std::vector<double>*> samples;
   for (const JobRecord* r : ranked) {
     const std::vector<double>* s = ratios ? ratio_samples(*r) : &r->timing->frame.samples;
-    if (s->empty()) continue;
+    // No samples, or a NaN among them (which no rank test orders): not ranked.
+    if (s->empty() || std::any_of(s->begin(), s->end(), [](double v) { return std::isnan(v); }))
+      continue;
     RankEntry e;
     e.record = r;
     e.median = record::summarize(*s).median;

@@ -15,7 +15,7 @@
 //  - A pair whose adjusted p is >= alpha is a tie ("≈"). Ties chain: a tie
 //    group is a run of neighbours joined by ties, and its two ends may still
 //    differ significantly (only neighbours are tested).
-// A job without samples is left out of the ranking.
+// A job without samples, or with a NaN among them, is left out of the ranking.
 #include <cstddef>
 #include <optional>
 #include <string>

@@ -1,7 +1,10 @@
 #include "results/ranking_tables.h"
 
+#include <string_view>
+
 #include "core/format_number.h"
 #include "results/html_page.h"
+#include "results/latex_tables.h"
 #include "results/rank_ties.h"
 #include "results/report.h"
 
@@ -58,6 +61,34 @@ std::string ranking_html(const std::vector<const JobRecord*>& group) {
   }
   return out + "</tbody>\n</table></div>\n<p class=\"note ranking-legend\">" +
          html_escape(ranking_legend(r)) + "</p>\n";
+}
+
+std::string ranking_latex(const std::vector<const JobRecord*>& group, int digits) {
+  const Ranking r = rank_by_time(group);
+  if (r.entries.size() < 2) return "";
+  std::string out = "% needs \\usepackage{booktabs}\n\\begin{tabular}{rlrrr}\n\\toprule\n";
+  std::string header;
+  for (const std::string& h : headers(r)) header += (header.empty() ? "" : " & ") + latex_text(h);
+  out += header + " \\\\\n\\midrule\n";
+  for (const RankEntry& e : r.entries) {
+    out += std::to_string(e.rank) + (e.tied_with_above ? " $\\approx$" : "") + " & " +
+           latex_text(e.record->technique_variant) + " & " + latex_number(e.median, digits) +
+           " & " + std::to_string(e.count) + " & " +
+           (e.p_adjusted ? latex_number(*e.p_adjusted, digits) : std::string()) + " \\\\\n";
+  }
+  return out + "\\bottomrule\n\\end{tabular}\n";
+}
+
+std::string ranking_latex_legend(const std::vector<const JobRecord*>& group) {
+  // The one legend, escaped; its two signs outside pdflatex's default
+  // encoding (latex_text writes them as code points) set as LaTeX.
+  std::string out = latex_text(ranking_legend(rank_by_time(group)));
+  for (const auto& [code, latex] : {std::pair<std::string_view, std::string_view>{
+                                        "\\textless{}U+2248\\textgreater{}", "$\\approx$"},
+                                    {"\\textless{}U+2013\\textgreater{}", "--"}})
+    for (size_t at = out.find(code); at != std::string::npos; at = out.find(code, at))
+      out.replace(at, code.size(), latex);
+  return out;
 }
 
 }  // namespace sb::results

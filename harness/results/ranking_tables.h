@@ -14,5 +14,11 @@ namespace sb::results {
 
 std::string ranking_markdown(const std::vector<const record::JobRecord*>& group);
 std::string ranking_html(const std::vector<const record::JobRecord*>& group);
+// For `report --latex`: a booktabs tabular of the same rows (needs
+// \usepackage{booktabs} only; "2 $\approx$"), numbers to `digits`
+// significant digits; empty as above.
+std::string ranking_latex(const std::vector<const record::JobRecord*>& group, int digits = 3);
+// The legend as LaTeX text, for the ranking's caption.
+std::string ranking_latex_legend(const std::vector<const record::JobRecord*>& group);
 
 }  // namespace sb::results

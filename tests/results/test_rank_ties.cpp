@@ -164,6 +164,13 @@ TEST(RankTies, SummaryAndHtmlShowTheRankingTiesAndTheLegend) {
                              {}, "t", false);
   const std::string page = test::read_text(dir.path() / "out" / "index.html");
   EXPECT_NE(page.find(html), std::string::npos);
+  // The paper's: LaTeX, the tie as $\approx$, the legend's signs as LaTeX.
+  const std::string latex = results::ranking_latex(test::record_pointers(records));
+  EXPECT_NE(latex.find("\n2 $\\approx$ & t5 & 1.19 & 30 & "), std::string::npos) << latex;
+  const std::string legend = results::ranking_latex_legend(test::record_pointers(records));
+  EXPECT_NE(legend.find("$\\approx$: not significantly different"), std::string::npos) << legend;
+  EXPECT_NE(legend.find("Mann--Whitney U"), std::string::npos) << legend;
+  EXPECT_EQ(legend.find("U+"), std::string::npos) << legend;
   // Without a control the legend says the frame times were ranked.
   const std::string plain = results::ranking_html(test::record_pointers(oracle_records(false)));
   EXPECT_NE(plain.find("timing.frame.samples_ms"), std::string::npos) << plain;
