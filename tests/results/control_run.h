@@ -19,6 +19,7 @@ namespace sb::test {
 // tests/results/rank_ties_values.py).
 inline std::vector<double> spread_samples(double median, int a, int n = 30) {
   std::vector<double> out;
+  out.reserve(size_t(n));
   for (int i = 0; i < n; ++i)
     out.push_back(median * (1 + 0.1 * (double((i * a) % 31) / 30.0 - 0.5)));
   return out;
@@ -80,6 +81,7 @@ inline std::vector<record::JobRecord> control_run_records(
 inline std::vector<const record::JobRecord*> record_pointers(
     const std::vector<record::JobRecord>& records) {
   std::vector<const record::JobRecord*> out;
+  out.reserve(records.size());
   for (const record::JobRecord& r : records) out.push_back(&r);
   return out;
 }

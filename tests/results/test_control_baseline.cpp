@@ -20,8 +20,6 @@
 
 namespace sb {
 
-using record::JobRecord;
-
 namespace {
 
 const std::vector<std::string> kFront = {"shadow_map/size=1024", "pcf_box/k=3,size=1024",
