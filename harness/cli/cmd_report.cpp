@@ -89,6 +89,7 @@ int cmd_report(const ReportArgs& a) {
         write_latex(records, (std::filesystem::path(out) / "latex").string(), latex);
     for (size_t i = 0; i < files.tables.size(); ++i)
       std::printf("latex: %s, %s\n", files.tables[i].c_str(), files.csvs[i].c_str());
+    for (const std::string& ranking : files.rankings) std::printf("latex: %s\n", ranking.c_str());
     std::printf("latex: %s (pdflatex tables.tex)\n", files.document.c_str());
   }
   write_html_report(records, run_dir, out, charts, title, !a.no_viewer_data);

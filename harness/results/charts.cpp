@@ -23,6 +23,7 @@
 #include "core/names.h"
 #include "record/figures.h"
 #include "record/job_record.h"
+#include "results/control_baseline.h"
 #include "results/pareto.h"
 #include "results/record_groups.h"
 #include "store/results_store.h"
@@ -178,14 +179,17 @@ void error_cost_charts(const std::vector<const JobRecord*>& ok, const std::strin
         missing.push_back(label);
         continue;
       }
+      // The control is drawn as a reference, never on the front.
+      const bool control = is_control(records, *r);
       c.file.series.push_back(label);
       points.push_back({{"label", label},
                         {"style", styles(label)},
                         {"x", cost.x},
                         {"xlo", finite_or_null(cost.lo)},
                         {"xhi", finite_or_null(cost.hi)},
-                        {"y", e}});
-      pp.push_back({cost.x, higher ? -e : e, label});
+                        {"y", e},
+                        {"control", control}});
+      if (!control) pp.push_back({cost.x, higher ? -e : e, label});
       xs.push_back(cost.x);
     }
     json front = json::array();

@@ -8,6 +8,9 @@
 // p10–p90 error bars):
 //  - error_time:      error against frame time, per (scene variant,
 //                     resolution); the Pareto front as a step line, labelled;
+//                     the timing control (results/control_baseline.h) is
+//                     drawn hollow and grey, "(control)" in the legend, and
+//                     is never on the front;
 //  - time_triangles:  frame time against scene.triangles, per (scene type,
 //                     resolution), when the type has >= 2 triangle counts;
 //  - error_triangles: the error metric against scene.triangles, likewise;
@@ -44,7 +47,7 @@ struct ChartFile {
   std::string png;
   std::string pdf;                  // style "paper" only, else empty
   std::vector<std::string> series;  // technique variants drawn (legend or bar labels)
-  std::vector<std::string> pareto;  // error_time only: the labelled front, by time
+  std::vector<std::string> pareto;  // error_time only: the labelled front, by time (no control)
 };
 
 // Writes every chart the records support into out_dir (created if missing)

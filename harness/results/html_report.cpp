@@ -19,6 +19,7 @@
 #include "results/html_page.h"
 #include "results/image_viewer.h"
 #include "results/noisy_jobs.h"
+#include "results/ranking_tables.h"
 #include "results/record_groups.h"
 #include "results/report_columns.h"
 #include "results/sessions.h"
@@ -165,6 +166,7 @@ class Page {
       if (const std::string legend = noisy_legend(groups_[g].records); !legend.empty())
         out_ += std::string("<p class=\"note noisy\">") + kNoisyMark + " " + html_escape(legend) +
                 "</p>\n";
+      out_ += ranking_html(groups_[g].records);
     }
     out_ += "</section>\n";
   }

@@ -1,5 +1,6 @@
 #include "results/latex_export.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <set>
 
@@ -7,6 +8,7 @@
 #include "results/banner.h"
 #include "results/latex_tables.h"
 #include "results/pgf_csv.h"
+#include "results/ranking_tables.h"
 #include "results/record_groups.h"
 #include "results/sessions.h"
 
@@ -55,10 +57,15 @@ std::vector<LatexGroup> latex_groups(const std::vector<JobRecord>& records) {
   return groups;
 }
 
-// tables.tex's pgfplots figure of one group's CSV: the points labelled with
-// their technique, and the Pareto front as a step line.
-std::string latex_figure(const std::string& csv, const std::string& metric,
-                         const std::string& group) {
+// tables.tex's pgfplots figure of one group's CSV: each point with its
+// p10–p90 frame time as error bars and its own legend entry (names beside
+// close points would overlap), the control hollow and grey, and the Pareto
+// front as a step line.
+std::string latex_figure(const std::string& csv, const std::vector<ErrorTimeRow>& rows,
+                         const std::string& metric, const std::string& group) {
+  std::size_t longest = 0;
+  for (const ErrorTimeRow& r : rows)
+    longest = std::max(longest, r.record->technique_variant.size());
   std::string out = "\n\\begin{figure}[htbp]\n\\centering\n\\begin{tikzpicture}\n";
   // Times span orders of magnitude (a shadow map to an accumulation
   // reference), so the time axis is logarithmic, as on the report's chart.
@@ -66,18 +73,37 @@ std::string latex_figure(const std::string& csv, const std::string& metric,
   out += "  xmode=log, log ticks with fixed point,\n";
   out += "  ylabel={" + latex_text(metric) + "},\n";
   out += "  scaled y ticks=false, yticklabel style={/pgf/number format/fixed},\n";
-  out += "  nodes near coords style={font=\\tiny}]\n";
-  out += "\\addplot+[only marks, nodes near coords, point meta=explicit symbolic]\n";
-  out += "  table[x=time_ms, y=error, meta=technique, col sep=comma] {" + csv + "};\n";
+  out += "  legend style={at={(0.5,-0.2)}, anchor=north, draw=none, font=\\scriptsize},\n";
+  out +=
+      "  legend cell align=left, legend columns=" + std::string(longest <= 36 ? "2" : "1") + ",\n";
+  out += "  error bars/error bar style={thin}]\n";
+  // One plot per row: the other rows skipped by index.
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    out += "\\addplot+[only marks,";
+    if (rows[i].control) out += " mark=o, gray,";
+    out += " error bars/.cd, x dir=both, x explicit]\n";
+    out += "  table[x=time_ms, y=error, col sep=comma,\n";
+    out += "    x error plus expr=\\thisrow{time_p90_ms}-\\thisrow{time_ms},\n";
+    out += "    x error minus expr=\\thisrow{time_ms}-\\thisrow{time_p10_ms},\n";
+    if (i > 0) out += "    skip coords between index={0}{" + std::to_string(i) + "},\n";
+    out += "    skip coords between index={" + std::to_string(i + 1) + "}{" +
+           std::to_string(rows.size()) + "}]\n";
+    out += "  {" + csv + "};\n";
+    out += "\\addlegendentry{" + latex_text(rows[i].record->technique_variant) +
+           (rows[i].control ? " (control)" : "") + "}\n";
+  }
   // The front's rows only: the others' y becomes NaN, which pgfplots drops
   // (restrict expr to domain made them unbounded, and the step line ran
   // down to the axis at the first of them).
   out += "\\addplot[const plot, black, unbounded coords=discard,\n";
   out += "  y filter/.expression={\\thisrow{pareto} == 1 ? y : nan}]\n";
   out += "  table[x=time_ms, y=error, col sep=comma] {" + csv + "};\n";
+  out += "\\addlegendentry{Pareto front}\n";
   out += "\\end{axis}\n\\end{tikzpicture}\n";
   out += "\\caption{" + latex_text(metric + " against frame time: " + group);
-  out += " (the line: the Pareto front)}\n\\end{figure}\n";
+  out +=
+      " (bars: p10--p90 of the frame time; the line: the Pareto front, without the "
+      "control)}\n\\end{figure}\n";
   return out;
 }
 
@@ -90,14 +116,18 @@ LatexFiles write_latex(const std::vector<JobRecord>& records, const std::string&
       sessions.marked(latex_columns(options.columns, records));
   struct Texts {
     std::string table, csv;
+    std::vector<ErrorTimeRow> rows;
+    std::string ranking;
     bool plotted = false;
   };
   const std::vector<LatexGroup> groups = latex_groups(records);
   std::vector<Texts> texts;
   for (const LatexGroup& g : groups) {  // everything made, and checked, before a file is written
     Texts t{make_latex_table(g.records, columns, options.digits),
-            make_error_time_csv(g.records, options.error_metric)};
-    t.plotted = t.csv.find('\n') + 1 < t.csv.size();  // a row beyond the header
+            make_error_time_csv(g.records, options.error_metric),
+            error_time_rows(g.records, options.error_metric),
+            ranking_latex(g.records, options.digits)};
+    t.plotted = !t.rows.empty();
     texts.push_back(std::move(t));
   }
 
@@ -113,8 +143,14 @@ LatexFiles write_latex(const std::vector<JobRecord>& records, const std::string&
       "\\documentclass{article}\n"
       "\\usepackage[margin=2cm]{geometry}\n"
       "\\usepackage{booktabs}\n"
+      "\\usepackage{graphicx}\n"
       "\\usepackage{pgfplots}\n"
       "\\pgfplotsset{compat=1.18}\n"
+      "% A table wider than the text is scaled down to its width, never up.\n"
+      "\\newsavebox{\\sbtable}\n"
+      "\\newcommand{\\sbfit}[1]{\\sbox{\\sbtable}{#1}%\n"
+      "  \\ifdim\\wd\\sbtable>\\linewidth\\resizebox{\\linewidth}{!}{\\usebox{\\sbtable}}%\n"
+      "  \\else\\usebox{\\sbtable}\\fi}\n"
       "\\begin{document}\n"
       "\\section*{" +
       latex_text(options.title) + "}\n" + latex_banners(report_banners(records));
@@ -126,14 +162,23 @@ LatexFiles write_latex(const std::vector<JobRecord>& records, const std::string&
     write_file_atomically(files.tables.back(), texts[i].table);
     write_file_atomically(files.csvs.back(), texts[i].csv);
     doc += "\n\\begin{table}[htbp]\n\\centering\n\\caption{" + latex_text(g.name) +
-           "}\n\\small\n\\input{" + table + "}\n\\end{table}\n";
+           "}\n\\small\n\\sbfit{\\input{" + table + "}}\n\\end{table}\n";
+    if (!texts[i].ranking.empty()) {
+      const std::string ranking = "ranking-" + g.stem + ".tex";
+      files.rankings.push_back((fs::path(out_dir) / ranking).string());
+      write_file_atomically(files.rankings.back(), texts[i].ranking);
+      doc +=
+          "\n\\begin{table}[htbp]\n\\centering\n\\caption{Ranking by time: " + latex_text(g.name) +
+          ". " + ranking_latex_legend(g.records) + "}\n\\small\n\\sbfit{\\input{" + ranking +
+          "}}\n\\end{table}\n";
+    }
     // A page now and then: LaTeX holds at most 18 floats in waiting.
     const std::string page_break = (i + 1) % 4 == 0 ? "\\clearpage\n" : "";
     if (!texts[i].plotted) {
       doc += page_break;
       continue;
     }
-    doc += latex_figure(csv, options.error_metric, g.name);
+    doc += latex_figure(csv, texts[i].rows, options.error_metric, g.name);
     doc += page_break;
   }
   doc += "\n\\end{document}\n";

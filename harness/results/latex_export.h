@@ -1,5 +1,6 @@
 #pragma once
-// `report --latex`: the paper tables (results/latex_tables.h) and the
+// `report --latex`: the paper tables (results/latex_tables.h), the rankings
+// by time with their ties (results/ranking_tables.h) and the
 // error-against-time CSVs for pgfplots (results/pgf_csv.h) of a run, one of
 // each per (scene variant, resolution), in one folder with tables.tex, a
 // document that \input's every table and draws every CSV with pgfplots, so
@@ -22,7 +23,10 @@ struct LatexOptions {
 struct LatexFiles {
   std::vector<std::string> tables;  // table-<scene>-<WxH>.tex, in group order
   std::vector<std::string> csvs;    // error-time-<scene>-<WxH>.csv, likewise
-  std::string document;             // tables.tex
+  // ranking-<scene>-<WxH>.tex (results/ranking_tables.h), for the groups
+  // with two or more variants ranked by time
+  std::vector<std::string> rankings;
+  std::string document;  // tables.tex
 };
 
 // Writes the files into out_dir (created if missing; each atomically).

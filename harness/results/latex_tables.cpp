@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/format_number.h"
 #include "results/noisy_jobs.h"
+#include "results/control_baseline.h"
 
 namespace sb::results {
 
@@ -40,15 +41,6 @@ double latex_rounded(double v, int digits) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*e", std::max(0, digits - 1), v);
   return std::strtod(buf, nullptr);
-}
-
-// Whether `r` is the timing control of a job of `group` (config
-// `frames.control`, "none" by default): a baseline, not a competitor.
-bool is_control(const std::vector<const JobRecord*>& group, const JobRecord& r) {
-  return std::any_of(group.begin(), group.end(), [&](const JobRecord* other) {
-    return other->timing && other->timing->control &&
-           other->timing->control->technique == r.technique_variant;
-  });
 }
 
 // The value of `c` that is set in bold in `group`, compared as printed, or

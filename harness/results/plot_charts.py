@@ -224,6 +224,10 @@ def error_cost(fig, ax, d):
         xerr = None
         if p["xlo"] is not None and p["xhi"] is not None:
             xerr = [[max(p["x"] - p["xlo"], 0)], [max(p["xhi"] - p["x"], 0)]]
+        if p.get("control"):  # a reference, not a competitor: hollow, grey, named so
+            ax.errorbar([p["x"]], [p["y"]], xerr=xerr, fmt=marker, color="0.45", mfc="none",
+                        ms=5, capsize=2, elinewidth=0.8, label=p["label"] + " (control)", zorder=3)
+            continue
         ax.errorbar([p["x"]], [p["y"]], xerr=xerr, fmt=marker, color=colour, ms=5, capsize=2,
                     elinewidth=0.8, label=p["label"], zorder=3)
     front = d["front"]

@@ -7,6 +7,7 @@
 #include "core/bounded_text.h"
 #include "results/banner.h"
 #include "results/noisy_jobs.h"
+#include "results/ranking_tables.h"
 #include "results/record_groups.h"
 #include "results/report_columns.h"
 #include "results/sessions.h"
@@ -91,6 +92,7 @@ std::string make_markdown(const std::vector<JobRecord>& records, const std::stri
     }
     if (const std::string legend = noisy_legend(g.records); !legend.empty())
       out += std::string("\n") + kNoisyMark + " " + markdown_text(legend) + "\n";
+    out += ranking_markdown(g.records);
   }
   return out + stability_markdown(records);
 }

@@ -13,10 +13,13 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <string>
+#include <vector>
 
 #include "../common/cli_run.h"
 #include "../common/text.h"
+#include "../results/control_run.h"
 #include "core/image.h"
 #include "latex_fixture.h"
 #include "metrics/image_io.h"
@@ -57,7 +60,102 @@ double page_width_pt(const CliRun& info) {
   return std::stod(info.output.substr(info.output.find_first_of("0123456789", at)));
 }
 
+// A word of `pdftotext -bbox-layout`, in points from the page's top left.
+struct Word {
+  int page = 0;
+  double page_width = 0;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  std::string text;
+};
+
+std::vector<Word> pdf_words(const std::string& xhtml) {
+  std::vector<Word> out;
+  int page = 0;
+  double page_width = 0;
+  const std::regex token(
+      "<page width=\"([0-9.]+)\"|<word xMin=\"([0-9.]+)\" yMin=\"([0-9.]+)\" xMax=\"([0-9.]+)\" "
+      "yMax=\"([0-9.]+)\">([^<]*)</word>");
+  for (std::sregex_iterator it(xhtml.begin(), xhtml.end(), token), end; it != end; ++it) {
+    if ((*it)[1].length() > 0) {
+      ++page;
+      page_width = std::stod((*it)[1]);
+      continue;
+    }
+    out.push_back({page, page_width, std::stod((*it)[2]), std::stod((*it)[3]), std::stod((*it)[4]),
+                   std::stod((*it)[5]), (*it)[6]});
+  }
+  return out;
+}
+
+// The widest "Overfull \hbox (X pt too wide)" of a LaTeX log, 0 without one.
+double widest_overfull_pt(const std::string& log) {
+  double widest = 0;
+  const std::regex overfull("Overfull \\\\hbox \\(([0-9.]+)pt too wide\\)");
+  for (std::sregex_iterator it(log.begin(), log.end(), overfull), end; it != end; ++it)
+    widest = std::max(widest, std::stod((*it)[1]));
+  return widest;
+}
+
 }  // namespace
+
+// The issue-61 page: a run as configs/ci.json makes one (five techniques
+// with long names beside the control `none`, nine columns) set with
+// tables.tex's own page (letter paper, 2 cm margins: text from 56.9 pt to
+// 555.1 pt).
+// Its tables overflowed the text by 53-58 pt and the figure's point labels
+// lay on each other. Now: no overfull box wider than 1 pt in the log, every
+// word of the PDF inside the text width, and no two words' boxes on a page
+// overlapping (legend entries, ticks, table cells, captions).
+TEST(LatexPdflatex, TablesFitTheTextWidthAndNoLabelsOverlap) {
+  ASSERT_TRUE(on_path("pdflatex"));
+  ASSERT_TRUE(on_path("pdftotext"));
+  const fs::path dir = test::test_folder("sb_latex_fit_");
+  auto records = test::control_run_records();
+  for (const auto& r : test::control_run_records(0.3, "foliage/count=200,spread=1.5", "640x480"))
+    records.push_back(r);
+  records.back().timing = records[records.size() - 3].timing;  // a tie: pcss's frames
+
+  results::LatexOptions options;  // the default columns and three more a paper may want
+  options.columns = {"frame_ms",      "technique_ms", "x_control", "rmse", "mae",
+                     "penumbra_rmse", "psnr",         "ssim",      "flip"};
+  results::write_latex(records, (dir / "latex").string(), options);
+  const CliRun tex = run_command("cd '" + (dir / "latex").string() +
+                                 "' && pdflatex -interaction=nonstopmode -halt-on-error "
+                                 "tables.tex");
+  ASSERT_EQ(tex.exit_code, 0) << tex.output;
+  const std::string log = test::read_text((dir / "latex" / "tables.log").string());
+  EXPECT_LE(widest_overfull_pt(log), 1.0) << log;
+
+  const fs::path pdf = dir / "latex" / "tables.pdf";
+  // The rankings are set, the tie with its sign.
+  const CliRun text = run_command("pdftotext -layout '" + pdf.string() + "' -");
+  EXPECT_NE(text.output.find("Ranking by time: foliage/count=200,spread=1.5 @ 640x480"),
+            std::string::npos)
+      << text.output;
+  EXPECT_TRUE(std::regex_search(text.output, std::regex("\n +4 ?\u2248 +shadow"))) << text.output;
+  const CliRun box = run_command("pdftotext -bbox-layout '" + pdf.string() + "' -");
+  ASSERT_EQ(box.exit_code, 0) << box.output;
+  const std::vector<Word> words = pdf_words(box.output);
+  ASSERT_GT(words.size(), 100U) << box.output;
+  constexpr double kMargin = 2 / 2.54 * 72, kSlack = 0.5;  // 2 cm in PDF points
+  for (const Word& w : words)
+    EXPECT_TRUE(w.x0 >= kMargin - kSlack && w.x1 <= w.page_width - kMargin + kSlack)
+        << "\"" << w.text << "\" on page " << w.page << " spans " << w.x0 << "-" << w.x1
+        << " pt, outside the text's " << kMargin << "-" << w.page_width - kMargin;
+  // Boxes that share more than half a point both ways overlap (a word's
+  // box is its font's height, so lines set tight may touch).
+  for (size_t i = 0; i < words.size(); ++i)
+    for (size_t j = i + 1; j < words.size(); ++j) {
+      const Word &a = words[i], &b = words[j];
+      if (a.page != b.page) continue;
+      const double w = std::min(a.x1, b.x1) - std::max(a.x0, b.x0);
+      const double h = std::min(a.y1, b.y1) - std::max(a.y0, b.y0);
+      EXPECT_FALSE(w > 0.5 && h > 0.5)
+          << "\"" << a.text << "\" and \"" << b.text << "\" overlap on page " << a.page << " (" << w
+          << " x " << h << " pt)";
+    }
+  if (!HasFailure() && !std::getenv("SB_KEEP")) fs::remove_all(dir);  // else kept, to look at
+}
 
 TEST(LatexPdflatex, TablesAndPlotsCompileAndTheFirstPageRenders) {
   ASSERT_TRUE(on_path("pdflatex"));

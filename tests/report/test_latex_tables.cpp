@@ -178,17 +178,17 @@ TEST(PgfCsv, RowsByTimeWithBracedNamesAndTheParetoFront) {
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);) lines.push_back(line);
   ASSERT_EQ(lines.size(), 4U) << csv;  // ok jobs only
-  EXPECT_EQ(lines[0], "technique,time_ms,time_p10_ms,time_p90_ms,error,pareto");
+  EXPECT_EQ(lines[0], "technique,time_ms,time_p10_ms,time_p90_ms,error,pareto,control");
   EXPECT_EQ(lines[1].rfind("{none},2.5,", 0), 0U) << lines[1];
-  EXPECT_EQ(lines[1].substr(lines[1].size() - 7), ",0.25,1");
+  EXPECT_EQ(lines[1].substr(lines[1].size() - 9), ",0.25,1,0");
   EXPECT_EQ(lines[2].rfind("{pcf\\_box/k=3,size=1024},9,", 0), 0U) << lines[2];
-  EXPECT_EQ(lines[2].substr(lines[2].size() - 9), ",0.0123,1");
+  EXPECT_EQ(lines[2].substr(lines[2].size() - 11), ",0.0123,1,0");
   // As accurate as pcf_box and slower: dominated.
   EXPECT_EQ(lines[3].rfind("{" + latex_text(test::kNastyTechnique) + "},12,", 0), 0U) << lines[3];
-  EXPECT_EQ(lines[3].substr(lines[3].size() - 9), ",0.0123,0");
+  EXPECT_EQ(lines[3].substr(lines[3].size() - 11), ",0.0123,0,0");
   // Higher is better for SSIM: the slowest is on the front too.
   const std::string ssim = make_error_time_csv(pointers(records), "visibility.geometry.ssim");
-  EXPECT_NE(ssim.find(",0.97,1\n"), std::string::npos) << ssim;
+  EXPECT_NE(ssim.find(",0.97,1,0\n"), std::string::npos) << ssim;
 }
 
 TEST(LatexExport, OneTableAndCsvPerGroupAndADocumentThatInputsThem) {
@@ -204,10 +204,13 @@ TEST(LatexExport, OneTableAndCsvPerGroupAndADocumentThatInputsThem) {
   EXPECT_NE(doc.find("\\usepackage{booktabs}"), std::string::npos);
   EXPECT_NE(doc.find("\\input{table-plates-layout-edge-64x48.tex}"), std::string::npos);
   EXPECT_NE(doc.find("\\input{table-jeep-count-1-96x72.tex}"), std::string::npos);
-  EXPECT_NE(doc.find("table[x=time_ms, y=error, meta=technique, col sep=comma] "
-                     "{error-time-jeep-count-1-96x72.csv}"),
-            std::string::npos)
-      << doc;
+  // Each point its own plot, with its p10-p90 bars and legend entry.
+  for (const char* part :
+       {"  {error-time-jeep-count-1-96x72.csv};\n\\addlegendentry{none}\n",
+        "x error plus expr=\\thisrow{time_p90_ms}-\\thisrow{time_ms}",
+        "x error minus expr=\\thisrow{time_ms}-\\thisrow{time_p10_ms}",
+        "\\addlegendentry{Pareto front}", "\\sbfit{\\input{table-jeep-count-1-96x72.tex}}"})
+    EXPECT_NE(doc.find(part), std::string::npos) << part << "\n" << doc;
   EXPECT_EQ(test::read_text(files.tables[0]), table_of(test::latex_records(), {}));
 }
 
