@@ -1,5 +1,5 @@
 // The end-to-end case: a history of ten real runs of configs/ci.json,
-// the last five with pcss 30 % slower (SHADOWBENCH_INJECT_DELAY, 30 % of each
+// the last five with pcss 50 % slower (SHADOWBENCH_INJECT_DELAY, 50 % of each
 // of its frames), added at ten commits; `shadowbench history report` must
 // flag that job's time at the sixth commit and nothing else.
 //
@@ -58,7 +58,7 @@ TEST(HistoryOfCiRuns, MakesItsBlockOfRuns) {
   for (const int run : {block, block + kRuns / kRunsPerBlock}) {
     fs::remove_all(run_dir(run));
     const std::string delay =
-        run >= kFirstSlowRun ? "SHADOWBENCH_INJECT_DELAY='" + std::string(kSlowed) + "@30%' " : "";
+        run >= kFirstSlowRun ? "SHADOWBENCH_INJECT_DELAY='" + std::string(kSlowed) + "@50%' " : "";
     const CliRun r =
         run_command(delay + kExe +
                     " run " SHADOWBENCH_SOURCE_DIR "/configs/ci.json --quiet --no-images --out " +
@@ -99,9 +99,12 @@ TEST(HistoryOfCiRuns, TheReportFlagsTheInjectedStepAtItsCommitAndNoOther) {
   EXPECT_EQ(s["commit"], commit_of(kFirstSlowRun));
   EXPECT_EQ(s["previous_commit"], commit_of(kFirstSlowRun - 1));
   EXPECT_EQ(s["run_order"], kFirstSlowRun);
-  // 30 % of each frame: the medians on both sides differ by about that.
-  EXPECT_GT(s["relative_change"].get<double>(), 0.15) << s;
-  EXPECT_LT(s["relative_change"].get<double>(), 0.45) << s;
+  // 50 % of each frame: the medians on both sides differ by about that. (A
+  // 30 % step, 5 runs a side, is found in half the histories made on a
+  // loaded machine, docs/ci.md: this test checks the way from runs to the
+  // report, whatever the load, not the detector's power.)
+  EXPECT_GT(s["relative_change"].get<double>(), 0.3) << s;
+  EXPECT_LT(s["relative_change"].get<double>(), 0.7) << s;
   EXPECT_TRUE(fs::is_regular_file(site / s["page"].get<std::string>()));
 }
 
