@@ -31,6 +31,19 @@ void add_metrics(const record::MetricsRecord& m, std::vector<std::pair<std::stri
     if (std::isfinite(value)) out.emplace_back(path, value);
 }
 
+// A job's own noise of a median: the 95 % interval of the median of its
+// frames (record/median_interval.h, as the record's median_ci_rel, here
+// from the samples, so that records from before that field have it too),
+// half its width over the median, / 1.96: the standard error it implies.
+// NaN below 6 frames, where no interval reaches 95 %.
+double own_noise(const std::vector<double>& samples) {
+  const record::TimingStats stats = record::summarize(samples);
+  if (stats.count < 6 || !(stats.median > 0) || stats.median_ci_coverage < 0.95)
+    return std::nan("");
+  constexpr double kZ95 = 1.959963984540054;
+  return stats.median_ci_rel() / kZ95;
+}
+
 void add_if_finite(const std::string& quantity, double v,
                    std::vector<std::pair<std::string, double>>& out) {
   if (std::isfinite(v)) out.emplace_back(quantity, v);
@@ -61,9 +74,7 @@ std::vector<JobPoints> run_points(const std::vector<JobRecord>& records) {
       for (const record::TimeSeries& t : record::time_series())
         if (const record::Series* s = t.series(*r.timing); s != nullptr && s->count > 0) {
           add_if_finite(t.key, s->median, p.values);
-          if (const double e = record::median_relative_standard_error(s->samples);
-              std::isfinite(e) && std::isfinite(s->median))
-            p.noise[t.key] = e;
+          if (const double e = own_noise(s->samples); std::isfinite(e)) p.noise[t.key] = e;
         }
     if (r.status == JobStatus::Ok && r.metrics) add_metrics(*r.metrics, p.values);
     out.push_back(std::move(p));

@@ -28,8 +28,8 @@ struct JobPoints {
   std::string host_fingerprint, build_fingerprint;     // "" in older records
   std::vector<std::pair<std::string, double>> values;  // (quantity, value), finite only
   // The job's own noise of a time quantity's value: the relative standard
-  // error of its median from the job's frames
-  // (record::median_relative_standard_error), where it has one.
+  // error of its median that the 95 % interval of the job's frames implies
+  // (half-width / median / 1.96), where it has one (6 frames or more).
   std::map<std::string, double> noise;
 };
 

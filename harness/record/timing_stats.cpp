@@ -18,23 +18,6 @@ double percentile(const std::vector<double>& sorted, double q) {
 }
 }  // namespace
 
-double median_relative_standard_error(const std::vector<double>& samples) {
-  if (samples.size() < 5) return std::nan("");
-  std::vector<double> logs;
-  logs.reserve(samples.size());
-  for (double v : samples) {
-    if (!(v > 0) || !std::isfinite(v)) return std::nan("");
-    logs.push_back(std::log(v));
-  }
-  std::sort(logs.begin(), logs.end());
-  const double centre = percentile(logs, 0.5);
-  for (double& v : logs) v = std::abs(v - centre);
-  std::sort(logs.begin(), logs.end());
-  constexpr double kMadToSigma = 1.4826, kMedianEfficiency = 1.2533141373155;  // sqrt(pi / 2)
-  return kMedianEfficiency * kMadToSigma * percentile(logs, 0.5) /
-         std::sqrt(static_cast<double>(samples.size()));
-}
-
 TimingStats summarize(std::vector<double> samples) {
   TimingStats s;
   s.count = samples.size();

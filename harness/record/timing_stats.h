@@ -24,12 +24,4 @@ struct TimingStats {
 // default), so p50 of {1,2,3,4} is 2.5.
 TimingStats summarize(std::vector<double> samples_ms);
 
-// How far the median of `samples` (all > 0) would move from one run to the
-// next if only these frames' own noise moved it: its standard error,
-// relative (in log units), as sqrt(pi / 2) * 1.4826 * MAD(log samples) /
-// sqrt(n), the large-sample standard error of a normal sample's median
-// with the MAD as a robust spread. NaN for fewer than 5 samples or a sample
-// <= 0. The history weighs each run by it (history/change_points.h).
-double median_relative_standard_error(const std::vector<double>& samples);
-
 }  // namespace sb::record
