@@ -34,9 +34,15 @@ ConfigBlock frames_block() {
                  "with 0"),
        [](Experiment& e, const json& v) { e.warmup_frames = v.get<int>(); },
        [](const Experiment& e) { return json(e.warmup_frames); }},
-      {Decides::Both, int_param("timed", 10, 1, 100000, "frames timed per job"),
-       [](Experiment& e, const json& v) { e.timed_frames = v.get<int>(); },
-       [](const Experiment& e) { return json(e.timed_frames); }},
+      {Decides::Both,
+       int_param("timed", 10, 1, 100000,
+                 "frames timed per job, or `\"auto\"`: blocks of `auto_block` frames until the "
+                 "median's 95 % interval (frame time and frame ratio, as `noise_threshold` "
+                 "judges them) is within ± `auto_target`, or a bound is reached; the record "
+                 "says how many and why they stopped (`timing.auto`)"),
+       nullptr,  // read by the block's finish: an integer or "auto"
+       [](const Experiment& e) { return e.timed_auto ? json("auto") : json(e.timed_frames); },
+       "integer or string", "1 … 100000, or `\"auto\"`"},
       {Decides::Timing,
        string_param("control", kDefaultControl,
                     "a technique entry (a name, or `{\"name\", \"params\"}` without a sweep) "
@@ -62,6 +68,62 @@ ConfigBlock frames_block() {
                   "every table, and counted in the run's last line"),
       [](Experiment& e, const json& v) { e.noise_threshold = v.get<double>(); },
       [](const Experiment& e) { return json(e.noise_threshold); });
+  // The auto settings decide the times only where frames.timed is "auto".
+  const auto when_auto = [](std::function<json(const Experiment&)> value) {
+    return [value](const Experiment& e) { return e.timed_auto ? value(e) : json(nullptr); };
+  };
+  b.keys.emplace_back(
+      Decides::Timing,
+      int_param("auto_block", 10, 1, 100000,
+                "with `timed` \"auto\": the frames timed before the first look at the interval, "
+                "and between two looks"),
+      [](Experiment& e, const json& v) { e.timed_frames = v.get<int>(); },
+      [](const Experiment& e) { return json(e.timed_frames); });
+  b.keys.back().identity = when_auto(b.keys.back().value);
+  b.keys.emplace_back(
+      Decides::Timing,
+      float_param("auto_target", 0.03, 0.001, 1.0,
+                  "with `timed` \"auto\": the relative half-width of the median's 95 % interval "
+                  "to reach"),
+      [](Experiment& e, const json& v) { e.auto_target = v.get<double>(); },
+      [](const Experiment& e) { return json(e.auto_target); });
+  b.keys.back().identity = when_auto(b.keys.back().value);
+  b.keys.emplace_back(
+      Decides::Timing,
+      int_param("auto_max_frames", 1000, 1, 1000000,
+                "with `timed` \"auto\": at most this many timed frames per job"),
+      [](Experiment& e, const json& v) { e.auto_max_frames = v.get<int>(); },
+      [](const Experiment& e) { return json(e.auto_max_frames); });
+  b.keys.back().identity = when_auto(b.keys.back().value);
+  b.keys.emplace_back(
+      Decides::Timing,
+      float_param("auto_max_seconds", 10.0, 0.0, 86400.0,
+                  "with `timed` \"auto\": no block starts after this many seconds of a job's "
+                  "timed frames"),
+      [](Experiment& e, const json& v) { e.auto_max_seconds = v.get<double>(); },
+      [](const Experiment& e) { return json(e.auto_max_seconds); });
+  b.keys.back().identity = when_auto(b.keys.back().value);
+  // frames.timed: an integer, as the table says, or "auto"; auto_block and
+  // timed cannot both give the count.
+  b.finish = [](Experiment& e, const json& given, const ConfigReader& r) {
+    if (!given.contains("timed")) return;
+    const json& timed = given["timed"];
+    if (timed.is_string() && timed.get<std::string>() == "auto") {
+      e.timed_auto = true;
+    } else if (timed.is_string()) {
+      r.fail("/frames/timed", "expected an integer or \"auto\", found string " + timed.dump());
+    } else {
+      if (given.contains("auto_block"))
+        r.fail("/frames/auto_block", "applies only with \"timed\": \"auto\"");
+      for (const BlockKey& key : config_blocks().front().keys)
+        if (key.spec.name == "timed")
+          e.timed_frames = read_param_value(r, key.spec, timed, "/frames/timed", false).get<int>();
+    }
+    if (e.timed_auto && e.auto_max_frames < e.timed_frames)
+      r.fail("/frames/auto_max_frames", "expected at least auto_block (" +
+                                            std::to_string(e.timed_frames) + "), found " +
+                                            std::to_string(e.auto_max_frames));
+  };
   return b;
 }
 
@@ -280,8 +342,10 @@ std::string markdown_config_blocks() {
       const bool technique = !k.type_doc.empty();
       out += "| `" + s.name + "` | " + (technique ? k.type_doc : to_string(s.type)) + " | `" +
              markdown_cell(s.default_value.is_null() ? "absent" : s.default_value.dump()) + "` | " +
-             markdown_cell(technique ? "a technique entry" : accepted_values(s, true)) + " | " +
-             core::to_string(s.decides) + " | " + markdown_cell(s.doc) + " |\n";
+             markdown_cell(!k.accepted_doc.empty() ? k.accepted_doc
+                           : technique             ? "a technique entry"
+                                                   : accepted_values(s, true)) +
+             " | " + core::to_string(s.decides) + " | " + markdown_cell(s.doc) + " |\n";
     }
     out += "\n";
   }

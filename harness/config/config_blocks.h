@@ -24,11 +24,13 @@ struct BlockKey {
   // (config/identity.h, blocks_identity).
   BlockKey(core::Decides decides, core::ParamSpec spec_,
            std::function<void(Experiment&, const nlohmann::json&)> store_,
-           std::function<nlohmann::json(const Experiment&)> value_, std::string type_doc_ = "")
+           std::function<nlohmann::json(const Experiment&)> value_, std::string type_doc_ = "",
+           std::string accepted_doc_ = "")
       : spec(core::deciding(std::move(spec_), decides)),
         store(std::move(store_)),
         value(std::move(value_)),
-        type_doc(std::move(type_doc_)) {}
+        type_doc(std::move(type_doc_)),
+        accepted_doc(std::move(accepted_doc_)) {}
   // Name, type, default, range or choices, rule, meaning and what it decides
   // (spec.decides). The default is what the Experiment holds when the key is
   // absent (a test checks it).
@@ -38,7 +40,8 @@ struct BlockKey {
   std::function<void(Experiment&, const nlohmann::json&)> store;
   // The Experiment's value, as the config would spell it.
   std::function<nlohmann::json(const Experiment&)> value;
-  std::string type_doc;  // the docs' type when not the spec's ("technique")
+  std::string type_doc;      // the docs' type when not the spec's ("technique")
+  std::string accepted_doc;  // the docs' accepted values when not the spec's
   // Its part of a job's identity, when more than `value` (frames.control:
   // the technique's parameters and plugin); null: `value`.
   std::function<nlohmann::json(const Experiment&)> identity;

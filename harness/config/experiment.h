@@ -117,6 +117,13 @@ struct Experiment {
   std::vector<Resolution> resolutions;
   int warmup_frames = 2;
   int timed_frames = 10;
+  // frames.timed "auto": timed_frames (frames.auto_block) frames at a time
+  // until the median's 95 % interval is within ± auto_target, at most
+  // auto_max_frames frames or auto_max_seconds seconds (run/frame_schedule.h).
+  bool timed_auto = false;
+  double auto_target = 0.03;
+  int auto_max_frames = 1000;
+  double auto_max_seconds = 10;
   // The control job (frames.control): timed next to every job's frames, in
   // the same run, so that a job's time is also known as a ratio to it
   // (record timing.control, docs/ci.md). Absent with "control": null; by

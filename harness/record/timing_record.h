@@ -186,6 +186,43 @@ struct NoiseRecord {
   }
 };
 
+// With `frames.timed` "auto": how many frames were timed and why no more
+// (timing.auto). Blocks of `block` frames are timed until the wider of the
+// frame's and the frame ratio's median intervals (NoiseRecord's judged
+// half-width) is within `target`, or a bound is reached.
+struct AutoFramesRecord {
+  static constexpr RecordDoc kSchema{
+      "AutoFramesRecord",
+      "with `frames.timed` \"auto\": the frames chosen by the data, and why they stopped"};
+
+  double target = 0;  // frames.auto_target
+  int block = 0;      // frames added at a time (frames.auto_block)
+  int max_frames = 0;
+  double max_seconds = 0;
+  std::string stop;       // "target", "max_frames" or "max_seconds"
+  double half_width = 0;  // the judged half-width when it stopped
+  double seconds = 0;     // the timed frames' wall time
+
+  template <class V>
+  static void describe(V& v) {
+    v.field("target", &AutoFramesRecord::target,
+            {"", "`frames.auto_target`: the relative half-width aimed at"});
+    v.field("block", &AutoFramesRecord::block, {"", "frames timed between two looks"});
+    v.field("max_frames", &AutoFramesRecord::max_frames, {"", "`frames.auto_max_frames`"});
+    v.field("max_seconds", &AutoFramesRecord::max_seconds, {"", "`frames.auto_max_seconds`"});
+    v.field("stop", &AutoFramesRecord::stop,
+            {"",
+             "why no more frames: `target` (the interval was within it), `max_frames` or "
+             "`max_seconds` (a bound came first: the job is likely noisy)"});
+    v.field("half_width", &AutoFramesRecord::half_width,
+            {"",
+             "the wider of the frame's and the frame ratio's median half-widths when it "
+             "stopped"});
+    v.field("seconds", &AutoFramesRecord::seconds,
+            {"s", "wall time from the first timed frame to the last"});
+  }
+};
+
 struct TimingRecord {
   static constexpr RecordDoc kSchema{"TimingRecord",
                                      "how the job's frames were timed, and what they took"};
@@ -193,13 +230,14 @@ struct TimingRecord {
   int compile_frames = 1;  // untimed: shader compilation and first use
   int warmup_frames = 0;
   int timed_frames = 0;
-  std::string pass_timing = "coarse";    // "coarse" or "fine"
-  Series frame;                          // G-buffer + technique + shading
-  Series technique;                      // one bracket around all the technique's passes
-  std::map<std::string, Series> shared;  // "gbuffer", "shading"
-  std::optional<FineTiming> fine;        // with pass_timing "fine" only
-  std::optional<ControlTiming> control;  // unless the config's frames.control is null
-  std::optional<NoiseRecord> noise;      // absent from older records
+  std::string pass_timing = "coarse";           // "coarse" or "fine"
+  Series frame;                                 // G-buffer + technique + shading
+  Series technique;                             // one bracket around all the technique's passes
+  std::map<std::string, Series> shared;         // "gbuffer", "shading"
+  std::optional<FineTiming> fine;               // with pass_timing "fine" only
+  std::optional<ControlTiming> control;         // unless the config's frames.control is null
+  std::optional<NoiseRecord> noise;             // absent from older records
+  std::optional<AutoFramesRecord> auto_frames;  // with frames.timed "auto"
 
   template <class V>
   static void describe(V& v) {
@@ -223,6 +261,8 @@ struct TimingRecord {
             {"", "when the run timed a control job next to the job's frames"});
     v.field("noise", &TimingRecord::noise,
             {"", "whether the times were noisy (below, `NoiseRecord`); absent in older records"});
+    v.field("auto", &TimingRecord::auto_frames,
+            {"", "with `frames.timed` \"auto\": how the timed frames were chosen"});
   }
   // The control's frames pair with the job's.
   static void check(const TimingRecord& t, const Fields& f);

@@ -1,5 +1,6 @@
 #include "run/frame_schedule.h"
 
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <utility>
@@ -9,6 +10,7 @@
 
 namespace sb::run {
 
+using record::AutoFramesRecord;
 using record::ControlTiming;
 using record::FineTiming;
 using record::NoiseRecord;
@@ -39,6 +41,24 @@ struct FrameSamples {
   }
 };
 
+double steady_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// The half-width the noise judgement would read off these frames: the
+// wider of the frame's and the frame ratio's (NoiseRecord::judged_ci_rel).
+double judged_half_width(const std::vector<double>& frame, const std::vector<double>& control) {
+  TimingRecord t;
+  t.frame = Series::of(frame);
+  if (!control.empty()) {
+    std::vector<double> ratio(control.size());
+    for (size_t k = 0; k < ratio.size(); ++k) ratio[k] = frame[k] / control[k];
+    t.control = ControlTiming{};
+    t.control->frame_ratio = Series::of(ratio);
+  }
+  return NoiseRecord::judge(t, 0).judged_ci_rel();
+}
+
 }  // namespace
 
 TimingRecord time_frames(FrameTarget& target, const FrameSchedule& s) {
@@ -55,7 +75,19 @@ TimingRecord time_frames(FrameTarget& target, const FrameSchedule& s) {
   const auto control_frame = [&](int i) {
     return target.control_frame("control " + *s.control + " next to " + frame_name(i));
   };
-  const int frames = s.warmup_frames + s.timed_frames;
+  // With auto frames, the timed frames grow a block at a time until the
+  // data say stop; otherwise the schedule's count.
+  int frames = s.warmup_frames + s.timed_frames;
+  const auto clock = s.clock ? s.clock : steady_seconds;
+  std::optional<AutoFramesRecord> chosen;
+  if (s.auto_frames) {
+    chosen = AutoFramesRecord{};
+    chosen->target = s.auto_frames->target;
+    chosen->block = s.timed_frames;
+    chosen->max_frames = s.auto_frames->max_frames;
+    chosen->max_seconds = s.auto_frames->max_seconds;
+  }
+  double timed_start = 0;
   const auto load = [&]() { return s.load_average ? s.load_average() : std::nullopt; };
   std::optional<double> load_start;
   // Frame -1 is never timed, whatever the warm-up count: with "warmup": 0
@@ -63,7 +95,10 @@ TimingRecord time_frames(FrameTarget& target, const FrameSchedule& s) {
   // compiled last.
   for (int i = -1; i < frames; ++i) {
     const bool timed = i >= s.warmup_frames;
-    if (i == s.warmup_frames) load_start = load();
+    if (i == s.warmup_frames) {
+      load_start = load();
+      timed_start = clock();
+    }
     if (timed && s.turn_block_frames > 0 && (i - s.warmup_frames) % s.turn_block_frames == 0)
       target.take_turn();
     const bool control_first = control && i >= 0 && i % 2 == 1;
@@ -76,7 +111,22 @@ TimingRecord time_frames(FrameTarget& target, const FrameSchedule& s) {
     if (tracing) trace.push_back({"timed", frame_name(i), began, monotonic_ns()});
     coarse.add(frame);
     if (control) control_ms.push_back((control_first ? before : after).total_ms);
+    // At the end of a block: stop, or time one more.
+    const int timed_so_far = i - s.warmup_frames + 1;
+    if (chosen && i + 1 == frames && timed_so_far % chosen->block == 0) {
+      chosen->half_width = judged_half_width(coarse.frame, control_ms);
+      chosen->seconds = clock() - timed_start;
+      if (chosen->half_width <= chosen->target)
+        chosen->stop = "target";
+      else if (timed_so_far + chosen->block > chosen->max_frames)
+        chosen->stop = "max_frames";
+      else if (chosen->seconds >= chosen->max_seconds)
+        chosen->stop = "max_seconds";
+      else
+        frames += chosen->block;
+    }
   }
+  const int timed_frames = frames - s.warmup_frames;
   const std::optional<double> load_end = load();
   // The visibility read back after the frames must be the job's: when a
   // control frame came last, one more untimed frame of the job.
@@ -85,7 +135,7 @@ TimingRecord time_frames(FrameTarget& target, const FrameSchedule& s) {
   // Per-pass detail in frames of its own, so its syncs never reach the
   // technique's time above.
   if (fine_detail)
-    for (int i = 0; i < s.timed_frames; ++i) {
+    for (int i = 0; i < timed_frames; ++i) {
       const std::int64_t began = tracing ? monotonic_ns() : 0;
       const std::string fine_name = name + " fine frame " + std::to_string(i);
       fine.add(target.job_frame(fine_name, gl::PassDetail::Fine));
@@ -99,7 +149,7 @@ TimingRecord time_frames(FrameTarget& target, const FrameSchedule& s) {
   TimingRecord t;
   t.compile_frames = 1;
   t.warmup_frames = s.warmup_frames;
-  t.timed_frames = s.timed_frames;
+  t.timed_frames = timed_frames;
   t.pass_timing = gl::to_string(s.pass_detail);
   t.frame = Series::of(coarse.frame);
   t.technique = Series::of(coarse.technique);
@@ -109,7 +159,7 @@ TimingRecord time_frames(FrameTarget& target, const FrameSchedule& s) {
     detail.pass_order = fine.pass_order;
     for (const auto& pass : fine.pass_order) detail.passes[pass] = Series::of(fine.passes[pass]);
     // The same frames' sums: what per-pass syncs cost, against "technique".
-    detail.frames = s.timed_frames;
+    detail.frames = timed_frames;
     detail.technique = Series::of(fine.technique);
     detail.frame = Series::of(fine.frame);
     t.fine = std::move(detail);
@@ -127,6 +177,7 @@ TimingRecord time_frames(FrameTarget& target, const FrameSchedule& s) {
   t.noise->load_average_start = load_start;
   t.noise->load_average_end = load_end;
   t.noise->usable_cores = s.usable_cores;
+  t.auto_frames = std::move(chosen);
   return t;
 }
 

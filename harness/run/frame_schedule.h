@@ -42,6 +42,18 @@ struct FrameSchedule {
   double noise_threshold = 0.05;
   std::function<std::optional<double>()> load_average;
   std::int64_t usable_cores = 0;
+  // frames.timed "auto": timed_frames is the first block and each next one;
+  // blocks are added until the median's interval is within `target`, or a
+  // bound (record timing.auto).
+  struct AutoFrames {
+    double target = 0.03;
+    int max_frames = 1000;
+    double max_seconds = 10;
+  };
+  std::optional<AutoFrames> auto_frames;
+  // Seconds on a monotonic clock (a test's fake may step it); null: the
+  // steady clock.
+  std::function<double()> clock;
 };
 
 // Renders the schedule's frames on `target` and returns their statistics and

@@ -25,6 +25,11 @@ std::string job_line(const JobRecord& record, size_t done, size_t total) {
     // the geometry region).
     const std::string rmse = report_column("rmse").cell(record);
     if (!rmse.empty()) line += ", geometry RMSE " + rmse;
+    if (const auto& chosen = record.timing->auto_frames)
+      line += ", " + std::to_string(record.timing->timed_frames) + " frames (" +
+              (chosen->stop == "target" ? std::string("interval within target")
+                                        : chosen->stop + " reached") +
+              ")";
     if (record.session && record.session->retimed_from) line += " (re-timed; errors kept)";
     // The same words as the tables' mark (results/noisy_jobs.h).
     if (const auto noisy = results::noisy_label(record)) line += "  " + *noisy;

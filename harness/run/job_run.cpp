@@ -53,6 +53,11 @@ FrameSchedule schedule_of(const JobSetting& s, const TechniqueVariant& tv) {
   schedule.noise_threshold = s.e.noise_threshold;
   schedule.load_average = one_minute_load_average;
   schedule.usable_cores = usable_cpus();
+  // Two builds taking turns (compare-builds) must take the same turns: they
+  // time a fixed auto_block frames each.
+  if (s.e.timed_auto && !s.o.take_turn)
+    schedule.auto_frames =
+        FrameSchedule::AutoFrames{s.e.auto_target, s.e.auto_max_frames, s.e.auto_max_seconds};
   return schedule;
 }
 

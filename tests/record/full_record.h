@@ -132,6 +132,7 @@ inline record::JobRecord every_member_record() {
   r.timing->noise->load_average_start = 1.25;
   r.timing->noise->load_average_end = 1.5;
   r.timing->noise->usable_cores = 2;
+  r.timing->auto_frames = record::AutoFramesRecord{0.03, 10, 1000, 10.0, "target", 0.025, 1.5};
   for (record::ImageMetrics* m : {&r.metrics->visibility, &r.metrics->shaded}) {
     m->geometry = region(0.2);
     m->receivers = region(0.125);

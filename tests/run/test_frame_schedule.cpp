@@ -5,6 +5,7 @@
 // each block of timed frames), and which frames' times the record keeps.
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -174,6 +175,106 @@ TEST(FrameSchedule, TheRecordJudgesItsMediansIntervalsByTheThreshold) {
   s.noise_threshold = 0.6;
   t = time_frames(again, s);
   EXPECT_FALSE(t.noise->noisy);
+}
+
+// Frame times from functions of the frame's number (1, 2, ...), each kind
+// counted apart; no passes.
+class ScriptedTarget : public FrameTarget {
+ public:
+  std::function<double(int)> job_ms, control_ms;
+  gl::PassTimer::Frame job_frame(const std::string&, gl::PassDetail) override {
+    return {{}, job_ms(++jobs_)};
+  }
+  gl::PassTimer::Frame control_frame(const std::string&) override {
+    return {{}, control_ms(++controls_)};
+  }
+  void take_turn() override {}
+
+ private:
+  int jobs_ = 0, controls_ = 0;
+};
+
+// The k-th number of the base-2 van der Corput sequence: fills [0, 1)
+// evenly at every prefix, so a sample's quantiles close in on the uniform
+// distribution's as frames are added, without randomness.
+double van_der_corput(int k) {
+  double v = 0, place = 0.5;
+  for (; k > 0; k >>= 1, place /= 2)
+    if (k & 1) v += place;
+  return v;
+}
+
+FrameSchedule auto_schedule(double target, int max_frames, double max_seconds) {
+  FrameSchedule s = schedule(0, 10);
+  s.auto_frames = FrameSchedule::AutoFrames{target, max_frames, max_seconds};
+  return s;
+}
+
+TEST(FrameSchedule, AutoFramesStopAtTheFirstBlockWhoseIntervalIsWithinTheTarget) {
+  // Frames of 10 + U(0, 1) ms: the median's interval narrows as 1/sqrt(n)
+  // (about 0.093 / sqrt(n) of the median), so 1 % needs about 90 frames.
+  ScriptedTarget target;
+  target.job_ms = [](int k) { return 10 + van_der_corput(k); };
+  const TimingRecord t = time_frames(target, auto_schedule(0.01, 1000, 1e9));
+  ASSERT_TRUE(t.auto_frames.has_value());
+  EXPECT_EQ(t.auto_frames->stop, "target");
+  EXPECT_EQ(t.auto_frames->block, 10);
+  EXPECT_EQ(t.timed_frames % 10, 0);
+  EXPECT_GE(t.timed_frames, 60);
+  EXPECT_LE(t.timed_frames, 150);
+  EXPECT_EQ(t.frame.samples.size(), static_cast<size_t>(t.timed_frames));
+  // The record's own interval is within the target, and a block fewer was not.
+  EXPECT_LE(t.frame.median_ci_rel, 0.01);
+  EXPECT_DOUBLE_EQ(t.auto_frames->half_width, t.frame.median_ci_rel);
+  const std::vector<double> fewer(t.frame.samples.begin(), t.frame.samples.end() - 10);
+  EXPECT_GT(record::Series::of(fewer).median_ci_rel, 0.01);
+}
+
+TEST(FrameSchedule, AutoFramesStopAtTheFrameBoundWhenTheIntervalNeverNarrows) {
+  ScriptedTarget target;
+  target.job_ms = [](int k) { return k % 2 ? 1.0 : 100.0; };
+  const TimingRecord t = time_frames(target, auto_schedule(0.03, 45, 1e9));
+  ASSERT_TRUE(t.auto_frames.has_value());
+  EXPECT_EQ(t.auto_frames->stop, "max_frames");
+  EXPECT_EQ(t.timed_frames, 40);  // a fifth block would pass 45
+  EXPECT_GT(t.auto_frames->half_width, 0.03);
+  EXPECT_TRUE(t.noise->noisy);
+}
+
+TEST(FrameSchedule, AutoFramesStopAtTheTimeBound) {
+  ScriptedTarget target;
+  target.job_ms = [](int k) { return k % 2 ? 1.0 : 100.0; };
+  FrameSchedule s = auto_schedule(0.03, 1000, 2.5);
+  double now = 0;
+  s.clock = [&now] { return now++; };  // a second per look
+  const TimingRecord t = time_frames(target, s);
+  ASSERT_TRUE(t.auto_frames.has_value());
+  EXPECT_EQ(t.auto_frames->stop, "max_seconds");
+  EXPECT_EQ(t.timed_frames, 30);  // looks at 1 s, 2 s, then 3 s >= 2.5 s
+  EXPECT_DOUBLE_EQ(t.auto_frames->seconds, 3.0);
+}
+
+TEST(FrameSchedule, AutoFramesJudgeTheRatioToTheControlToo) {
+  // Steady job frames, control frames 1 or 100 ms: the ratio never settles.
+  ScriptedTarget target;
+  target.job_ms = [](int) { return 10.0; };
+  target.control_ms = [](int k) { return k % 2 ? 1.0 : 100.0; };
+  FrameSchedule s = auto_schedule(0.03, 30, 1e9);
+  s.control = "none";
+  const TimingRecord t = time_frames(target, s);
+  ASSERT_TRUE(t.auto_frames.has_value());
+  EXPECT_EQ(t.auto_frames->stop, "max_frames");
+  EXPECT_EQ(t.timed_frames, 30);
+  EXPECT_EQ(t.control->frame.samples.size(), 30u);
+  EXPECT_EQ(t.frame.median_ci_rel, 0.0);
+}
+
+TEST(FrameSchedule, FixedFramesHaveNoAutoRecord) {
+  ScriptedTarget target;
+  target.job_ms = [](int k) { return k % 2 ? 1.0 : 100.0; };
+  const TimingRecord t = time_frames(target, schedule(0, 10));
+  EXPECT_EQ(t.timed_frames, 10);
+  EXPECT_FALSE(t.auto_frames.has_value());
 }
 
 }  // namespace
