@@ -68,10 +68,6 @@ ConfigBlock frames_block() {
                   "every table, and counted in the run's last line"),
       [](Experiment& e, const json& v) { e.noise_threshold = v.get<double>(); },
       [](const Experiment& e) { return json(e.noise_threshold); });
-  // The auto settings decide the times only where frames.timed is "auto".
-  const auto when_auto = [](std::function<json(const Experiment&)> value) {
-    return [value](const Experiment& e) { return e.timed_auto ? value(e) : json(nullptr); };
-  };
   b.keys.emplace_back(
       Decides::Timing,
       int_param("auto_block", 10, 1, 100000,
@@ -79,7 +75,8 @@ ConfigBlock frames_block() {
                 "and between two looks"),
       [](Experiment& e, const json& v) { e.timed_frames = v.get<int>(); },
       [](const Experiment& e) { return json(e.timed_frames); });
-  b.keys.back().identity = when_auto(b.keys.back().value);
+  // It sets the count `timed` holds, whose part of the identity it is.
+  b.keys.back().identity = [](const Experiment&) { return json(nullptr); };
   b.keys.emplace_back(
       Decides::Timing,
       float_param("auto_target", 0.03, 0.001, 1.0,
@@ -87,14 +84,12 @@ ConfigBlock frames_block() {
                   "to reach"),
       [](Experiment& e, const json& v) { e.auto_target = v.get<double>(); },
       [](const Experiment& e) { return json(e.auto_target); });
-  b.keys.back().identity = when_auto(b.keys.back().value);
   b.keys.emplace_back(
       Decides::Timing,
       int_param("auto_max_frames", 1000, 1, 1000000,
                 "with `timed` \"auto\": at most this many timed frames per job"),
       [](Experiment& e, const json& v) { e.auto_max_frames = v.get<int>(); },
       [](const Experiment& e) { return json(e.auto_max_frames); });
-  b.keys.back().identity = when_auto(b.keys.back().value);
   b.keys.emplace_back(
       Decides::Timing,
       float_param("auto_max_seconds", 10.0, 0.0, 86400.0,
@@ -102,7 +97,6 @@ ConfigBlock frames_block() {
                   "timed frames"),
       [](Experiment& e, const json& v) { e.auto_max_seconds = v.get<double>(); },
       [](const Experiment& e) { return json(e.auto_max_seconds); });
-  b.keys.back().identity = when_auto(b.keys.back().value);
   // frames.timed: an integer, as the table says, or "auto"; auto_block and
   // timed cannot both give the count.
   b.finish = [](Experiment& e, const json& given, const ConfigReader& r) {

@@ -354,6 +354,7 @@ std::pair<double, std::vector<size_t>> exhaustive_weighted(const std::vector<dou
   const size_t n = y.size();
   double best = std::numeric_limits<double>::infinity();
   std::vector<size_t> best_splits;
+  if (n == 0) return {best, best_splits};
   for (uint32_t mask = 0; mask < (1u << (n - 1)); ++mask) {
     double total = 0;
     size_t start = 0;

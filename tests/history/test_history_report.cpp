@@ -274,7 +274,7 @@ namespace {
 
 // Ten runs; the last three of one job measured beside a busy machine: its
 // time ratio 25 % up, and, when `spread`, its frames' ratios spread as a
-// loaded machine spreads them (each times exp(0.25 z)), as its samples say.
+// loaded machine spreads them (each times exp(0.5 z)), as its samples say.
 std::string history_with_a_busy_spell(const fs::path& dir, bool spread) {
   HistoryDb db((dir / "h.sqlite").string());
   std::mt19937_64 rng(8);
@@ -287,7 +287,7 @@ std::string history_with_a_busy_spell(const fs::path& dir, bool spread) {
       const bool busy = j["job_id"] == baseline_job(2) && run >= 7;
       if (j.contains(kRatio)) j[kRatio] = j[kRatio].get<double>() * noise * (busy ? 1.25 : 1);
       if (busy && spread)
-        for (json& v : j[samples]) v = v.get<double>() * std::exp(0.25 * z(rng));
+        for (json& v : j[samples]) v = v.get<double>() * std::exp(0.5 * z(rng));
     });
     db.add_run(folder.string(), "c" + std::to_string(run));
   }
