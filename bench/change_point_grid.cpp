@@ -223,8 +223,8 @@ int main(int argc, char** argv) {
     for (size_t after : {3, 5, 10})
       for (size_t slack : {0, 1}) {
         const size_t at = 15;
-        const std::string what = std::to_string(std::lround(noise * 100)) +
-                                 " % noise, " + std::to_string(after) + " runs after it: found " +
+        const std::string what = std::to_string(std::lround(noise * 100)) + " % noise, " +
+                                 std::to_string(after) + " runs after it: found " +
                                  (slack == 0 ? "at its run" : "within a run of it");
         ++salt;
         row(what.c_str(), [&](Detector d) {

@@ -8,8 +8,8 @@
 
 #include "core/error.h"
 #include "core/format_number.h"
-#include "results/noisy_jobs.h"
 #include "results/control_baseline.h"
+#include "results/noisy_jobs.h"
 
 namespace sb::results {
 

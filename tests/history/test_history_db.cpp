@@ -240,10 +240,10 @@ double own_noise_of(std::vector<double> x) {
   size_t j = 0;
   double tail = 0, term = std::pow(0.5, double(n));  // P(B = 0)
   for (size_t k = 0; k < n; ++k) {
-    tail += term;                                   // P(B <= k)
+    tail += term;  // P(B <= k)
     if (tail > 0.025) break;
-    j = k + 1;                                      // the rank k + 1 keeps the tail
-    term *= double(n - k) / double(k + 1);          // P(B = k + 1)
+    j = k + 1;                              // the rank k + 1 keeps the tail
+    term *= double(n - k) / double(k + 1);  // P(B = k + 1)
   }
   const double median = n % 2 ? x[n / 2] : (x[n / 2 - 1] + x[n / 2]) / 2;
   return (x[n - j] - x[j - 1]) / 2 / median / 1.959963984540054;
