@@ -10,6 +10,7 @@
 #include <string>
 
 #include "record/describe.h"
+#include "record/fields.h"
 
 namespace sb::record {
 
@@ -26,6 +27,11 @@ struct SessionRecord {
   // A record that `run --retime` timed again: the session whose metrics,
   // images and reference it keeps ("unrecorded" when that record had none).
   std::optional<std::string> retimed_from;
+
+  // What a run folder from elsewhere may hold is what a run writes: an id
+  // of 16 hex digits, a short time stamp, a host name of printable ASCII
+  // within a host name's 255 bytes, a finite load; the reports print them.
+  static void check(const SessionRecord& s, const Fields& f);
 
   template <class V>
   static void describe(V& v) {

@@ -109,6 +109,32 @@ TEST(JobRecord, TheStoredSpecRoundTripsAndOlderRecordsLackIt) {
   }
 }
 
+// A session read from a run folder from elsewhere is printed by the
+// reports' banners: what no run writes is refused, naming its place.
+TEST(JobRecord, ASessionNoRunWritesIsRefusedNamingItsPlace) {
+  const json j = test::every_member_record().to_json();
+  ASSERT_TRUE(j.contains("session"));
+  EXPECT_NO_THROW((void)JobRecord::from_json(j));
+  const std::vector<std::pair<std::string, json>> bad = {
+      {"id", "not-hex-at-all!!"},
+      {"id", "0123456789abcdef0"},
+      {"started", std::string("2026-12-07T12:00:00Z\x1b[2J")},
+      {"host", std::string(256, 'h')},
+      {"host", std::string("vm\x1b]0;title\x07")},
+      {"load_average", -1.0},
+      {"retimed_from", "someone else"}};
+  for (const auto& [key, value] : bad) {
+    json r = j;
+    r["session"][key] = value;
+    try {
+      (void)JobRecord::from_json(r);
+      ADD_FAILURE() << key << " = " << value.dump() << " was read";
+    } catch (const RecordError& e) {
+      EXPECT_EQ(e.pointer(), "/session/" + key) << e.what();
+    }
+  }
+}
+
 TEST(JobRecord, ThePluginAndTheCodeHashesRoundTripAndOlderRecordsLackThem) {
   JobRecord r = full_record();
   json j = r.to_json();  // a record from before plugin identities and code hashes
