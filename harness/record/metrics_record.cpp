@@ -47,6 +47,10 @@ bool MetricPath::holds(const MetricsRecord& m) const {
 
 const std::string& MetricPath::key() const { return statistic_->key; }
 
+bool MetricPath::higher_is_better() const {
+  return statistic_->info.display.better == Better::Higher;
+}
+
 double MetricPath::of(const MetricsRecord& m) const {
   const RegionStats* s = region_->of(m.*image_->member);
   if (s == nullptr) return std::numeric_limits<double>::quiet_NaN();

@@ -210,6 +210,8 @@ class MetricPath {
   bool holds(const MetricsRecord& m) const;
   const std::string& key() const;  // "rmse", "frac_over_0.05", ...
   const Statistic& statistic() const { return *statistic_; }
+  // Whether a larger value is better (the catalogue's display.better).
+  bool higher_is_better() const;
 
  private:
   const Image* image_ = nullptr;

@@ -68,10 +68,6 @@ double metric_of(const JobRecord& r, const MetricPath& metric) {
   return r.metric(metric).value_or(std::nan(""));
 }
 
-bool higher_is_better(const MetricPath& metric) {
-  return metric.statistic().info.display.better == record::Better::Higher;
-}
-
 // ---------------------------------------------------------------- records
 
 struct Timing {
@@ -164,7 +160,7 @@ void error_cost_charts(const std::vector<const JobRecord*>& ok, const std::strin
                        const std::function<Cost(const JobRecord&)>& cost_of, Palette& styles,
                        const std::string& out_dir, std::vector<Chart>& out) {
   const MetricPath path = metric_path(metric);
-  const bool higher = higher_is_better(path);
+  const bool higher = path.higher_is_better();
   const std::string what = metric + " vs " + cost_name;
   for (const auto& [key, records] : by_scene_and_resolution(ok)) {
     Chart c = scene_chart(kind, what, *records[0], out_dir);
@@ -334,7 +330,7 @@ void time_triangles_charts(const std::vector<const JobRecord*>& ok, Palette& sty
 void error_triangles_charts(const std::vector<const JobRecord*>& ok, const std::string& metric,
                             Palette& styles, const std::string& out_dir, std::vector<Chart>& out) {
   const MetricPath path = metric_path(metric);
-  const bool higher = higher_is_better(path);
+  const bool higher = path.higher_is_better();
   triangles_charts(
       ok, "error_triangles", metric,
       metric + (higher ? " (higher is better)" : " (lower is better)"),

@@ -123,7 +123,7 @@ std::optional<MetricPath> metric_path(const std::string& option) {
 // an improvement.
 bool higher_is_better(const std::string& path) {
   const std::optional<MetricPath> p = metric_path(path);
-  return p && p->statistic().info.display.better == record::Better::Higher;
+  return p && p->higher_is_better();
 }
 
 std::string metric_label(const std::string& path) {

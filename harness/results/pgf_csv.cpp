@@ -29,7 +29,7 @@ std::vector<ErrorTimeRow> error_time_rows(const std::vector<const JobRecord*>& g
                                           const std::string& error_metric) {
   const std::optional<MetricPath> path = MetricPath::parse(error_metric);
   if (!path) throw InputError("", "--metric", "unknown error metric \"" + error_metric + "\"");
-  const bool higher = path->statistic().info.display.better == record::Better::Higher;
+  const bool higher = path->higher_is_better();
   std::vector<ErrorTimeRow> rows;
   for (const JobRecord* r : group) {
     if (r->status != JobStatus::Ok || !r->timing) continue;

@@ -1,5 +1,5 @@
 #pragma once
-// Rankings by time with their uncertainty (issue 61): per (scene variant,
+// Rankings by time with their uncertainty: per (scene variant,
 // resolution), the ok jobs but the timing control (results/control_baseline.h)
 // in order of the median of their per-frame samples, and for each pair of
 // neighbours in that order whether their difference is significant.
