@@ -18,7 +18,6 @@
 namespace sb::cli {
 
 using core::InputError;
-using core::kExitBadInput;
 using core::kExitJobsFailed;
 using core::kExitOk;
 

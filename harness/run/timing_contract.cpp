@@ -5,6 +5,7 @@
 #include <limits>
 #include <utility>
 
+#include "core/scene_types.h"
 #include "gl/context.h"
 #include "gl/debug.h"
 #include "gl/pass_timer.h"
@@ -22,7 +23,6 @@ using core::Mesh;
 using core::Scene;
 using core::SceneType;
 using gl::MeshDrawFlags;
-using plugin::FrameInputs;
 using plugin::NeedProvider;
 using plugin::PlanarReceiver;
 using plugin::Technique;
