@@ -97,10 +97,16 @@ def declarations(text, where, glsl=False):
     objects in file order."""
     code = code_only(text)
     lines = text.split("\n")
-    out, i, start, last_end_line, group_comment = [], 0, None, -2, []
+    out, i, start, last_end_line, group_comment, parens = [], 0, None, -2, [], 0
     while i < len(code):
         c = code[i]
+        if start is not None and c in "()":
+            parens += 1 if c == "(" else -1
+        if start is not None and c == "{" and parens > 0:  # a default argument's braces
+            i = matching_brace(code, i) + 1
+            continue
         if start is None:
+            parens = 0
             if c.isspace():
                 i += 1
                 continue
@@ -382,7 +388,7 @@ class Pass {
 };
 // Two in a group.
 int first(int a);
-int second(int b);
+int second(int b, std::vector<int> c = {});
 
 // Shader text.
 inline constexpr const char* kGlsl = R"glsl(
@@ -415,6 +421,7 @@ def self_test():
 
     doc = parse(SELF_TEST_HEADER)
     for want in ("`Pass` (class)", "void draw() const;", "int size() const;", "`second` (function)",
+                 "int second(int b, std::vector<int> c = {});",
                  "`helper` (GLSL function in `kGlsl`)", "// units: texels.", "`u` (GLSL uniform"):
         if want not in doc:
             sys.exit(f"self-test: {want!r} missing from\n{doc}")
