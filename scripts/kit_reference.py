@@ -72,6 +72,9 @@ def comment_above(lines, first, last_end_line):
     above is code that ended the previous declaration (a group)."""
     block = []
     i = first - 1
+    # A #define under its #ifndef guard: the block above the guard.
+    while i >= 0 and re.match(r"\s*#\s*if", lines[i]) and lines[first].lstrip().startswith("#"):
+        i -= 1
     while i >= 0 and lines[i].strip().startswith("//"):
         block.insert(0, lines[i].strip()[2:].removeprefix(" "))
         i -= 1
@@ -92,9 +95,11 @@ def matching_brace(code, open_at):
     raise Problem(f"unbalanced braces from offset {open_at}")
 
 
-def declarations(text, where, glsl=False):
+def declarations(text, where, glsl=False, macro_comment=None):
     """Top-level declarations of `text` (inside namespaces for C++): Entry
-    objects in file order."""
+    objects in file order. A #define without a comment of its own (a guarded
+    default, `#ifndef N` / `#define N 64`) takes `macro_comment`, its GLSL
+    string's."""
     code = code_only(text)
     lines = text.split("\n")
     out, i, start, last_end_line, group_comment, parens = [], 0, None, -2, [], 0
@@ -120,7 +125,8 @@ def declarations(text, where, glsl=False):
                 m = re.match(r"#\s*define\s+(\w+)", directive)
                 if m:
                     out.append(_entry("macro", m.group(1), directive, lines, i, text,
-                                      last_end_line, group_comment, where, glsl))
+                                      last_end_line, group_comment or macro_comment, where,
+                                      glsl))
                     group_comment = out[-1].comment
                     last_end_line = line_of(text, end)
                 i = end
@@ -163,7 +169,7 @@ def declarations(text, where, glsl=False):
 def _entry(kind, name, code, lines, offset, text, last_end_line, group_comment, where, glsl):
     first = line_of(text, offset)
     comment = comment_above(lines, first, last_end_line)
-    if comment is None:
+    if comment is None or (not comment and kind == "macro"):
         comment = group_comment
     if not comment:
         raise Problem(f"{where}:{first + 1}: {kind} {name} has no // comment block directly "
@@ -284,7 +290,8 @@ def read_header(path, name):
         first_line = line_of(text, m.start(1))
         body = m.group(1)
         try:
-            for e in declarations(body, f"{where} ({owner_name})", glsl=True):
+            for e in declarations(body, f"{where} ({owner_name})", glsl=True,
+                                  macro_comment=owner[-1].comment if owner else None):
                 e.line += first_line
                 e.glsl = owner_name
                 glsl.append(e)
