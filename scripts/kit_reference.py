@@ -336,6 +336,10 @@ def render(header_dir):
            "shaders: the ones in `kMapLookupInputsGlsl`, `kLightLookupGlsl` and",
            "`kLightDepthGlsl` are in every lookup pass, so a `lit_fraction()` of",
            "yours may call them (`common/map_lookup.h`).", "",
+           "A technique built on the kit is written as",
+           "[writing_a_technique.md](writing_a_technique.md)",
+           "says (section 5), and `shadowbench check-technique NAME` checks it",
+           "against the timing contract the built-ins keep (section 3).", "",
            "## Contents", "", "| header | name | kind | what it is |", "|---|---|---|---|"]
     for n, _, entries, glsl in parsed:
         for e in entries + glsl:
