@@ -19,11 +19,11 @@ namespace {
 // Every command, in the order --help, docs/cli.md and the completion list
 // them; each file adds its own options (cli/commands.h).
 constexpr void (*kCommands[])(CommandLine&) = {
-    add_run_command,       add_validate_command,       add_plan_command,
-    add_merge_command,     add_list_command,           add_report_command,
-    add_compare_command,   add_compare_builds_command, add_scene_commands,
-    add_history_commands,  add_new_technique_command,  add_help_command,
-    add_completion_command};
+    add_run_command,      add_validate_command,       add_plan_command,
+    add_merge_command,    add_list_command,           add_report_command,
+    add_compare_command,  add_compare_builds_command, add_scene_commands,
+    add_history_commands, add_new_technique_command,  add_check_technique_command,
+    add_help_command,     add_completion_command};
 
 // --help-all (and so the man page help2man makes from it): each command
 // under a heading of its own, "shadowbench run:", at the first column, then

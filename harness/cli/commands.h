@@ -18,6 +18,7 @@ void add_compare_builds_command(CommandLine& cl);
 void add_scene_commands(CommandLine& cl);    // scene export, scene info
 void add_history_commands(CommandLine& cl);  // history add, history report
 void add_new_technique_command(CommandLine& cl);
+void add_check_technique_command(CommandLine& cl);
 void add_help_command(CommandLine& cl);
 void add_completion_command(CommandLine& cl);
 

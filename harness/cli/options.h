@@ -35,7 +35,7 @@ CLI::Option* add_argument(CLI::App* sub, const std::string& name, T& value,
   return sub->add_option(name, value, doc)->type_name("");
 }
 
-// --plugins DIR: run, validate, plan, list, new-technique.
+// --plugins DIR: run, validate, plan, list, new-technique, check-technique.
 void add_plugins(CLI::App* sub, std::string& plugins);
 // --max-jobs N: run, validate, plan.
 void add_max_jobs(CLI::App* sub, double& max_jobs);

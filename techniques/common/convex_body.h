@@ -15,6 +15,10 @@
 
 namespace sb::techniques {
 
+// A convex polytope as face polygons: box() makes one, clip() cuts it by a
+// plane, vertices() lists the corners.
+// units: those of the box and planes (world units in the kit).
+// cost: clip() O(vertices) per plane; no GL.
 class ConvexBody {
  public:
   static ConvexBody box(const core::Bounds& b);

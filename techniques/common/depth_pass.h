@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "common/light_frustum.h"
+#include "common/map_lookup_glsl.h"  // kLightLookupGlsl, kLightDepthGlsl
 #include "core/params.h"
 #include "gl/gpu_scene.h"
 #include "gl/objects.h"
@@ -33,12 +34,16 @@
 
 namespace sb::techniques {
 
+// Which faces of closed casters the depth pass culls (the `cull` parameter).
 enum class CullMode { None, Back, Front };
-CullMode cull_mode_from_string(const std::string& s);  // "none" | "back" | "front"
+// The `cull` parameter's value as a CullMode: "none" | "back" | "front".
+CullMode cull_mode_from_string(const std::string& s);
 // Face culling for one mesh of a pass from the light: only closed casters
 // are culled (receivers, double-sided and open meshes keep every face).
 void set_depth_pass_cull(CullMode cull, const gl::DrawInfo& d);
 
+// The depth pass's polygon offset (the constant_bias and slope_bias parameters).
+// units: glPolygonOffset's (units of the depth format's resolution; factor per depth slope).
 struct DepthBias {
   float constant = 0.0f;  // glPolygonOffset units
   float slope = 0.0f;     // glPolygonOffset factor
@@ -59,7 +64,8 @@ struct DepthMapSettings {
     return normal_offset * f.texel_per_distance(size);
   }
 };
-// size, depth_format, constant_bias, slope_bias, cull, normal_offset
+// The parameters every depth-map technique shares: size, depth_format,
+// constant_bias, slope_bias, cull, normal_offset.
 std::vector<core::ParamSpec> depth_map_params(int default_size,
                                               const std::string& default_cull = "front");
 // For variants whose filter taps compare depths away from the pixel.
@@ -67,6 +73,12 @@ core::ParamSpec receiver_plane_param();
 // Reads depth_map_params (and receiver_plane_bias when declared).
 DepthMapSettings depth_map_settings(const core::Params& p);
 
+// The depth-only pass from a light point into a size×size depth texture
+// (window depths in [0,1], 1 where nothing was drawn): make it in prepare(),
+// render() it in every frame.
+// units: size in texels; depths are window depths of the frustum drawn with.
+// cost: render(): one depth clear and one draw per caster mesh (and per map
+// receiver with `receivers_too`); memory size² × 4 bytes (2 with "16").
 class DepthMap {
  public:
   DepthMap() = default;
@@ -92,21 +104,5 @@ class DepthMap {
   gl::Program program_;
   gl::Program masked_program_;
 };
-
-// GLSL helpers for lookup passes (no #version: append them after one):
-// `light_coords(world)` returns the point in the light's [0,1]^3 texture space, depth clamped to 1
-// so receivers beyond the far plane compare as unshadowed when nothing is in front of them;
-// `offset_world(world, n, light_point, normal_offset)` moves the receiver
-// along its normal by normal_offset × its distance to the light point;
-// `above_horizon(n, world, light_point)` is 0 for light points below the
-// surface's tangent plane (the surface occludes them itself);
-// `receiver_plane_gradient(light_view_projection, world, n)` is d(depth)/d(uv)
-// of the receiver's tangent plane in the map's texture space (0 where the
-// plane is seen edge-on from the light).
-extern const char* const kLightLookupGlsl;
-// `uniform vec2 light_depth_range` (near, far) and the conversions from the
-// map's window depth: `view_depth(w)` is the distance along the light's axis,
-// `depth01(z)` maps it linearly to [0,1] (far and beyond: 1).
-extern const char* const kLightDepthGlsl;
 
 }  // namespace sb::techniques

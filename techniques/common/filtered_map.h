@@ -37,6 +37,7 @@
 
 namespace sb::techniques {
 
+// The parameters of a filterable map (filtered_map_params()), read once.
 struct FilteredMapSettings {
   DepthMapSettings depth;
   bool half_float = false;               // "16f" storage of the basis values
@@ -54,6 +55,8 @@ std::vector<core::ParamSpec> filtered_map_params(int default_size,
                                                  const std::string& default_cull = "back");
 FilteredMapSettings filtered_map_settings(const core::Params& p);
 
+// What a filterable-map variant supplies: its basis values and its
+// reconstruction, as GLSL.
 struct BasisShader {
   int channels = 1;  // basis values per texel, 1..32 (layers of 4 beyond 4)
   // Defines `vec4 basis(float z, int layer)`: the values stored for an
@@ -71,6 +74,13 @@ struct BasisShader {
   bool receivers_in_map = true;
 };
 
+// A whole filterable-map technique (VSM, ESM, EVSM, MSM, convolution maps):
+// depth map, basis values, optional prefilter and lookup, timed as
+// "shadow_map", "moments", "prefilter" and "lookup".
+// cost: per frame the depth pass, one full-screen pass per basis layer over
+// size² texels, 2 × layers filter passes of k taps (with a prefilter) and the
+// lookup; memory the depth map plus size² × layers × 4 channels of 2 or 4
+// bytes, twice with a prefilter.
 class FilteredMapTechnique : public plugin::Technique {
  public:
   FilteredMapTechnique(const core::Params& p, std::string name, BasisShader shader);

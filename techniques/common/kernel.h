@@ -18,8 +18,10 @@
 
 namespace sb::techniques {
 
+// The weights' shape: equal (box) or Gaussian.
 enum class KernelShape { Box, Gauss };
-KernelShape kernel_shape_from_string(const std::string& s);  // "box" | "gauss"
+// The `kernel` parameter's value as a KernelShape: "box" | "gauss".
+KernelShape kernel_shape_from_string(const std::string& s);
 
 // The Gaussian's σ in texels; sigma <= 0 picks OpenCV getGaussianKernel's
 // default for k taps, 0.3·((k−1)/2 − 1) + 0.8.

@@ -15,6 +15,10 @@
 
 namespace sb::techniques {
 
+// The area light's frame (u, v, n, its centre) and its half extents;
+// to_light() and to_world() convert points between it and the world.
+// units: world units.
+// cost: O(1) per call; no GL.
 struct LightFrame {
   glm::vec3 center{0.0f};
   glm::vec3 u{1.0f, 0.0f, 0.0f}, v{0.0f, 1.0f, 0.0f}, n{0.0f, 0.0f, 1.0f};

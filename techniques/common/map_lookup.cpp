@@ -1,5 +1,6 @@
 #include "common/map_lookup.h"
 
+#include "common/map_lookup_glsl.h"
 #include "gl/debug.h"
 
 namespace sb::techniques {
@@ -8,35 +9,6 @@ using core::Params;
 using plugin::FrameInputs;
 
 namespace {
-
-const char* const kLookupHead = R"(#version 450 core
-in vec2 uv;
-layout(binding = 0) uniform sampler2D position_tex;
-layout(binding = 1) uniform sampler2DShadow shadow_map;
-layout(binding = 2) uniform sampler2D normal_tex;
-layout(binding = 3) uniform sampler2D depth_map;
-uniform mat4 light_view_projection;
-uniform mat4 light_view;
-uniform vec3 light_point;
-uniform float normal_offset;
-uniform bool receiver_plane;
-uniform float weight;
-out float visibility;
-
-// Set by main() before lit_fraction() runs.
-vec3 receiver_world = vec3(0.0);
-vec3 receiver_normal = vec3(0.0, 1.0, 0.0);
-vec2 receiver_gradient = vec2(0.0);
-
-float shadow_tap(vec3 t, vec2 offset) {
-  return texture(shadow_map, vec3(t.xy + offset, min(t.z + dot(receiver_gradient, offset), 1.0)));
-}
-// clamp(v, 0, 1) that lets NaN and Inf through to the harness's finiteness
-// check. Written with isnan/isinf: NIR turns `v > 1.0 ? 1.0 : v` into
-// fmin(v, 1.0), which maps NaN to 1.
-float clamp_unit(float v) { return (isnan(v) || isinf(v)) ? v : clamp(v, 0.0, 1.0); }
-float receiver_view_depth() { return -(light_view * vec4(receiver_world, 1.0)).z; }
-)";
 
 const char* const kLookupMain = R"(
 void main() {
@@ -71,8 +43,8 @@ void main() {
 MapLookupPass::MapLookupPass(const std::string& name, const std::string& lit_fraction_glsl,
                              bool linear_compare)
     : program_(name, {gl::kFullscreenVertexShader, "",
-                      std::string(kLookupHead) + kLightLookupGlsl + kLightDepthGlsl +
-                          lit_fraction_glsl + kLookupMain}),
+                      std::string("#version 450 core") + kMapLookupInputsGlsl + kLightLookupGlsl +
+                          kLightDepthGlsl + lit_fraction_glsl + kLookupMain}),
       compare_sampler_(gl::make_sampler(linear_compare, /*compare=*/true, /*border=*/1.0f)),
       raw_sampler_(gl::make_sampler(/*linear=*/false, /*compare=*/false, /*border=*/1.0f)) {}
 

@@ -8,19 +8,14 @@
 // add passes up. lit_fraction must itself return a value in [0,1]: nothing
 // here clamps, so that NaN or overflow reach the harness's finiteness check.
 //
-// What `lit_fraction` may use besides `t`:
-//   shadow_map        sampler2DShadow on the depth map (unit 1)
-//   depth_map         sampler2D, the same map's raw window depths (unit 3)
-//   shadow_tap(t, o)  one comparison `o` (in uv) away from t, against the
-//                     receiver's plane when receiver_plane_bias is on
-//   receiver_world, receiver_normal   the (normal-offset) point and its normal
-//   view_depth(w)     a window depth of the map as distance along the light axis
-//   receiver_view_depth(), depth01(z)  the same for the receiver; z -> [0,1]
-//   clamp_unit(v)     clamp to [0,1] that keeps NaN (GLSL's clamp may not)
+// What `lit_fraction` may use besides `t` is the GLSL of
+// common/map_lookup_glsl.h, which the pass puts before it: the samplers
+// shadow_map (unit 1, comparisons) and depth_map (unit 3, raw window
+// depths), the receiver (receiver_world, receiver_normal), shadow_tap(),
+// view_depth(), receiver_view_depth(), depth01(), clamp_unit() and more.
 // Units 4 and up are the variant's own. The pass prepends `#version 450 core`
-// and the lines above; lit_fraction_glsl must not have a #version of its own,
-// nor redeclare the uniforms light_view_projection, light_view, light_point,
-// normal_offset, receiver_plane, weight or light_depth_range.
+// and that GLSL; lit_fraction_glsl must not have a #version of its own, nor
+// redeclare what it declares.
 //
 // What the kit guarantees here (shadowbench::shadow_kit, installed):
 //   in     the G-buffer and visibility target of FrameInputs, the frustum the
@@ -49,6 +44,10 @@
 
 namespace sb::techniques {
 
+// The full-screen lookup pass (the rule at the top of this header): made
+// from a variant's lit_fraction() GLSL in prepare(), drawn in every frame.
+// cost: one full-screen triangle: per pixel two G-buffer fetches, the
+// receiver's projection into the map and the taps lit_fraction() makes.
 class MapLookupPass {
  public:
   MapLookupPass() = default;
@@ -71,6 +70,10 @@ class MapLookupPass {
 // shadow_map, the PCF kernels, PCSS and their kin differ only in
 // `lit_fraction` and its uniforms. The light frustum is fitted in every
 // frame (plugin/technique.h: prepare() must not depend on the light).
+// Timed as "shadow_map" (fit + depth pass) and "lookup".
+// cost: per frame the frustum fit (one matrix-vector product per caster
+// index), the depth pass (DepthMap) and the lookup (MapLookupPass); memory
+// the depth map.
 class SingleMapTechnique : public plugin::Technique {
  public:
   SingleMapTechnique(const core::Params& p, std::string name, std::string lit_fraction_glsl,

@@ -27,6 +27,11 @@
 
 namespace sb::techniques {
 
+// The separable prefilter above, over every layer of one array texture, in
+// place: make it in prepare(), apply() it in every frame.
+// units: taps one texel apart.
+// cost: apply(): 2 × layers full-screen passes of size² texels × k taps;
+// memory a scratch array as large as the target.
 class SeparableFilter {
  public:
   enum class Mode { Linear, LogSumExp };

@@ -5,7 +5,8 @@ folders, the binaries carry no absolute RUNPATH, configs/quick.json's jobs run
 (smaller) and `report` draws its charts; a technique family built against the moved
 prefix's plugin API (find_package(shadowbench)) is found through
 $SHADOWBENCH_PLUGIN_PATH beside the installed ones; the shadow-map kit's
-headers and library are installed, and the shipped example built on it
+headers and library are installed, with their reference
+(docs/kit_reference.md, generated from them), and the shipped example built on it
 (installed_example.py) measures as the built-in it copies. Run by ctest
 (tests/install/CMakeLists.txt); prints how long each step took."""
 import argparse
@@ -75,6 +76,14 @@ def check_shadow_kit(prefix, source):
                                "shadowbench-plugin-api-targets.cmake")).read()
     if "shadowbench::shadow_kit" not in config:
         sys.exit("the installed package config does not define shadowbench::shadow_kit")
+    # Its reference, installed with the docs, is what the installed headers
+    # declare (scripts/kit_reference.py names the first line that differs).
+    reference = os.path.join(prefix, "share", "doc", "shadowbench", "kit_reference.md")
+    r = subprocess.run([sys.executable, os.path.join(source, "scripts", "kit_reference.py"),
+                        installed_dir, "--check", reference], capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"the installed kit reference is not the installed headers':\n"
+                 f"{r.stdout}{r.stderr}")
 
 
 def main():
