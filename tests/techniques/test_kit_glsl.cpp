@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/vec3.hpp>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/depth_pass.h"
@@ -138,7 +140,8 @@ TEST_F(KitGlsl, BlockerSearchGridFindsTheBlockerPlanesDepthAndCount) {
 // (x − 2, x − 1 texels); half a turn mirrors them, leaving one.
 TEST_F(KitGlsl, BlockerSearchDiskCountsTheRotatedTapsOnTheBlocker) {
   const std::vector<glm::vec2> disk = {{-1.0f, 0.0f}, {-0.5f, 0.0f}, {1.0f, 0.0f}};
-  for (const auto& [turns, expected] : {std::pair{0.0f, 2.0f}, std::pair{0.5f, 1.0f}}) {
+  for (const std::pair<float, float>& c : {std::pair{0.0f, 2.0f}, std::pair{0.5f, 1.0f}}) {
+    const float turns = c.first, expected = c.second;
     const glm::vec4 r = eval(
         "blocker_search_disk(t, disk, count, rotation_by_turns(turns), vec2(size_uv)), 0.0, 0.0",
         [&](const gl::Program& p) {
@@ -163,8 +166,9 @@ double ray_x(double x0, double xb, double zb, double z) { return x0 + (xb - x0) 
 // cross the near plane that far apart.
 TEST_F(KitGlsl, PenumbraAndSearchWidthsAreTheSimilarTriangles) {
   const double tan_half_fov = 0.4;
-  for (const auto& [light, zr, zb] :
-       {std::tuple{2.0, 8.0, 4.0}, std::tuple{0.5, 6.0, 5.5}, std::tuple{3.0, 9.0, 1.5}}) {
+  for (const glm::dvec3& c :
+       {glm::dvec3(2.0, 8.0, 4.0), glm::dvec3(0.5, 6.0, 5.5), glm::dvec3(3.0, 9.0, 1.5)}) {
+    const double light = c.x, zr = c.y, zb = c.z;
     const glm::vec4 r = eval(
         "penumbra_width_uv(args.x, args.y, args.z, args.w), "
         "pcss_search_width_uv(args.x, args.y, 1.0, args.w), "
@@ -187,7 +191,8 @@ TEST_F(KitGlsl, PenumbraAndSearchWidthsAreTheSimilarTriangles) {
 // RADIUS h texels agrees.
 TEST_F(KitGlsl, PcfGridOverAStepReturnsTheLitColumnsFraction) {
   for (int h : {0, 1, 2, 3}) {
-    for (const auto& [dx, lit] : {std::pair{0, h + 1}, std::pair{-1, h}}) {
+    for (const std::pair<int, int>& c : {std::pair{0, h + 1}, std::pair{-1, h}}) {
+      const int dx = c.first, lit = c.second;
       const glm::vec4 r = eval(
           "pcf_grid(t, half_side, vec2(size_uv)), "
           "pcf_grid_radius(t, half_side, float(half_side) * size_uv), 0.0, 0.0",
@@ -247,7 +252,7 @@ TEST_F(KitGlsl, InterleavedGradientNoiseIsJimenezsFormulaAndRotationIsCounterClo
       const double px = x + 0.5, py = y + 0.5;
       const double inner = 0.06711056 * px + 0.00583715 * py;
       const double outer = 52.9829189 * (inner - std::floor(inner));
-      const glm::vec4 v = r[size_t(y * kPixels + x)];
+      const glm::vec4 v = r[size_t(y) * size_t(kPixels) + size_t(x)];
       EXPECT_NEAR(v.x, outer - std::floor(outer), 1e-4) << x << "," << y;
       EXPECT_GE(v.x, 0.0f);
       EXPECT_LT(v.x, 1.0f);
