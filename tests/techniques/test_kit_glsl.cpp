@@ -6,6 +6,7 @@
 // pieces composed (techniques/shadow_map/pcss.cpp, pcf_jitter.cpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <glm/vec3.hpp>
 #include <memory>
@@ -56,6 +57,16 @@ uniform int count;
 uniform vec2 disk[MAX_DISK_TAPS];
 uniform vec4 args;
 out vec4 result;
+// PCSS as techniques/shadow_map/pcss.cpp composes the pieces: search over
+// the derived width, no blocker -> lit, else a PCF of RADIUS half the
+// penumbra's width (args: light side, receiver view depth, tan_half_fov).
+float pcss_composed(vec3 t, int search_half, int filter_half) {
+  float search_uv = pcss_search_width_uv(args.x, args.y, light_depth_range.x, args.z);
+  vec2 blockers = blocker_search_grid(t, search_half, search_uv);
+  if (blockers.y == 0.0) return 1.0;
+  float width_uv = penumbra_width_uv(args.x, args.y, blockers.x, args.z);
+  return pcf_grid_radius(t, filter_half, 0.5 * width_uv);
+}
 )";
 
 class KitGlsl : public ::testing::Test {
@@ -239,6 +250,64 @@ TEST_F(KitGlsl, PcfDiskReturnsTheFractionOfTapsOnLitTexels) {
     }
     EXPECT_EQ(r.y, float(lit_after_4)) << "turns " << turns;
   }
+}
+
+// The columns (of the map's kMap) that 2h+1 taps `step` texels apart,
+// centred on column coordinate x, land in; fails the test if a tap lies
+// within 1e-3 texel of a column boundary, where float rounding may decide.
+std::vector<int> tap_columns(double x, int h, double step) {
+  std::vector<int> columns;
+  for (int i = -h; i <= h; ++i) {
+    const double c = x + i * step;
+    EXPECT_GT(std::fabs(c - std::round(c)), 1e-3) << "tap at column " << c;
+    columns.push_back(int(std::floor(c)));
+  }
+  return columns;
+}
+
+// PCSS composed from the pieces, against Fernando's recipe evaluated on
+// the CPU from the formulas alone: a receiver at view depth 8 beside the
+// blocker half-plane (view depth 4), n = 1, tan_half_fov 0.5. Search width
+// L·(z_r − n)/(z_r·2n·tan), grid taps (width/2)/h apart; penumbra width
+// L·(z_r − z_b)/(z_b·2·z_r·tan); PCF taps (width/4)/h apart (radius width/2).
+TEST_F(KitGlsl, PcssComposedFromThePiecesIsFernandosRecipe) {
+  const double tan_half_fov = 0.5, zr = 8.0, x = double(kEdge) + 0.15;
+  struct Case {
+    double light;
+    int search_half, filter_half;
+  };
+  for (const Case& c : {Case{0.1, 2, 4}, Case{0.3, 1, 4}, Case{0.3, 3, 2}, Case{0.6, 2, 3}}) {
+    SCOPED_TRACE("L " + std::to_string(c.light) + ", search h " + std::to_string(c.search_half) +
+                 ", filter h " + std::to_string(c.filter_half));
+    const double search_texels = c.light * (zr - kNear) / (zr * 2.0 * kNear * tan_half_fov) * kMap;
+    int blocker_columns = 0;
+    for (int col : tap_columns(x, c.search_half, 0.5 * search_texels / std::max(c.search_half, 1)))
+      blocker_columns += col < kEdge;
+    ASSERT_GT(blocker_columns, 0);
+    const double zb = kBlockerViewDepth;
+    const double width_texels = c.light * (zr - zb) / (zb * 2.0 * zr * tan_half_fov) * kMap;
+    int lit = 0;
+    for (int col : tap_columns(x, c.filter_half, 0.5 * width_texels / std::max(c.filter_half, 1)))
+      lit += col >= kEdge;
+    const float expected = float(lit) / float(2 * c.filter_half + 1);
+    const float light = float(c.light), search_half = float(c.search_half);
+    const int search = c.search_half, filter = c.filter_half;
+    const glm::vec4 r =
+        eval("pcss_composed(t, half_side, count), 0.0, 0.0, 0.0", [&](const gl::Program& p) {
+          p.set("t", glm::vec3(float(x) * kTexel, kAtEdge.y, window_depth(float(zr))));
+          p.set("args", glm::vec4(light, float(zr), float(tan_half_fov), 0));
+          p.set("half_side", search);
+          p.set("count", filter);
+        })[0];
+    EXPECT_NEAR(r.x, expected, 1e-6)
+        << "lit " << lit << " of " << 2 * filter + 1 << ", search_half " << search_half;
+  }
+  // A receiver in front of the blocker finds none: lit.
+  const glm::vec4 r = eval("pcss_composed(t, 2, 2), 0.0, 0.0, 0.0", [&](const gl::Program& p) {
+    p.set("t", glm::vec3(float(x) * kTexel, kAtEdge.y, window_depth(3.0f)));
+    p.set("args", glm::vec4(0.3f, 3.0f, 0.5f, 0.0f));
+  })[0];
+  EXPECT_EQ(r.x, 1.0f);
 }
 
 // fract(52.9829189 · fract(0.06711056·x + 0.00583715·y)) at each pixel
