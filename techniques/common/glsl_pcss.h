@@ -36,7 +36,8 @@ inline constexpr const char* kPcssGlsl = R"glsl(
 // cost: arithmetic only.
 float pcss_search_width_uv(float light_size, float receiver_depth, float near_plane,
                            float tan_half_fov) {
-  return light_size * (receiver_depth - near_plane) / (receiver_depth * 2.0 * near_plane * tan_half_fov);
+  return light_size * (receiver_depth - near_plane) /
+         (receiver_depth * 2.0 * near_plane * tan_half_fov);
 }
 
 // The penumbra's full WIDTH at the receiver, w = L·(z_r − z_b)/z_b, in map uv at depth z_r.
@@ -71,7 +72,7 @@ vec2 blocker_search_grid(vec3 t, int half_side, float width_uv) {
 
 // Mean view depth and count of blockers among the first `count` taps of a rotated disk.
 // Tap i lies at t + rotation · disk[i] · radius_uv (a RADIUS: half the search width).
-// units: disk on the unit disk (common/sample_disks.h); radius_uv in map uv; returns (view depth, count).
+// units: disk on the unit disk (sample_disks.h); radius_uv in map uv; returns (view depth, count).
 // cost: count depth_map fetches.
 vec2 blocker_search_disk(vec3 t, vec2 disk[MAX_DISK_TAPS], int count, mat2 rotation,
                          vec2 radius_uv) {

@@ -22,7 +22,8 @@ namespace sb::techniques {
 // units: pixels in, [0,1) out; turns (1 = 2π radians).
 // cost: no texture fetch.
 inline constexpr const char* kRotationNoiseGlsl = R"glsl(
-// Interleaved gradient noise (Jimenez 2014) at a pixel: fract(52.9829189·fract(p·(0.06711056, 0.00583715))).
+// Interleaved gradient noise (Jimenez 2014) at a pixel.
+// fract(52.9829189 · fract(dot(pixel, (0.06711056, 0.00583715)))), a closed form, no table.
 // Pass gl_FragCoord.xy (pixel centres, x + 0.5); the same pixel gives the same value every frame.
 // units: pixel in window pixels; returns [0,1).
 // cost: no texture fetch; a dot product, two fract().
