@@ -5,10 +5,9 @@
 // variant's GLSL, before the code that calls it.
 //
 // Interleaved gradient noise (Jimenez 2014, "Next generation post processing
-// in Call of Duty: Advanced Warfare") only: a closed form of the pixel's
+// in Call of Duty: Advanced Warfare"): a closed form of the pixel's
 // position, spread so that neighbouring pixels differ, with no texture to
-// bind. The kit has no blue-noise texture; a technique that wants one binds
-// its own on a unit of its own (4 and up, common/map_lookup.h).
+// bind. The blue-noise option is a texture: common/blue_noise.h.
 //
 // What the kit guarantees here (shadowbench::shadow_kit, installed):
 //   in     a pixel position (gl_FragCoord.xy);

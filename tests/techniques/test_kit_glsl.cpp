@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/blue_noise.h"
 #include "common/depth_pass.h"
 #include "common/glsl_pcf.h"
 #include "common/glsl_pcss.h"
@@ -56,6 +57,7 @@ uniform float turns;
 uniform int count;
 uniform vec2 disk[MAX_DISK_TAPS];
 uniform vec4 args;
+layout(binding = 5) uniform sampler2D noise_mask;
 out vec4 result;
 // PCSS as techniques/shadow_map/pcss.cpp composes the pieces: search over
 // the derived width, no blocker -> lit, else a PCF of RADIUS half the
@@ -93,7 +95,7 @@ class KitGlsl : public ::testing::Test {
         "kit_glsl_test",
         {gl::kFullscreenVertexShader, "",
          std::string(kHead) + kLightDepthGlsl + kPcfGlsl + kPcssGlsl + kRotationNoiseGlsl +
-             kInputs + "void main() { result = vec4(" + expression + "); }\n"});
+             kBlueNoiseGlsl + kInputs + "void main() { result = vec4(" + expression + "); }\n"});
     program.set_if_active("light_depth_range", glm::vec2(kNear, kFar));
     set(program);
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
@@ -327,6 +329,25 @@ TEST_F(KitGlsl, InterleavedGradientNoiseIsJimenezsFormulaAndRotationIsCounterClo
       EXPECT_LT(v.x, 1.0f);
       EXPECT_NEAR(v.y, 0.0f, 1e-6);
       EXPECT_NEAR(v.z, 1.0f, 1e-6);
+    }
+}
+
+// The blue-noise tile read at window pixels is the mask's value there, and
+// the tile repeats: 16 pixels right and 32 up read the same texel.
+TEST_F(KitGlsl, BlueNoiseReadsTheMaskRepeatedOverTheWindow) {
+  const int side = 16;
+  const std::vector<float> mask = blue_noise_mask(side, 2);
+  const gl::Texture texture = make_blue_noise_texture(side, 2);
+  const std::vector<glm::vec4> r = eval(
+      "blue_noise(noise_mask, gl_FragCoord.xy), "
+      "blue_noise(noise_mask, gl_FragCoord.xy + vec2(16.0, 32.0)), 0.0, 0.0",
+      [&](const gl::Program&) { glBindTextureUnit(5, texture.get()); });
+  glBindTextureUnit(5, 0);
+  for (int y = 0; y < kPixels; ++y)
+    for (int x = 0; x < kPixels; ++x) {
+      const glm::vec4 v = r[size_t(y) * size_t(kPixels) + size_t(x)];
+      EXPECT_EQ(v.x, mask[size_t(y) * size_t(side) + size_t(x)]) << x << "," << y;
+      EXPECT_EQ(v.y, v.x) << x << "," << y;
     }
 }
 
