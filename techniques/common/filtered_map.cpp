@@ -50,7 +50,8 @@ std::vector<ParamSpec> filtered_map_params(int default_size,
                                 "storage of the filtered basis values: 16- or 32-bit float"));
   params.push_back(choice_param("prefilter", "none", {"none", "box", "gauss"},
                                 "separable prefilter of the basis values before the lookup"));
-  params.push_back(kernel_size_param(5, "prefilter kernel side (odd), in texels"));
+  params.push_back(
+      kernel_size_param(5, "prefilter kernel SIDE (odd), in texels: k taps per separable pass"));
   params.push_back(kernel_sigma_param());
   return params;
 }

@@ -114,6 +114,7 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
        .params = {int_param("grid", 128, 1, 2048,
                             "the heightfield's quads per side (2 grid² triangles)"),
                   int_param("size", 1024, 16, 8192, "the depth map's side in texels"),
-                  int_param("taps", 3, 1, 15, "texels read per pixel along each axis")},
+                  int_param("taps", 3, 1, 15,
+                            "grid SIDE, not a tap count: taps² texels read per pixel")},
        .create = [](const Params& p) { return std::make_unique<FixedWorkload>(p); }});
 }

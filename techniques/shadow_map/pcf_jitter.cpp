@@ -10,32 +10,31 @@
 // Parameters, defaults and ranges: docs/parameters.md (generated from their
 // declarations by `shadowbench list --markdown`).
 #include <memory>
+#include <string>
 
+#include "common/glsl_pcf.h"
+#include "common/glsl_rotation_noise.h"
 #include "common/map_lookup.h"
-#include "shadow_map/jittered_disk.h"
+#include "common/sample_disks.h"
 #include "shadow_map/shadow_map_variants.h"
 
 namespace sb::techniques::shadow_map {
 namespace {
 
-const char* const kJitteredPcf = R"(
+// The pieces are the kit's (common/glsl_pcf.h, common/glsl_rotation_noise.h).
+const char* const kJitteredLitFraction = R"(
 uniform int taps;
 uniform int early_out_taps;
-uniform vec2 offsets[64];
+uniform vec2 offsets[MAX_DISK_TAPS];
 uniform float radius_texels;
 uniform bool rotate;
-float interleaved_gradient_noise(vec2 p) {
-  return fract(52.9829189 * fract(dot(p, vec2(0.06711056, 0.00583715))));
-}
 float lit_fraction(vec3 t) {
   vec2 scale = radius_texels / vec2(textureSize(shadow_map, 0));
-  float a = rotate ? 6.28318531 * interleaved_gradient_noise(gl_FragCoord.xy) : 0.0;
-  mat2 r = mat2(cos(a), sin(a), -sin(a), cos(a));
-  float sum = 0.0;
-  for (int i = 0; i < early_out_taps; ++i) sum += shadow_tap(t, r * offsets[i] * scale);
+  mat2 r = rotation_by_turns(rotate ? interleaved_gradient_noise(gl_FragCoord.xy) : 0.0);
+  float sum = pcf_disk_sum(t, offsets, 0, early_out_taps, r, scale);
   if (early_out_taps > 0 && (sum == 0.0 || sum == float(early_out_taps)))
     return sum / float(early_out_taps);
-  for (int i = early_out_taps; i < taps; ++i) sum += shadow_tap(t, r * offsets[i] * scale);
+  sum += pcf_disk_sum(t, offsets, early_out_taps, taps, r, scale);
   return sum / float(taps);
 }
 )";
@@ -43,7 +42,9 @@ float lit_fraction(vec3 t) {
 class JitteredPcf final : public SingleMapTechnique {
  public:
   explicit JitteredPcf(const Params& p)
-      : SingleMapTechnique(p, "pcf_jitter", kJitteredPcf, /*linear_compare=*/false),
+      : SingleMapTechnique(p, "pcf_jitter",
+                           std::string(kPcfGlsl) + kRotationNoiseGlsl + kJitteredLitFraction,
+                           /*linear_compare=*/false),
         offsets_(jittered_disk(p.get_int("taps"), unsigned(p.get_int("seed")))),
         early_out_(p.get_int("early_out_taps")),
         radius_(p.get_float("radius")),
@@ -69,10 +70,10 @@ class JitteredPcf final : public SingleMapTechnique {
 
 TechniqueInfo pcf_jitter_info() {
   std::vector<ParamSpec> params = {
-      int_param("taps", 32, 2, 64, "jittered taps on a disk"),
+      int_param("taps", 32, 2, kMaxDiskTaps, "tap COUNT: jittered taps on a disk"),
       int_param("early_out_taps", 8, 0, 63,
-                "outermost taps tried first; if they agree, the pixel is done (0: off)"),
-      float_param("radius", 4.5, 0.0, 256.0, "disk radius in texels"),
+                "tap COUNT: outermost taps tried first; if they agree, the pixel is done (0: off)"),
+      float_param("radius", 4.5, 0.0, 256.0, "disk radius (half its width) in texels"),
       bool_param("rotate", true, "rotate the tap pattern per pixel"),
       int_param("seed", 1, 0, 2147483647, "jitter of the tap positions"),
       receiver_plane_param()};

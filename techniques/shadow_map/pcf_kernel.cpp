@@ -49,7 +49,7 @@ class KernelPcf final : public SingleMapTechnique {
 
 std::vector<ParamSpec> kernel_pcf_params(int default_k, bool gauss) {
   std::vector<ParamSpec> params = {
-      kernel_size_param(default_k, "kernel side (odd): k*k depth comparisons")};
+      kernel_size_param(default_k, "kernel SIDE (odd), not a tap count: k² depth comparisons")};
   if (gauss) params.push_back(kernel_sigma_param());
   params.push_back(choice_param("filter", "nearest", {"nearest", "bilinear"},
                                 "bilinear: each tap is a hardware 2x2 PCF"));

@@ -10,14 +10,19 @@
 // Parameters, defaults and ranges: docs/parameters.md (generated from their
 // declarations by `shadowbench list --markdown`).
 #include <memory>
+#include <string>
 
+#include "common/glsl_pcf.h"
+#include "common/glsl_pcss.h"
 #include "common/map_lookup.h"
 #include "shadow_map/shadow_map_variants.h"
 
 namespace sb::techniques::shadow_map {
 namespace {
 
-const char* const kPcss = R"(
+// The pieces are the kit's (common/glsl_pcss.h, common/glsl_pcf.h); only
+// the choice of grids and the smallest filter are pcss's own.
+const char* const kPcssLitFraction = R"(
 uniform int search_radius;
 uniform int filter_radius;
 uniform float light_size;     // world units
@@ -27,39 +32,22 @@ uniform float min_filter_texels;
 float lit_fraction(vec3 t) {
   vec2 texel = 1.0 / vec2(textureSize(depth_map, 0));
   float zr = receiver_view_depth();
-  float n = light_depth_range.x;
-  // The map's uv spans 2·d·tan_half_fov world units at distance d.
-  float search_uv = search_texels > 0.0 ? search_texels * texel.x
-                                        : light_size * (zr - n) / (zr * 2.0 * n * tan_half_fov);
-  vec2 search_step = vec2(0.5 * search_uv / float(max(search_radius, 1)));
-  float blockers = 0.0, blocker_depth = 0.0;
-  for (int y = -search_radius; y <= search_radius; ++y)
-    for (int x = -search_radius; x <= search_radius; ++x) {
-      vec2 o = vec2(x, y) * search_step;
-      float w = texture(depth_map, t.xy + o).r;
-      if (w < t.z + dot(receiver_gradient, o)) {
-        blocker_depth += view_depth(w);
-        blockers += 1.0;
-      }
-    }
-  if (blockers == 0.0) return 1.0;
-  float zb = blocker_depth / blockers;
-  float penumbra_uv = light_size * max(zr - zb, 0.0) / (zb * 2.0 * zr * tan_half_fov);
-  float radius_uv = max(0.5 * penumbra_uv, min_filter_texels * texel.x);
-  vec2 filter_step = vec2(radius_uv / float(max(filter_radius, 1)));
-  float sum = 0.0;
-  for (int y = -filter_radius; y <= filter_radius; ++y)
-    for (int x = -filter_radius; x <= filter_radius; ++x)
-      sum += shadow_tap(t, vec2(x, y) * filter_step);
-  int taps = 2 * filter_radius + 1;
-  return sum / float(taps * taps);
+  float search_uv = search_texels > 0.0
+      ? search_texels * texel.x
+      : pcss_search_width_uv(light_size, zr, light_depth_range.x, tan_half_fov);
+  vec2 blockers = blocker_search_grid(t, search_radius, search_uv);
+  if (blockers.y == 0.0) return 1.0;
+  float penumbra_uv = penumbra_width_uv(light_size, zr, blockers.x, tan_half_fov);
+  // A width: the kernel's radius is half of it.
+  return pcf_grid_radius(t, filter_radius, max(0.5 * penumbra_uv, min_filter_texels * texel.x));
 }
 )";
 
 class Pcss final : public SingleMapTechnique {
  public:
   explicit Pcss(const Params& p)
-      : SingleMapTechnique(p, "pcss", kPcss, /*linear_compare=*/true),
+      : SingleMapTechnique(p, "pcss", std::string(kPcssGlsl) + kPcfGlsl + kPcssLitFraction,
+                           /*linear_compare=*/true),
         search_radius_(p.get_int("search_taps") / 2),
         filter_radius_(p.get_int("filter_taps") / 2),
         search_texels_(p.get_float("search_texels")),
@@ -90,13 +78,16 @@ class Pcss final : public SingleMapTechnique {
 
 TechniqueInfo pcss_info() {
   std::vector<ParamSpec> params = {
-      odd(int_param("search_taps", 3, 1, 31, "blocker-search grid side (odd)")),
+      odd(int_param("search_taps", 3, 1, 31,
+                    "blocker-search grid SIDE (odd), not a tap count: side² taps")),
       with_sentinel(float_param("search_texels", 0.0, 0.0, 4096.0,
-                                "blocker-search width in texels; 0: from the light's size and the "
-                                "receiver's depth"),
+                                "blocker-search full width (not radius) in texels; 0: from the "
+                                "light's size and the receiver's depth"),
                     0.0),
-      odd(int_param("filter_taps", 5, 1, 31, "PCF grid side (odd), spread over the penumbra")),
-      float_param("min_filter_texels", 1.0, 0.0, 64.0, "smallest PCF radius, in texels"),
+      odd(int_param("filter_taps", 5, 1, 31,
+                    "PCF grid SIDE (odd), not a tap count: side² taps, spread over the penumbra")),
+      float_param("min_filter_texels", 1.0, 0.0, 64.0,
+                  "smallest PCF radius (half its width), in texels"),
       receiver_plane_param()};
   // On by default: PCSS filters reach far more texels than a small PCF, and
   // without it the wide kernels shadow lit receivers (sphere grid, light 2,

@@ -215,7 +215,8 @@ TechniqueInfo two_map_bound_info() {
                    "needs opaque casters); "
                    "midpoint: V = 1/2 (the classification alone)"),
       odd(int_param("search_taps", 7, 3, 31,
-                    "search grid side (odd), spread over the widest penumbra at the receiver")),
+                    "search grid SIDE (odd), not a tap count: side² taps, spread over the widest "
+                    "penumbra at the receiver")),
       receiver_plane_param()};
   // On by default: the search's taps reach far from the pixel (as PCSS's).
   params.back().default_value = true;

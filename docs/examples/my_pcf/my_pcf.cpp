@@ -15,10 +15,12 @@
 // prepare() (untimed) only compiles and allocates: the frustum depends on
 // the light, so it is fitted in every frame (plugin/technique.h).
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "common/depth_pass.h"
+#include "common/glsl_pcf.h"
 #include "common/kernel.h"
 #include "common/light_frustum.h"
 #include "common/map_lookup.h"
@@ -29,17 +31,20 @@ namespace my_pcf {
 namespace {
 
 // The map lookup (common/map_lookup.h) calls lit_fraction(t) with t the
-// pixel's point in the map's [0,1]³ texture space; shadow_tap(t, offset)
-// is one depth comparison `offset` (in uv) away from it: 1 lit, 0 shadowed.
+// pixel's point in the map's [0,1]³ texture space. pcf_grid (the kit's
+// common/glsl_pcf.h, prepended below) averages shadow_tap, one depth
+// comparison (1 lit, 0 shadowed), over a (2·radius+1)² grid. Other kit
+// pieces to start from: a rotated Poisson disk,
+//   pcf_disk(t, disk, n, rotation_by_turns(interleaved_gradient_noise(
+//            gl_FragCoord.xy)), radius_uv)
+// with `uniform vec2 disk[MAX_DISK_TAPS]` set from poisson_disk(n, seed)
+// (common/sample_disks.h, common/glsl_rotation_noise.h); or PCSS's blocker
+// search and penumbra width (common/glsl_pcss.h).
 const char* const kBoxPcf = R"(
 uniform int radius;
 float lit_fraction(vec3 t) {
-  vec2 texel = 1.0 / vec2(textureSize(shadow_map, 0));
-  float lit = 0.0;
-  for (int y = -radius; y <= radius; ++y)
-    for (int x = -radius; x <= radius; ++x) lit += shadow_tap(t, vec2(x, y) * texel);
-  float side = float(2 * radius + 1);
-  return lit / (side * side);
+  // Taps one texel apart.
+  return pcf_grid(t, radius, 1.0 / vec2(textureSize(shadow_map, 0)));
 }
 )";
 
@@ -51,7 +56,8 @@ class MyPcf final : public sb::Technique {
 
   void prepare(const sb::FrameInputs& /*in*/) override {
     map_ = sb::techniques::DepthMap(settings_.size, settings_.depth_format);
-    lookup_ = sb::techniques::MapLookupPass("my_pcf_lookup", kBoxPcf);
+    lookup_ = sb::techniques::MapLookupPass("my_pcf_lookup",
+                                            std::string(sb::techniques::kPcfGlsl) + kBoxPcf);
     lookup_.program().set("radius", radius_);
     sb::gl::throw_if_errors("my_pcf prepare");
   }

@@ -1,6 +1,6 @@
 // The shadow_map template of `shadowbench new-technique` (--family
 // shadow_map): the installed example docs/examples/my_pcf under a new name,
-// a k×k PCF on the shadow-map kit (shadowbench::shadow_kit), so that it
+// a k×k PCF (the kit's pcf_grid) on the shadow-map kit (shadowbench::shadow_kit), so that it
 // starts with the built-ins' own light frustum, depth pass, biases, culling
 // and map lookup, and equals pcf_box until its filter is changed. Its
 // .cpp, CMakeLists.txt and config are the example's files themselves
@@ -31,7 +31,11 @@ light's centre filtered by a k×k box of depth comparisons, on the shadow-map
 kit (`shadowbench::shadow_kit`, headers `common/*.h`). The kit gives it the
 built-in `pcf_box`'s light frustum, depth pass, biases, culling and map
 lookup; only the filter, the GLSL `lit_fraction()` in `@NAME@.cpp`, is its
-own. As written, its visibility and its error equal `pcf_box`'s for the same
+own, and it calls the kit's `pcf_grid` (`common/glsl_pcf.h`). The kit's other
+pieces to build on: PCSS's blocker search and penumbra width
+(`common/glsl_pcss.h`), Poisson and jittered tap disks
+(`common/sample_disks.h`) and per-pixel rotation noise
+(`common/glsl_rotation_noise.h`). As written, its visibility and its error equal `pcf_box`'s for the same
 parameters: change the filter, and the difference you measure is the
 filter's alone.
 
