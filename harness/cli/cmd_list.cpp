@@ -107,7 +107,8 @@ int cmd_list(const ListArgs& a) {
     for (const auto& st : scene_types()) known.push_back(st.name);
     std::string message =
         "no technique or scene type of that name (`shadowbench list --names` lists them)";
-    if (std::string near = did_you_mean(name, known); !near.empty()) message += ";" + near;
+    // Typos only: pcss_stochastic is a name of its own, not pcss mistyped.
+    if (std::string near = did_you_mean(name, known, false); !near.empty()) message += ";" + near;
     if (!r.load_failures().empty())
       message += "\n  a plugin failed to load (the warnings above): it may have been its";
     else if (!r.search_hint().empty())
