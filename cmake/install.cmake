@@ -99,7 +99,10 @@ set(CPACK_PACKAGE_NAME shadowbench)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGE_CONTACT "shadowbench developers <shadowbench@users.noreply.github.com>")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "headless batch benchmark of shadow-rendering techniques")
-set(CPACK_PACKAGE_DESCRIPTION
+# One string: set() would join the lines as a list, with ';' (which dpkg
+# then shows at the start of every continuation line). CPackDeb indents
+# each line by one space, as a Description's continuation lines must be.
+string(CONCAT CPACK_PACKAGE_DESCRIPTION
     "shadowbench renders JSON experiments (generated scenes or any glTF file) through\n"
     "every shadow technique plugin at every resolution, headlessly (OSMesa or EGL),\n"
     "and reports error against a ray-traced reference against run time.")

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli/command_line.h"
@@ -106,7 +107,8 @@ int cmd_list(const ListArgs& a) {
     for (const auto& st : scene_types()) known.push_back(st.name);
     std::string message =
         "no technique or scene type of that name (`shadowbench list --names` lists them)";
-    if (std::string near = did_you_mean(name, known); !near.empty()) message += ";" + near;
+    // Typos only: pcss_stochastic is a name of its own, not pcss mistyped.
+    if (std::string near = did_you_mean(name, known, false); !near.empty()) message += ";" + near;
     if (!r.load_failures().empty())
       message += "\n  a plugin failed to load (the warnings above): it may have been its";
     else if (!r.search_hint().empty())
@@ -120,9 +122,11 @@ int cmd_list(const ListArgs& a) {
       if (wanted(s.name)) std::printf("%s\n", s.name.c_str());
     return kExitOk;
   }
-  std::printf("techniques:\n");
+  // A heading only above what it heads: `list pcss` shows no "scenes:".
+  bool heading = false;
   for (const auto& t : r.all()) {
     if (!wanted(t.name)) continue;
+    if (!std::exchange(heading, true)) std::printf("techniques:\n");
     const std::string needs = needs_of(t);
     std::printf("  %-16s [%s] %s%s\n", t.name.c_str(), t.family.c_str(), t.summary.c_str(),
                 needs.empty() ? "" : ("  needs:" + needs).c_str());
@@ -136,9 +140,10 @@ int cmd_list(const ListArgs& a) {
     for (const auto& p : builtin_need_providers()) print_need(p, "");
     for (const auto& p : r.providers()) print_need(p, "  (plugin)");
   }
-  std::printf("scenes:\n");
+  heading = false;
   for (const auto& s : scene_types()) {
     if (!wanted(s.name)) continue;
+    if (!std::exchange(heading, true)) std::printf("scenes:\n");
     std::printf("  %-16s %s\n", s.name.c_str(), s.summary.c_str());
     print_params(s.params);
   }

@@ -42,13 +42,14 @@ std::string cmake_hint(const std::string& exe_dir) {
 
 struct NewTechniqueArgs {
   std::string new_name;
-  std::string family = "plugin_api";  // the template
-  std::string dir;                    // the folder (default: NAME)
+  std::string family = technique_templates().front().family;  // the template
+  bool bare = false;                                          // --bare: --family plugin_api
+  std::string dir;                                            // the folder (default: NAME)
   std::string plugins;
 };
 
 int cmd_new_technique(const NewTechniqueArgs& a) {
-  const TechniqueTemplate* tmpl = find_technique_template(a.family);
+  const TechniqueTemplate* tmpl = find_technique_template(a.bare ? "plugin_api" : a.family);
   if (tmpl == nullptr)  // the parser's choice check lists the families
     throw InputError("", "command line", "no template for --family '" + a.family + "'");
   const Registry registry = load_registry(a.plugins);
@@ -73,8 +74,9 @@ void add_new_technique_command(CommandLine& cl) {
   CLI::App* new_technique = cl.add_command(
       cl.app(), "new-technique",
       "Write a plugin folder for a new technique NAME: its source (a working shadow map with PCF "
-      "to start from), CMakeLists.txt, a config that runs it beside its nearest built-ins, and a "
-      "README with the commands to build, load and run it.",
+      "on the shadow-map kit, fair on alpha-masked scenes, to start from), CMakeLists.txt, a "
+      "config that runs it beside its nearest built-ins, and a README with the commands to "
+      "build, load and run it.",
       "shadowbench new-technique my_pcf --dir ~/my_pcf", [a] { return cmd_new_technique(*a); });
   add_argument(new_technique, "NAME", a->new_name,
                "the technique's name: a lowercase C identifier no plugin uses")
@@ -85,7 +87,14 @@ void add_new_technique_command(CommandLine& cl) {
     families.push_back(t.family);
     family_doc += (families.size() == 1 ? " " : "; ") + t.family + ", " + t.summary;
   }
-  add_choice(new_technique, "--family", a->family, families, family_doc);
+  CLI::Option* family = add_choice(new_technique, "--family", a->family, families, family_doc);
+  // The bare template declares opaque_casters: every alpha-masked scene
+  // skips it, so it is asked for by name, never the default.
+  new_technique
+      ->add_flag("--bare", a->bare,
+                 "write the bare template (--family plugin_api) instead: its own light frustum, "
+                 "depth pass and lookup on the plugin API alone, skipped on alpha-masked scenes")
+      ->excludes(family);
   new_technique
       ->add_option("--dir", a->dir, "the folder to write, which must not exist (default: NAME)")
       ->type_name("DIR");

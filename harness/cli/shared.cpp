@@ -22,6 +22,7 @@ using config::load_experiment;
 using config::unequal_map_size_warnings;
 using config::unread_parameter_warnings;
 using core::default_plugin_dir;
+using core::doc_path;
 using core::extra_plugin_dirs;
 using core::InputError;
 using core::kExitInternal;
@@ -79,7 +80,7 @@ Registry load_registry(const std::string& plugins) {
   // For an unknown technique: perhaps its plugin was never looked for.
   if (dirs.size() == 1) {
     r.set_search_hint("$SHADOWBENCH_PLUGIN_PATH is not set: only the plugins in " + dirs[0] +
-                      " were loaded (docs/install.md, \"Plugin folders\")");
+                      " were loaded (" + doc_path("install.md") + ", \"Plugin folders\")");
   } else if (from_path == 0) {
     std::string path;
     for (size_t i = 1; i < dirs.size(); ++i) path += (i == 1 ? "" : ":") + dirs[i];

@@ -13,8 +13,8 @@ ray-traced reference; `results/@NAME@/` holds the records, tables and images.
 )";
 
 const std::vector<TechniqueTemplate>& technique_templates() {
-  static const std::vector<TechniqueTemplate> templates = {plugin_api_template(),
-                                                           shadow_map_template()};
+  static const std::vector<TechniqueTemplate> templates = {shadow_map_template(),
+                                                           plugin_api_template()};
   return templates;
 }
 

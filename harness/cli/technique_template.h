@@ -27,7 +27,8 @@ struct TechniqueTemplate {
 // tests/out_of_tree/scaffold_build_and_run.py runs its indented lines.
 extern const char* const kBuildLoadRun;
 
-// Every template, the default (--family's default) first.
+// Every template, the default (--family's default: the kit's, fair on
+// alpha-masked scenes) first.
 const std::vector<TechniqueTemplate>& technique_templates();
 
 // The template of one family; nullptr when there is none.

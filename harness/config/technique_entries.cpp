@@ -68,7 +68,7 @@ std::vector<TechniqueVariant> technique_variants(const ConfigReader& r, const Re
   const json params = entry.value("params", json::object());
   std::vector<TechniqueVariant> out;
   if (info == nullptr) {
-    const UnknownTechnique unknown = unknown_technique(name, registry);
+    const UnknownTechnique unknown = unknown_technique(name, registry, file);
     if (!unknown.plugin_failed || !may_be_unavailable)
       r.fail(p + (given_entry.is_string() ? "" : "/name"), unknown.message);
     // Perhaps the failed plugin's: its jobs fail, the others run.

@@ -18,6 +18,9 @@ namespace {
 #ifndef SHADOWBENCH_BIN_TO_DATA
 #define SHADOWBENCH_BIN_TO_DATA "../share/shadowbench"
 #endif
+#ifndef SHADOWBENCH_BIN_TO_DOC
+#define SHADOWBENCH_BIN_TO_DOC "../share/doc/shadowbench"
+#endif
 
 std::string environment(const char* name) {
   const char* value = std::getenv(name);
@@ -68,6 +71,15 @@ std::vector<std::string> data_dirs() {
       if (folder_exists(candidate)) dirs.push_back(candidate.lexically_normal().string());
   }
   return dirs;
+}
+
+std::string doc_path(const std::string& name) {
+  if (const std::string exe = executable_dir(); !exe.empty()) {
+    const fs::path installed = (fs::path(exe) / SHADOWBENCH_BIN_TO_DOC / name).lexically_normal();
+    std::error_code ec;
+    if (fs::is_regular_file(installed, ec)) return installed.string();
+  }
+  return "docs/" + name;
 }
 
 }  // namespace sb::core

@@ -4,7 +4,7 @@
 // tree, an installed prefix and a moved prefix all work without settings:
 //   build tree:  <build>/shadowbench, <build>/plugins, <build>/share/shadowbench
 //   installed:   <prefix>/bin/shadowbench, <prefix>/lib/shadowbench/plugins,
-//                <prefix>/share/shadowbench
+//                <prefix>/share/shadowbench, <prefix>/share/doc/shadowbench
 // Environment variables override or add (docs/install.md).
 #include <string>
 #include <vector>
@@ -27,5 +27,11 @@ std::vector<std::string> extra_plugin_dirs();
 // <exe>/share/shadowbench (a build tree), <exe>/../share/shadowbench (an
 // installed prefix). The last two only when they exist.
 std::vector<std::string> data_dirs();
+
+// A document of docs/ ("install.md") as a message names it: where the
+// reader has it. Installed (<exe>/../share/doc/shadowbench/NAME exists), its
+// full path there; else (a build tree, a moved binary) "docs/NAME", the
+// source's. Every message that names a doc says it through this.
+std::string doc_path(const std::string& name);
 
 }  // namespace sb::core

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/bounded_text.h"
+#include "core/nearest_names.h"
 
 namespace sb::core {
 
@@ -66,9 +67,11 @@ void JsonReader::only_keys(const json& obj, const std::string& pointer,
     if (!ok) {
       std::string list;
       for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      fail(pointer + "/" + pointer_token(it.key()),
-           "unknown " + noun + " '" + it.key() + "' (" +
-               (list.empty() ? "expected none" : "expected one of: " + list) + ")");
+      std::string problem = "unknown " + noun + " '" + it.key() + "' (" +
+                            (list.empty() ? "expected none" : "expected one of: " + list) + ")";
+      if (const std::string near = did_you_mean(it.key(), allowed); !near.empty())
+        problem += ";" + near;
+      fail(pointer + "/" + pointer_token(it.key()), problem);
     }
   }
 }

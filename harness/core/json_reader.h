@@ -45,7 +45,8 @@ class JsonReader {
   const nlohmann::json& member(const nlohmann::json& obj, const std::string& pointer,
                                const std::string& key) const;
   // Fails at the first member whose key is not in `allowed`:
-  // "unknown key 'x' (expected one of: a, b)"; `noun` names what a key is.
+  // "unknown key 'x' (expected one of: a, b)", then "; did you mean a?" for
+  // a likely typo (core/nearest_names.h); `noun` names what a key is.
   void only_keys(const nlohmann::json& obj, const std::string& pointer,
                  const std::vector<std::string>& allowed, const std::string& noun = "key") const;
   // An array; `what` is what the array holds: "expected an array of numbers".

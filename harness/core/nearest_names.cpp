@@ -23,14 +23,17 @@ size_t edit_distance(const std::string& a, const std::string& b) {
 }
 
 std::vector<std::string> nearest_names(const std::string& name,
-                                       const std::vector<std::string>& known, size_t most) {
+                                       const std::vector<std::string>& known, size_t most,
+                                       bool extensions) {
   const size_t threshold = std::max<size_t>(1, name.size() / 3);
   std::vector<std::pair<size_t, size_t>> near;  // (distance, index into known)
   for (size_t i = 0; i < known.size(); ++i) {
     const size_t d = edit_distance(name, known[i]);
-    const bool part = name.size() >= 3 && (known[i].find(name) != std::string::npos ||
-                                           name.find(known[i]) != std::string::npos);
-    if (d <= threshold || part) near.emplace_back(d, i);
+    // Every character replaced ("q" for "k") is another name, not a typo.
+    if (d >= std::max(name.size(), known[i].size())) continue;
+    const bool contained = known[i].find(name) != std::string::npos;
+    const bool extends = extensions && name.find(known[i]) != std::string::npos;
+    if (d <= threshold || (name.size() >= 3 && (contained || extends))) near.emplace_back(d, i);
   }
   std::stable_sort(near.begin(), near.end(),
                    [](const auto& x, const auto& y) { return x.first < y.first; });
@@ -39,8 +42,9 @@ std::vector<std::string> nearest_names(const std::string& name,
   return out;
 }
 
-std::string did_you_mean(const std::string& name, const std::vector<std::string>& known) {
-  const std::vector<std::string> near = nearest_names(name, known);
+std::string did_you_mean(const std::string& name, const std::vector<std::string>& known,
+                         bool extensions) {
+  const std::vector<std::string> near = nearest_names(name, known, 3, extensions);
   if (near.empty()) return "";
   std::string out = " did you mean ";
   for (size_t i = 0; i < near.size(); ++i)

@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/install_layout.h"
+
 namespace sb::plugin {
 
 namespace {
@@ -30,7 +32,8 @@ std::string dlopen_failure(const char* why) {
           " (a shadowbench symbol this build lacks: the module was most likely built against "
           "another plugin API version; this build's is " +
           std::to_string(kPluginApiVersion) +
-          ". Rebuild it against this shadowbench: docs/writing_a_technique.md, \"Version\")";
+          ". Rebuild it against this shadowbench: " + core::doc_path("writing_a_technique.md") +
+          ", \"Version\")";
   }
   return out;
 }

@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "core/install_layout.h"
 #include "record/record_json.h"
 
 namespace sb::record {
@@ -18,7 +19,8 @@ void check_schema_version(const json& j) {
   if (!v.is_number_integer() || v.get<std::int64_t>() != kRecordSchemaVersion)
     f.fail("schema_version", "the record has schema_version " + v.dump() +
                                  "; this shadowbench reads schema_version " +
-                                 std::to_string(kRecordSchemaVersion) + " (docs/results.md)");
+                                 std::to_string(kRecordSchemaVersion) + " (" +
+                                 core::doc_path("results.md") + ")");
 }
 
 }  // namespace

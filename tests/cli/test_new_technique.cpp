@@ -1,6 +1,7 @@
 // `shadowbench new-technique NAME`: which names it takes, and that it never
-// writes into a folder that exists. Building and running what it writes is
-// tests/out_of_tree/scaffold_build_and_run.py.
+// writes into a folder that exists, and which template it writes. Building
+// and running what it writes is tests/out_of_tree/scaffold_build_and_run.py
+// and default_scaffold_on_masked_scenes.py.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -121,6 +122,26 @@ TEST(NewTechnique, WritesEveryFileOfTheTemplateWithTheName) {
   EXPECT_NE(
       read_file(folder / "CMakeLists.txt").find("shadowbench_add_plugin(my_soft my_soft.cpp)"),
       std::string::npos);
+}
+
+// The default is the kit's template, which honours alpha masks (no
+// opaque_casters need, so masked scenes run it); --bare writes the plugin-API
+// one, which declares opaque_casters. Running the default on foliage:
+// tests/out_of_tree/default_scaffold_on_masked_scenes.py.
+TEST(NewTechnique, TheDefaultIsTheKitTemplateAndBareThePluginApiOne) {
+  const fs::path kit = scratch("default") / "my_soft";
+  ASSERT_EQ(run_cli("new-technique my_soft --dir " + kit.string()).exit_code, 0);
+  EXPECT_NE(read_file(kit / "CMakeLists.txt").find("shadowbench::shadow_kit"), std::string::npos);
+  EXPECT_EQ(read_file(kit / "my_soft.cpp").find("kOpaqueCasters"), std::string::npos);
+  const fs::path bare = scratch("bare") / "my_soft";
+  ASSERT_EQ(run_cli("new-technique my_soft --bare --dir " + bare.string()).exit_code, 0);
+  EXPECT_EQ(read_file(bare / "CMakeLists.txt").find("shadow_kit"), std::string::npos);
+  EXPECT_NE(read_file(bare / "my_soft.cpp").find("kOpaqueCasters"), std::string::npos);
+  // --bare is --family plugin_api: both at once is refused.
+  const fs::path both = scratch("both") / "my_soft";
+  const auto r = run_cli("new-technique my_soft --bare --family shadow_map --dir " + both.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_FALSE(fs::exists(both));
 }
 
 TEST(NewTechnique, NeverWritesIntoAFolderThatExists) {

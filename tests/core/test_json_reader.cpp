@@ -98,7 +98,8 @@ TEST(JsonReader, UnknownKeysAreNamedWithTheKnownOnes) {
   EXPECT_EQ(failure([] {
               kReader.only_keys(json{{"timd", 3}}, "/frames", {"warmup", "timed"});
             }),
-            "/frames/timd: unknown key 'timd' (expected one of: warmup, timed)");
+            "/frames/timd: unknown key 'timd' (expected one of: warmup, timed); did you mean "
+            "timed?");
   EXPECT_EQ(failure([] {
               kReader.only_keys(json{{"q", 1}}, "/p", {}, "parameter");
             }),

@@ -74,6 +74,18 @@ def main():
             sys.exit(f"Depends lacks {package}: {depends.group(1)}")
     if not any(p.startswith("libembree3") for p in needed):
         sys.exit(f"Depends lacks Embree 3: {depends.group(1)}")
+    # Debian policy 5.6.13: a one-line synopsis, then the extended
+    # description, every line of it starting with a space; none a list's ';'.
+    # (dpkg-deb -f with one field prints its value alone.)
+    description = run("dpkg-deb -f Description", "dpkg-deb", "-f", deb,
+                      "Description").rstrip("\n").split("\n")
+    synopsis, extended = description[0], description[1:]
+    if not synopsis.strip() or synopsis[0].isspace() or len(extended) < 2:
+        sys.exit(f"no synopsis and extended description:\n{description}")
+    for line in extended:
+        if not line.startswith(" ") or line.lstrip().startswith(";"):
+            sys.exit(f"the Description's line {line!r} does not start with one space and text:"
+                     f"\n" + "\n".join(description))
     files = run("dpkg-deb -c", "dpkg-deb", "-c", deb)
     for path in ("./usr/bin/shadowbench", "./usr/lib/shadowbench/libshadowbench_core.so",
                  "./usr/lib/shadowbench/plugins/shadow_map.so",

@@ -130,6 +130,11 @@ def main():
         if not os.path.isfile(os.path.join(prefix, path)):
             sys.exit(f"the install lacks {path}")
     check_shadow_kit(prefix, a.source)
+    # A message naming a doc names the moved prefix's copy, which a user of
+    # the package has, not the source's docs/.
+    out = run("an unknown name", exe, "list", "no_such_technique", env=env, expect=2)
+    if f"{prefix}/share/doc/shadowbench/install.md" not in out:
+        sys.exit(f"the unknown name's hint does not name the installed install.md:\n{out}")
 
     if a.part == "run":
         run_from_prefix(a, prefix, exe, env)

@@ -5,10 +5,10 @@ folder with the installed binary, build it with the three commands its
 README gives (find_package(shadowbench) against the prefix, the plugin
 loaded through $SHADOWBENCH_PLUGIN_PATH), run the config it wrote and check
 the records: every job ok, and the new technique a real shadow (V under 0.5
-where the reference's is). The default family (plugin_api, its own frustum
-fit) must be within a factor of shadow_map's RMSE; --family shadow_map (on
-the shadow-map kit) must equal pcf_box's V and RMSE, since it is pcf_box's
-filter on pcf_box's frustum, depth pass and lookup. Run by ctest
+where the reference's is). --bare (--family plugin_api, its own frustum
+fit) must be within a factor of shadow_map's RMSE; the default (--family
+shadow_map, on the shadow-map kit) must equal pcf_box's V and RMSE, since it
+is pcf_box's filter on pcf_box's frustum, depth pass and lookup. Run by ctest
 (tests/out_of_tree/CMakeLists.txt)."""
 import argparse
 import glob
@@ -22,8 +22,8 @@ import sys
 import tempfile
 
 
-NAME = "scaffolded_pcf"  # --family plugin_api (the default)
-KIT_NAME = "scaffolded_kit_pcf"  # --family shadow_map
+NAME = "scaffolded_pcf"  # --bare (--family plugin_api)
+KIT_NAME = "scaffolded_kit_pcf"  # the default (--family shadow_map)
 
 
 def run(what, *cmd, env=None, cwd=None, shell=False):
@@ -74,11 +74,12 @@ class Scaffolded:
 
 
 def scaffold(work, exe, env, prefix, family, name):
-    """new-technique NAME --family FAMILY, then the README's three commands
-    as written (its indented lines, in order); every job must be ok."""
+    """new-technique NAME (with --bare for FAMILY plugin_api), then the
+    README's three commands as written (its indented lines, in order); every
+    job must be ok."""
     folder = os.path.join(work, name)
-    out = run("new-technique", exe, "new-technique", name, "--family", family, "--dir", folder,
-              env=env)
+    flags = ["--bare"] if family == "plugin_api" else []
+    out = run("new-technique", exe, "new-technique", name, *flags, "--dir", folder, env=env)
     for f in (f"{name}.cpp", "CMakeLists.txt", f"{name}.json", "README.md"):
         if not os.path.isfile(os.path.join(folder, f)):
             sys.exit(f"new-technique --family {family} wrote no {f}:\n{out}")
@@ -132,8 +133,9 @@ def main():
                  f"{rmse['shadow_map']}")
     plugin_api.check_casts_shadow(NAME)
 
-    # --family shadow_map: on the kit, so pcf_box's frustum, bias and lookup;
-    # with pcf_box's filter and parameters, the same V and the same error.
+    # The default (--family shadow_map): on the kit, so pcf_box's frustum,
+    # bias and lookup; with pcf_box's filter and parameters, the same V and
+    # the same error.
     kit = scaffold(work, exe, env, prefix, "shadow_map", KIT_NAME)
     rmse = kit.rmse
     # pcf_box has more (its filter and receiver-plane bias, at their defaults).

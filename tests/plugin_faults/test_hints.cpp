@@ -3,6 +3,8 @@
 // rules.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -35,6 +37,65 @@ TEST(Hints, NearestNamesAreTyposAndPartsNotEverything) {
   EXPECT_EQ(did_you_mean("ray_traced", known), "");
 }
 
+TEST(Hints, AWhollyReplacedNameIsNoTypo) {
+  // One letter for another: every character differs, so nothing is near.
+  EXPECT_TRUE(nearest_names("q", {"k", "n"}).empty());
+  EXPECT_EQ(nearest_names("kk", {"k", "n"}), std::vector<std::string>({"k"}));
+}
+
+TEST(Hints, ANameExtendingAKnownOneIsNearOnlyWithExtensions) {
+  const std::vector<std::string> known = {"pcf_box", "pcss", "none"};
+  EXPECT_EQ(did_you_mean("pcss_stochastic", known), " did you mean pcss?");
+  EXPECT_EQ(did_you_mean("pcss_stochastic", known, false), "");
+  // Still a typo when within the edit distance, or a part of a known name.
+  EXPECT_EQ(did_you_mean("pcss2", known, false), " did you mean pcss?");
+  EXPECT_EQ(did_you_mean("box", known, false), " did you mean pcf_box?");
+}
+
+TEST(Hints, AnUnknownParameterSaysWhichWasMeant) {
+  const auto dir = test_folder("sb_hints_");
+  const std::string config =
+      small_config(dir, R"([{"name": "pcss", "params": {"serch_taps": 3}}])");
+  const CliRun r = shadowbench("", "validate " + config);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_TRUE(has(r.output, "unknown parameter 'serch_taps' (expected one of: ")) << r.output;
+  EXPECT_TRUE(has(r.output, "); did you mean search_taps?")) << r.output;
+}
+
+// pcss_stochastic is a plugin's name that extends pcss's: not pcss mistyped,
+// but a plugin not loaded. The hint says where plugins were looked for, and
+// offers no pcss.
+TEST(Hints, AnUnloadedPluginsTechniqueIsNotOfferedALoadedOne) {
+  const auto dir = test_folder("sb_hints_");
+  const std::string config = small_config(dir, R"(["none", "pcss_stochastic"])");
+  const CliRun r = shadowbench("", "validate " + config);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_TRUE(has(r.output, "unknown technique \"pcss_stochastic\" (registered: ")) << r.output;
+  EXPECT_FALSE(has(r.output, "did you mean")) << r.output;
+  EXPECT_TRUE(has(r.output, "$SHADOWBENCH_PLUGIN_PATH is not set: only the plugins in "))
+      << r.output;
+  const CliRun list = shadowbench("", "list pcss_stochastic");
+  EXPECT_EQ(list.exit_code, 2) << list.output;
+  EXPECT_FALSE(has(list.output, "did you mean")) << list.output;
+}
+
+// new-technique's README builds the plugin into build/NAME.so beside the
+// config: when it exists but is not loaded, the hint names its folder.
+TEST(Hints, AnUnloadedScaffoldBuildIsNamedWithTheFolderToAdd) {
+  const auto dir = test_folder("sb_hints_");
+  std::filesystem::create_directories(dir / "build");
+  std::ofstream(dir / "build" / "pcss_stochastic.so") << "not loaded";
+  const std::string config = small_config(dir, R"(["none", "pcss_stochastic"])");
+  const CliRun r = shadowbench("", "validate " + config);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  const std::string build = std::filesystem::absolute(dir / "build").string();
+  EXPECT_TRUE(has(r.output, build +
+                                "/pcss_stochastic.so (new-technique's build of it) would "
+                                "provide it: export SHADOWBENCH_PLUGIN_PATH=" +
+                                build))
+      << r.output;
+}
+
 TEST(Hints, AnUnknownTechniqueNamesTheNearestAndSaysThePluginPathIsNotSet) {
   const auto dir = test_folder("sb_hints_");
   const std::string config = small_config(dir, R"(["none", "pcf_bx"])");
@@ -44,6 +105,9 @@ TEST(Hints, AnUnknownTechniqueNamesTheNearestAndSaysThePluginPathIsNotSet) {
   EXPECT_TRUE(has(r.output, "did you mean pcf_box?")) << r.output;
   EXPECT_TRUE(has(r.output, "$SHADOWBENCH_PLUGIN_PATH is not set: only the plugins in "))
       << r.output;
+  // From a build tree, the doc is the source's (an install names its own copy:
+  // tests/install/install_and_relocate.py).
+  EXPECT_TRUE(has(r.output, " were loaded (docs/install.md, \"Plugin folders\")")) << r.output;
 }
 
 TEST(Hints, APluginFolderWithNoPluginIsAWarningAndTheUnknownTechniqueSaysSo) {

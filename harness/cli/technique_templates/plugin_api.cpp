@@ -1,8 +1,10 @@
-// The default template of `shadowbench new-technique` (--family plugin_api):
-// a shadow map from the light's centre with k×k percentage-closer filtering,
+// The bare template of `shadowbench new-technique --bare` (--family
+// plugin_api): a shadow map from the light's centre with k×k percentage-closer filtering,
 // written against the plugin API alone (core/, gl/, plugin/), with its own
 // light frustum and depth pass; its config runs it beside shadow_map, pcf_box
-// and pcss. tests/out_of_tree/scaffold_build_and_run.py builds what it writes
+// and pcss. It declares opaque_casters (its depth pass ignores alpha masks),
+// so alpha-masked scenes skip it: not the default, which is the kit's
+// (shadow_map.cpp). tests/out_of_tree/scaffold_build_and_run.py builds what it writes
 // against an installed prefix and runs it.
 #include <string>
 
@@ -226,9 +228,12 @@ shadowbench_add_plugin(@NAME@ @NAME@.cpp)
       {"README.md",
        R"FILE(# @NAME@
 
-A shadow technique plugin for shadowbench, written by `shadowbench new-technique`:
-a shadow map from the light's centre with k×k percentage-closer filtering,
-using the plugin API alone. Edit `@NAME@.cpp`; `@NAME@.json` runs it beside
+A shadow technique plugin for shadowbench, written by
+`shadowbench new-technique --bare`: a shadow map from the light's centre with
+k×k percentage-closer filtering, using the plugin API alone. It declares
+`opaque_casters` (its depth pass ignores alpha masks), so scenes with
+alpha-masked casters (foliage) skip it; `shadowbench new-technique` without
+`--bare` writes one on the shadow-map kit, which honours them. Edit `@NAME@.cpp`; `@NAME@.json` runs it beside
 its nearest built-ins (shadow_map, pcf_box, pcss) on a small sphere grid.
 
 )FILE" + std::string(kBuildLoadRun) +

@@ -1,4 +1,4 @@
-// The shadow_map template of `shadowbench new-technique` (--family
+// The default template of `shadowbench new-technique` (--family
 // shadow_map): the installed example docs/examples/my_pcf under a new name,
 // a k×k PCF (the kit's pcf_grid) on the shadow-map kit (shadowbench::shadow_kit), so that it
 // starts with the built-ins' own light frustum, depth pass, biases, culling
@@ -26,7 +26,7 @@ TechniqueTemplate shadow_map_template() {
       {"README.md", R"FILE(# @NAME@
 
 A shadow technique plugin for shadowbench, written by
-`shadowbench new-technique --family shadow_map`: a hard shadow map from the
+`shadowbench new-technique`: a hard shadow map from the
 light's centre filtered by a k×k box of depth comparisons, on the shadow-map
 kit (`shadowbench::shadow_kit`, headers `common/*.h`). The kit gives it the
 built-in `pcf_box`'s light frustum, depth pass, biases, culling and map
