@@ -1,6 +1,7 @@
 #include "common/map_lookup.h"
 
 #include "gl/debug.h"
+#include "gl/glsl_pieces.h"
 
 namespace sb::techniques {
 
@@ -70,9 +71,13 @@ void main() {
 
 MapLookupPass::MapLookupPass(const std::string& name, const std::string& lit_fraction_glsl,
                              bool linear_compare)
-    : program_(name, {gl::kFullscreenVertexShader, "",
-                      std::string(kLookupHead) + kLightLookupGlsl + kLightDepthGlsl +
-                          lit_fraction_glsl + kLookupMain}),
+    // The technique's GLSL is source string 1: a compile error names its
+    // own lines ("1:12(3): error"), not the assembled shader's.
+    : program_(name,
+               {gl::kFullscreenVertexShader, "",
+                gl::assemble_glsl({{std::string(kLookupHead) + kLightLookupGlsl + kLightDepthGlsl},
+                                   {lit_fraction_glsl, 1, "lit_fraction"},
+                                   {kLookupMain}})}),
       compare_sampler_(gl::make_sampler(linear_compare, /*compare=*/true, /*border=*/1.0f)),
       raw_sampler_(gl::make_sampler(/*linear=*/false, /*compare=*/false, /*border=*/1.0f)) {}
 
