@@ -9,10 +9,12 @@
 #include "cli/command_line.h"
 #include "cli/commands.h"
 #include "cli/options.h"
+#include "cli/reproduce_command.h"
 #include "cli/shared.h"
 #include "config/experiment.h"
 #include "core/error.h"
 #include "gl/pass_timer.h"
+#include "plan/job_selection.h"
 #include "plan/shards.h"
 #include "results/noisy_jobs.h"
 #include "results/report.h"
@@ -56,6 +58,7 @@ struct RunArgs {
   std::optional<double> job_timeout;  // seconds, over limits.job_seconds
   std::string shard;                  // K/N
   std::string take_turns;             // IN_FD,OUT_FD of compare-builds' turn pipes
+  std::vector<std::string> only;      // job id globs (plan/job_selection.h)
 };
 
 int cmd_run(const RunArgs& a) {
@@ -86,6 +89,10 @@ int cmd_run(const RunArgs& a) {
   o.job_seconds = a.job_timeout;
   o.session = session;
   o.retime = a.retime;
+  o.only = plan::JobSelection(a.only);
+  o.reproduce_command = [arguments = own_arguments(), dir = o.run_dir](const std::string& id) {
+    return arguments.empty() ? std::string() : reproduce_command(arguments, dir, id);
+  };
   if (o.isolation == Isolation::None && a.job_timeout)
     std::fprintf(stderr,
                  "shadowbench: warning: --job-timeout is enforced only with --isolation group or "
@@ -119,6 +126,7 @@ int cmd_run(const RunArgs& a) {
   if (s.retimed > 0) std::printf(" (%d of the ok re-timed, their errors kept)", s.retimed);
   if (s.crashed + s.timed_out > 0)
     std::printf(" (of the failed, %d crashed and %d timed out)", s.crashed, s.timed_out);
+  if (s.unselected > 0) std::printf(" (%d jobs left out by --only)", s.unselected);
   if (s.bad_records > 0)
     std::printf(" (%d earlier record files could not be trusted and were rerun)", s.bad_records);
   if (s.respecified > 0)
@@ -174,6 +182,9 @@ void add_run_command(CommandLine& cl) {
                   "run folders with `merge`")
       ->type_name("K/N")
       ->check(parser_check([](const std::string& text) { (void)parse_shard(text); }));
+  add_only(run, a->only,
+           "run only the jobs whose id matches this glob (repeat for more); the run folder's "
+           "other records stay and the reports include them. `plan --only` lists what it selects");
   run->add_option("--take-turns", a->take_turns, "IN_FD,OUT_FD of compare-builds' turn pipes")
       ->group("");  // internal: compare-builds runs both builds with it
 }

@@ -13,6 +13,7 @@
 #include "cli/shared.h"
 #include "config/experiment.h"
 #include "core/error.h"
+#include "plan/job_selection.h"
 #include "plan/plan.h"
 #include "plan/plan_json.h"
 #include "plan/shards.h"
@@ -42,15 +43,20 @@ namespace {
 struct ValidateArgs {
   explicit ValidateArgs(std::string command) : experiment(std::move(command)) {}
   ExperimentArgs experiment;
-  int shards = 1;          // plan: N
-  bool plan_json = false;  // plan: the plan as JSON (plan/plan_json.h)
+  int shards = 1;                 // plan: N
+  bool plan_json = false;         // plan: the plan as JSON (plan/plan_json.h)
+  std::vector<std::string> only;  // plan: job id globs (plan/job_selection.h)
 };
 
 int cmd_validate(const ValidateArgs& a, bool show_plan) {
   const Registry r = load_registry(a.experiment.plugins);
   const Experiment e = load_checked_experiment(a.experiment, r);
   const Plan plan = make_plan(e, a.shards);
-  if (show_plan && a.plan_json) {
+  const plan::JobSelection only(a.only);
+  only.check(plan);
+  if (show_plan && !only.all()) {
+    std::printf("%s", describe_selection(e, plan, only).c_str());
+  } else if (show_plan && a.plan_json) {
     std::printf("%s\n", json_text(plan_to_json(e, plan), 2).c_str());
   } else if (show_plan) {
     std::printf("%s", describe_plan(e, plan).c_str());
@@ -116,9 +122,13 @@ void add_plan_command(CommandLine& cl) {
                    "runs them one by one")
       ->type_name("N")
       ->check(whole_check(1, 10000, "expected a whole number of shards in [1, 10000]"));
-  plan->add_flag("--json", a->plan_json,
-                 "print the plan as JSON instead (every job's outcome, cost and shard; the "
-                 "plan.json `run` writes, docs/results.md)");
+  CLI::Option* json = plan->add_flag("--json", a->plan_json,
+                                     "print the plan as JSON instead (every job's outcome, cost "
+                                     "and shard; the plan.json `run` writes, docs/results.md)");
+  add_only(plan, a->only,
+           "list instead the jobs whose id matches this glob (repeat for more), as `run --only` "
+           "selects them: each one's outcome, id and technique variant")
+      ->excludes(json);
 }
 
 }  // namespace sb::cli

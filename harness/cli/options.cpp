@@ -138,4 +138,12 @@ void add_metric(CLI::App* sub, std::string& metric, const std::string& doc) {
   sub->add_option("--metric", metric, doc)->type_name("PATH");
 }
 
+CLI::Option* add_only(CLI::App* sub, std::vector<std::string>& patterns, const std::string& doc) {
+  // One pattern per --only, so that it never takes the CONFIG after it.
+  return sub->add_option("--only", patterns, doc)
+      ->type_name("PATTERN")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
 }  // namespace sb::cli

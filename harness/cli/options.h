@@ -47,5 +47,7 @@ void add_reference_options(CLI::App* sub, ReferenceArgs& reference);
 void add_turn_block(CLI::App* sub, int& turn_block);
 // --metric PATH: compare, compare-builds, report, history report.
 void add_metric(CLI::App* sub, std::string& metric, const std::string& doc);
+// --only PATTERN, once or more: the jobs whose id matches (plan/job_selection.h).
+CLI::Option* add_only(CLI::App* sub, std::vector<std::string>& patterns, const std::string& doc);
 
 }  // namespace sb::cli

@@ -73,6 +73,24 @@ std::string bounded_text(std::string_view text, std::size_t max_chars) {
   return out;
 }
 
+std::string one_line_text(std::string_view text, std::size_t max_chars) {
+  std::string joined;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    std::size_t end = text.find_first_of("\r\n", begin);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(begin, end - begin);
+    const std::size_t first = line.find_first_not_of(" \t");
+    if (first != std::string_view::npos) {
+      line = line.substr(first, line.find_last_not_of(" \t") - first + 1);
+      if (!joined.empty()) joined += " / ";
+      joined.append(line);
+    }
+    begin = end + 1;
+  }
+  return bounded_text(joined, max_chars);
+}
+
 std::string quoted_text(std::string_view text, std::size_t max_chars) {
   return "'" + bounded_text(text, max_chars) + "'";
 }

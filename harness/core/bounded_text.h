@@ -25,6 +25,12 @@ inline constexpr std::size_t kMessageChars = 2000;
 
 std::string bounded_text(std::string_view text, std::size_t max_chars = kQuoteChars);
 
+// A message as one row of a table (a failed job's reason in summary.md,
+// results.csv and the HTML tables): its lines joined by " / ", blank lines
+// and the blanks at either end of each line left out (a compiler's log ends
+// in a newline), then bounded_text.
+std::string one_line_text(std::string_view text, std::size_t max_chars = kMessageChars);
+
 // bounded_text in single quotes: 'name'.
 std::string quoted_text(std::string_view text, std::size_t max_chars = kQuoteChars);
 

@@ -7,6 +7,8 @@
 
 #include "core/error.h"
 #include "gl/debug.h"
+#include "gl/glsl_pieces.h"
+#include "gl/shader_failures.h"
 
 namespace sb::gl {
 
@@ -36,7 +38,18 @@ GLuint compile(const std::string& program, GLenum stage, const std::string& sour
     // The driver may also have queued the error as a debug message: it is in
     // this exception, and must not fail the next unrelated throw_if_errors.
     (void)gl::take_debug_errors();
-    throw JobError("shader '" + program + "' (" + kind + ") failed to compile: " + log.data());
+    note_failed_shader({program, kind, source});
+    std::string message = "shader '" + program + "' (" + kind + ") failed to compile: ";
+    message += log.data();
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
+      message.pop_back();
+    // Which numbers the log's "N:line(column)" count in.
+    if (const auto strings = glsl_source_strings(source); !strings.empty()) {
+      message += " (source strings: 0 is the assembled shader";
+      for (const std::string& piece : strings) message += ", " + piece + " as written";
+      message += ")";
+    }
+    throw JobError(message);
   }
   return s;
 }

@@ -144,7 +144,8 @@ struct ImagesRecord {
             {"",
              "when `visibility_check` found pixels: those pixels of the technique's V (before "
              "the attached-shadow mask) by kind, an 8-bit RGB PNG: red NaN or infinite, blue "
-             "below 0, yellow above 1, black the rest; absent from older records"});
+             "below 0, yellow above 1, black the rest; written even with `run --no-images`; "
+             "absent from older records"});
     v.field("masks", &I::masks,
             {"",
              "by region of `metrics.visibility`: an 8-bit PNG, 255 where the region "
@@ -274,7 +275,10 @@ void JobRecord::describe(V& v) {
       [](const J& r) { return std::optional<nlohmann::json>(to_string(r.status)); },
       [](J& r, const Fields& f) { r.status = status_from(f); });
   v.field("reason", &J::reason,
-          {"", "why skipped (the scene does not fit the technique) or failed (the error)"});
+          {"",
+           "why skipped (the scene does not fit the technique) or failed (the error), on "
+           "one line; a longer message or one of several lines is cut and names "
+           "`jobs/<job_id>/failure.txt`, which holds it whole"});
   v.field("started_at", &J::started_at, {"", "UTC ISO 8601"});
   v.field("finished_at", &J::finished_at, {"", "UTC ISO 8601"});
   v.field("duration_s", &J::duration_s,

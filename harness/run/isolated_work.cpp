@@ -21,6 +21,7 @@
 #include "core/names.h"
 #include "run/child_process.h"
 #include "run/io_trace.h"
+#include "run/phase_board.h"
 #include "store/results_store.h"
 
 namespace sb::run {
@@ -50,7 +51,8 @@ constexpr const char* kHeard = "heard\n";
 // answers "await" on `reply_fd`.
 class PipeEvents final : public RunEvents {
  public:
-  PipeEvents(int fd, int reply_fd) : fd_(fd), reply_fd_(reply_fd) {}
+  PipeEvents(int fd, int reply_fd, PhaseBoard& phases)
+      : fd_(fd), reply_fd_(reply_fd), phases_(phases) {}
   void log(const std::string& line) override { send({{"event", "log"}, {"line", line}}); }
   void backend(const GlIdentity& gl) override {
     send({{"event", "backend"},
@@ -68,6 +70,7 @@ class PipeEvents final : public RunEvents {
     send({{"event", "phase"}, {"scene", scene}, {"resolution", resolution}, {"what", what}});
   }
   void job_started(const JobRecord& base) override {
+    phases_.set("");
     send({{"event", "started"}, {"record", base.to_json()}});
   }
   void job_finished(JobRecord record) override {
@@ -92,6 +95,7 @@ class PipeEvents final : public RunEvents {
     if (began != 0) write_trace({{"await", "the parent's answer", began, monotonic_ns()}});
   }
   void fatal(const std::string& message) { send({{"event", "fatal"}, {"message", message}}); }
+  void job_phase(std::string_view phase) override { phases_.set(phase); }
 
  private:
   void send(const json& j) const {
@@ -99,6 +103,7 @@ class PipeEvents final : public RunEvents {
       throw std::runtime_error("the parent process stopped listening");
   }
   int fd_, reply_fd_;
+  PhaseBoard& phases_;
 };
 
 // The channel on which the parent answers the child's "await": a socket
@@ -172,7 +177,7 @@ IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const Emb
   const auto fail = [&](JobRecord r, const std::string& reason, const ChildState& c,
                         bool timed_out) {
     r.status = JobStatus::Failed;
-    r.reason = core::bounded_text(reason, core::kMessageChars);
+    r.reason = core::one_line_text(reason, core::kMessageChars);
     r.child_stderr.assign(c.stderr_tail.begin(), c.stderr_tail.end());
     events.job_finished(std::move(r));
     ++(timed_out ? outcome.timed_out : outcome.crashed);
@@ -182,9 +187,10 @@ IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const Emb
     ResolutionWork chunk = work;
     chunk.jobs = remaining;
     ReplyChannel replies;
+    PhaseBoard phases;
     ChildProcess child = ChildProcess::start([&](int fd) {
       replies.keep_child_end();
-      PipeEvents pipe(fd, replies.child_end());
+      PipeEvents pipe(fd, replies.child_end(), phases);
       std::optional<JobExecutor> executor;
       try {
         executor.emplace(e, o, embree, pipe);
@@ -299,10 +305,20 @@ IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const Emb
     if (c.current) {
       JobRecord r = *c.current;
       r.duration_s = std::chrono::duration<double>(Clock::now() - c.current_started).count();
-      const std::string reason =
-          timed_out ? "timed out after " + seconds_text(limits.job_seconds) +
-                          " s (limits.job_seconds, run --job-timeout); its process was killed"
-                    : "crashed: " + how;
+      // Where it was, and how to run it where a debugger can see it.
+      const std::string phase = phases.read();
+      const std::string in = phase.empty() ? "" : " in " + phase;
+      std::string reason;
+      if (timed_out)
+        reason = "timed out after " + seconds_text(limits.job_seconds) +
+                 " s (limits.job_seconds, run --job-timeout)";
+      else
+        reason = "crashed";
+      reason += in;
+      reason += timed_out ? "; its process was killed" : ": " + how;
+      if (o.reproduce_command)
+        if (const std::string command = o.reproduce_command(r.job_id); !command.empty())
+          reason += "; reproduce in-process: " + command;
       const std::string id = r.job_id;
       fail(std::move(r), reason, c, timed_out);
       std::erase_if(remaining, [&](const PlannedJob* j) { return j->id == id; });

@@ -9,11 +9,13 @@
 #include "core/bounded_text.h"
 #include "gl/debug.h"
 #include "gl/objects.h"
+#include "gl/shader_failures.h"
 #include "metrics/regions.h"
 #include "plan/plan.h"
 #include "plugin/need_data.h"
 #include "plugin/needs.h"
 #include "record/job_record.h"
+#include "run/failure_files.h"
 #include "run/gbuffer.h"
 #include "run/injected_delay.h"
 #include "run/job_identity.h"
@@ -163,7 +165,7 @@ class JobExecutor::Impl {
                     const TechniqueVariant& tv, JobStatus status, const std::string& reason) {
     JobRecord r = base_record(sv, st, res, tv);
     r.status = status;
-    r.reason = core::bounded_text(reason, core::kMessageChars);
+    r.reason = core::one_line_text(reason, core::kMessageChars);
     finish(std::move(r));
   }
 
@@ -237,6 +239,7 @@ class JobExecutor::Impl {
       events_.job_started(r);
       const auto t0 = std::chrono::steady_clock::now();
       PhasesRecord phases;
+      (void)gl::take_failed_shaders();  // another job's, or the shared passes'
       try {
         run_job(setting, tv, uploaded.gpu_bytes_held_for(st.needs.at(i)), r, phases,
                 kept != nullptr);
@@ -247,7 +250,9 @@ class JobExecutor::Impl {
         r.status = JobStatus::Ok;
       } catch (const std::exception& ex) {
         r.status = JobStatus::Failed;
-        r.reason = core::bounded_text(ex.what(), core::kMessageChars);
+        // One table row; a compiler's log and the shaders it counts lines
+        // of go to files beside the job's images.
+        r.reason = failure_reason(o_.run_dir, r.job_id, ex.what(), gl::take_failed_shaders());
         r.set_aside_failed_measurements();  // a failed job carries no figures
         gl::take_debug_errors();
       }

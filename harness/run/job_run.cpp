@@ -73,7 +73,9 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv,
   // the harness holds for its needs was made before, and is added to it.
   gl::AllocationWindow allocations;
   std::unique_ptr<Technique> technique = in_technique_phase(who, "prepare", [&] {
+    s.events.job_phase("create() (the plugin's constructor)");
     std::unique_ptr<Technique> t = tv.info->create(tv.params);
+    s.events.job_phase("prepare()");
     t->prepare(s.frame.in);
     gl::throw_if_errors(tv.name + " prepare");
     glFinish();  // prepare's GL work in prepare's time, not the first frame's
@@ -91,12 +93,14 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv,
                                    : nullptr;
   TechniqueFrames frames(s.frame, *technique, who, s.control, delay, s.timing_source,
                          [&] { s.o.take_turn(tv.name); });
+  frames.tell_phases(s.events);
   r.timing = time_frames(frames, schedule_of(s, tv));
   r.technique.set_gpu_bytes(allocations.peak_bytes(), need_gpu_bytes);
   phases.frames = lap.seconds();
   if (delay != nullptr) r.warnings.push_back(delay->describe());
   if (time_only) return;
 
+  s.events.job_phase("read-back");
   ImageF visibility = in_technique_phase(who, "read-back", [&] {
     ImageF v = s.frame.targets.read_visibility();
     gl::throw_if_errors(tv.name + " read-back");
@@ -105,9 +109,11 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv,
   const VisibilityCheckRecord check = metrics::check_visibility(visibility);
   r.visibility_check = check;
   const bool invalid = check.nonfinite + check.below_0 + check.above_1 > 0;
-  // V as checked, before the attached-shadow mask hides some offending pixels.
-  const ImageF checked = invalid && s.o.write_images ? visibility : ImageF{};
+  // The offending pixels of V as checked, before the attached-shadow mask
+  // hides some: written even with --no-images, as the failure's evidence.
+  if (invalid) r.images.add(write_invalid_visibility(s.o.run_dir, r.job_id, visibility));
   const MeasurementBasis& b = s.basis;
+  s.events.job_phase("metrics");
   metrics::apply_attached_shadow(b.regions.attached, visibility);
   // Shaded from the same V as the metrics, as the reference is: untimed.
   const ImageF shaded = shade(s.frame, visibility);
@@ -126,10 +132,10 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv,
     if (auto warning = metrics::noise_warning(*r.metrics, b.ref.penumbra_rms_std_error))
       r.warnings.push_back(*warning);
   phases.measure = lap.seconds();
+  s.events.job_phase("images");
   if (s.o.write_images)
-    r.images = write_job_images(s.o.run_dir, r.job_id, visibility, shaded, b.ref.visibility,
-                                b.regions, flip_map);
-  if (!checked.data.empty()) r.images.add(write_invalid_visibility(s.o.run_dir, r.job_id, checked));
+    r.images.add(write_job_images(s.o.run_dir, r.job_id, visibility, shaded, b.ref.visibility,
+                                  b.regions, flip_map));
   phases.images = lap.seconds();
   // Metrics and images are kept for inspection (the executor moves the
   // figures into the record's "partial"), but the job fails.
@@ -139,6 +145,7 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv,
                    " above 1 (tolerance 1e-5)");
   // A broken job has no stability figures: it is broken.
   if (s.stability != nullptr) {
+    s.events.job_phase("stability frames");
     r.stability = s.stability->measure(tv, *technique);
     gl::throw_if_errors(tv.name + " stability frames");
     phases.stability = lap.seconds();

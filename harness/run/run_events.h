@@ -5,6 +5,7 @@
 // JSON lines (run/isolated_work.h), so that a child that dies mid-job
 // leaves the parent knowing which job it was in and what it had measured.
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "record/job_record.h"
@@ -39,6 +40,10 @@ class RunEvents {
   // none of it overlaps a timed frame (docs/robustness.md). In one process
   // every event is done when its call returns.
   virtual void await_listener() {}
+  // The phase of the started job it enters ("prepare()", a frame's
+  // "render()", "read-back", ...), for the reason of a job whose process
+  // dies in it. Costs no I/O: it is said between timed frames.
+  virtual void job_phase(std::string_view /*phase*/) {}
 };
 
 }  // namespace sb::run

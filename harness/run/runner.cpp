@@ -180,22 +180,27 @@ class Runner {
     // every job's outcome, cost and shard. Children are forked, so they read
     // the same PlannedJobs.
     plan_ = make_plan(e_, o_.shard.count);
+    o_.only.check(plan_);
     {
       const ParentIoSpan io("plan");
       write_file_atomically((std::filesystem::path(store_.dir()) / "plan.json").string(),
                             json_text(plan_to_json(e_, plan_), 2) + "\n", "plan.json: ");
     }
-    // This shard's jobs (all of them unless --shard), in plan order.
+    // This shard's jobs (all of them unless --shard), in plan order; of
+    // them, the ones --only selects run. The records keep the shard's order.
     std::vector<const PlannedJob*> jobs;
     std::vector<std::string> order;
     for (const PlannedJob& j : plan_.jobs)
       if (j.shard == o_.shard.index) {
-        jobs.push_back(&j);
+        if (o_.only.selects(j.id))
+          jobs.push_back(&j);
+        else
+          ++summary_.unselected;
         order.push_back(j.id);
       }
     store_.set_order(order);
-    progress_ = Progress(stderr, !o_.quiet && isatty(fileno(stderr)), order.size());
-    StoreEvents events(store_, progress_, summary_, o_.quiet, order.size());
+    progress_ = Progress(stderr, !o_.quiet && isatty(fileno(stderr)), jobs.size());
+    StoreEvents events(store_, progress_, summary_, o_.quiet, jobs.size());
     report_untrusted_records();
     slow_parent_io_ns();  // a malformed test-only variable is bad input before any job
     // A run killed between a record and results.jsonl left the two apart.

@@ -15,6 +15,7 @@
 #include "core/names.h"
 #include "gl/context.h"
 #include "gl/pass_timer.h"
+#include "plan/job_selection.h"
 #include "plan/shards.h"
 #include "plugin/registry.h"
 #include "record/session_record.h"
@@ -57,6 +58,12 @@ struct RunOptions {
   std::optional<double> job_seconds, setup_seconds;
   // Only this shard's jobs (plan/shards.h); 1/1 runs them all.
   plan::ShardSpec shard;
+  // `run --only`: of those, only the selected jobs run. The others' records
+  // in the run folder stay as they are, and the reports include them.
+  plan::JobSelection only;
+  // The command that reruns one job in-process (`run --only ID --isolation
+  // none`), for a crashed or hung job's reason; empty: none is suggested.
+  std::function<std::string(const std::string& job_id)> reproduce_command;
   // What every record of this run names as its session; unset: a new one
   // when the run starts (run/session_info.h).
   std::optional<record::SessionRecord> session;
@@ -80,6 +87,7 @@ struct RunSummary {
   int crashed = 0;      // failed jobs whose process died under them (isolation)
   int timed_out = 0;    // failed jobs killed at their time limit (isolation)
   int bad_records = 0;  // record files of an earlier run that could not be trusted
+  int unselected = 0;   // jobs of the shard that --only left out
 };
 
 RunSummary run_experiment(const config::Experiment& experiment, const RunOptions& options);

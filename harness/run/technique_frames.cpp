@@ -86,12 +86,14 @@ TechniqueFrames::TechniqueFrames(const FrameSetup& f, Technique& technique,
       take_turn_(std::move(take_turn)) {}
 
 gl::PassTimer::Frame TechniqueFrames::job_frame(const std::string& name, gl::PassDetail detail) {
+  if (events_ != nullptr) events_->job_phase("render(), " + name);
   return in_technique_phase(technique_name_, "render", [&] {
     return render_frame(timer_, technique_, name, detail, f_, delay_);
   });
 }
 
 gl::PassTimer::Frame TechniqueFrames::control_frame(const std::string& name) {
+  if (events_ != nullptr) events_->job_phase("the control's render(), " + name);
   return render_frame(timer_, *control_->technique, name, gl::PassDetail::Coarse, f_, nullptr);
 }
 

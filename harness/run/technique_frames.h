@@ -13,6 +13,7 @@
 #include "run/frame_schedule.h"
 #include "run/gbuffer.h"
 #include "run/injected_delay.h"
+#include "run/run_events.h"
 
 namespace sb::run {
 
@@ -58,6 +59,8 @@ class TechniqueFrames : public FrameTarget {
   gl::PassTimer::Frame job_frame(const std::string& name, gl::PassDetail detail) override;
   gl::PassTimer::Frame control_frame(const std::string& name) override;
   void take_turn() override { take_turn_(); }
+  // Says each frame's phase ("render(), <frame>") to `events` before it.
+  void tell_phases(RunEvents& events) { events_ = &events; }
 
  private:
   const FrameSetup& f_;
@@ -67,6 +70,7 @@ class TechniqueFrames : public FrameTarget {
   const InjectedDelay* delay_;
   gl::PassTimer timer_;
   std::function<void()> take_turn_;
+  RunEvents* events_ = nullptr;
 };
 
 }  // namespace sb::run

@@ -1,10 +1,11 @@
 #pragma once
 // Percentage-closer filtering (Reeves et al. 1987) as GLSL functions a
 // lit_fraction() may call: the mean of depth comparisons (shadow_tap, 1 lit,
-// 0 shadowed) over a square grid of taps or over a disk of taps. Prepend
-// kPcfGlsl to the variant's GLSL (MapLookupPass / SingleMapTechnique,
-// common/map_lookup.h), before the code that calls it:
-//   SingleMapTechnique(p, "mine", std::string(kPcfGlsl) + kMyLitFraction, ...)
+// 0 shadowed) over a square grid of taps or over a disk of taps. Pass
+// kPcfGlsl as the lookup's kit GLSL (MapLookupPass / SingleMapTechnique,
+// common/map_lookup.h), so that it comes before the code that calls it and
+// a compile error in your own GLSL names your own line:
+//   SingleMapTechnique(p, "mine", kMyLitFraction, false, kPcfGlsl)
 //
 // A grid is given by its HALF SIDE h (side 2h+1, (2h+1)² taps); a disk by
 // its tap COUNT and its unit-disk offsets (common/sample_disks.h). Kernel

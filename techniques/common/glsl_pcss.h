@@ -11,7 +11,8 @@
 // distance d. They are full WIDTHS; a PCF kernel over the penumbra takes
 // half of one as its RADIUS (common/glsl_pcf.h), as pcss does:
 //   pcf_grid_radius(t, h, 0.5 · penumbra_width_uv(...)).
-// Prepend kPcssGlsl (and kPcfGlsl for the filter) to the variant's GLSL.
+// Pass kPcssGlsl (and kPcfGlsl for the filter) as the lookup's kit GLSL
+// (common/map_lookup.h), as pcss does.
 //
 // What the kit guarantees here (shadowbench::shadow_kit, installed):
 //   in     the map lookup's prelude (depth_map, view_depth, receiver_gradient);

@@ -1,8 +1,8 @@
 #pragma once
 // Per-pixel rotation of a tap pattern, as GLSL a lit_fraction() may call:
 // a different rotation in neighbouring pixels turns a small disk's banding
-// into noise of the pattern's own scale. Prepend kRotationNoiseGlsl to the
-// variant's GLSL, before the code that calls it.
+// into noise of the pattern's own scale. Pass kRotationNoiseGlsl with the
+// lookup's kit GLSL (common/map_lookup.h), before the code that calls it.
 //
 // Interleaved gradient noise (Jimenez 2014, "Next generation post processing
 // in Call of Duty: Advanced Warfare"): a closed form of the pixel's

@@ -2,6 +2,7 @@
 
 #include "common/map_lookup_glsl.h"
 #include "gl/debug.h"
+#include "gl/glsl_pieces.h"
 
 namespace sb::techniques {
 
@@ -41,10 +42,14 @@ void main() {
 }  // namespace
 
 MapLookupPass::MapLookupPass(const std::string& name, const std::string& lit_fraction_glsl,
-                             bool linear_compare)
+                             bool linear_compare, const std::string& kit_glsl)
+    // The technique's GLSL is source string 1: a compile error names its
+    // own lines ("1:12(3): error"), not the assembled shader's.
     : program_(name, {gl::kFullscreenVertexShader, "",
-                      std::string("#version 450 core") + kMapLookupInputsGlsl + kLightLookupGlsl +
-                          kLightDepthGlsl + lit_fraction_glsl + kLookupMain}),
+                      gl::assemble_glsl({{std::string("#version 450 core") + kMapLookupInputsGlsl +
+                                          kLightLookupGlsl + kLightDepthGlsl + kit_glsl},
+                                         {lit_fraction_glsl, 1, "lit_fraction"},
+                                         {kLookupMain}})}),
       compare_sampler_(gl::make_sampler(linear_compare, /*compare=*/true, /*border=*/1.0f)),
       raw_sampler_(gl::make_sampler(/*linear=*/false, /*compare=*/false, /*border=*/1.0f)) {}
 
@@ -76,15 +81,17 @@ void MapLookupPass::draw(const FrameInputs& in, const LightFrustum& frustum,
 }
 
 SingleMapTechnique::SingleMapTechnique(const Params& p, std::string name,
-                                       std::string lit_fraction_glsl, bool linear_compare)
+                                       std::string lit_fraction_glsl, bool linear_compare,
+                                       std::string kit_glsl)
     : name_(std::move(name)),
       lit_fraction_glsl_(std::move(lit_fraction_glsl)),
       linear_compare_(linear_compare),
+      kit_glsl_(std::move(kit_glsl)),
       settings_(depth_map_settings(p)) {}
 
 void SingleMapTechnique::prepare(const FrameInputs& /*in*/) {
   map_ = DepthMap(settings_.size, settings_.depth_format);
-  lookup_ = MapLookupPass(name_ + "_lookup", lit_fraction_glsl_, linear_compare_);
+  lookup_ = MapLookupPass(name_ + "_lookup", lit_fraction_glsl_, linear_compare_, kit_glsl_);
   set_uniforms(lookup_.program());
   gl::throw_if_errors(name_ + " prepare");
 }

@@ -52,8 +52,11 @@ class MapLookupPass {
  public:
   MapLookupPass() = default;
   // `linear_compare`: shadow_map comparisons are bilinear (hardware 2×2 PCF).
+  // `kit_glsl`: kit pieces lit_fraction calls (kPcfGlsl, kPcssGlsl, ...),
+  // put before it, so that a compile error in lit_fraction_glsl names its
+  // own line ("1:12(3): error"), as if the pieces were included.
   MapLookupPass(const std::string& name, const std::string& lit_fraction_glsl,
-                bool linear_compare = false);
+                bool linear_compare = false, const std::string& kit_glsl = {});
 
   const gl::Program& program() const { return program_; }
   // Draws into in.visibility_framebuffer (blending is the caller's choice).
@@ -76,8 +79,9 @@ class MapLookupPass {
 // the depth map.
 class SingleMapTechnique : public plugin::Technique {
  public:
+  // `kit_glsl` as MapLookupPass takes it: the kit pieces lit_fraction calls.
   SingleMapTechnique(const core::Params& p, std::string name, std::string lit_fraction_glsl,
-                     bool linear_compare);
+                     bool linear_compare, std::string kit_glsl = {});
   void prepare(const plugin::FrameInputs& in) override;
   void render(const plugin::FrameInputs& in, gl::PassTimer& timer) override;
 
@@ -97,6 +101,7 @@ class SingleMapTechnique : public plugin::Technique {
   std::string name_;
   std::string lit_fraction_glsl_;
   bool linear_compare_;
+  std::string kit_glsl_;
   DepthMapSettings settings_;
   DepthMap map_;
   MapLookupPass lookup_;

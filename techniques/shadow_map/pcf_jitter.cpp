@@ -42,9 +42,8 @@ float lit_fraction(vec3 t) {
 class JitteredPcf final : public SingleMapTechnique {
  public:
   explicit JitteredPcf(const Params& p)
-      : SingleMapTechnique(p, "pcf_jitter",
-                           std::string(kPcfGlsl) + kRotationNoiseGlsl + kJitteredLitFraction,
-                           /*linear_compare=*/false),
+      : SingleMapTechnique(p, "pcf_jitter", kJitteredLitFraction, /*linear_compare=*/false,
+                           std::string(kPcfGlsl) + kRotationNoiseGlsl),
         offsets_(jittered_disk(p.get_int("taps"), unsigned(p.get_int("seed")))),
         early_out_(p.get_int("early_out_taps")),
         radius_(p.get_float("radius")),

@@ -46,8 +46,8 @@ float lit_fraction(vec3 t) {
 class Pcss final : public SingleMapTechnique {
  public:
   explicit Pcss(const Params& p)
-      : SingleMapTechnique(p, "pcss", std::string(kPcssGlsl) + kPcfGlsl + kPcssLitFraction,
-                           /*linear_compare=*/true),
+      : SingleMapTechnique(p, "pcss", kPcssLitFraction, /*linear_compare=*/true,
+                           std::string(kPcssGlsl) + kPcfGlsl),
         search_radius_(p.get_int("search_taps") / 2),
         filter_radius_(p.get_int("filter_taps") / 2),
         search_texels_(p.get_float("search_texels")),

@@ -60,5 +60,16 @@ TEST(BoundedText, AFiftyMegabyteInputCostsOnlyWhatIsKept) {
   EXPECT_EQ(b, std::string(kQuoteChars, '@') + "... (52428800 bytes in all)");
 }
 
+TEST(BoundedText, OneLineTextJoinsLinesForATableRow) {
+  // A compiler's log: a line break at its end, blank lines, indentation.
+  EXPECT_EQ(one_line_text("0:3(2): error: x\n"), "0:3(2): error: x");
+  EXPECT_EQ(one_line_text("first\r\n\n   second  \n\tthird\n\n"), "first / second / third");
+  EXPECT_EQ(one_line_text("one"), "one");
+  EXPECT_EQ(one_line_text("\n \n"), "");
+  // Then bounded as any message: cut, and other controls escaped.
+  EXPECT_EQ(one_line_text("ab\ncd", 4), "ab /... (7 bytes in all)");
+  EXPECT_EQ(one_line_text("a\x1b[2Jb"), "a\\x1B[2Jb");
+}
+
 }  // namespace
 }  // namespace sb::core
