@@ -8,12 +8,17 @@
 // Written as the same filter, its visibility equals pcf_box's for the same
 // parameters (shadowbench's tests check that the RMSEs agree to 1e-6).
 //
-// Per frame, in render() (timed):
+// It is a SingleMapTechnique (common/map_lookup.h), the kit's base for
+// every technique made of one depth map and one lookup (shadow_map, the PCF
+// kernels, pcss): it inherits prepare() and render(), and gives only its
+// lit_fraction() GLSL and its uniforms. What the inherited methods do:
+// per frame, in render() (timed):
 //   shadow_map — fit the light's frustum to the casters, render the depth map;
 //   lookup     — at every G-buffer pixel, k×k comparisons around its point in
 //                the map, one texel apart, averaged.
-// prepare() (untimed) only compiles and allocates: the frustum depends on
-// the light, so it is fitted in every frame (plugin/technique.h).
+// prepare() (untimed) only compiles the lookup, allocates the map and calls
+// set_uniforms(): the frustum depends on the light, so it is fitted in every
+// frame (plugin/technique.h).
 #include <memory>
 #include <string>
 #include <utility>
@@ -22,9 +27,8 @@
 #include "common/depth_pass.h"
 #include "common/glsl_pcf.h"
 #include "common/kernel.h"
-#include "common/light_frustum.h"
 #include "common/map_lookup.h"
-#include "gl/debug.h"
+#include "gl/program.h"
 #include "plugin/registry.h"
 
 namespace my_pcf {
@@ -48,36 +52,21 @@ float lit_fraction(vec3 t) {
 }
 )";
 
-class MyPcf final : public sb::Technique {
+class MyPcf final : public sb::techniques::SingleMapTechnique {
  public:
-  // Reads every parameter it declares, and makes no GL call.
+  // Reads every parameter it declares, and makes no GL call: the base reads
+  // the depth map's parameters; prepare() compiles the lookup from this GLSL.
   explicit MyPcf(const sb::Params& p)
-      : settings_(sb::techniques::depth_map_settings(p)), radius_(p.get_int("k") / 2) {}
+      : SingleMapTechnique(p, "my_pcf", std::string(sb::techniques::kPcfGlsl) + kBoxPcf,
+                           /*linear_compare=*/false),
+        radius_(p.get_int("k") / 2) {}
 
-  void prepare(const sb::FrameInputs& /*in*/) override {
-    map_ = sb::techniques::DepthMap(settings_.size, settings_.depth_format);
-    lookup_ = sb::techniques::MapLookupPass("my_pcf_lookup",
-                                            std::string(sb::techniques::kPcfGlsl) + kBoxPcf);
-    lookup_.program().set("radius", radius_);
-    sb::gl::throw_if_errors("my_pcf prepare");
-  }
-
-  void render(const sb::FrameInputs& in, sb::gl::PassTimer& timer) override {
-    sb::techniques::LightFrustum frustum;
-    {
-      auto pass = timer.scope("shadow_map");
-      frustum = sb::techniques::fit_light_frustum(*in.scene, in.scene->light.center);
-      map_.render(*in.gpu, frustum, settings_.cull, settings_.bias);
-    }
-    auto pass = timer.scope("lookup");
-    lookup_.draw(in, frustum, settings_, map_.texture());
-  }
+ protected:
+  // Uniforms that depend on the parameters only: set once, in prepare().
+  void set_uniforms(const sb::gl::Program& lookup) const override { lookup.set("radius", radius_); }
 
  private:
-  sb::techniques::DepthMapSettings settings_;
   int radius_;
-  sb::techniques::DepthMap map_;
-  sb::techniques::MapLookupPass lookup_;
 };
 
 sb::TechniqueInfo my_pcf_info() {

@@ -1,13 +1,13 @@
 // The default template of `shadowbench new-technique` (--family
 // shadow_map): the installed example docs/examples/my_pcf under a new name,
-// a k×k PCF (the kit's pcf_grid) on the shadow-map kit (shadowbench::shadow_kit), so that it
-// starts with the built-ins' own light frustum, depth pass, biases, culling
-// and map lookup, and equals pcf_box until its filter is changed. Its
-// .cpp, CMakeLists.txt and config are the example's files themselves
-// (generated/my_pcf_example.h, made by harness/cli/CMakeLists.txt);
-// only the README is written here, with the commands for this shadowbench.
-// tests/out_of_tree/scaffold_build_and_run.py builds it from an installed
-// prefix and checks its RMSE against pcf_box's.
+// a k×k PCF (the kit's pcf_grid) as a SingleMapTechnique of the shadow-map
+// kit (shadowbench::shadow_kit), so that it starts with the built-ins' own
+// light frustum, depth pass, biases, culling and map lookup, and equals
+// pcf_box until its filter is changed. Its .cpp, CMakeLists.txt and config
+// are the example's files themselves (generated/my_pcf_example.h, made by
+// harness/cli/CMakeLists.txt); only the README is written here, with the
+// commands for this shadowbench. tests/out_of_tree/scaffold_build_and_run.py
+// builds it from an installed prefix and checks its RMSE against pcf_box's.
 #include <string>
 
 #include "cli/technique_template.h"
@@ -26,18 +26,19 @@ TechniqueTemplate shadow_map_template() {
       {"README.md", R"FILE(# @NAME@
 
 A shadow technique plugin for shadowbench, written by
-`shadowbench new-technique`: a hard shadow map from the
-light's centre filtered by a k×k box of depth comparisons, on the shadow-map
-kit (`shadowbench::shadow_kit`, headers `common/*.h`). The kit gives it the
-built-in `pcf_box`'s light frustum, depth pass, biases, culling and map
-lookup; only the filter, the GLSL `lit_fraction()` in `@NAME@.cpp`, is its
-own, and it calls the kit's `pcf_grid` (`common/glsl_pcf.h`). The kit's other
-pieces to build on: PCSS's blocker search and penumbra width
-(`common/glsl_pcss.h`), Poisson and jittered tap disks
-(`common/sample_disks.h`) and per-pixel rotation noise
-(`common/glsl_rotation_noise.h`). As written, its visibility and its error equal `pcf_box`'s for the same
-parameters: change the filter, and the difference you measure is the
-filter's alone.
+`shadowbench new-technique`: a hard shadow map from the light's centre
+filtered by a k×k box of depth comparisons, on the shadow-map kit
+(`shadowbench::shadow_kit`, headers `common/*.h`). It is a
+`SingleMapTechnique` (`common/map_lookup.h`), which gives it the built-in
+`pcf_box`'s `prepare()` and `render()`: light frustum, depth pass, biases,
+culling and map lookup; only the filter, the GLSL `lit_fraction()` in
+`@NAME@.cpp`, and its uniforms (`set_uniforms()`) are its own, and it calls
+the kit's `pcf_grid` (`common/glsl_pcf.h`). The kit's other pieces to build
+on: PCSS's blocker search and penumbra width (`common/glsl_pcss.h`), Poisson
+and jittered tap disks (`common/sample_disks.h`) and per-pixel rotation
+noise (`common/glsl_rotation_noise.h`). As written, its visibility and its
+error equal `pcf_box`'s for the same parameters: change the filter, and the
+difference you measure is the filter's alone.
 
 )FILE" + std::string(kBuildLoadRun) +
                         R"FILE(`@NAME@.json` runs it beside `pcf_box` with the same parameters, and
