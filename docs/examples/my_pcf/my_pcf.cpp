@@ -36,7 +36,7 @@ namespace {
 
 // The map lookup (common/map_lookup.h) calls lit_fraction(t) with t the
 // pixel's point in the map's [0,1]³ texture space. pcf_grid (the kit's
-// common/glsl_pcf.h, prepended below) averages shadow_tap, one depth
+// common/glsl_pcf.h, passed as kit_glsl below) averages shadow_tap, one depth
 // comparison (1 lit, 0 shadowed), over a (2·radius+1)² grid. Other kit
 // pieces to start from: a rotated Poisson disk,
 //   pcf_disk(t, disk, n, rotation_by_turns(interleaved_gradient_noise(
@@ -57,8 +57,8 @@ class MyPcf final : public sb::techniques::SingleMapTechnique {
   // Reads every parameter it declares, and makes no GL call: the base reads
   // the depth map's parameters; prepare() compiles the lookup from this GLSL.
   explicit MyPcf(const sb::Params& p)
-      : SingleMapTechnique(p, "my_pcf", std::string(sb::techniques::kPcfGlsl) + kBoxPcf,
-                           /*linear_compare=*/false),
+      : SingleMapTechnique(p, "my_pcf", kBoxPcf, /*linear_compare=*/false,
+                           /*kit_glsl=*/sb::techniques::kPcfGlsl),
         radius_(p.get_int("k") / 2) {}
 
  protected:

@@ -56,10 +56,9 @@ class MyPcss final : public sb::techniques::SingleMapTechnique {
  public:
   // Reads every parameter it declares, and makes no GL call.
   explicit MyPcss(const sb::Params& p)
-      : SingleMapTechnique(p, "my_pcss",
-                           std::string(sb::techniques::kPcssGlsl) + sb::techniques::kPcfGlsl +
-                               sb::techniques::kRotationNoiseGlsl + kStochasticPcss,
-                           /*linear_compare=*/true),
+      : SingleMapTechnique(p, "my_pcss", kStochasticPcss, /*linear_compare=*/true,
+                           /*kit_glsl=*/std::string(sb::techniques::kPcssGlsl) +
+                               sb::techniques::kPcfGlsl + sb::techniques::kRotationNoiseGlsl),
         search_disk_(
             sb::techniques::poisson_disk(p.get_int("search_samples"), unsigned(p.get_int("seed")))),
         filter_disk_(sb::techniques::poisson_disk(p.get_int("filter_samples"),
