@@ -139,7 +139,8 @@ TEST(Hints, PlainListShowsEachParametersRangeAndRules) {
   const CliRun r = shadowbench("", "list pcf_box pcss");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   // k of pcf_box: its range and the "odd" rule, as the config reader checks them.
-  EXPECT_TRUE(has(r.output, "kernel SIDE (odd), not a tap count: k² depth comparisons  [1 … ")) << r.output;
+  EXPECT_TRUE(has(r.output, "kernel SIDE (odd), not a tap count: k² depth comparisons  [1 … "))
+      << r.output;
   EXPECT_TRUE(has(r.output, ", odd]")) << r.output;
   EXPECT_TRUE(has(r.output, "[nearest, bilinear]")) << r.output;
   // pcss's search radius: 0 means "from the light's size".
