@@ -1,6 +1,7 @@
 #include "gl/glsl_pieces.h"
 
 #include <algorithm>
+#include <regex>
 #include <stdexcept>
 #include <utility>
 
@@ -24,7 +25,8 @@ std::string assemble_glsl(const std::vector<GlslPiece>& pieces) {
       throw std::logic_error("assemble_glsl: the first piece (with #version) must be string 0");
     if (p.source_string != 0) {
       out += kSourceStringComment + std::to_string(p.source_string) + ": " + p.name + "\n";
-      out += "#line 1 " + std::to_string(p.source_string) + "\n";
+      out += "#line " + std::to_string(p.source_string * kGlslLineBlock + 1) + " " +
+             std::to_string(p.source_string) + "\n";
     } else if (i > 0 && pieces[i - 1].source_string != 0) {
       // Back to the assembled text's own numbers: the line after this one.
       out += "#line " + std::to_string(lines_in(out) + 2) + " 0\n";
@@ -32,6 +34,26 @@ std::string assemble_glsl(const std::vector<GlslPiece>& pieces) {
     out += p.text;
     if (!p.text.empty() && p.text.back() != '\n') out += '\n';
   }
+  return out;
+}
+
+std::string glsl_log_in_pieces(const std::string& log) {
+  static const std::regex position(R"((\d+):(\d+)\((\d+)\))");
+  std::string out;
+  auto from = log.cbegin();
+  for (std::sregex_iterator it(log.begin(), log.end(), position), end; it != end; ++it) {
+    const std::smatch& m = *it;
+    out.append(from, m[0].first);
+    // Nine digits at most: a longer number is no line this numbering made.
+    const long line = m[2].length() <= 9 ? std::stol(m[2].str()) : 0;
+    if (line >= kGlslLineBlock)
+      out += std::to_string(line / kGlslLineBlock) + ":" + std::to_string(line % kGlslLineBlock) +
+             "(" + m[3].str() + ")";
+    else
+      out += m[0].str();
+    from = m[0].second;
+  }
+  out.append(from, log.cend());
   return out;
 }
 

@@ -4,14 +4,24 @@
 // messages name each piece's own lines. A piece of source-string number 0
 // keeps the assembled text's line numbers (Mesa's "0:118(7): error" is line
 // 118 of the assembled source, as Program writes it for a failed job); a
-// piece of another number restarts at its line 1 ("1:12(3): error" is line
+// piece of another number S counts its own lines ("1:12(3): error" is line
 // 12 of that piece, as its author wrote it). GLSL 4.50's `#line N S` sets
 // the number of the NEXT line and the source-string number.
+//
+// Mesa keeps S in syntax errors but reports semantic ones (an undefined
+// name, a type mismatch) with source string 0 and the piece's own line, so
+// S is also written into the line: piece S's line n is numbered
+// S·kGlslLineBlock + n, and glsl_log_in_pieces() turns either report back
+// into "S:n".
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace sb::gl {
+
+// Lines per source string in the numbering above: a piece or an assembled
+// shader holds fewer.
+inline constexpr long kGlslLineBlock = 100000;
 
 struct GlslPiece {
   // A piece numbered as the assembled text (source string 0).
@@ -33,5 +43,10 @@ std::string assemble_glsl(const std::vector<GlslPiece>& pieces);
 // The pieces of their own number that assemble_glsl named in its
 // comments, as "1 is lit_fraction"; empty for a source it did not assemble.
 std::vector<std::string> glsl_source_strings(const std::string& source);
+
+// A compiler log of an assembled source with each "N:L(C)" whose L is
+// S·kGlslLineBlock + n written "S:n(C)", whatever N the compiler printed;
+// other positions (the assembled text's own) as they are.
+std::string glsl_log_in_pieces(const std::string& log);
 
 }  // namespace sb::gl

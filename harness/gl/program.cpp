@@ -40,7 +40,7 @@ GLuint compile(const std::string& program, GLenum stage, const std::string& sour
     (void)gl::take_debug_errors();
     note_failed_shader({program, kind, source});
     std::string message = "shader '" + program + "' (" + kind + ") failed to compile: ";
-    message += log.data();
+    message += glsl_log_in_pieces(log.data());
     while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
       message.pop_back();
     // Which numbers the log's "N:line(column)" count in.

@@ -3,6 +3,8 @@
 // shadow-map kit:
 //   mode=typo    prepare() compiles a lit_fraction() with a syntax error on
 //                line kTypoLine of its own GLSL (MapLookupPass);
+//   mode=undefined  the same with a name nothing declares on line
+//                kUndefinedLine, after the kit's kPcfGlsl as kit GLSL;
 //   mode=lines   prepare() throws a message of several lines;
 //   mode=null    prepare() writes through a null pointer (SIGSEGV).
 // It renders nothing else: its jobs never get past prepare().
@@ -11,6 +13,7 @@
 #include <string>
 
 #include "broken_plugin_glsl.h"
+#include "common/glsl_pcf.h"
 #include "common/map_lookup.h"
 #include "plugin/registry.h"
 
@@ -22,6 +25,9 @@ class Broken final : public sb::Technique {
   explicit Broken(const sb::Params& p) : mode_(p.get_string("mode")) {}
   void prepare(const sb::FrameInputs& /*in*/) override {
     if (mode_ == "typo") lookup_ = sb::techniques::MapLookupPass("broken_lookup", kTypoGlsl);
+    if (mode_ == "undefined")
+      lookup_ = sb::techniques::MapLookupPass("broken_lookup", kUndefinedGlsl, false,
+                                              sb::techniques::kPcfGlsl);
     if (mode_ == "lines") throw std::runtime_error(kLinesMessage);
     if (mode_ == "null") {
       // Volatile both: the pointer read at run time (no trap made of it),
@@ -44,8 +50,10 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
   registry.add(
       {.name = "broken",
        .family = "broken",
-       .summary = "test only: fails in prepare(): a GLSL typo, a long message, a crash",
+       .summary =
+           "test only: fails in prepare(): a GLSL typo or undefined name, a long message, a crash",
        .needs = sb::Needs{},
-       .params = {sb::core::choice_param("mode", "typo", {"typo", "lines", "null"}, "how")},
+       .params = {sb::core::choice_param("mode", "typo", {"typo", "undefined", "lines", "null"},
+                                         "how")},
        .create = [](const sb::Params& p) { return std::make_unique<broken::Broken>(p); }});
 }

@@ -192,6 +192,25 @@ TEST(Debugging, AGlslTypoNamesThePluginsOwnLineAndWritesTheAssembledSource) {
   EXPECT_EQ(why.find("\\n"), std::string::npos) << why;
 }
 
+TEST(Debugging, AnUndefinedNameAfterKitGlslNamesThePluginsOwnLine) {
+  const fs::path dir = test_folder("sb_debugging_");
+  const std::string config =
+      write_config(dir, json::array({{{"name", "broken"}, {"params", {{"mode", "undefined"}}}}}));
+  const std::string out = (dir / "run").string();
+  const CliRun r = shadowbench("run " + config + " --out " + out + " --no-cache --no-images");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  const auto records = jsonl_records(out);
+  ASSERT_EQ(records.size(), 1u) << r.output;
+  const std::string why = reason(records[0]);
+  // Mesa reports a semantic error with source string 0 and the piece's own
+  // line: the reason still says source string 1, line 5.
+  EXPECT_TRUE(std::regex_search(
+      why, std::regex("\\b1:" + std::to_string(broken::kUndefinedLine) + "\\(\\d+\\): error")))
+      << why;
+  EXPECT_EQ(why.find("0:" + std::to_string(broken::kUndefinedLine) + "("), std::string::npos)
+      << why;
+}
+
 TEST(Debugging, AReasonOfSeveralLinesIsOneRowOfSummaryMdAndWhollyInAFile) {
   const fs::path dir = test_folder("sb_debugging_");
   const std::string config =

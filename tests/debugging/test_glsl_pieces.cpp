@@ -29,7 +29,7 @@ TEST(GlslPieces, APieceOfItsOwnNumberStartsAtLineOneAndTheRestKeepTheirPhysicalL
   EXPECT_EQ(lines[0], "#version 450 core");
   size_t own = 0, main = 0;
   for (size_t i = 0; i < lines.size(); ++i) {
-    if (lines[i] == "#line 1 1") own = i;
+    if (lines[i] == "#line 100001 1") own = i;
     if (lines[i] == "void main() {}") main = i;
   }
   ASSERT_GT(own, 0u) << source;
@@ -40,6 +40,17 @@ TEST(GlslPieces, APieceOfItsOwnNumberStartsAtLineOneAndTheRestKeepTheirPhysicalL
   ASSERT_GT(main, own);
   EXPECT_EQ(lines[main - 1], "#line " + std::to_string(main + 1) + " 0") << source;
   EXPECT_EQ(glsl_source_strings(source), std::vector<std::string>{"1 is lit_fraction"});
+}
+
+TEST(GlslPieces, ALogNamesAPiecesLineWhicheverSourceStringTheCompilerPrinted) {
+  // Mesa's syntax errors keep the piece's source string, its semantic
+  // errors print 0: both are line 10 of piece 1.
+  EXPECT_EQ(glsl_log_in_pieces("1:100004(15): error: syntax error\n"
+                               "0:100010(18): error: no function with name 'f'\n"),
+            "1:4(15): error: syntax error\n1:10(18): error: no function with name 'f'\n");
+  // The assembled text's own lines, and numbers no piece has, stay.
+  EXPECT_EQ(glsl_log_in_pieces("0:57(3): error: x at 2:3(4)"), "0:57(3): error: x at 2:3(4)");
+  EXPECT_EQ(glsl_log_in_pieces("0:99999999999999999999(1): e"), "0:99999999999999999999(1): e");
 }
 
 TEST(GlslPieces, ASourceWithoutPiecesNamesNoStrings) {
