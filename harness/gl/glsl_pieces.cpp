@@ -1,7 +1,7 @@
 #include "gl/glsl_pieces.h"
 
 #include <algorithm>
-#include <regex>
+#include <cctype>
 #include <stdexcept>
 #include <utility>
 
@@ -38,22 +38,33 @@ std::string assemble_glsl(const std::vector<GlslPiece>& pieces) {
 }
 
 std::string glsl_log_in_pieces(const std::string& log) {
-  static const std::regex position(R"((\d+):(\d+)\((\d+)\))");
+  // Each "N:L(" — digits, a colon, digits, an opening parenthesis — whose L
+  // has at most nine digits (a longer one is no line this numbering made).
+  const auto digits_from = [&](size_t i) {
+    size_t j = i;
+    while (j < log.size() && std::isdigit(static_cast<unsigned char>(log[j])) != 0) ++j;
+    return j;
+  };
   std::string out;
-  auto from = log.cbegin();
-  for (std::sregex_iterator it(log.begin(), log.end(), position), end; it != end; ++it) {
-    const std::smatch& m = *it;
-    out.append(from, m[0].first);
-    // Nine digits at most: a longer number is no line this numbering made.
-    const long line = m[2].length() <= 9 ? std::stol(m[2].str()) : 0;
+  size_t i = 0;
+  while (i < log.size()) {
+    const bool starts = std::isdigit(static_cast<unsigned char>(log[i])) != 0 &&
+                        (i == 0 || std::isdigit(static_cast<unsigned char>(log[i - 1])) == 0);
+    const size_t colon = starts ? digits_from(i) : i;
+    const size_t line_end =
+        starts && colon < log.size() && log[colon] == ':' ? digits_from(colon + 1) : colon + 1;
+    if (!starts || line_end == colon + 1 || line_end >= log.size() || log[line_end] != '(' ||
+        line_end - colon - 1 > 9) {
+      out += log[i++];
+      continue;
+    }
+    const long line = std::stol(log.substr(colon + 1, line_end - colon - 1));
     if (line >= kGlslLineBlock)
-      out += std::to_string(line / kGlslLineBlock) + ":" + std::to_string(line % kGlslLineBlock) +
-             "(" + m[3].str() + ")";
+      out += std::to_string(line / kGlslLineBlock) + ":" + std::to_string(line % kGlslLineBlock);
     else
-      out += m[0].str();
-    from = m[0].second;
+      out.append(log, i, line_end - i);
+    i = line_end;
   }
-  out.append(from, log.cend());
   return out;
 }
 
