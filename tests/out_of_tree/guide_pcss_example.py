@@ -12,24 +12,17 @@ the guide's walkthrough says so. Run by ctest
 (tests/out_of_tree/CMakeLists.txt). First, every C++ block the
 guide's walkthrough quotes must be in the source built here."""
 import argparse
-import glob
 import json
 import math
 import os
 import re
 import shutil
-import subprocess
 import sys
+
+from small_masked_run import build_plugin, small_run
 
 NAME = "my_pcss"
 FACTOR = 3.0
-
-
-def run(what, *cmd, env=None):
-    r = subprocess.run(cmd, capture_output=True, text=True, env=env)
-    if r.returncode != 0:
-        sys.exit(f"{what} failed ({r.returncode}):\n{r.stdout}\n{r.stderr}")
-    return r.stdout + r.stderr
 
 
 def check_guide_quotes_source(guide, source):
@@ -60,10 +53,7 @@ def main():
     os.makedirs(a.work)
     env = {k: v for k, v in os.environ.items() if not k.startswith("SHADOWBENCH_")}
     plugin_build = os.path.join(a.work, "build")
-    run("configuring my_pcss", a.cmake, "-S", a.source, "-B", plugin_build,
-        "-DCMAKE_BUILD_TYPE=Release", "-DCMAKE_CXX_COMPILER=" + a.cxx,
-        "-Dshadowbench_DIR=" + a.build, env=env)
-    run("building my_pcss", a.cmake, "--build", plugin_build, env=env)
+    build_plugin("my_pcss", a.source, plugin_build, a, env)
 
     with open(os.path.join(a.source, NAME + ".json")) as f:
         config = json.load(f)
@@ -75,31 +65,9 @@ def main():
     if scene_types != ["foliage", "sphere_grid"]:
         sys.exit(f"{NAME}.json runs {scene_types}, not the sphere grid and foliage")
     # Small, so that the test is short; the config's techniques as written.
-    config["scenes"] = [{"type": "sphere_grid", "params": {"grid": 2, "light_size": 2.0}},
-                        {"type": "foliage", "params": {"trees": 1}}]
-    config["resolutions"] = [[96, 72]]
-    config["frames"] = {"warmup": 0, "timed": 2}
-    config["reference"] = {"spp": 64, "seed": 1, "cache": False}
-    path = os.path.join(a.work, "small.json")
-    with open(path, "w") as f:
-        json.dump(config, f)
-
-    env["SHADOWBENCH_PLUGIN_PATH"] = plugin_build
-    out = os.path.join(a.work, "run")
-    run("shadowbench run", a.exe, "run", path, "--out", out, "--no-cache", "--quiet", env=env)
-    metrics = {}  # (scene type, technique) -> visibility metrics
-    for p in glob.glob(os.path.join(out, "records", "*.json")):
-        with open(p) as f:
-            r = json.load(f)
-        key = (r["scene"]["type"], r["technique"]["name"])
-        if key[1] in (NAME, "pcss", "none"):
-            if r["status"] != "ok":
-                sys.exit(f"{p}: {key[1]} on {key[0]} is {r['status']}: {r.get('reason')}")
-            metrics[key] = r["metrics"]["visibility"]
+    records = small_run(config, a, env, plugin_build, 64, (NAME, "pcss", "none"))
+    metrics = {key: r["metrics"]["visibility"] for key, r in records.items()}
     for scene in ("sphere_grid", "foliage"):
-        for t in (NAME, "pcss", "none"):
-            if (scene, t) not in metrics:
-                sys.exit(f"no record of {t} on {scene}: {sorted(metrics)}")
         mine = metrics[(scene, NAME)]["penumbra"]["rmse"]
         pcss = metrics[(scene, "pcss")]["penumbra"]["rmse"]
         print(f"{scene}: penumbra RMSE {NAME} {mine:.5f}, pcss {pcss:.5f}")
