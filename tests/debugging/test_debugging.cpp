@@ -62,6 +62,27 @@ const json* find(const std::vector<json>& records, const std::string& technique_
 
 std::string reason(const json& record) { return record.value("reason", std::string()); }
 
+// The broken plugin's one job, in `mode`, run into a new folder: it fails.
+struct BrokenRun {
+  std::string out;  // the run folder
+  json record;      // its one record
+};
+
+BrokenRun run_broken(const std::string& mode) {
+  const fs::path dir = test_folder("sb_debugging_");
+  const std::string config =
+      write_config(dir, json::array({{{"name", "broken"}, {"params", {{"mode", mode}}}}}));
+  const std::string out = (dir / "run").string();
+  const CliRun r = shadowbench("run " + config + " --out " + out + " --no-cache --no-images");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  const auto records = jsonl_records(out);
+  if (records.size() != 1u) {
+    ADD_FAILURE() << records.size() << " records, not 1:\n" << r.output;
+    return {out, json::object()};
+  }
+  return {out, records[0]};
+}
+
 // (resolution, technique variant) of each record.
 std::set<std::pair<std::string, std::string>> jobs_of(const std::vector<json>& records) {
   std::set<std::pair<std::string, std::string>> out;
@@ -167,22 +188,17 @@ TEST(Debugging, ACrashInPrepareNamesThePhaseAndACommandThatReproducesItInProcess
 }
 
 TEST(Debugging, AGlslTypoNamesThePluginsOwnLineAndWritesTheAssembledSource) {
-  const fs::path dir = test_folder("sb_debugging_");
-  const std::string config =
-      write_config(dir, json::array({{{"name", "broken"}, {"params", {{"mode", "typo"}}}}}));
-  const std::string out = (dir / "run").string();
-  const CliRun r = shadowbench("run " + config + " --out " + out + " --no-cache --no-images");
-  EXPECT_EQ(r.exit_code, 1) << r.output;
-  const auto records = jsonl_records(out);
-  ASSERT_EQ(records.size(), 1u) << r.output;
-  const std::string why = reason(records[0]);
+  const BrokenRun run = run_broken("typo");
+  ASSERT_TRUE(run.record.contains("job_id"));
+  const std::string& out = run.out;
+  const std::string why = reason(run.record);
   // Mesa's "1:4(3): error": source string 1, the plugin's lit_fraction, line 4.
   EXPECT_TRUE(std::regex_search(
       why, std::regex("\\b1:" + std::to_string(broken::kTypoLine) + "\\(\\d+\\): error")))
       << why;
   EXPECT_NE(why.find("1 is lit_fraction as written"), std::string::npos) << why;
   const std::string rel =
-      "jobs/" + records[0]["job_id"].get<std::string>() + "/shader-broken_lookup-fragment.glsl";
+      "jobs/" + run.record["job_id"].get<std::string>() + "/shader-broken_lookup-fragment.glsl";
   EXPECT_NE(why.find(rel), std::string::npos) << why;
   const std::string source = slurp(fs::path(out) / rel);
   EXPECT_NE(source.find(broken::kTypoGlsl), std::string::npos) << source;
@@ -193,15 +209,9 @@ TEST(Debugging, AGlslTypoNamesThePluginsOwnLineAndWritesTheAssembledSource) {
 }
 
 TEST(Debugging, AnUndefinedNameAfterKitGlslNamesThePluginsOwnLine) {
-  const fs::path dir = test_folder("sb_debugging_");
-  const std::string config =
-      write_config(dir, json::array({{{"name", "broken"}, {"params", {{"mode", "undefined"}}}}}));
-  const std::string out = (dir / "run").string();
-  const CliRun r = shadowbench("run " + config + " --out " + out + " --no-cache --no-images");
-  EXPECT_EQ(r.exit_code, 1) << r.output;
-  const auto records = jsonl_records(out);
-  ASSERT_EQ(records.size(), 1u) << r.output;
-  const std::string why = reason(records[0]);
+  const BrokenRun run = run_broken("undefined");
+  ASSERT_TRUE(run.record.contains("job_id"));
+  const std::string why = reason(run.record);
   // Mesa reports a semantic error with source string 0 and the piece's own
   // line: the reason still says source string 1, line 5.
   EXPECT_TRUE(std::regex_search(
@@ -212,16 +222,11 @@ TEST(Debugging, AnUndefinedNameAfterKitGlslNamesThePluginsOwnLine) {
 }
 
 TEST(Debugging, AReasonOfSeveralLinesIsOneRowOfSummaryMdAndWhollyInAFile) {
-  const fs::path dir = test_folder("sb_debugging_");
-  const std::string config =
-      write_config(dir, json::array({{{"name", "broken"}, {"params", {{"mode", "lines"}}}}}));
-  const std::string out = (dir / "run").string();
-  const CliRun r = shadowbench("run " + config + " --out " + out + " --no-cache --no-images");
-  EXPECT_EQ(r.exit_code, 1) << r.output;
-  const auto records = jsonl_records(out);
-  ASSERT_EQ(records.size(), 1u) << r.output;
-  const std::string id = records[0]["job_id"];
-  EXPECT_EQ(reason(records[0]),
+  const BrokenRun run = run_broken("lines");
+  ASSERT_TRUE(run.record.contains("job_id"));
+  const std::string& out = run.out;
+  const std::string id = run.record["job_id"];
+  EXPECT_EQ(reason(run.record),
             "broken: prepare: first line of the failure / second line | with a bar / third line, "
             "indented (the whole message: jobs/" +
                 id + "/failure.txt)");
