@@ -160,6 +160,11 @@ NeedProvider planar_receiver() {
 // "a 2×0 segment", "a 1×1 rectangle", "a point": the light as a reason names it.
 std::string light_shape(const AreaLight& l) {
   if (l.is_point()) return "a point";
+  if (l.is_sun()) {
+    std::ostringstream s;
+    s << "the sun (" << glm::degrees(l.angular_diameter) << "°)";
+    return s.str();
+  }
   const auto size = [](float x) {
     std::ostringstream s;
     s << x;
@@ -196,6 +201,48 @@ NeedProvider rectangular_light() {
   p.unmet = [](const Scene& scene, const DerivedData&) -> std::string {
     if (!scene.light.is_segment()) return "";
     return "needs a rectangular light; the scene's light is " + light_shape(scene.light);
+  };
+  return p;
+}
+
+NeedProvider sun_light() {
+  NeedProvider p;
+  p.name = plugin::need::kSunLight;
+  p.summary = "the light is the sun, light.type \"sun\" (else skipped)";
+  p.when = NeedProvider::When::Plan;
+  p.derive = [](const Scene&, DerivedData& data, std::vector<std::string>&) {
+    data.put_check(plugin::need::kSunLight);
+  };
+  p.unmet = [](const Scene& scene, const DerivedData&) -> std::string {
+    if (scene.light.is_sun()) return "";
+    return "needs the sun (light.type \"sun\"); the scene's light is " + light_shape(scene.light);
+  };
+  return p;
+}
+
+NeedProvider sun_or_local_light() {
+  NeedProvider p;
+  p.name = plugin::need::kSunOrLocalLight;
+  p.summary = "runs under the sun as under a local light";
+  p.when = NeedProvider::When::Plan;
+  p.derive = [](const Scene&, DerivedData& data, std::vector<std::string>&) {
+    data.put_check(plugin::need::kSunOrLocalLight);
+  };
+  return p;
+}
+
+NeedProvider local_light() {
+  NeedProvider p;
+  p.name = plugin::need::kLocalLight;
+  p.summary = "the light is at a place, not the sun (else skipped; implied by neither sun need)";
+  p.when = NeedProvider::When::Plan;
+  p.derive = [](const Scene&, DerivedData& data, std::vector<std::string>&) {
+    data.put_check(plugin::need::kLocalLight);
+  };
+  p.unmet = [](const Scene& scene, const DerivedData&) -> std::string {
+    if (!scene.light.is_sun()) return "";
+    return "needs a local light (a rectangle, a segment or a point); the scene's light is " +
+           light_shape(scene.light);
   };
   return p;
 }
@@ -291,7 +338,8 @@ const std::vector<NeedProvider>& builtin_need_providers() {
   static const std::vector<NeedProvider> providers = {
       caster_closedness(), closed_casters(), opaque_casters(),
       planar_receiver(),   edge_adjacency(), caster_edges(),
-      silhouette_edges(),  linear_light(),   rectangular_light()};
+      silhouette_edges(),  linear_light(),   rectangular_light(),
+      sun_light(),         sun_or_local_light(), local_light()};
   return providers;
 }
 

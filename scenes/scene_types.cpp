@@ -62,4 +62,14 @@ AreaLight core::make_area_light(const glm::vec3& center, const glm::vec3& target
   return l;
 }
 
+AreaLight core::make_sun_light(const glm::vec3& to_sun, const glm::vec3& target,
+                               float angular_diameter, float distance, float intensity) {
+  const glm::vec3 center = target + glm::normalize(to_sun) * distance;
+  const float diameter_there = 2.0f * distance * std::tan(0.5f * angular_diameter);
+  AreaLight l = make_area_light(center, target, diameter_there, diameter_there, intensity);
+  l.sun = true;
+  l.angular_diameter = angular_diameter;
+  return l;
+}
+
 }  // namespace sb

@@ -66,25 +66,47 @@ struct Mesh {
   bool alpha_tested() const { return alpha_mode == AlphaMode::Mask && base_color_texture >= 0; }
 };
 
-// A rectangular area light facing `target`. A point on it is
+// The scene's one light: a rectangle, a segment or a point at a place (a
+// local light), or the sun.
+//
+// A local light is a rectangle facing `target`. A point on it is
 // center + (2s-1)*half_u + (2t-1)*half_v for (s,t) in [0,1]^2.
+//
+// The sun (`sun` true) is a directional light at infinity: a disk of
+// `angular_diameter` radians, seen from every point in the direction
+// to_sun(). Its V at a point is the visible fraction of that disk as
+// projected onto a plane perpendicular to to_sun() (the gnomonic
+// projection, which both references and every sun technique use; it
+// differs from the fraction of solid angle by under α²/2 for a disk of
+// angular radius α: 2e-5 for the real sun). `center` is then only a place
+// on the sun's side for code that wants one (a light frustum's eye), and
+// `target` where the light looks; half_u and half_v span the disk's
+// circumscribed square as seen at `center`'s distance, so that width()
+// is the disk's diameter there.
 struct AreaLight {
   glm::vec3 center{0.0f, 10.0f, 0.0f};
   glm::vec3 half_u{0.5f, 0.0f, 0.0f};
   glm::vec3 half_v{0.0f, 0.0f, 0.5f};
   glm::vec3 target{0.0f};  // where the light looks; used by shadow-map projections
   float intensity = 1.0f;
+  bool sun = false;
+  float angular_diameter = 0.0f;  // radians; the sun's only
 
   glm::vec3 point(float s, float t) const {
     return center + (2.0f * s - 1.0f) * half_u + (2.0f * t - 1.0f) * half_v;
   }
+  // The way the light travels: from center towards target (for the sun,
+  // the same everywhere).
   glm::vec3 direction() const { return glm::normalize(target - center); }
+  // Unit, from any point towards the sun.
+  glm::vec3 to_sun() const { return -direction(); }
   float width() const { return 2.0f * glm::length(half_u); }
   float height() const { return 2.0f * glm::length(half_v); }
+  bool is_sun() const { return sun; }
   // A linear light: a segment, one of the two sizes zero (`light.size:
-  // [w, 0]` or `[0, h]`). A point light has both zero.
-  bool is_segment() const { return (width() > 0.0f) != (height() > 0.0f); }
-  bool is_point() const { return !(width() > 0.0f) && !(height() > 0.0f); }
+  // [w, 0]` or `[0, h]`). A point light has both zero. Neither is the sun.
+  bool is_segment() const { return !sun && (width() > 0.0f) != (height() > 0.0f); }
+  bool is_point() const { return !sun && !(width() > 0.0f) && !(height() > 0.0f); }
   // A segment's end points (s = 0 and s = 1 along its non-zero axis).
   glm::vec3 segment_end(float s) const {
     const glm::vec3 half = width() > 0.0f ? half_u : half_v;

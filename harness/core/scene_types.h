@@ -31,4 +31,13 @@ void add_scene_type(SceneType type);
 AreaLight make_area_light(const glm::vec3& center, const glm::vec3& target, float width,
                           float height, float intensity = 1.0f);
 
+// The sun seen from `target` towards `to_sun` (need not be unit), a disk of
+// `angular_diameter` radians; its `center` at `distance` from target.
+AreaLight make_sun_light(const glm::vec3& to_sun, const glm::vec3& target, float angular_diameter,
+                         float distance, float intensity = 1.0f);
+
+// The sun's angular diameter seen from the Earth, in degrees: the default
+// for a sun light and for a glTF directional light.
+inline constexpr float kSunDiameterDegrees = 0.53f;
+
 }  // namespace sb::core

@@ -85,7 +85,11 @@ ResolvedNeeds resolve_needs(const Scene& scene, const std::vector<const Techniqu
   out.skip_reason.assign(techniques.size(), "");
   out.needs.resize(techniques.size());
   for (size_t t = 0; t < techniques.size(); ++t) {
-    const std::string missing = resolver.closure(techniques[t]->needs.names, per_technique[t]);
+    std::vector<std::string> names = techniques[t]->needs.names;
+    if (!techniques[t]->needs.has(plugin::need::kSunLight) &&
+        !techniques[t]->needs.has(plugin::need::kSunOrLocalLight))
+      names.emplace_back(plugin::need::kLocalLight);
+    const std::string missing = resolver.closure(names, per_technique[t]);
     if (!missing.empty())
       out.skip_reason[t] =
           techniques[t]->name + " needs '" + missing + "', which no loaded plugin provides";

@@ -48,6 +48,17 @@ inline constexpr const char* kLinearLight = "linear_light";
 // skipped: for techniques whose filter or integral assumes the light's
 // rectangle has both sides (docs/linear_lights.md says which and why).
 inline constexpr const char* kRectangularLight = "rectangular_light";
+// The light is the sun (light.type "sun": a directional light with an
+// angular size; core::AreaLight::is_sun), else the job is skipped: for
+// techniques made for it alone (cascaded shadow maps). Data: none.
+inline constexpr const char* kSunLight = "sun_light";
+// The technique runs under the sun as under a local light. Data: none.
+inline constexpr const char* kSunOrLocalLight = "sun_or_local_light";
+// The light is local (a rectangle, a segment or a point), else the job is
+// skipped. Every technique that names neither need above has this one
+// without naming it: a technique written for a light at a place is never
+// run under the sun by accident. Data: none.
+inline constexpr const char* kLocalLight = "local_light";
 }  // namespace need
 
 // A technique's needs, in the order it wants them checked: the first unmet

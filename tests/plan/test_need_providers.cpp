@@ -2,12 +2,14 @@
 // plugin's alike, each computed only when a technique asks, after what it
 // requires, and checked for its type when read. The silhouette-edge data is
 // tested against the geometry itself.
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include <stdexcept>
 
 #include "plan/need_resolution.h"
 #include "plugin/registry.h"
+#include "core/scene_types.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/need_providers.h"
 #include "scenes/sphere_grid.h"
@@ -81,7 +83,11 @@ TEST(NeedProviders, APluginsNeedIsComputedOnlyWhenAskedAndAfterWhatItRequires) {
 
   r = resolve_needs(s, {&plain, &counting, &counting}, &plugins, Derive::Decide);
   EXPECT_EQ(counted.derived, 1);  // once, however many techniques ask
-  EXPECT_EQ(counted.saw, std::vector<std::string>{plugin::need::kCasterClosedness});
+  // What it requires was there before it ran (with the checks that every
+  // technique has, such as the implied local_light).
+  EXPECT_NE(std::find(counted.saw.begin(), counted.saw.end(), plugin::need::kCasterClosedness),
+            counted.saw.end());
+  EXPECT_EQ(std::find(counted.saw.begin(), counted.saw.end(), "caster_count"), counted.saw.end());
   EXPECT_EQ(r.data.get<int>("caster_count"), 1);
   EXPECT_EQ(r.skip_reason, (std::vector<std::string>{"", "", ""}));
 
@@ -90,6 +96,33 @@ TEST(NeedProviders, APluginsNeedIsComputedOnlyWhenAskedAndAfterWhatItRequires) {
   empty.meshes[0].casts_shadow = false;
   r = resolve_needs(empty, {&counting}, &plugins, Derive::Decide);
   EXPECT_EQ(r.skip_reason[0], "counting needs a caster");
+}
+
+// A technique that names no sun need never runs under the sun; one that
+// names sun_light runs only there; sun_or_local_light runs under both.
+TEST(NeedProviders, TheSunSkipsTechniquesMadeForALightAtAPlace) {
+  const TechniqueInfo plain = wanting("plain", {});
+  const TechniqueInfo sun_only = wanting("cascades", {plugin::need::kSunLight});
+  const TechniqueInfo both = wanting("either", {plugin::need::kSunOrLocalLight});
+  Scene local = box_on_ground();
+  Scene sun = local;
+  sun.light = core::make_sun_light({0.3f, 1.0f, 0.2f}, {0, 0, 0}, glm::radians(0.53f), 30.0f);
+
+  ResolvedNeeds r = resolve_needs(local, {&plain, &sun_only, &both}, nullptr, Derive::Decide);
+  EXPECT_EQ(r.skip_reason[0], "");
+  EXPECT_EQ(r.skip_reason[1].rfind("cascades needs the sun (light.type \"sun\"); the scene's light "
+                                   "is a 1×1 rectangle",
+                                   0),
+            0u)
+      << r.skip_reason[1];
+  EXPECT_EQ(r.skip_reason[2], "");
+
+  r = resolve_needs(sun, {&plain, &sun_only, &both}, nullptr, Derive::Decide);
+  EXPECT_EQ(r.skip_reason[0],
+            "plain needs a local light (a rectangle, a segment or a point); the scene's light is "
+            "the sun (0.53°)");
+  EXPECT_EQ(r.skip_reason[1], "");
+  EXPECT_EQ(r.skip_reason[2], "");
 }
 
 TEST(NeedProviders, RunNeedsWaitForTheRunAndForTechniquesThatWillRun) {
