@@ -241,10 +241,19 @@ class GlbWriter {
                   {"color", {1.0, 1.0, 1.0}},
                   {"intensity", double(l.intensity)},
                   {"spot", {{"innerConeAngle", 0.0}, {"outerConeAngle", std::numbers::pi / 4}}}};
-    doc_["extensions"]["KHR_lights_punctual"]["lights"] = json::array({light});
     json extras = {{"size", {double(l.width()), double(l.height())}},
                    {"intensity", double(l.intensity)}};
     if (distance > 0) extras["target_distance"] = distance;
+    // The sun: a directional light (whose place glTF ignores) with its size.
+    if (l.is_sun()) {
+      light = {{"name", "sun"},
+               {"type", "directional"},
+               {"color", {1.0, 1.0, 1.0}},
+               {"intensity", double(l.intensity)}};
+      extras = {{"angular_diameter", glm::degrees(double(l.angular_diameter))},
+                {"intensity", double(l.intensity)}};
+    }
+    doc_["extensions"]["KHR_lights_punctual"]["lights"] = json::array({light});
     nodes().push_back({{"name", "area_light"},
                        {"translation", vec(l.center)},
                        {"rotation", rotation(u, v, dir)},

@@ -100,6 +100,7 @@ class Importer : public ImportStep {
     double h = pending_light.height >= 0 ? pending_light.height : default_size;
     const float intensity = float(pending_light.intensity);
     bool use_axes = false;
+    bool sun = false;
     if (pending_light.found && pending_light.type == "spot") {
       lc = pending_light.position;
       const double d = pending_light.distance > 0
@@ -110,14 +111,21 @@ class Importer : public ImportStep {
     } else if (pending_light.found && pending_light.type == "point") {
       lc = pending_light.position;
       lt = glm::length(center - lc) > 0 ? center : lc - glm::dvec3(0, 1, 0);
-    } else if (pending_light.found) {  // directional: from outside the bounds, along its direction
+    } else if (pending_light.found) {  // directional: the sun, shining along its direction
       lt = center;
       lc = center - pending_light.direction * (3 * radius);
+      sun = true;
     } else {  // above the scene, like sphere_grid's light
       lt = center;
       lc = center + glm::normalize(glm::dvec3(0.35, 1, 0.25)) * (3 * radius);
     }
     light = make_area_light(glm::vec3(lc), glm::vec3(lt), float(w), float(h), intensity);
+    if (sun) {
+      const double degrees = pending_light.angular_diameter > 0 ? pending_light.angular_diameter
+                                                                : core::kSunDiameterDegrees;
+      light = core::make_sun_light(glm::vec3(lc - lt), glm::vec3(lt), float(glm::radians(degrees)),
+                                   float(3 * radius), intensity);
+    }
     if (use_axes) {
       // The node's x axis spans the rectangle's width (export writes it so).
       const glm::dvec3 dir = glm::normalize(lt - lc);

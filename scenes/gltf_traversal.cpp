@@ -294,6 +294,10 @@ bool Traversal::visit_light(size_t node_index, const glm::dmat4& world) {
       fail(w, "intensity: expected a non-negative number");
     double d = 0;
     if (finite_number(member(*sb, "target_distance"), d) && d > 0) light_.distance = d;
+    if (member(*sb, "angular_diameter") != nullptr &&
+        (!finite_number(member(*sb, "angular_diameter"), light_.angular_diameter) ||
+         !(light_.angular_diameter >= 1e-4 && light_.angular_diameter <= 90)))
+      fail(w, "angular_diameter: expected the sun's diameter in degrees in [0.0001, 90]");
   }
   light_.found = true;
   return true;

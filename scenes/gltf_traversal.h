@@ -28,6 +28,7 @@ struct PendingLight {
   std::string type;
   glm::dvec3 position, direction, x_axis;
   double width = -1, height = -1, intensity = 1, distance = 0;
+  double angular_diameter = -1;  // degrees, a directional light's (-1: the default)
 };
 
 class Traversal : public ImportStep {

@@ -336,10 +336,9 @@ SilhouetteEdgeRecords pack_silhouette_edges(const Scene& scene) {
 
 const std::vector<NeedProvider>& builtin_need_providers() {
   static const std::vector<NeedProvider> providers = {
-      caster_closedness(), closed_casters(), opaque_casters(),
-      planar_receiver(),   edge_adjacency(), caster_edges(),
-      silhouette_edges(),  linear_light(),   rectangular_light(),
-      sun_light(),         sun_or_local_light(), local_light()};
+      caster_closedness(), closed_casters(), opaque_casters(),     planar_receiver(),
+      edge_adjacency(),    caster_edges(),   silhouette_edges(),   linear_light(),
+      rectangular_light(), sun_light(),      sun_or_local_light(), local_light()};
   return providers;
 }
 

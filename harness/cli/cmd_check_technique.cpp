@@ -62,18 +62,22 @@ int cmd_check_technique(const CheckTechniqueArgs& a) {
   const config::TechniqueVariant tv = variant_of(a, r);
   const std::unique_ptr<gl::Context> context =
       gl::create_context(gl::backend_from_string(a.backend));
-  // The square light, or a segment for a technique that needs a linear light.
-  bool linear = false;
-  auto stage = std::make_unique<run::ContractStage>(run::contract_scene(), kWidth, kHeight,
+  // The square light, or else a segment or the sun: the first the
+  // technique's needs accept.
+  run::ContractLight light = run::ContractLight::Square;
+  auto stage = std::make_unique<run::ContractStage>(run::contract_scene(light), kWidth, kHeight,
                                                     std::vector{tv.info}, r);
-  if (!stage->skip_reason(0).empty()) {
-    linear = true;
-    stage = std::make_unique<run::ContractStage>(run::contract_scene(true), kWidth, kHeight,
-                                                 std::vector{tv.info}, r);
+  for (const run::ContractLight other : {run::ContractLight::Linear, run::ContractLight::Sun}) {
+    if (stage->skip_reason(0).empty()) break;
+    auto tried = std::make_unique<run::ContractStage>(run::contract_scene(other), kWidth, kHeight,
+                                                      std::vector{tv.info}, r);
+    if (tried->skip_reason(0).empty()) {
+      light = other;
+      stage = std::move(tried);
+    }
   }
   std::printf("check-technique %s (family %s) on a 2x2 sphere grid with a %s light at %dx%d:\n",
-              tv.name.c_str(), tv.info->family.c_str(), linear ? "linear" : "square", kWidth,
-              kHeight);
+              tv.name.c_str(), tv.info->family.c_str(), run::to_string(light), kWidth, kHeight);
   if (!stage->skip_reason(0).empty()) {
     std::printf("SKIP  the scene cannot serve it: %s\n", stage->skip_reason(0).c_str());
     return kExitJobsFailed;

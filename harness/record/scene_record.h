@@ -14,11 +14,13 @@
 namespace sb::record {
 
 struct LightRecord {
-  static constexpr RecordDoc kSchema{"LightRecord", "the scene's rectangular light"};
+  static constexpr RecordDoc kSchema{
+      "LightRecord", "the scene's light: a rectangle (a segment, a point) or the sun"};
 
   std::array<double, 3> center{}, target{};
   std::array<double, 2> size{};  // width, height of the rectangle
   double intensity = 1;
+  std::optional<double> angular_diameter;  // degrees; the sun's only
 
   template <class V>
   static void describe(V& v) {
@@ -27,6 +29,11 @@ struct LightRecord {
     v.field("size", &LightRecord::size, {"", "[width, height] of the rectangle"});
     v.field("intensity", &LightRecord::intensity,
             {"", "scales the light's term in the shaded image (V never depends on it)"});
+    v.field("angular_diameter", &LightRecord::angular_diameter,
+            {"degrees",
+             "present for the sun only (light.type \"sun\"), a disk at infinity seen from "
+             "center towards target; its center is then only a place on the sun's side, and "
+             "size the disk's diameter at center's distance"});
   }
 };
 

@@ -62,7 +62,9 @@ void find_parts(std::vector<CasterTriangle>& triangles, const AreaLight& light_s
     for (size_t q = 0; q < part_triangles.size(); ++q) {
       const CasterTriangle& t = triangles[part_triangles[q]];
       volume += glm::dot(t.a - origin, glm::cross(t.b - origin, t.c - origin));
-      touches_light = touches_light || triangle_meets(t.a, t.b, t.c, light);
+      // The sun is at infinity: no part touches it.
+      touches_light =
+          touches_light || (!light_shape.is_sun() && triangle_meets(t.a, t.b, t.c, light));
       for (const uint32_t across : t.neighbour)
         if (across != kNoNeighbour && triangles[across].part == kNoPart) {
           triangles[across].part = part;

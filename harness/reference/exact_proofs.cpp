@@ -79,7 +79,7 @@ ProofPyramid proof_pyramid(const ProofStart& s, const glm::dvec3& apex) {
 
 std::optional<ProofStart> proof_start(const AreaLight& light, const glm::dvec3& surface,
                                       const glm::dvec3& origin, const glm::dvec3& n) {
-  if (light.is_segment()) return std::nullopt;
+  if (light.is_segment() || light.is_sun()) return std::nullopt;
   ProofStart s{Frame(light)};
   Frame& f = s.light;
   const double n_length = glm::length(n);

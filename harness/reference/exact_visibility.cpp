@@ -20,6 +20,8 @@ std::string ExactVisibility::unsupported_reason(const Scene& scene) {
   // A segment has an exact form (hidden_intervals); a point's V is 0 or 1.
   if (scene.light.is_point())
     return "the light has no area (the Monte Carlo reference is exact there)";
+  if (scene.light.is_sun() && !(scene.light.angular_diameter > 0.0f))
+    return "the sun has no size (the Monte Carlo reference is exact there)";
   for (const Mesh& mesh : scene.meshes) {
     if (!mesh.casts_shadow) continue;
     if (mesh.alpha_tested())
@@ -49,6 +51,13 @@ ExactVisibility::ExactVisibility(const Scene& scene, const std::vector<bool>& cl
       triangles.push_back(t);
     }
   }
+  core::Bounds bounds;
+  for (const auto& t : triangles)
+    for (const glm::dvec3& x : {t.a, t.b, t.c}) bounds.extend(glm::vec3(x));
+  if (!bounds.empty()) {
+    reach_centre_ = glm::dvec3(bounds.center());
+    reach_ = double(bounds.radius()) * (1.0 + 1e-6) + 1e-6;
+  }
   casters_ = detail::CasterBvh(std::move(triangles));
   // After the hierarchy has put the triangles in their final order.
   detail::link_neighbours(casters_.triangles());
@@ -76,6 +85,7 @@ glm::dvec3 ExactVisibility::viewpoint(const glm::dvec3& surface, const glm::dvec
 }
 
 double ExactVisibility::visibility(const glm::dvec3& p, const glm::dvec3& n) const {
+  if (light_.is_sun()) return sun_visibility(p, n);
   if (light_.is_segment()) return std::clamp(1.0 - union_length(hidden_intervals(p, n)), 0.0, 1.0);
   const detail::Frame f(light_);
   const auto polygons = occluding_polygons(p, n);
@@ -84,7 +94,7 @@ double ExactVisibility::visibility(const glm::dvec3& p, const glm::dvec3& n) con
 }
 
 bool ExactVisibility::partly_lit(const glm::dvec3& p, const glm::dvec3& n) const {
-  if (!light_.is_segment() && !light_.is_point()) {
+  if (!light_.is_segment() && !light_.is_point() && !light_.is_sun()) {
     const glm::dvec3 origin = viewpoint(p, n);
     if (sees_whole_light(p, origin, n) || hides_whole_light(p, origin, n)) return false;
   }

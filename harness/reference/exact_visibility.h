@@ -41,6 +41,18 @@
 // Casters with an alpha mask or an analytic shape have no exact polygonal
 // form here: `unsupported()` names the first.
 //
+// The sun (AreaLight::is_sun(): a disk of directions at infinity): as for a
+// rectangle, with the pyramid from p around the sun's cone (no cap: the sun
+// is beyond every caster), each clipped triangle projected along its
+// directions from p onto the plane at unit distance along the sun's axis,
+// and the disk's part below the tangent plane added. The union is Clipper's;
+// its part inside the disk is summed in closed form over the union's
+// outlines (each edge's triangle with the disk's centre, cut where it
+// crosses the circle: straight pieces inside, circular sectors outside), so
+// V = 1 − that area / (π tan²(angular_diameter / 2)), the fraction of the
+// disk as core::AreaLight defines the sun's V. The inside-a-closed-part test
+// follows the axis from p to beyond the casters' bounding sphere.
+//
 // A linear light (AreaLight::is_segment(), ends A = segment_end(0) and
 // B = segment_end(1)): every ray from p to the segment lies in the plane
 // through p, A and B, so V is one-dimensional. Each candidate triangle is cut
@@ -157,6 +169,24 @@ class ExactVisibility {
   // in parallel over rows; background pixels get 1.
   core::ImageF image(const core::ImageF& positions, const core::ImageF& normals) const;
 
+  // The polygons whose union hides the sun from p, on the plane at unit
+  // distance along its axis (coordinates along the disk's frame, half_u
+  // and half_v made unit), inside the square around its disk of radius
+  // tan(angular_diameter / 2), counter-clockwise.
+  std::vector<std::vector<glm::dvec2>> sun_occluding_polygons(const glm::dvec3& p,
+                                                              const glm::dvec3& n) const;
+
+  // The area of `polygon` (counter-clockwise adds, clockwise subtracts)
+  // inside the disk of `radius` about the origin, in closed form.
+  static double disk_area_inside(const std::vector<glm::dvec2>& polygon, double radius);
+
+  // The area of the union of `polygons` (counter-clockwise, inside the
+  // square around the disk) inside the disk of `radius` about the origin:
+  // the union by Clipper (the radius maps to 2^30), then its outlines'
+  // parts inside the disk in closed form.
+  static double union_disk_area(const std::vector<std::vector<glm::dvec2>>& polygons,
+                                double radius);
+
   // The casters' triangles it keeps (a closed caster's, all of them).
   size_t triangle_count() const { return casters_.triangles().size(); }
 
@@ -164,8 +194,14 @@ class ExactVisibility {
   // The offset viewpoint p + eps·n (see above).
   glm::dvec3 viewpoint(const glm::dvec3& surface, const glm::dvec3& n) const;
 
+  // The sun's V at p (sun_occluding_polygons, union_disk_area).
+  double sun_visibility(const glm::dvec3& p, const glm::dvec3& n) const;
+
   core::AreaLight light_;
   detail::CasterBvh casters_;
+  // The casters' bounding sphere: how far the sun's inside test must look.
+  glm::dvec3 reach_centre_{0.0};
+  double reach_ = 0.0;
   std::string unsupported_;
 };
 

@@ -97,6 +97,8 @@ std::string cache_key(const Scene& scene, const ImageF& positions, const ImageF&
   // stratified along its axis (and from before the exact reference did
   // segments) never match, while rectangles' and points' keys stay as they were.
   if (scene.light.is_segment()) h.add("light_strata:segment_1d");
+  // The sun's key carries its kind and size (a rectangle's never has them).
+  if (scene.light.is_sun()) h.add("light:sun").add(scene.light.angular_diameter);
   uint64_t casters = 0;
   for (const Mesh& m : scene.meshes) {
     if (!m.casts_shadow) continue;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/error.h"
@@ -35,6 +36,21 @@ void check_ray_range(const glm::vec3& o, const glm::vec3& base, const glm::vec3&
 
 bool covered(const ImageF& positions, size_t pixel) { return positions.data[pixel * 4 + 3] > 0.5f; }
 
+glm::vec2 concentric_disk(float s, float t) {
+  const float a = 2.0f * s - 1.0f, b = 2.0f * t - 1.0f;
+  if (a == 0.0f && b == 0.0f) return {0.0f, 0.0f};
+  constexpr float kQuarterPi = 0.785398163397448f;
+  float r, phi;
+  if (std::fabs(a) > std::fabs(b)) {
+    r = a;
+    phi = kQuarterPi * (b / a);
+  } else {
+    r = b;
+    phi = 2.0f * kQuarterPi - kQuarterPi * (a / b);
+  }
+  return {r * std::cos(phi), r * std::sin(phi)};
+}
+
 RaySetup::RaySetup(const Scene& scene, const FlatScene& casters, const Layout& layout_,
                    const ImageF& positions_, const ImageF& normals_, uint64_t seed_)
     : layout(layout_),
@@ -46,6 +62,13 @@ RaySetup::RaySetup(const Scene& scene, const FlatScene& casters, const Layout& l
       corner(scene.light.center - scene.light.half_u - scene.light.half_v),
       eu(2.0f * scene.light.half_u),
       ev(2.0f * scene.light.half_v),
+      sun(scene.light.is_sun()),
+      axis(scene.light.to_sun()),
+      e1(glm::length(scene.light.half_u) > 0.0f ? glm::normalize(scene.light.half_u)
+                                                : glm::vec3(1, 0, 0)),
+      e2(glm::length(scene.light.half_v) > 0.0f ? glm::normalize(scene.light.half_v)
+                                                : glm::vec3(0, 0, 1)),
+      tan_radius(std::tan(0.5f * scene.light.angular_diameter)),
       seed(seed_) {}
 
 PixelRays::PixelRays(const RaySetup& setup) : s_(setup) { rtcInitIntersectContext(&context_); }
@@ -59,7 +82,7 @@ void PixelRays::start(size_t pix, Stream stream) {
   if (len > 0.0f) {
     n /= len;
   } else {  // no usable normal: step towards the light instead
-    const glm::vec3 to_light = s_.center - p;
+    const glm::vec3 to_light = s_.sun ? s_.axis : s_.center - p;
     const float d = glm::length(to_light);
     n = d > 0.0f ? to_light / d : glm::vec3(0, 1, 0);
   }
@@ -69,7 +92,12 @@ void PixelRays::start(size_t pix, Stream stream) {
   normal_ = n;
   origin_ = p + s_.offset.at(p) * n;
   base_ = s_.corner - origin_;
-  check_ray_range(origin_, base_, s_.eu, s_.ev, pix, s_.positions.width);
+  // The sun's rays run to infinity: only their origin must be in range.
+  if (s_.sun)
+    check_ray_range(origin_, glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f), pix,
+                    s_.positions.width);
+  else
+    check_ray_range(origin_, base_, s_.eu, s_.ev, pix, s_.positions.width);
   packet_.reset(origin_);
   key_ = pixel_key(s_.seed, pix, uint64_t(s_.layout.spp));
   if (stream == Stream::Pilot) key_ = mix64(key_ ^ 0x3c6ef372fe94f82bull);
@@ -90,11 +118,19 @@ void PixelRays::trace(const uint32_t* order_index, size_t count, uint8_t* reache
       float u, v;
       sample_uv(key_, i, u, v);
       const float ls = st.s0 + u * st.ds, lt = st.t0 + v * st.dt;
-      const glm::vec3 d = base_ + ls * s_.eu + lt * s_.ev;
+      glm::vec3 d;
+      float tfar = kTfar;
+      if (s_.sun) {
+        const glm::vec2 q = s_.tan_radius * concentric_disk(ls, lt);
+        d = s_.axis + q.x * s_.e1 + q.y * s_.e2;
+        tfar = std::numeric_limits<float>::infinity();
+      } else {
+        d = base_ + ls * s_.eu + lt * s_.ev;
+      }
       // Light points below the tangent plane are occluded by the surface
       // itself, open or closed: no ray is traced for them.
       if (glm::dot(normal_, d) > 0.0f) {
-        packet_.activate(int(j), d, kTfar);
+        packet_.activate(int(j), d, tfar);
         any = true;
       } else {
         packet_.deactivate(int(j));

@@ -32,11 +32,22 @@ struct RaySetup {
   RTCScene rtc;                   // null without casters: only the horizon test remains
   RayOffset offset;
   glm::vec3 center;          // the light's
-  glm::vec3 corner, eu, ev;  // the light: corner + s*eu + t*ev
+  glm::vec3 corner, eu, ev;  // a local light: corner + s*eu + t*ev
+  // The sun: a sample (s, t) is the direction axis + tan_radius·(x·e1 +
+  // y·e2), (x, y) = concentric_disk(s, t), on the plane at unit distance
+  // along the axis (core::AreaLight's definition of the sun's V).
+  bool sun;
+  glm::vec3 axis, e1, e2;
+  float tan_radius;
   uint64_t seed;
 };
 
 bool covered(const core::ImageF& positions, size_t pixel);
+
+// Shirley and Chiu's concentric map of the unit square onto the unit disk:
+// it keeps areas, so strata of the square become equal-area strata of the
+// disk.
+glm::vec2 concentric_disk(float s, float t);
 
 // Which of a pixel's two independent sample streams: the estimate's (the
 // uniform reference's samples) or the adaptive reference's pilot's, which

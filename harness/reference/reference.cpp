@@ -193,7 +193,7 @@ std::vector<bool> closed_casters(const Scene& scene) {
 // meets the pyramid" still proves a pilot lit, and, never closed, it proves
 // none occluded. An analytic shape bulges out of its triangles.
 bool proofs_hold(const Scene& scene) {
-  if (scene.light.is_segment() || scene.light.is_point()) return false;
+  if (scene.light.is_segment() || scene.light.is_point() || scene.light.is_sun()) return false;
   return std::none_of(scene.meshes.begin(), scene.meshes.end(), [](const Mesh& m) {
     return m.casts_shadow && m.analytic.kind != AnalyticShape::Kind::None;
   });

@@ -74,7 +74,8 @@ layout(binding = 0) uniform sampler2D position_tex;
 layout(binding = 1) uniform sampler2D normal_tex;
 layout(binding = 2) uniform sampler2D albedo_tex;
 layout(binding = 3) uniform sampler2D visibility_tex;
-uniform vec3 light_center;
+// w = 1: a local light at xyz; w = 0: the sun, xyz towards it.
+uniform vec4 light_position;
 uniform float light_intensity;
 uniform vec3 ambient;
 uniform vec3 background;
@@ -86,7 +87,7 @@ void main() {
   vec3 n = texelFetch(normal_tex, p, 0).xyz;
   vec3 albedo = texelFetch(albedo_tex, p, 0).rgb;
   float v = texelFetch(visibility_tex, p, 0).r;
-  vec3 l = normalize(light_center - pos.xyz);
+  vec3 l = normalize(light_position.xyz - light_position.w * pos.xyz);
   vec3 radiance = albedo * (ambient + v * light_intensity * max(dot(n, l), 0.0));
   color = vec4(pow(clamp(radiance, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
 }
@@ -154,7 +155,9 @@ void FrameTargets::render_shading(const Scene& scene) {
   glDisable(GL_STENCIL_TEST);
   glDisable(GL_BLEND);
   shading_program_.use();
-  shading_program_.set("light_center", scene.light.center);
+  shading_program_.set("light_position", scene.light.is_sun()
+                                             ? glm::vec4(scene.light.to_sun(), 0.0f)
+                                             : glm::vec4(scene.light.center, 1.0f));
   shading_program_.set("light_intensity", scene.light.intensity);
   shading_program_.set("ambient", scene.ambient);
   shading_program_.set("background", glm::vec3(0.55f, 0.65f, 0.8f));

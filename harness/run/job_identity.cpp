@@ -239,7 +239,8 @@ BuiltScene built_scene(const SceneVariant& sv, const ScenePlan& st) {
   b.caster_triangles = static_cast<std::int64_t>(st.scene.caster_triangle_count());
   b.analytic_casters = static_cast<std::int64_t>(st.scene.analytic_caster_count());
   const auto& l = st.scene.light;
-  b.light = {vec3(l.center), vec3(l.target), {l.width(), l.height()}, l.intensity};
+  b.light = {vec3(l.center), vec3(l.target), {l.width(), l.height()}, l.intensity, std::nullopt};
+  if (l.is_sun()) b.light.angular_diameter = glm::degrees(double(l.angular_diameter));
   const auto& c = st.scene.camera;
   b.camera = {vec3(c.eye), vec3(c.target), c.fov_y_degrees};
   b.derived = {st.derived.has(plugin::need::kCasterClosedness),

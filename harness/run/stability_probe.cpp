@@ -4,6 +4,8 @@
 #include <cmath>
 #include <exception>
 
+#include "core/scene_types.h"
+
 namespace sb::run {
 
 using config::StabilityConfig;
@@ -40,6 +42,15 @@ StabilityProbe::StabilityProbe(const StabilityConfig& config, double max_rmse, c
 }
 
 AreaLight StabilityProbe::translated(const AreaLight& light, float distance) {
+  // The sun's place moves as a local light's would: the sun turns by
+  // atan(distance / its place's distance) about its disk's v axis.
+  if (light.is_sun()) {
+    const float len = glm::length(light.half_u);
+    const glm::vec3 u = len > 0.0f ? light.half_u / len : glm::vec3(1.0f, 0.0f, 0.0f);
+    const float away = glm::length(light.center - light.target);
+    return core::make_sun_light(light.center + distance * u - light.target, light.target,
+                                light.angular_diameter, away, light.intensity);
+  }
   AreaLight out = light;
   const float len = glm::length(light.half_u);
   const glm::vec3 u = len > 0.0f ? light.half_u / len : glm::vec3(1.0f, 0.0f, 0.0f);
@@ -52,6 +63,9 @@ AreaLight StabilityProbe::scaled(const AreaLight& light, float factor) {
   AreaLight out = light;
   out.half_u *= factor;
   out.half_v *= factor;
+  // The sun's disk, seen at its place's distance, grows alike.
+  if (light.is_sun())
+    out.angular_diameter = 2.0f * std::atan(factor * std::tan(0.5f * light.angular_diameter));
   return out;
 }
 

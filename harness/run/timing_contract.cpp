@@ -28,19 +28,40 @@ using plugin::PlanarReceiver;
 using plugin::Technique;
 using plugin::TechniqueInfo;
 
-Scene contract_scene(bool linear) {
+const char* to_string(ContractLight light) {
+  switch (light) {
+    case ContractLight::Square:
+      return "square";
+    case ContractLight::Linear:
+      return "linear";
+    case ContractLight::Sun:
+      return "sun";
+  }
+  return "?";
+}
+
+Scene contract_scene(ContractLight light) {
   const SceneType* type = core::find_scene_type("sphere_grid");
   Scene s =
       type->build(core::resolve_params(type->params, {{"grid", 2}, {"light_size", 2.0}}, "", ""));
   s.camera.eye = {0.0f, 3.0f, 4.5f};
   s.camera.target = {0.0f, 0.6f, 0.0f};
-  if (linear)
+  if (light == ContractLight::Linear)
     s.light = core::make_area_light(s.light.center, s.light.target, s.light.width(), 0.0f,
                                     s.light.intensity);
+  if (light == ContractLight::Sun)
+    s.light = core::make_sun_light(s.light.to_sun(), s.light.target, glm::radians(2.0f),
+                                   glm::length(s.light.center - s.light.target), s.light.intensity);
   return s;
 }
 
 AreaLight moved_light(const AreaLight& l) {
+  // The sun turns (by about 15°) and looks elsewhere.
+  if (l.is_sun()) {
+    const glm::vec3 target = l.target + glm::vec3(-0.3f, 0.0f, 0.4f);
+    return core::make_sun_light(l.to_sun() + glm::vec3(0.2f, 0.0f, -0.15f), target,
+                                l.angular_diameter, glm::length(l.center - l.target), l.intensity);
+  }
   AreaLight m = core::make_area_light(l.center + glm::vec3(1.0f, -0.5f, 0.8f),
                                       l.target + glm::vec3(-0.3f, 0.0f, 0.4f), l.width(),
                                       l.height(), l.intensity);

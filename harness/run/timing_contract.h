@@ -35,10 +35,15 @@
 
 namespace sb::run {
 
+// The light of the scene the checks run on.
+enum class ContractLight { Square, Linear, Sun };
+const char* to_string(ContractLight light);  // "square", "linear", "sun"
+
 // The scene the checks run on: a 2×2 sphere grid over the ground, seen from
-// close by, with a 2-unit square light; `linear`: a 2-unit segment instead
-// (for techniques that need a linear light).
-core::Scene contract_scene(bool linear = false);
+// close by, with a 2-unit square light; Linear: a 2-unit segment instead
+// (for techniques that need a linear light); Sun: the sun from the square's
+// direction, 2° across (for techniques that need the sun).
+core::Scene contract_scene(ContractLight light = ContractLight::Square);
 // The same light a little elsewhere: the centre shifted, the axis tilted and
 // the rectangle turned about it, so any frustum fitted to the first light,
 // and any point sampled on it, is wrong for this one.

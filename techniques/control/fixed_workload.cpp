@@ -110,7 +110,7 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
        .summary =
            "control for timing ratios: a fixed grid drawn into a depth map, read back per pixel; "
            "V = 1 (shares no code with any technique)",
-       .needs = Needs{},
+       .needs = Needs{need::kSunOrLocalLight},
        .params = {int_param("grid", 128, 1, 2048,
                             "the heightfield's quads per side (2 grid² triangles)"),
                   int_param("size", 1024, 16, 8192, "the depth map's side in texels"),

@@ -27,7 +27,7 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
   registry.add({.name = "none",
                 .family = "none",
                 .summary = "no shadows: visibility 1 everywhere",
-                .needs = Needs{},
+                .needs = Needs{need::kSunOrLocalLight},
                 .params = {},
                 .create = [](const Params&) { return std::make_unique<NoShadows>(); }});
 }

@@ -433,7 +433,39 @@ TEST(GltfImport, PointAndDirectionalLights) {
     // directional lights shine along the node's -z, from outside the bounds
     if (std::string(type) == "directional")
       expect_vec(glm::normalize(s.light.target - s.light.center), {0, 0, -1});
+    // A directional light is the sun, 0.53° across unless the file says.
+    EXPECT_EQ(s.light.is_sun(), std::string(type) == "directional");
+    if (s.light.is_sun()) {
+      EXPECT_NEAR(glm::degrees(s.light.angular_diameter), 0.53f, 1e-5f);
+    }
   }
+}
+
+TEST(GltfImport, DirectionalLightsAreTheSunWithTheirSizeFromExtras) {
+  TempDir dir;
+  GltfBuilder b;
+  b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}});
+  b.node({{"mesh", 0}});
+  b.doc["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "directional"}}};
+  b.node({{"rotation", {-0.3826834, 0, 0, 0.9238795}},  // -45° about x: shining down and away
+          {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}},
+          {"extras", {{"shadowbench_light", {{"angular_diameter", 2.5}}}}}});
+  const Scene s = load_gltf(b.save_gltf(dir / "sun.gltf"));
+  ASSERT_TRUE(s.light.is_sun());
+  EXPECT_NEAR(glm::degrees(s.light.angular_diameter), 2.5f, 1e-5f);
+  expect_vec(s.light.to_sun(), glm::normalize(glm::vec3(0, 1, 1)));
+  // Written back, it stays the sun with its size and direction.
+  export_glb(s, dir / "again.glb");
+  const Scene again = load_gltf(dir / "again.glb");
+  ASSERT_TRUE(again.light.is_sun());
+  EXPECT_NEAR(glm::degrees(again.light.angular_diameter), 2.5f, 1e-5f);
+  expect_vec(again.light.to_sun(), s.light.to_sun());
+
+  b.doc["nodes"][1]["extras"]["shadowbench_light"]["angular_diameter"] = 0;
+  const std::string msg = input_error([&] { load_gltf(b.save_gltf(dir / "bad.gltf")); });
+  EXPECT_NE(msg.find("angular_diameter: expected the sun's diameter in degrees in [0.0001, 90]"),
+            std::string::npos)
+      << msg;
 }
 
 TEST(GltfImport, GltfSceneTypeNeedsAFile) {

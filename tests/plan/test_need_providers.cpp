@@ -2,14 +2,14 @@
 // plugin's alike, each computed only when a technique asks, after what it
 // requires, and checked for its type when read. The silhouette-edge data is
 // tested against the geometry itself.
-#include <algorithm>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <stdexcept>
 
+#include "core/scene_types.h"
 #include "plan/need_resolution.h"
 #include "plugin/registry.h"
-#include "core/scene_types.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/need_providers.h"
 #include "scenes/sphere_grid.h"

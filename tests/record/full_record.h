@@ -40,7 +40,7 @@ inline record::JobRecord full_record() {
   b.triangles = 61562;
   b.caster_triangles = 61560;
   b.analytic_casters = 81;
-  b.light = {{0, 10, 0}, {0, 0, 0}, {2, 2}, 1.5};
+  b.light = {{0, 10, 0}, {0, 0, 0}, {2, 2}, 1.5, 0.53};
   b.camera = {{0, 12.125, 14.5}, {0, 0, 1.875}, 50};
   b.derived = {true, false, true, {"ground"}};
   r.scene.built = b;
