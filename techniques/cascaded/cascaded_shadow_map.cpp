@@ -183,7 +183,10 @@ TechniqueInfo cascaded_shadow_map_info() {
                    "cascade: write the cascade index (0 first .. 1 last, blended in the bands) "
                    "instead of V, to look at the splits; not a shadow")};
   // The size is each cascade's: a cascade is as large as another technique's one map.
-  for (auto& p : depth_map_params(2048)) params.push_back(std::move(p));
+  for (auto& p : depth_map_params(2048)) {
+    if (p.name == "size") p.doc = "each cascade's map side in texels (the array holds N of them)";
+    params.push_back(std::move(p));
+  }
   return {.name = "cascaded_shadow_map",
           .family = "cascaded",
           .summary =
