@@ -11,6 +11,7 @@
 // Parameters, defaults and ranges: docs/parameters.md; the technique and the
 // papers: docs/sun.md.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -45,8 +46,8 @@ int filter_mode(const std::string& filter) {
 // The camera's depth range that holds the scene: its clip planes, narrowed
 // to the scene's bounding box (a far plane far behind the scene would spend
 // the splits on empty space).
-glm::vec2 scene_depth_range(const FrameInputs& in, float near_plane, float far_plane) {
-  const core::Bounds b = in.scene->bounds();
+glm::vec2 scene_depth_range(const FrameInputs& in, const core::Bounds& b, float near_plane,
+                            float far_plane) {
   float lo = far_plane, hi = near_plane;
   for (const glm::vec3& p : box_corners(b.lo, b.hi)) {
     const float d = -(in.view * glm::vec4(p, 1.0f)).z;
@@ -71,7 +72,11 @@ class CascadedShadowMap final : public plugin::Technique {
         min_filter_texels_(p.get_float("min_filter_texels")),
         show_cascades_(p.get_string("output") == "cascade") {}
 
-  void prepare(const FrameInputs& /*in*/) override {
+  void prepare(const FrameInputs& in) override {
+    // Fixed scene data (neither the light's nor the camera's): derived once.
+    scene_bounds_ = in.scene->bounds();
+    const core::Bounds casters = in.scene->caster_bounds();
+    caster_corners_ = box_corners(casters.lo, casters.hi);
     maps_ = CascadeDepthArray(settings_.size, cascades_, settings_.depth_format);
     lookup_ = gl::Program("cascaded_shadow_map_lookup",
                           {gl::kFullscreenVertexShader, "",
@@ -99,11 +104,9 @@ class CascadedShadowMap final : public plugin::Technique {
       CameraFrustum camera{in.view, 1.0f / P[1][1], P[1][1] / P[0][0]};
       const float near_plane = P[3][2] / (P[2][2] - 1.0f);
       const float far_plane = P[3][2] / (P[2][2] + 1.0f);
-      const glm::vec2 range = scene_depth_range(in, near_plane, far_plane);
-      const core::Bounds casters = in.scene->caster_bounds();
+      const glm::vec2 range = scene_depth_range(in, scene_bounds_, near_plane, far_plane);
       plan = plan_cascades(camera, range.x, range.y, cascades_, lambda_, blend_band_,
-                           light.direction(), box_corners(casters.lo, casters.hi), settings_.size,
-                           mode_);
+                           light.direction(), caster_corners_, settings_.size, mode_);
       for (int i = 0; i < cascades_; ++i)
         maps_.render(*in.gpu, i, plan.boxes[size_t(i)].view_projection, settings_.cull,
                      settings_.bias);
@@ -150,6 +153,8 @@ class CascadedShadowMap final : public plugin::Technique {
   int search_radius_;
   float min_filter_texels_;
   bool show_cascades_;
+  core::Bounds scene_bounds_;
+  std::array<glm::vec3, 8> caster_corners_{};
   CascadeDepthArray maps_;
   gl::Program lookup_;
   gl::Sampler compare_sampler_;
