@@ -1,0 +1,6 @@
+#pragma once
+#include "plugin/registry.h"
+
+namespace sb::techniques::cascaded {
+plugin::TechniqueInfo cascaded_shadow_map_info();
+}  // namespace sb::techniques::cascaded
