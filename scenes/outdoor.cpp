@@ -275,11 +275,12 @@ Scene build_outdoor(const Params& p) {
   l.street_lights(poles / 2);
   l.place_poles(poles - poles / 2);
 
-  for (Mesh& m : l.buildings)
+  std::vector<Mesh> casters = std::move(l.buildings);
+  casters.push_back(std::move(l.wood));
+  casters.push_back(std::move(l.leaves));
+  casters.push_back(std::move(l.poles));
+  for (Mesh& m : casters)  // an empty one (no leaves, no buildings of a colour) draws nothing
     if (!m.indices.empty()) s.meshes.push_back(std::move(m));
-  s.meshes.push_back(std::move(l.wood));
-  s.meshes.push_back(std::move(l.leaves));
-  s.meshes.push_back(std::move(l.poles));
   // Receivers under everything: they occlude nothing.
   Mesh ground = named("ground", glm::vec3(0.42f, 0.46f, 0.30f));
   add_rect(ground, -half, -kRoadHalf, -half, half);
