@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -29,7 +30,11 @@ namespace {
 using nlohmann::json;
 using test::build_scene_type;
 
-Scene outdoor(const json& given = json::object()) { return build_scene_type("outdoor", given); }
+// Throws when the type is missing, which gtest reports as the test's failure.
+Scene outdoor(const json& given = json::object()) {
+  if (find_scene_type("outdoor") == nullptr) throw std::runtime_error("no scene type 'outdoor'");
+  return build_scene_type("outdoor", given);
+}
 
 const Mesh* find_mesh(const Scene& s, const std::string& name) {
   for (const Mesh& m : s.meshes)
@@ -219,7 +224,7 @@ TEST(OutdoorScene, DefaultsStayUnderTwoHundredThousandTriangles) {
 
 TEST(OutdoorScene, AValueOutOfRangeOrOverTheBudgetNamesItsParameter) {
   const SceneType* t = find_scene_type("outdoor");
-  ASSERT_NE(t, nullptr);
+  ASSERT_NE(t, nullptr) << "no scene type 'outdoor'";
   for (const auto& [param, value] : std::vector<std::pair<std::string, json>>{
            {"extent", 999.0}, {"sun_elevation", 91.0}, {"trees", -1.0}, {"seed", -1}}) {
     try {
