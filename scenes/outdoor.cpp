@@ -15,9 +15,10 @@
 // The densities are per square kilometre, so the counts follow the area.
 // Buildings are placed first, then trees clear of them, then poles clear of
 // both. Each kind draws from its own stream of the seed (each tree's leaves
-// from one of their own): a density changes its own kind's count and no
-// other (the kinds placed after it keep their counts, moved out of its
-// way), and a larger density keeps the smaller one's objects and adds more.
+// from one of their own): a density never moves a kind placed before it
+// (the kinds placed after it move out of its way, and keep their counts
+// while there is room), and a larger density keeps the smaller one's
+// objects and adds more (but for the street lights, spaced evenly).
 //
 // Whatever the densities, the camera's near field holds a sign post 3 m
 // ahead, two bollards, a tree whose crown overhangs the view 6–11 m ahead
