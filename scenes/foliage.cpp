@@ -18,7 +18,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/counter_rng.h"
+#include "scenes/draws.h"
 #include "scenes/leaf.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/sphere_grid.h"
@@ -38,21 +38,6 @@ using core::SceneType;
 
 namespace {
 
-// The trees' draws, one after another from the project's portable generator
-// (core/counter_rng.h: std distributions differ between standard libraries,
-// and the same seed must give the same trees everywhere).
-class Random {
- public:
-  explicit Random(uint64_t seed) : stream_(seed * core::kSplitMix64Gamma + 1) {}
-  float uniform(float lo, float hi) {
-    return lo + (hi - lo) * core::uniform_float(stream_, next_++);
-  }
-
- private:
-  uint64_t stream_;
-  uint64_t next_ = 0;
-};
-
 glm::vec3 any_perpendicular(const glm::vec3& a) {
   const glm::vec3 h = std::fabs(a.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
   return glm::normalize(glm::cross(a, h));
@@ -66,7 +51,7 @@ glm::vec3 rotate(const glm::vec3& axis, const glm::vec3& around, float angle) {
 
 struct Grower {
   const Params& p;
-  Random& rng;
+  Draws& rng;
   Mesh& wood;
   Mesh& leaves;
   int segments;
@@ -115,7 +100,8 @@ Scene build_foliage(const Params& p) {
   s.name = "foliage";
   const auto seed = static_cast<uint64_t>(p.get_int("seed"));
   s.textures.push_back(make_leaf_texture(64, static_cast<uint32_t>(seed)));
-  Random rng(seed);
+  // The stream seed·γ + 1 these trees have always been drawn from.
+  Draws rng(seed * core::kSplitMix64Gamma + 1);
   Mesh leaves;  // every leaf quad of every tree, with the leaf quads' material
   leaves.name = "leaves";
   leaves.albedo = glm::vec3(1.0f);

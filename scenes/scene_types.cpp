@@ -7,6 +7,7 @@
 #include "scenes/gltf_scene_type.h"
 #include "scenes/jeep.h"
 #include "scenes/long_ground.h"
+#include "scenes/outdoor.h"
 #include "scenes/plates.h"
 #include "scenes/sphere_grid.h"
 #include "scenes/standing.h"
@@ -20,14 +21,11 @@ using core::SceneType;
 
 namespace {
 std::vector<SceneType>& registry() {
-  static std::vector<SceneType> types = {sphere_grid_scene_type(),
-                                         foliage_scene_type(),
-                                         jeep_scene_type(),
-                                         plates_scene_type(),
-                                         stress_geometry_scene_type(),
-                                         standing_scene_type(),
-                                         long_ground_scene_type(),
-                                         gltf_scene_type()};
+  static std::vector<SceneType> types = {
+      sphere_grid_scene_type(), foliage_scene_type(),         jeep_scene_type(),
+      plates_scene_type(),      stress_geometry_scene_type(), standing_scene_type(),
+      long_ground_scene_type(), outdoor_scene_type(),         gltf_scene_type(),
+  };
   return types;
 }
 }  // namespace
