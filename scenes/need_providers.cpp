@@ -39,7 +39,9 @@ bool find_planar_receiver(const Scene& scene, PlanarReceiver& out) {
     if (!plane) continue;
     glm::vec3 n(*plane);
     auto d = float(plane->w);
-    if (glm::dot(n, scene.light.center) + d < 0.0f) {  // orient towards the light
+    const bool away = scene.light.is_sun() ? glm::dot(n, scene.light.to_sun()) < 0.0f
+                                           : glm::dot(n, scene.light.center) + d < 0.0f;
+    if (away) {  // orient towards the light
       n = -n;
       d = -d;
     }

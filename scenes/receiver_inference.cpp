@@ -65,14 +65,25 @@ bool ShadowNothingTest::operator()(size_t mesh) const {
   if (!plane) return false;
   glm::dvec3 n(*plane);
   double d = plane->w;
-  const glm::dvec3 corners[4] = {scene_.light.point(0, 0), scene_.light.point(1, 0),
-                                 scene_.light.point(0, 1), scene_.light.point(1, 1)};
-  if (glm::dot(n, corners[0]) + d < 0.0) {  // orient towards the light
-    n = -n;
-    d = -d;
+  if (scene_.light.is_sun()) {
+    // The sun wholly on one side of the plane, at infinity: only the
+    // directions count.
+    const int side = core::sun_side(scene_.light, n);
+    if (side == 0) return false;
+    if (side < 0) {
+      n = -n;
+      d = -d;
+    }
+  } else {
+    const glm::dvec3 corners[4] = {scene_.light.point(0, 0), scene_.light.point(1, 0),
+                                   scene_.light.point(0, 1), scene_.light.point(1, 1)};
+    if (glm::dot(n, corners[0]) + d < 0.0) {  // orient towards the light
+      n = -n;
+      d = -d;
+    }
+    for (const auto& c : corners)
+      if (!(glm::dot(n, c) + d > eps)) return false;
   }
-  for (const auto& c : corners)
-    if (!(glm::dot(n, c) + d > eps)) return false;
   if (!(glm::dot(n, glm::dvec3(scene_.camera.eye)) + d > eps)) return false;
   // Every other mesh on the light's side or sunk by less than `sunk`. The
   // mesh's own vertices, within eps of its plane, pass that test too, so

@@ -271,6 +271,17 @@ ConfigBlock metrics_block() {
        [](Experiment& e, const json& v) { e.distance_thirds = v.get<bool>(); },
        [](const Experiment& e) { return json(e.distance_thirds); }},
       {Decides::Error,
+       choice_param("distance_scale", "linear", {"linear", "log"},
+                    "how `distance_thirds` divides the distances: equal intervals of distance, "
+                    "or of its logarithm (equal ratios, as cascades split a view: a street seen "
+                    "from eye height over a kilometre has nearly every pixel in the linear near "
+                    "third); part of the jobs' spec"),
+       [](Experiment& e, const json& v) {
+         e.distance_scale = v.get<std::string>() == "log" ? metrics::DistanceScale::Log
+                                                          : metrics::DistanceScale::Linear;
+       },
+       [](const Experiment& e) { return json(metrics::to_string(e.distance_scale)); }},
+      {Decides::Error,
        float_param("flip_pixels_per_degree", metrics::kFlipDefaultPixelsPerDegree, 1, 1000,
                    "the viewing distance of the FLIP errors (`flip_mean`), in pixels per degree "
                    "of visual angle; the default is the paper's (a 0.7 m wide 3840-pixel monitor "

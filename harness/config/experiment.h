@@ -13,6 +13,7 @@
 #include "core/json_positions.h"
 #include "core/params.h"
 #include "core/scene_types.h"
+#include "metrics/distance_thirds.h"
 #include "metrics/flip.h"
 #include "plugin/registry.h"
 #include "reference/settings.h"
@@ -139,6 +140,8 @@ struct Experiment {
   // the near, middle and far third of the camera's distances
   // (metrics/distance_thirds.h), for perspective aliasing.
   bool distance_thirds = false;
+  // "metrics": {"distance_scale": "log"}: the thirds of log(distance).
+  metrics::DistanceScale distance_scale = metrics::DistanceScale::Linear;
   // "metrics": {"flip_pixels_per_degree": 67.02}: the viewing distance of the
   // FLIP errors (metrics/flip.h), by default the paper's.
   double flip_pixels_per_degree = metrics::kFlipDefaultPixelsPerDegree;

@@ -6,6 +6,16 @@
 
 namespace sb::core {
 
+int sun_side(const AreaLight& sun, const glm::dvec3& n) {
+  // Over the disk's directions a + t·q (|q| <= 1, q ⊥ a), n·d ranges over
+  // n·a ± t·|n − (n·a)·a|.
+  const glm::dvec3 a = glm::normalize(glm::dvec3(sun.to_sun()));
+  const double along = glm::dot(n, a);
+  const double spread =
+      std::tan(0.5 * double(sun.angular_diameter)) * glm::length(n - along * a);
+  return along > spread ? 1 : along < -spread ? -1 : 0;
+}
+
 float sample_alpha(const TextureImage& texture, glm::vec2 uv) {
   if (texture.width <= 0 || texture.height <= 0) return 1.0f;
   const auto wrap = [](float t, int size) {

@@ -77,8 +77,9 @@ struct Mesh {
 // to_sun(). Its V at a point is the visible fraction of that disk as
 // projected onto a plane perpendicular to to_sun() (the gnomonic
 // projection, which both references and every sun technique use; it
-// differs from the fraction of solid angle by under α²/2 for a disk of
-// angular radius α: 2e-5 for the real sun). `center` is then only a place
+// weighs directions by 1/cos³ of their angle from the axis, so it differs
+// from the fraction of solid angle by under 3r²/2 for a disk of angular
+// radius r: 3e-5 for the real sun). `center` is then only a place
 // on the sun's side for code that wants one (a light frustum's eye), and
 // `target` where the light looks; half_u and half_v span the disk's
 // circumscribed square as seen at `center`'s distance, so that width()
@@ -113,6 +114,11 @@ struct AreaLight {
     return center + (2.0f * s - 1.0f) * half;
   }
 };
+
+// The sun against the plane through the origin with normal n: 1 when every
+// direction of its disk points to n's side (n·d > 0), -1 when every one
+// points away, 0 when the plane cuts the disk. For the sun only.
+int sun_side(const AreaLight& sun, const glm::dvec3& n);
 
 struct Camera {
   glm::vec3 eye{0.0f, 5.0f, 10.0f};

@@ -15,6 +15,11 @@ std::vector<LightHorizon> classify_light_horizon(const ImageF& positions, const 
     if (positions.data[i * 4 + 3] == 0.0f) continue;
     const glm::vec3 p(positions.data[i * 4], positions.data[i * 4 + 1], positions.data[i * 4 + 2]);
     const glm::vec3 n(normals.data[i * 3], normals.data[i * 3 + 1], normals.data[i * 3 + 2]);
+    if (light.is_sun()) {  // at infinity: only the normal matters
+      const int side = core::sun_side(light, glm::dvec3(n));
+      out[i] = side > 0 ? LightHorizon::Above : side < 0 ? LightHorizon::Below : LightHorizon::Cuts;
+      continue;
+    }
     int above = 0;
     for (const auto& c : corners) above += glm::dot(n, c - p) > 0.0f ? 1 : 0;
     out[i] = above == 4   ? LightHorizon::Above

@@ -33,7 +33,7 @@ template <std::size_t Third>
 std::optional<Mask> distance_third(const RegionInputs& in, const Mask& measured) {
   if (!in.distance_thirds) return std::nullopt;
   const glm::vec3 eye(in.eye[0], in.eye[1], in.eye[2]);
-  return distance_thirds(*in.positions, eye, measured)[Third];
+  return distance_thirds(*in.positions, eye, measured, in.distance_scale)[Third];
 }
 
 // Every region's pixels. The pixels whose tangent plane cuts the light are

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "metrics/distance_thirds.h"
 #include "metrics/light_horizon.h"
 
 namespace sb::metrics {
@@ -64,6 +65,7 @@ struct RegionInputs {
   const core::ImageF* positions = nullptr;  // the G-buffer's, for the distance thirds
   float eye[3] = {0, 0, 0};                 // the camera's
   bool distance_thirds = false;             // metrics.distance_thirds
+  DistanceScale distance_scale = DistanceScale::Linear;  // metrics.distance_scale
 };
 
 // Every region of the catalogue that the view has, in catalogue order.

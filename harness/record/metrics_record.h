@@ -150,7 +150,9 @@ struct ImageMetrics {
                     "it existed",
              .display = {.label = "Terminator"}});
     v.field("near_third", &M::near_third,
-            {.doc = "with `metrics.distance_thirds`: the nearest third of the measured pixels",
+            {.doc = "with `metrics.distance_thirds`: the measured pixels in the nearest third of "
+                    "their distances' range from the camera (equal thirds of distance, or of its "
+                    "logarithm with `metrics.distance_scale` \"log\")",
              .display = {.label = "Near"}});
     v.field("middle_third", &M::middle_third,
             {.doc = "with `metrics.distance_thirds`", .display = {.label = "Middle"}});

@@ -72,7 +72,7 @@ std::string describe(const reference::Result& ref) {
 
 // The regions of the catalogue this view has (metrics/regions.h).
 metrics::Regions regions_of(const MeasurementBasis& b, const Scene& scene, bool distance_thirds,
-                            FrameTargets& targets) {
+                            metrics::DistanceScale distance_scale, FrameTargets& targets) {
   metrics::RegionInputs in;
   in.horizon = metrics::classify_light_horizon(b.positions, b.normals, scene.light);
   in.reference_penumbra = b.ref.penumbra;
@@ -82,6 +82,7 @@ metrics::Regions regions_of(const MeasurementBasis& b, const Scene& scene, bool 
   in.positions = &b.positions;
   for (int i = 0; i < 3; ++i) in.eye[i] = scene.camera.eye[i];
   in.distance_thirds = distance_thirds;
+  in.distance_scale = distance_scale;
   return metrics::make_regions(in);
 }
 
@@ -131,7 +132,7 @@ MeasurementBasis make_measurement_basis(const Experiment& e, const RunOptions& o
     b.second = make_reference(reference_settings(e.reference, embree, *e.reference.second_exact),
                               "second reference");
   }
-  b.regions = regions_of(b, scene, e.distance_thirds, targets);
+  b.regions = regions_of(b, scene, e.distance_thirds, e.distance_scale, targets);
   metrics::Regions& regions = b.regions;
   metrics::apply_attached_shadow(regions.attached, b.ref.visibility);
   if (b.second) {

@@ -2,6 +2,7 @@
 // equal thirds of the measured distances' range.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <stdexcept>
 
 #include "metrics/distance_thirds.h"
@@ -32,6 +33,27 @@ TEST(DistanceThirds, SplitsTheMeasuredRangeIntoEqualDistanceIntervals) {
   EXPECT_EQ(t[0], near);
   EXPECT_EQ(t[1], middle);
   EXPECT_EQ(t[2], far);
+}
+
+// Distances 1, 2, 4, ..., 256 and 1024: log thirds split at the ratios
+// 2^(10/3) and 2^(20/3) of the least, whatever the unit.
+TEST(DistanceThirds, OnTheLogScaleSplitsAtEqualRatios) {
+  for (const float unit : {1.0f, 1000.0f}) {
+    ImageF p(10, 1, 4);
+    for (int x = 0; x < 10; ++x) {
+      p.data[size_t(x) * 4 + 0] = unit * std::ldexp(1.0f, x < 9 ? x : 10);
+      p.data[size_t(x) * 4 + 3] = 1.0f;
+    }
+    // log2 distances 0..8 and 10: thirds end at 3.33 and 6.67.
+    const auto t =
+        distance_thirds(p, glm::vec3(0.0f), std::vector<uint8_t>(10, 1), DistanceScale::Log);
+    EXPECT_EQ(t[0], (std::vector<uint8_t>{1, 1, 1, 1, 0, 0, 0, 0, 0, 0})) << unit;
+    EXPECT_EQ(t[1], (std::vector<uint8_t>{0, 0, 0, 0, 1, 1, 1, 0, 0, 0})) << unit;
+    EXPECT_EQ(t[2], (std::vector<uint8_t>{0, 0, 0, 0, 0, 0, 0, 1, 1, 1})) << unit;
+    // The linear thirds of the same pixels: 1..1024 splits at 342 and 683.
+    const auto linear = distance_thirds(p, glm::vec3(0.0f), std::vector<uint8_t>(10, 1));
+    EXPECT_EQ(linear[0], (std::vector<uint8_t>{1, 1, 1, 1, 1, 1, 1, 1, 1, 0})) << unit;
+  }
 }
 
 TEST(DistanceThirds, LeavesOutBackgroundAndUnmeasuredPixelsAndTheirDistances) {
