@@ -40,6 +40,8 @@ uniform int filter_radius;    // PCF grid half side
 uniform int search_radius;    // PCSS blocker-search grid half side
 uniform float min_filter_texels;
 uniform bool show_cascades;
+// Write the world size of the pixel's cascade's texel (its box's larger side / map size).
+uniform bool show_texels;
 out float visibility;
 
 // The cascade shadow_tap() reads; set before each cascade's lookup.
@@ -119,6 +121,10 @@ void main() {
   }
   // Outside the box (only numerically, at its rim): nothing drawn there.
   if (v < 0.0) v = 1.0;
+  if (show_texels) {
+    visibility = max(cascade_box[i].x, cascade_box[i].y) / float(textureSize(cascade_shadow, 0).x);
+    return;
+  }
   if (show_cascades) {
     visibility = cascade_count > 1 ? (float(i) + w) / float(cascade_count - 1) : 0.0;
     return;
