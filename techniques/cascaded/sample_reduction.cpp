@@ -24,10 +24,14 @@ uint ordered_key(float f) {
   return (b & 0x80000000u) != 0u ? ~b : (b | 0x80000000u);
 }
 
-// The covered pixel's world position (w = 1) and its view depth; w = 0 on background.
-vec4 covered_pixel(out float depth) {
+// Each invocation reduces a kSpan×kSpan block of pixels in registers first,
+// then touches shared memory once: the atomics, not the pixels, cost most.
+const int kSpan = 4;
+
+// Pixel px's world position (w = 1) and its view depth; w = 0 on background
+// and outside the image.
+vec4 covered_pixel(ivec2 px, out float depth) {
   depth = 0.0;
-  ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(px, size))) return vec4(0.0);
   vec4 p = texelFetch(position_tex, px, 0);
   if (p.w == 0.0) return vec4(0.0);
@@ -36,6 +40,8 @@ vec4 covered_pixel(out float depth) {
   depth = d;
   return vec4(p.xyz, 1.0);
 }
+
+ivec2 block_origin() { return ivec2(gl_GlobalInvocationID.xy) * kSpan; }
 )glsl";
 
 const char* const kDepthRange = R"glsl(
@@ -47,11 +53,19 @@ void main() {
     group_max = 0u;
   }
   barrier();
-  float d;
-  if (covered_pixel(d).w != 0.0) {
-    uint k = ordered_key(d);
-    atomicMin(group_min, k);
-    atomicMax(group_max, k);
+  float lo = 3.4e38, hi = -3.4e38;
+  for (int y = 0; y < kSpan; ++y)
+    for (int x = 0; x < kSpan; ++x) {
+      float d;
+      if (covered_pixel(block_origin() + ivec2(x, y), d).w != 0.0) {
+        lo = min(lo, d);
+        hi = max(hi, d);
+      }
+    }
+  // min and max of floats are exact: the keys of lo and hi are the block's extremes.
+  if (lo <= hi) {
+    atomicMin(group_min, ordered_key(lo));
+    atomicMax(group_max, ordered_key(hi));
   }
   barrier();
   if (gl_LocalInvocationIndex == 0u && group_min <= group_max) {
@@ -64,20 +78,13 @@ void main() {
 const char* const kLightBounds = R"glsl(
 uniform mat4 light_view;
 uniform int partition_count;
-uniform float partition_end[8];
-uniform float partition_band[8];
-uniform float seam;
+// Partition i takes the pixels with depth in (partition_lo[i], partition_hi[i]]:
+// its own range, widened (light_bounds() on the CPU says how).
+uniform float partition_lo[8];
+uniform float partition_hi[8];
 // Per partition and axis (x, y, depth along the light): the group's min and max keys.
 shared uint group_min[24];
 shared uint group_max[24];
-
-void add(int i, vec3 q) {
-  for (int k = 0; k < 3; ++k) {
-    uint key = ordered_key(q[k]);
-    atomicMin(group_min[3 * i + k], key);
-    atomicMax(group_max[3 * i + k], key);
-  }
-}
 
 void main() {
   uint t = gl_LocalInvocationIndex;
@@ -85,22 +92,33 @@ void main() {
     group_min[t] = 0xFFFFFFFFu;
     group_max[t] = 0u;
   }
+  // The invocation's own bounds per partition, merged into the group's at
+  // the end. Indexed only by constant-bound loops, which unroll into
+  // registers (an index per pixel would make the arrays memory).
+  vec3 own_lo[8] = vec3[8](vec3(3.4e38), vec3(3.4e38), vec3(3.4e38), vec3(3.4e38), vec3(3.4e38),
+                           vec3(3.4e38), vec3(3.4e38), vec3(3.4e38));
+  vec3 own_hi[8] = vec3[8](vec3(-3.4e38), vec3(-3.4e38), vec3(-3.4e38), vec3(-3.4e38),
+                           vec3(-3.4e38), vec3(-3.4e38), vec3(-3.4e38), vec3(-3.4e38));
   barrier();
-  float d;
-  vec4 p = covered_pixel(d);
-  if (p.w != 0.0) {
-    vec4 l = light_view * p;
-    vec3 q = vec3(l.xy, -l.z);
-    // The partition as the lookup selects it.
-    int i = 0;
-    while (i < partition_count - 1 && d > partition_end[i]) ++i;
-    add(i, q);
-    // Where the lookup also reads the next partition (its blend band), or
-    // its own rounding of d may cross an end: the neighbour must cover it too.
-    if (i + 1 < partition_count &&
-        d > partition_end[i] - partition_band[i] - seam * partition_end[i])
-      add(i + 1, q);
-    if (i > 0 && d <= partition_end[i - 1] * (1.0 + seam)) add(i - 1, q);
+  for (int y = 0; y < kSpan; ++y)
+    for (int x = 0; x < kSpan; ++x) {
+      float d;
+      vec4 p = covered_pixel(block_origin() + ivec2(x, y), d);
+      if (p.w == 0.0) continue;
+      vec4 l = light_view * p;
+      vec3 q = vec3(l.xy, -l.z);
+      for (int i = 0; i < 8; ++i)
+        if (i < partition_count && d > partition_lo[i] && d <= partition_hi[i]) {
+          own_lo[i] = min(own_lo[i], q);
+          own_hi[i] = max(own_hi[i], q);
+        }
+    }
+  for (int i = 0; i < 8; ++i) {
+    if (i >= partition_count || own_lo[i].x > own_hi[i].x) continue;
+    for (int k = 0; k < 3; ++k) {
+      atomicMin(group_min[3 * i + k], ordered_key(own_lo[i][k]));
+      atomicMax(group_max[3 * i + k], ordered_key(own_hi[i][k]));
+    }
   }
   barrier();
   if (t < uint(3 * partition_count) && group_min[t] <= group_max[t]) {
@@ -122,7 +140,8 @@ void dispatch(const gl::Program& program, const gl::Buffer& buffer, GLuint posit
   program.use();
   glBindTextureUnit(0, position_texture);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.get());
-  glDispatchCompute(GLuint((width + 15) / 16), GLuint((height + 15) / 16), 1);
+  // 16×16 invocations of 4×4 pixels each (kSpan in the GLSL).
+  glDispatchCompute(GLuint((width + 63) / 64), GLuint((height + 63) / 64), 1);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
@@ -185,9 +204,17 @@ std::vector<LightBounds> SampleReduction::light_bounds(GLuint position_texture, 
   glNamedBufferSubData(buffer_.get(), 8, bytes, keys.data());
   bounds_program_.set("light_view", light_view);
   bounds_program_.set("partition_count", n);
-  bounds_program_.set("partition_end", ends);
-  bounds_program_.set("partition_band", bands);
-  bounds_program_.set("seam", seam);
+  // The lookup reads partition i for depths in (ends[i-1], ends[i]], and
+  // i + 1 too in i's last bands[i]; its own rounding of a depth may cross an
+  // end by `seam`. Partition i's pixels must hold all of them.
+  std::vector<float> lo(size_t(n), -3.4e38f), hi(size_t(n), 3.4e38f);
+  for (int i = 1; i < n; ++i) {
+    const float end = ends[size_t(i) - 1];
+    lo[size_t(i)] = end - bands[size_t(i) - 1] - seam * end;
+    hi[size_t(i) - 1] = end * (1.0f + seam);
+  }
+  bounds_program_.set("partition_lo", lo);
+  bounds_program_.set("partition_hi", hi);
   dispatch(bounds_program_, buffer_, position_texture, width, height, view);
   glGetNamedBufferSubData(buffer_.get(), 8, bytes, keys.data());
   std::vector<LightBounds> out(static_cast<size_t>(n));

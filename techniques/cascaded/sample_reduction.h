@@ -15,9 +15,11 @@
 //   GL     made in construction (two compute programs, one metered buffer of
 //          kBufferBytes); each call binds the position texture to unit 0 and
 //          the buffer to SSBO binding 0, and leaves them bound;
-//   cost   per call one pass over width×height pixels (16×16 workgroups,
-//          shared-memory atomics, one global atomic per workgroup and value),
-//          then a read-back of 2 (depth) or 6 × partitions (bounds) uints.
+//   cost   per call one pass over width×height pixels (workgroups of 16×16
+//          invocations, each reducing 4×4 pixels in registers, then one
+//          shared-memory atomic per invocation and value, one global atomic
+//          per workgroup and value), then a read-back of 2 (depth) or
+//          6 × partitions (bounds) uints.
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -62,7 +64,8 @@ class SampleReduction {
   // light_rotation). A pixel also counts in partition i + 1 when its depth
   // is in partition i's last `bands[i]` (the blend band, where it is looked
   // up in both), and in both partitions when within `seam` (relative) of
-  // their common end (the lookup's own depth may round across it).
+  // their common end (the lookup's own depth may round across it). Needs
+  // each band under its partition's range (blend_band <= 0.5 holds it).
   std::vector<LightBounds> light_bounds(GLuint position_texture, int width, int height,
                                         const glm::mat4& view, const glm::mat4& light_view,
                                         const std::vector<float>& ends,
