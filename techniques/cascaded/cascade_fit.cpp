@@ -102,6 +102,36 @@ CascadeBox fit_cascade(const CameraFrustum& camera, float d0, float d1,
   return b;
 }
 
+CascadeBox fit_light_bounds(const glm::vec3& lo, const glm::vec3& hi,
+                            const glm::vec3& light_direction,
+                            const std::array<glm::vec3, 8>& caster_corners, int size,
+                            float pad_texels) {
+  CascadeBox b;
+  b.view = light_rotation(light_direction);
+  const auto depth = [&](const glm::vec3& p) { return -(b.view * glm::vec4(p, 1.0f)).z; };
+  // A partition of one sample (or one line of them) still gets a box.
+  const float floor_extent = 1e-4f * (1.0f + std::max(glm::length(glm::vec2(lo)), 1.0f));
+  const glm::vec2 samples = glm::max(glm::vec2(hi) - glm::vec2(lo), glm::vec2(floor_extent));
+  // The padded extent E holds the samples' e and pad texels of E / size on each side.
+  const float keep = std::max(float(size) - 2.0f * pad_texels, 1.0f);
+  const glm::vec2 extent = samples * (float(size) / keep);
+  const glm::vec2 pad = extent * (pad_texels / float(size));
+  const glm::vec2 centre = 0.5f * (glm::vec2(lo) + glm::vec2(hi));
+  b.lo = centre - 0.5f * samples - pad;
+  b.hi = centre + 0.5f * samples + pad;
+  b.texel = std::max(extent.x, extent.y) / float(size);
+  float caster_near = lo.z;
+  for (const glm::vec3& p : caster_corners) caster_near = std::min(caster_near, depth(p));
+  // The normal offset may move a sample's lookup point a few texels further.
+  const float far = hi.z + pad_texels * b.texel;
+  const float margin = 1e-3f * std::max(far - caster_near, 1e-3f);
+  b.near_depth = caster_near - margin;
+  b.far_depth = far + margin;
+  b.projection = glm::ortho(b.lo.x, b.hi.x, b.lo.y, b.hi.y, b.near_depth, b.far_depth);
+  b.view_projection = b.projection * b.view;
+  return b;
+}
+
 CascadePlan plan_cascades(const CameraFrustum& camera, float near_plane, float far_plane,
                           int cascades, float lambda, float blend_band,
                           const glm::vec3& light_direction,

@@ -89,6 +89,20 @@ CascadeBox fit_cascade(const CameraFrustum& camera, float d0, float d1,
                        const glm::vec3& light_direction,
                        const std::array<glm::vec3, 8>& caster_corners, int size, FitMode mode);
 
+// Sample distribution shadow maps' tight fit (Lauritzen, Salvi, Lefohn
+// 2011): the box of a partition's samples (its pixels' world positions) in
+// the light's frame, lo..hi of (x, y, depth along the light), widened on each
+// side by `pad_texels` of its own texels (filter taps and the normal offset
+// read around a sample; a box that ends at the samples would read its
+// border there). Not square: x and y each get the map's `size` texels, so
+// `texel` is the coarser of the two. Its depth range runs from the nearest of
+// `caster_corners` along the light (casters outside the samples' box, towards
+// the sun, still shadow them) to the samples' farthest, with a small margin.
+CascadeBox fit_light_bounds(const glm::vec3& lo, const glm::vec3& hi,
+                            const glm::vec3& light_direction,
+                            const std::array<glm::vec3, 8>& caster_corners, int size,
+                            float pad_texels);
+
 // The box's texture coordinates of a world point: uv in [0,1]² inside the
 // box, z its window depth in [0,1]; uv × size are its texel coordinates.
 glm::vec3 box_coords(const CascadeBox& box, const glm::vec3& world);

@@ -40,6 +40,8 @@ uniform int filter_radius;    // PCF grid half side
 uniform int search_radius;    // PCSS blocker-search grid half side
 uniform float min_filter_texels;
 uniform bool show_cascades;
+// Write the world size of the pixel's cascade's texel (its box's larger side / map size).
+uniform bool show_texels;
 out float visibility;
 
 // The cascade shadow_tap() reads; set before each cascade's lookup.
@@ -59,9 +61,10 @@ float light_depth(float window_depth) {
 }
 
 // Mean light depth and count of blockers among (2·half_side+1)² taps over a
-// square of full width width_uv around t.
-vec2 sun_blocker_search(vec3 t, int half_side, float width_uv) {
-  vec2 step = vec2(0.5 * width_uv / float(max(half_side, 1)));
+// rectangle of full widths width_uv around t (a square in the world: a box
+// need not be square, so its uv widths differ).
+vec2 sun_blocker_search(vec3 t, int half_side, vec2 width_uv) {
+  vec2 step = 0.5 * width_uv / float(max(half_side, 1));
   float blockers = 0.0, depth_sum = 0.0;
   for (int y = -half_side; y <= half_side; ++y)
     for (int x = -half_side; x <= half_side; ++x) {
@@ -90,11 +93,13 @@ float lit_in_cascade(int i, vec3 world, vec3 n) {
   // PCSS under the sun: blockers can only lie between the receiver and the
   // box's near side, within the sun's cone from the receiver.
   float zr = light_depth(t.z);
-  float search_uv = sun_spread * (zr - cascade_box[i].z) / extent.x;
-  vec2 blockers = sun_blocker_search(t, search_radius, max(search_uv, texel_uv.x));
+  // World widths to uv per axis: a box need not be square (sdsm's are not).
+  vec2 search_uv = sun_spread * (zr - cascade_box[i].z) / extent;
+  vec2 blockers = sun_blocker_search(t, search_radius, max(search_uv, texel_uv));
   if (blockers.y == 0.0) return 1.0;
-  float penumbra_uv = sun_spread * max(zr - blockers.x, 0.0) / extent.x;
-  return pcf_grid_radius(t, filter_radius, max(0.5 * penumbra_uv, min_filter_texels * texel_uv.x));
+  vec2 penumbra_uv = sun_spread * max(zr - blockers.x, 0.0) / extent;
+  vec2 radius_uv = max(0.5 * penumbra_uv, min_filter_texels * texel_uv);
+  return pcf_grid(t, filter_radius, radius_uv / float(max(filter_radius, 1)));
 }
 
 void main() {
@@ -119,6 +124,10 @@ void main() {
   }
   // Outside the box (only numerically, at its rim): nothing drawn there.
   if (v < 0.0) v = 1.0;
+  if (show_texels) {
+    visibility = max(cascade_box[i].x, cascade_box[i].y) / float(textureSize(cascade_shadow, 0).x);
+    return;
+  }
   if (show_cascades) {
     visibility = cascade_count > 1 ? (float(i) + w) / float(cascade_count - 1) : 0.0;
     return;

@@ -70,7 +70,8 @@ class CascadedShadowMap final : public plugin::Technique {
         filter_radius_(p.get_int("filter_taps") / 2),
         search_radius_(p.get_int("search_taps") / 2),
         min_filter_texels_(p.get_float("min_filter_texels")),
-        show_cascades_(p.get_string("output") == "cascade") {}
+        show_cascades_(p.get_string("output") == "cascade"),
+        show_texels_(p.get_string("output") == "texel") {}
 
   void prepare(const FrameInputs& in) override {
     // Fixed scene data (neither the light's nor the camera's): derived once.
@@ -91,6 +92,7 @@ class CascadedShadowMap final : public plugin::Technique {
     lookup_.set_if_active("min_filter_texels", min_filter_texels_);
     lookup_.set_if_active("normal_offset", settings_.normal_offset);
     lookup_.set("show_cascades", show_cascades_ ? 1 : 0);
+    lookup_.set("show_texels", show_texels_ ? 1 : 0);
     gl::throw_if_errors("cascaded_shadow_map prepare");
   }
 
@@ -153,6 +155,7 @@ class CascadedShadowMap final : public plugin::Technique {
   int search_radius_;
   float min_filter_texels_;
   bool show_cascades_;
+  bool show_texels_;
   core::Bounds scene_bounds_;
   std::array<glm::vec3, 8> caster_corners_{};
   CascadeDepthArray maps_;
@@ -184,9 +187,10 @@ TechniqueInfo cascaded_shadow_map_info() {
                     "pcss blocker-search grid SIDE (odd), not a tap count: side² taps")),
       float_param("min_filter_texels", 1.0, 0.0, 64.0,
                   "pcss: smallest PCF radius (half its width), in texels"),
-      choice_param("output", "visibility", {"visibility", "cascade"},
+      choice_param("output", "visibility", {"visibility", "cascade", "texel"},
                    "cascade: write the cascade index (0 first .. 1 last, blended in the bands) "
-                   "instead of V, to look at the splits; not a shadow")};
+                   "instead of V, to look at the splits; texel: the world size of the pixel's "
+                   "cascade's texel (its box's larger side / size); neither is a shadow")};
   // The size is each cascade's: a cascade is as large as another technique's one map.
   for (auto& p : depth_map_params(2048)) {
     if (p.name == "size") p.doc = "each cascade's map side in texels (the array holds N of them)";

@@ -3,4 +3,5 @@
 
 namespace sb::techniques::cascaded {
 plugin::TechniqueInfo cascaded_shadow_map_info();
+plugin::TechniqueInfo sdsm_info();
 }  // namespace sb::techniques::cascaded
