@@ -3,4 +3,5 @@
 
 namespace sb::techniques::cascaded {
 plugin::TechniqueInfo cascaded_shadow_map_info();
+plugin::TechniqueInfo virtual_shadow_map_info();
 }  // namespace sb::techniques::cascaded
