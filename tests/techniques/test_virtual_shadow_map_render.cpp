@@ -299,6 +299,43 @@ TEST_F(VirtualShadowMapRender, HardShadowsNearTheCameraMatchTheBoxesWhereAPoolSi
   EXPECT_GT(one.wrong, 10 * std::max(vsm.wrong, 5)) << "the single map is not coarser here";
 }
 
+// PCF reads each texel through the page table, so a kernel that crosses a
+// page border reads the neighbouring page, which the marking marked for it
+// (its reach: 1 texel of grid, 1 of bilinear taps): no pixel falls back,
+// and V matches the analytic shadow 2 footprints (at least 2 texels) from
+// its edge, on pixels whose kernel straddles a page border too.
+TEST_F(VirtualShadowMapRender, PcfKernelsCrossPageBordersThroughThePageTable) {
+  const nlohmann::json p = {{"filter", "pcf"}, {"filter_taps", 3}, {"size", 2048}};
+  const ImageF v = render(p);
+  nlohmann::json f = p;
+  f["output"] = "fallback";
+  const ImageF fallback = render(f);
+  const ImageF position = stage_->read_gbuffer()[0];
+  const Clipmap c = clipmap(16384, 128, 16);
+  int compared = 0, wrong = 0, straddling = 0, fell_back = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      if (position.at(x, y, 3) == 0.0f) continue;
+      fell_back += fallback.at(x, y) != 0.0f;
+      const glm::vec3 q{position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2)};
+      const float d = glm::distance(q, c.eye);
+      if (std::abs(q.y) > 1e-3f || d > 6.0f) continue;
+      const float expected = analytic_away_from_edges(q, std::max(2.0f * d * c.pixel_angle, 0.01f));
+      if (expected < 0.0f) continue;
+      const glm::vec2 t = level_texel(c, pixel_level(c, q, 2), q);
+      const glm::ivec2 lo = glm::ivec2(glm::floor((t - 1.5f) / 128.0f)),
+                       hi = glm::ivec2(glm::floor((t + 1.5f) / 128.0f));
+      straddling += lo != hi;
+      ++compared;
+      wrong += std::abs(v.at(x, y) - expected) > 0.5f;
+    }
+  std::printf("pcf: %d wrong of %d near pixels, %d straddle a page border\n", wrong, compared,
+              straddling);
+  EXPECT_EQ(fell_back, 0);
+  EXPECT_GT(straddling, 100);
+  EXPECT_LE(wrong, compared / 500);
+}
+
 // Overflow: a pool of 4×4 pages for more marked pages. The rule: the
 // coarsest level's pages first, then the nearest (by their nearest
 // pixel's distance); the rest dropped (0.5 in the page table), and their
