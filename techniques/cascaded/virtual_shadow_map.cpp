@@ -30,6 +30,7 @@
 #include "cascaded/virtual_shadow_map_glsl.h"
 #include "common/depth_pass.h"
 #include "common/glsl_pcf.h"
+#include "core/error.h"
 #include "gl/debug.h"
 #include "gl/gpu_scene.h"
 
@@ -45,6 +46,9 @@ using plugin::FrameInputs;
 using plugin::TechniqueInfo;
 
 constexpr int kMaxLevels = 24;
+// The page table and the mark buffer hold 4 bytes per page of every level:
+// at most 16 MiB each (the defaults: 1 MiB).
+constexpr std::int64_t kMaxPages = std::int64_t(1) << 22;
 
 const char* const kMaskedPageFragment = R"(#version 450 core
 in vec2 v_uv;
@@ -86,6 +90,11 @@ class VirtualShadowMap final : public plugin::Technique {
     pool_ = gl::make_depth_texture(settings_.depth_format, pool_texels, pool_texels, false);
     pool_framebuffer_ = gl::make_framebuffer({}, pool_.get());
     const size_t pages = size_t(levels_) * size_t(pages_per_side_) * size_t(pages_per_side_);
+    if (std::int64_t(pages) > kMaxPages)
+      throw core::JobError("virtual_shadow_map: levels × (virtual_size / page_size)² = " +
+                           std::to_string(pages) + " pages, over the " + std::to_string(kMaxPages) +
+                           " its page table holds: fewer levels, a smaller virtual_size or a "
+                           "larger page_size");
     page_table_ = gl::make_texture_2d_array(GL_R32I, pages_per_side_, pages_per_side_, levels_);
     marks_ =
         gl::make_buffer(GLsizeiptr(pages * sizeof(std::uint32_t)), nullptr, GL_DYNAMIC_STORAGE_BIT);

@@ -4,8 +4,9 @@
 // pages the G-buffer's pixels project into, computed here on the CPU; hard
 // V against the analytic shadow (a ground point is shadowed exactly when
 // its ray towards the sun hits a box) near the camera, where a single
-// pool-sized map is too coarse; the overflow rule on a pool too small; the
-// timing contract under a turning sun; its GPU memory (drives Mesa).
+// pool-sized map is too coarse; PCF kernels across page borders; the
+// overflow rule on a pool too small; the timing contract under a turning
+// sun; its GPU memory (drives Mesa).
 //
 // With SB_VSM_IMAGES=<folder> set, the tests write what they render there
 // (V as PGM, the pool slot of each pixel's page in colours as PPM).
