@@ -81,20 +81,19 @@ class VirtualShadowMap final : public plugin::Technique {
   }
 
   void prepare(const FrameInputs& in) override {
-    // Fixed scene data: the casters' and the scene's bounding boxes.
-    scene_bounds_ = in.scene->bounds();
-    const core::Bounds casters = in.scene->caster_bounds();
-    caster_corners_ = box_corners(casters.lo, casters.hi);
-    scene_corners_ = box_corners(scene_bounds_.lo, scene_bounds_.hi);
-    const int pool_texels = pool_pages_side_ * page_size_;
-    pool_ = gl::make_depth_texture(settings_.depth_format, pool_texels, pool_texels, false);
-    pool_framebuffer_ = gl::make_framebuffer({}, pool_.get());
     const size_t pages = size_t(levels_) * size_t(pages_per_side_) * size_t(pages_per_side_);
     if (std::int64_t(pages) > kMaxPages)
       throw core::JobError("virtual_shadow_map: levels × (virtual_size / page_size)² = " +
                            std::to_string(pages) + " pages, over the " + std::to_string(kMaxPages) +
                            " its page table holds: fewer levels, a smaller virtual_size or a "
                            "larger page_size");
+    // Fixed scene data: the casters' and the scene's bounding boxes.
+    const core::Bounds casters = in.scene->caster_bounds(), scene = in.scene->bounds();
+    caster_corners_ = box_corners(casters.lo, casters.hi);
+    scene_corners_ = box_corners(scene.lo, scene.hi);
+    const int pool_texels = pool_pages_side_ * page_size_;
+    pool_ = gl::make_depth_texture(settings_.depth_format, pool_texels, pool_texels, false);
+    pool_framebuffer_ = gl::make_framebuffer({}, pool_.get());
     page_table_ = gl::make_texture_2d_array(GL_R32I, pages_per_side_, pages_per_side_, levels_);
     marks_ =
         gl::make_buffer(GLsizeiptr(pages * sizeof(std::uint32_t)), nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -133,7 +132,6 @@ class VirtualShadowMap final : public plugin::Technique {
       clip = view_clipmap(in.view, in.projection, in.height, light.direction(), caster_corners_,
                           scene_corners_, virtual_size_, page_size_, levels_);
       set_clipmap_uniforms(mark_program_, clip);
-      set_clipmap_uniforms(lookup_, clip);
       glClearNamedBufferData(marks_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &kUnmarked);
       mark_program_.use();
       glBindTextureUnit(0, in.gbuffer_position);
@@ -157,6 +155,7 @@ class VirtualShadowMap final : public plugin::Technique {
       render_pages(in, clip, alloc);
     }
     auto pass = timer.scope("lookup");
+    set_clipmap_uniforms(lookup_, clip);
     lookup_.set_if_active("to_sun", light.to_sun());
     glBindFramebuffer(GL_FRAMEBUFFER, in.visibility_framebuffer);
     glViewport(0, 0, in.width, in.height);
@@ -233,7 +232,6 @@ class VirtualShadowMap final : public plugin::Technique {
   int pages_per_side_ = 1;
   int pool_pages_side_ = 1;
   int margin_ = 0;
-  core::Bounds scene_bounds_;
   std::array<glm::vec3, 8> caster_corners_{};
   std::array<glm::vec3, 8> scene_corners_{};
   std::vector<std::uint32_t> mark_values_;
