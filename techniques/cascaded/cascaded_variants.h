@@ -4,4 +4,5 @@
 namespace sb::techniques::cascaded {
 plugin::TechniqueInfo cascaded_shadow_map_info();
 plugin::TechniqueInfo sdsm_info();
+plugin::TechniqueInfo virtual_shadow_map_info();
 }  // namespace sb::techniques::cascaded

@@ -4,4 +4,5 @@
 SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
   registry.add(sb::techniques::cascaded::cascaded_shadow_map_info());
   registry.add(sb::techniques::cascaded::sdsm_info());
+  registry.add(sb::techniques::cascaded::virtual_shadow_map_info());
 }
