@@ -244,6 +244,34 @@ TEST_F(SunSingleMap, FilteredMapsMatchTheHardShadowAwayFromEdges) {
   }
 }
 
+// Every sun-capable single map keeps the timing contract under a turning
+// sun: the fit is made in render(), so a frame after the sun turned equals
+// one prepared under it, and the frames are deterministic.
+TEST_F(SunSingleMap, KeepTheTimingContractUnderATurningSun) {
+  for (const char* name : {"shadow_map", "pcf_gauss", "pcss", "vsm", "msm"}) {
+    const TechniqueInfo* info = find(name);
+    stage_ = std::make_unique<ContractStage>(sun_scene(), 96, 72, std::vector{info}, plugins_);
+    ASSERT_EQ(stage_->skip_reason(0), "") << name;
+    const core::Params p = resolve_params(info->params, {{"size", 256}}, "", "");
+    const auto create = [&] { return info->create(p); };
+    const core::AreaLight first = stage_->scene().light;
+    // The sun turned by about 10 degrees.
+    const core::AreaLight second =
+        core::make_sun_light(glm::normalize(kToSun + glm::vec3(-0.2f, 0.0f, 0.1f)), first.target,
+                             first.angular_diameter, 60.0f);
+    const ContractStage::Frames f = stage_->across_a_move(
+        create, [&] { stage_->set_light(first); }, [&] { stage_->set_light(second); });
+    stage_->set_light(first);
+    EXPECT_EQ(run::differing_pixels(f.a_moved, f.b_moved), 0u)
+        << name << ": a frame after the sun turned differs from one prepared under it";
+    EXPECT_GT(run::differing_pixels(f.a_first, f.a_moved), 0u)
+        << name << ": turning the sun changed nothing";
+    for (const run::ContractCheck& c : {run::check_visibility_written(*stage_, create),
+                                        run::check_deterministic(*stage_, create)})
+      EXPECT_TRUE(c.passed()) << name << ": " << c.name << ": " << c.failure;
+  }
+}
+
 // A plate 2 units over a small ground, its straight edge at x = 0, under a
 // sun almost overhead of angular diameter `alpha`.
 constexpr float kPlateHeight = 2.0f;
