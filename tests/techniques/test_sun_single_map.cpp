@@ -5,8 +5,8 @@
 // it. Against the analytic shadow: a ground point is shadowed exactly when
 // its ray towards the sun hits the box or the plate (slab test).
 //   shadow_map: V is that answer away from the shadow's edge;
-//   pcf_box: V is that answer beyond its kernel's footprint of the edge, and
-//            fractional only within it;
+//   pcf_box, pcf_jitter: V is that answer beyond its kernel's footprint of
+//            the edge, and fractional only within it;
 //   vsm, esm, evsm, msm, csm_convolution: that answer away from the edge;
 //   pcss: across a plate's straight edge, a penumbra as wide as the sun's
 //         cone makes it (the plate scene and the widths are those of
@@ -228,6 +228,19 @@ TEST_F(SunSingleMap, PcfPenumbraStaysInsideTheKernelsFootprint) {
   EXPECT_GT(c.in_shadow, 500);
   EXPECT_EQ(c.wrong, 0) << "of " << c.compared << "; " << c.first_wrong;
   EXPECT_GT(c.fractional, 100);  // it filters
+  EXPECT_EQ(c.fractional_near_edge, c.fractional) << c.first_wrong;
+}
+
+// pcf_jitter's taps lie on a disk of radius_texels (default 4.5): V is exact
+// beyond it (plus a texel and a half, as above), its early-out included, and
+// fractional only inside it.
+TEST_F(SunSingleMap, JitteredPcfPenumbraStaysInsideItsDisk) {
+  const ImageF v = render(find("pcf_jitter"), nlohmann::json::object());
+  const Comparison c = compare(v, (4.5f + 1.5f) * ground_texel(), 0.01f);
+  EXPECT_GT(c.compared, 20000);
+  EXPECT_GT(c.in_shadow, 500);
+  EXPECT_EQ(c.wrong, 0) << "of " << c.compared << "; " << c.first_wrong;
+  EXPECT_GT(c.fractional, 100);
   EXPECT_EQ(c.fractional_near_edge, c.fractional) << c.first_wrong;
 }
 
