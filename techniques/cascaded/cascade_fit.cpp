@@ -45,12 +45,6 @@ Sphere slice_bounding_sphere(const CameraFrustum& camera, float d0, float d1) {
   return {glm::vec3(to_world * glm::vec4(0.0f, 0.0f, float(-c), 1.0f)), float(r)};
 }
 
-glm::mat4 light_rotation(const glm::vec3& direction) {
-  const glm::vec3 d = glm::normalize(direction);
-  const glm::vec3 up = std::abs(d.y) > 0.99f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(0, 1, 0);
-  return glm::lookAt(glm::vec3(0.0f), d, up);
-}
-
 std::array<glm::vec3, 8> box_corners(const glm::vec3& lo, const glm::vec3& hi) {
   std::array<glm::vec3, 8> out;
   for (int i = 0; i < 8; ++i)

@@ -14,6 +14,8 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "common/light_frustum.h"
+
 namespace sb::techniques::cascaded {
 
 // The practical split scheme: split i of N over [n, f] is
@@ -46,11 +48,9 @@ struct Sphere {
 // cascade's extent is constant.
 Sphere slice_bounding_sphere(const CameraFrustum& camera, float d0, float d1);
 
-// The light's frame: a rotation only (its origin is the world's), looking
-// along `direction` (the way light travels), +y as close to the world's +y
-// as the direction allows. Fixed while the light is, whatever the camera
-// does: texel snapping is done in it.
-glm::mat4 light_rotation(const glm::vec3& direction);
+// The light's frame (common/light_frustum.h, shared with the single map's
+// sun fit): texel snapping is done in it.
+using techniques::light_rotation;
 
 // One cascade's orthographic light box, in the light's frame (light_rotation):
 // x in [lo.x, hi.x], y in [lo.y, hi.y], and the depth range along the light

@@ -59,9 +59,10 @@ struct DepthMapSettings {
   // Compare each filter tap against the receiver's plane extended to the
   // tap (Isidoro 2006), not against the pixel's own depth.
   bool receiver_plane = false;
-  // The lookup's uniform `normal_offset` for a frustum: world units per unit distance.
+  // The lookup's uniform `normal_offset` for a frustum: world units per unit
+  // distance, or world units for an orthographic one (its texels have one size).
   float normal_offset_per_distance(const LightFrustum& f) const {
-    return normal_offset * f.texel_per_distance(size);
+    return normal_offset * (f.orthographic ? f.texel_world(size) : f.texel_per_distance(size));
   }
 };
 // The parameters every depth-map technique shares: size, depth_format,

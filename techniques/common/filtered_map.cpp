@@ -98,7 +98,7 @@ void FilteredMapTechnique::render(const FrameInputs& in, gl::PassTimer& timer) {
   LightFrustum frustum;
   {
     auto pass = timer.scope("shadow_map");
-    frustum = fit_light_frustum(*in.scene, in.scene->light.center);
+    frustum = fit_single_map_frustum(*in.scene);
     map_.render(*in.gpu, frustum, settings_.depth.cull, settings_.depth.bias,
                 shader_.receivers_in_map);
   }
@@ -108,6 +108,7 @@ void FilteredMapTechnique::render(const FrameInputs& in, gl::PassTimer& timer) {
     glViewport(0, 0, settings_.depth.size, settings_.depth.size);
     basis_.use();
     basis_.set("light_depth_range", glm::vec2(frustum.near_plane, frustum.far_plane));
+    basis_.set("light_orthographic", frustum.orthographic ? 1 : 0);
     glBindTextureUnit(0, map_.texture());
     for (int l = 0; l < layers_; ++l) {
       if (layers_ > 1) basis_.set("layer", l);

@@ -11,6 +11,11 @@
 // distance d. They are full WIDTHS; a PCF kernel over the penumbra takes
 // half of one as its RADIUS (common/glsl_pcf.h), as pcss does:
 //   pcf_grid_radius(t, h, 0.5 · penumbra_width_uv(...)).
+// Under the sun (an orthographic map, LightFrustum::orthographic) the light
+// is a cone of angular diameter α from every receiver; with
+// spread = 2·tan(α/2) and S the map's side in world units:
+//   search WIDTH (map)        spread·(z_r − n)/S uv   sun_search_width_uv()
+//   penumbra WIDTH (receiver) spread·(z_r − z_b)/S uv sun_penumbra_width_uv()
 // Pass kPcssGlsl (and kPcfGlsl for the filter) as the lookup's kit GLSL
 // (common/map_lookup.h), as pcss does.
 //
@@ -49,6 +54,26 @@ float penumbra_width_uv(float light_size, float receiver_depth, float blocker_de
                         float tan_half_fov) {
   return light_size * max(receiver_depth - blocker_depth, 0.0) /
          (blocker_depth * 2.0 * receiver_depth * tan_half_fov);
+}
+
+// The blocker search's full WIDTH under the sun, spread·(z_r − n)/S in map
+// uv: the part of the map through which the receiver sees the sun's cone.
+// units: spread (2·tan(α/2)) per unit depth; receiver_depth, near_plane
+// view depth and map_side (S) world units; returns uv.
+// cost: arithmetic only.
+float sun_search_width_uv(float spread, float receiver_depth, float near_plane, float map_side) {
+  return spread * max(receiver_depth - near_plane, 0.0) / map_side;
+}
+
+// The penumbra's full WIDTH at the receiver under the sun,
+// spread·(z_r − z_b)/S in map uv; 0 when the blockers are not in front of
+// the receiver.
+// units: spread (2·tan(α/2)) per unit depth; receiver_depth, blocker_depth
+// view depth and map_side (S) world units; returns uv.
+// cost: arithmetic only.
+float sun_penumbra_width_uv(float spread, float receiver_depth, float blocker_depth,
+                            float map_side) {
+  return spread * max(receiver_depth - blocker_depth, 0.0) / map_side;
 }
 
 // Mean view depth and count of blockers among (2·half_side+1)² grid taps spanning width_uv.

@@ -155,4 +155,75 @@ LightFrustum fit_light_frustum(const Scene& scene, const glm::vec3& eye, bool wi
   return f;
 }
 
+glm::mat4 light_rotation(const glm::vec3& direction) {
+  const glm::vec3 d = glm::normalize(direction);
+  const glm::vec3 up = std::abs(d.y) > 0.99f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(0, 1, 0);
+  return glm::lookAt(glm::vec3(0.0f), d, up);
+}
+
+LightFrustum fit_sun_frustum(const Scene& scene) {
+  LightFrustum f;
+  f.orthographic = true;
+  const glm::vec3 axis = scene.light.direction();
+  const glm::mat4 rotation = light_rotation(axis);
+  // Depth along the light in the rotation's frame: it looks down its -z.
+  const auto depth = [&](const glm::vec3& p) { return -(rotation * glm::vec4(p, 1.0f)).z; };
+  // The casters' extent across the light and their nearest depth.
+  float caster_near = std::numeric_limits<float>::max();
+  glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (const Mesh& m : scene.meshes) {
+    if (!m.casts_shadow) continue;
+    for (const uint32_t i : m.indices) {
+      const glm::vec3 v(rotation * glm::vec4(m.positions[i], 1.0f));
+      caster_near = std::min(caster_near, -v.z);
+      lo = glm::min(lo, glm::vec2(v));
+      hi = glm::max(hi, glm::vec2(v));
+    }
+  }
+  if (caster_near == std::numeric_limits<float>::max()) {  // nothing casts: every point is lit
+    f.view_projection = glm::mat4(1.0f);
+    return f;
+  }
+  // Every caster and receiver: the scene's box along the light.
+  const Bounds box = scene.bounds();
+  float lo_depth = std::numeric_limits<float>::max(), hi_depth = -lo_depth;
+  for (int i = 0; i < 8; ++i) {
+    const float d = depth({(i & 1) ? box.hi.x : box.lo.x, (i & 2) ? box.hi.y : box.lo.y,
+                           (i & 4) ? box.hi.z : box.lo.z});
+    lo_depth = std::min(lo_depth, d);
+    hi_depth = std::max(hi_depth, d);
+  }
+  // The sun's disk moves a caster's shadow by tan(α/2) per unit depth behind
+  // it: receivers in the outer penumbra must be inside the map, or a
+  // filtering technique would call them lit by construction.
+  const float reach =
+      std::max(hi_depth - caster_near, 0.0f) * std::tan(0.5f * scene.light.angular_diameter);
+  lo -= glm::vec2(reach);
+  hi += glm::vec2(reach);
+  const glm::vec2 centre = 0.5f * (lo + hi);
+  const float span = std::max(hi.x - lo.x, hi.y - lo.y);
+  f.half_extent = 0.5f * span * 1.01f + 1e-6f * std::max(box.radius(), 1.0f);
+  // The eye on the sun's side of the box, a tenth of its depth span (at
+  // least one unit) before it, so that every depth is positive.
+  const float margin = 0.01f * (hi_depth - lo_depth) + 1e-4f * std::max(box.radius(), 1.0f);
+  const float back = 0.1f * (hi_depth - lo_depth) + std::max(box.radius(), 1.0f) * 1e-2f;
+  const glm::vec3 origin(glm::inverse(rotation) * glm::vec4(centre, 0.0f, 0.0f));
+  f.eye = origin + (lo_depth - margin - back) * axis;
+  f.view = glm::lookAt(f.eye, f.eye + axis,
+                       glm::abs(axis.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0));
+  // Depths from the eye: the rotation's, shifted.
+  const float shift = depth(f.eye);
+  f.near_plane = lo_depth - margin - shift;
+  f.far_plane = hi_depth + margin - shift;
+  f.projection = glm::ortho(-f.half_extent, f.half_extent, -f.half_extent, f.half_extent,
+                            f.near_plane, f.far_plane);
+  f.view_projection = f.projection * f.view;
+  return f;
+}
+
+LightFrustum fit_single_map_frustum(const Scene& scene) {
+  return scene.light.is_sun() ? fit_sun_frustum(scene)
+                              : fit_light_frustum(scene, scene.light.center);
+}
+
 }  // namespace sb::techniques

@@ -17,7 +17,14 @@ void main() {
   vec4 pos = texelFetch(position_tex, p, 0);
   if (pos.w == 0.0) { visibility = weight; return; }
   receiver_normal = texelFetch(normal_tex, p, 0).xyz;
-  receiver_world = offset_world(pos.xyz, receiver_normal, light_point, normal_offset);
+  // An orthographic map's texels have one world size: its offset is in
+  // world units. Its light is the sun, at infinity along the view's axis.
+  receiver_world = light_orthographic
+      ? pos.xyz + receiver_normal * normal_offset
+      : offset_world(pos.xyz, receiver_normal, light_point, normal_offset);
+  vec3 horizon_point = light_orthographic
+      ? pos.xyz + vec3(light_view[0][2], light_view[1][2], light_view[2][2])
+      : light_point;
   // Behind the light's eye plane the projection mirrors a point into the map
   // (w <= 0; a warped map's w may keep its sign there, hence the plane test
   // in the light's own view too). Every caster lies in front of that plane,
@@ -29,13 +36,13 @@ void main() {
   // Outside the map's cone nothing stands between the point and the light's
   // centre: the cone holds every caster.
   if (behind_light || any(lessThan(t.xy, vec2(0.0))) || any(greaterThan(t.xy, vec2(1.0)))) {
-    visibility = weight * above_horizon(receiver_normal, pos.xyz, light_point);
+    visibility = weight * above_horizon(receiver_normal, pos.xyz, horizon_point);
     return;
   }
   receiver_gradient = receiver_plane
       ? receiver_plane_gradient(light_view_projection, receiver_world, receiver_normal)
       : vec2(0.0);
-  visibility = weight * above_horizon(receiver_normal, pos.xyz, light_point) * lit_fraction(t);
+  visibility = weight * above_horizon(receiver_normal, pos.xyz, horizon_point) * lit_fraction(t);
 }
 )";
 
@@ -69,6 +76,7 @@ void MapLookupPass::draw(const FrameInputs& in, const LightFrustum& frustum,
   program_.set("light_view", frustum.view);
   if (program_.has_uniform("light_depth_range"))
     program_.set("light_depth_range", glm::vec2(frustum.near_plane, frustum.far_plane));
+  program_.set("light_orthographic", frustum.orthographic ? 1 : 0);
   glBindTextureUnit(0, in.gbuffer_position);
   glBindTextureUnit(1, depth_map);
   glBindSampler(1, compare_sampler_.get());
@@ -97,7 +105,7 @@ void SingleMapTechnique::prepare(const FrameInputs& /*in*/) {
 }
 
 LightFrustum SingleMapTechnique::fit(const FrameInputs& in) const {
-  return fit_light_frustum(*in.scene, in.scene->light.center);
+  return fit_single_map_frustum(*in.scene);
 }
 
 void SingleMapTechnique::render(const FrameInputs& in, gl::PassTimer& timer) {

@@ -23,7 +23,8 @@
 //          plane) and the map (DepthMap::texture());
 //   out    V in every pixel of in.visibility_framebuffer, by the rule above:
 //          0 where the map's eye (frustum.eye) is below the surface's
-//          tangent plane,
+//          tangent plane (under an orthographic map, the sun: where the
+//          sun's direction is),
 //          `weight` outside the map's cone and on the background;
 //   GL     MapLookupPass() compiles a program and makes two samplers: call it
 //          in prepare(). draw() leaves in.visibility_framebuffer bound, the
@@ -69,7 +70,8 @@ class MapLookupPass {
   gl::Sampler raw_sampler_;
 };
 
-// A technique made of one depth map from the light's centre and one lookup:
+// A technique made of one depth map from the light's centre (under the sun,
+// one orthographic map along it: fit_single_map_frustum) and one lookup:
 // shadow_map, the PCF kernels, PCSS and their kin differ only in
 // `lit_fraction` and its uniforms. The light frustum is fitted in every
 // frame (plugin/technique.h: prepare() must not depend on the light).

@@ -32,7 +32,8 @@ layout(binding = 2) uniform sampler2D normal_tex;
 layout(binding = 3) uniform sampler2D depth_map;
 // The map's frustum (LightFrustum::view_projection and ::view), its eye
 // (world units), the normal offset per unit distance from the eye
-// (DepthMapSettings::normal_offset_per_distance), whether taps compare
+// (DepthMapSettings::normal_offset_per_distance; in world units when the
+// map is orthographic, light_orthographic), whether taps compare
 // against the receiver's plane (receiver_plane_bias), and the factor V is
 // multiplied by (MapLookupPass::draw()'s `weight`).
 uniform mat4 light_view_projection;
@@ -132,10 +133,14 @@ inline constexpr const char* kLightDepthGlsl = R"glsl(
 // The map's near and far planes (LightFrustum::near_plane, ::far_plane).
 // units: world units along the light's axis.
 uniform vec2 light_depth_range;
+// The map is orthographic (LightFrustum::orthographic, the sun's): its window
+// depth is linear in view depth. False unless the pass sets it.
+uniform bool light_orthographic;
 // A window depth of the map (a raw depth_map texel) as a view depth.
 // units: window depth in [0,1] -> world units along the light's axis.
 float view_depth(float window_depth) {
   float n = light_depth_range.x, f = light_depth_range.y;
+  if (light_orthographic) return n + window_depth * (f - n);
   return n * f / (f - window_depth * (f - n));
 }
 // A view depth mapped linearly to [0,1] between the near and far planes

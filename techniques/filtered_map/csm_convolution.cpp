@@ -109,7 +109,7 @@ TechniqueInfo csm_convolution_info() {
   return {.name = "csm_convolution",
           .family = "filtered_map",
           .summary = "convolution shadow map, M Fourier terms (Annen et al. 2007)",
-          .needs = Needs{need::kCasterClosedness},
+          .needs = Needs{need::kSunOrLocalLight, need::kCasterClosedness},
           .params = std::move(params),
           .create = [](const Params& p) { return std::make_unique<ConvolutionShadowMap>(p); }};
 }

@@ -112,7 +112,7 @@ TechniqueInfo esm_info() {
   return {.name = "esm",
           .family = "filtered_map",
           .summary = "exponential shadow map, log-space filtered (Annen et al. 2008, Salvi 2008)",
-          .needs = Needs{need::kCasterClosedness},
+          .needs = Needs{need::kSunOrLocalLight, need::kCasterClosedness},
           .params = std::move(params),
           .create = [](const Params& p) { return std::make_unique<Esm>(p); }};
 }

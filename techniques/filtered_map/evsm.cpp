@@ -107,7 +107,7 @@ TechniqueInfo evsm_info() {
   return {.name = "evsm",
           .family = "filtered_map",
           .summary = "exponential variance shadow map, 2 or 4 components (Lauritzen & McCool 2008)",
-          .needs = Needs{need::kCasterClosedness},
+          .needs = Needs{need::kSunOrLocalLight, need::kCasterClosedness},
           .params = std::move(params),
           .create = [](const Params& p) { return std::make_unique<Evsm>(p); }};
 }

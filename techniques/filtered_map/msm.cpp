@@ -88,7 +88,7 @@ TechniqueInfo msm_info() {
   return {.name = "msm",
           .family = "filtered_map",
           .summary = "moment shadow map, Hamburger 4-moment reconstruction (Peters & Klein 2015)",
-          .needs = Needs{need::kCasterClosedness},
+          .needs = Needs{need::kSunOrLocalLight, need::kCasterClosedness},
           .params = std::move(params),
           .create = [](const Params& p) { return std::make_unique<Msm>(p); }};
 }

@@ -63,7 +63,7 @@ TechniqueInfo vsm_info() {
           .family = "filtered_map",
           .summary =
               "variance shadow map: filtered (z, z²), Chebyshev bound (Donnelly & Lauritzen 2006)",
-          .needs = Needs{need::kCasterClosedness},
+          .needs = Needs{need::kSunOrLocalLight, need::kCasterClosedness},
           .params = std::move(params),
           .create = [](const Params& p) { return std::make_unique<Vsm>(p); }};
 }

@@ -16,7 +16,7 @@ TechniqueInfo hard_shadow_map_info() {
   return {.name = "shadow_map",
           .family = "shadow_map",
           .summary = "hard shadow map from the light's centre (Williams 1978)",
-          .needs = Needs{need::kCasterClosedness},
+          .needs = Needs{need::kSunOrLocalLight, need::kCasterClosedness},
           .params = depth_map_params(2048),
           .create = [](const Params& p) {
             return std::make_unique<SingleMapTechnique>(

@@ -80,7 +80,7 @@ TechniqueInfo pcf_jitter_info() {
   return {.name = "pcf_jitter",
           .family = "shadow_map",
           .summary = "jittered-disk percentage-closer filtering with an early-out (Shypula 2008)",
-          .needs = Needs{need::kCasterClosedness},
+          .needs = Needs{need::kSunOrLocalLight, need::kCasterClosedness},
           .params = std::move(params),
           .create = [](const Params& p) { return std::make_unique<JitteredPcf>(p); },
           .check = [](const Params& p) -> std::pair<std::string, std::string> {

@@ -65,7 +65,7 @@ TechniqueInfo pcf_box_info() {
       .name = "pcf_box",
       .family = "shadow_map",
       .summary = "box percentage-closer filtering, k×k taps (Reeves et al. 1987)",
-      .needs = Needs{need::kCasterClosedness},
+      .needs = Needs{need::kSunOrLocalLight, need::kCasterClosedness},
       .params = kernel_pcf_params(3, false),
       .create = [](const Params& p) { return std::make_unique<KernelPcf>(p, KernelShape::Box); }};
 }
@@ -75,7 +75,7 @@ TechniqueInfo pcf_gauss_info() {
       .name = "pcf_gauss",
       .family = "shadow_map",
       .summary = "Gaussian-weighted percentage-closer filtering, k×k taps",
-      .needs = Needs{need::kCasterClosedness},
+      .needs = Needs{need::kSunOrLocalLight, need::kCasterClosedness},
       .params = kernel_pcf_params(5, true),
       .create = [](const Params& p) { return std::make_unique<KernelPcf>(p, KernelShape::Gauss); }};
 }

@@ -5,10 +5,14 @@
 //   search width (near plane) = L · (z_r − n) / z_r
 //   penumbra width (receiver) = L · (z_r − z_b) / z_b
 // with L the light's side, n the near plane, z_r and z_b the receiver's and
-// the blockers' distances along the light's axis.
+// the blockers' distances along the light's axis. Under the sun (one
+// orthographic map) the light is a cone of angular diameter α from every
+// receiver: search width spread·(z_r − n), penumbra width spread·(z_r − z_b)
+// with spread = 2·tan(α/2), both in world units across the map.
 //
 // Parameters, defaults and ranges: docs/parameters.md (generated from their
 // declarations by `shadowbench list --markdown`).
+#include <cmath>
 #include <memory>
 #include <string>
 
@@ -29,15 +33,20 @@ uniform float light_size;     // world units
 uniform float tan_half_fov;   // of the light's frustum
 uniform float search_texels;  // 0: derived
 uniform float min_filter_texels;
+uniform float sun_spread;     // under the sun: 2·tan(α/2)
+uniform float map_side;       // under the sun: the orthographic map's side, world units
 float lit_fraction(vec3 t) {
   vec2 texel = 1.0 / vec2(textureSize(depth_map, 0));
   float zr = receiver_view_depth();
-  float search_uv = search_texels > 0.0
-      ? search_texels * texel.x
+  float search_uv = search_texels > 0.0 ? search_texels * texel.x
+      : light_orthographic
+      ? max(sun_search_width_uv(sun_spread, zr, light_depth_range.x, map_side), texel.x)
       : pcss_search_width_uv(light_size, zr, light_depth_range.x, tan_half_fov);
   vec2 blockers = blocker_search_grid(t, search_radius, search_uv);
   if (blockers.y == 0.0) return 1.0;
-  float penumbra_uv = penumbra_width_uv(light_size, zr, blockers.x, tan_half_fov);
+  float penumbra_uv = light_orthographic
+      ? sun_penumbra_width_uv(sun_spread, zr, blockers.x, map_side)
+      : penumbra_width_uv(light_size, zr, blockers.x, tan_half_fov);
   // A width: the kernel's radius is half of it.
   return pcf_grid_radius(t, filter_radius, max(0.5 * penumbra_uv, min_filter_texels * texel.x));
 }
@@ -65,6 +74,9 @@ class Pcss final : public SingleMapTechnique {
     // A rectangular light: the mean of its sides (the scenes' lights are square).
     lookup.set("light_size", 0.5f * (scene.light.width() + scene.light.height()));
     lookup.set("tan_half_fov", frustum.tan_half_fov);
+    // Under the sun: its cone, and the orthographic map's side.
+    lookup.set("sun_spread", 2.0f * std::tan(0.5f * scene.light.angular_diameter));
+    lookup.set("map_side", 2.0f * frustum.half_extent);
   }
 
  private:
@@ -99,7 +111,7 @@ TechniqueInfo pcss_info() {
           .summary =
               "percentage-closer soft shadows: blocker search, then PCF as wide as the penumbra "
               "(Fernando 2005)",
-          .needs = Needs{need::kRectangularLight, need::kCasterClosedness},
+          .needs = Needs{need::kSunOrLocalLight, need::kRectangularLight, need::kCasterClosedness},
           .params = std::move(params),
           .create = [](const Params& p) { return std::make_unique<Pcss>(p); }};
 }
