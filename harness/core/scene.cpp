@@ -11,8 +11,7 @@ int sun_side(const AreaLight& sun, const glm::dvec3& n) {
   // n·a ± t·|n − (n·a)·a|.
   const glm::dvec3 a = glm::normalize(glm::dvec3(sun.to_sun()));
   const double along = glm::dot(n, a);
-  const double spread =
-      std::tan(0.5 * double(sun.angular_diameter)) * glm::length(n - along * a);
+  const double spread = std::tan(0.5 * double(sun.angular_diameter)) * glm::length(n - along * a);
   return along > spread ? 1 : along < -spread ? -1 : 0;
 }
 

@@ -22,8 +22,9 @@ const char* to_string(DistanceScale scale);  // "linear", "log"
 // which belongs to no third); `measured`: one byte per pixel. Pixels at a
 // boundary go to the nearer third; when every pixel lies at one distance,
 // all are near. std::invalid_argument when the shapes differ.
-std::array<std::vector<uint8_t>, 3> distance_thirds(
-    const core::ImageF& positions, const glm::vec3& eye, const std::vector<uint8_t>& measured,
-    DistanceScale scale = DistanceScale::Linear);
+std::array<std::vector<uint8_t>, 3> distance_thirds(const core::ImageF& positions,
+                                                    const glm::vec3& eye,
+                                                    const std::vector<uint8_t>& measured,
+                                                    DistanceScale scale = DistanceScale::Linear);
 
 }  // namespace sb::metrics

@@ -59,12 +59,12 @@ struct Regions {
 
 // What the regions of one (scene, resolution) are made from.
 struct RegionInputs {
-  std::vector<LightHorizon> horizon;        // classify_light_horizon()
-  std::vector<uint8_t> reference_penumbra;  // reference::Result::penumbra
-  std::vector<uint8_t> receiver;            // 1 on meshes that cast no shadow
-  const core::ImageF* positions = nullptr;  // the G-buffer's, for the distance thirds
-  float eye[3] = {0, 0, 0};                 // the camera's
-  bool distance_thirds = false;             // metrics.distance_thirds
+  std::vector<LightHorizon> horizon;                     // classify_light_horizon()
+  std::vector<uint8_t> reference_penumbra;               // reference::Result::penumbra
+  std::vector<uint8_t> receiver;                         // 1 on meshes that cast no shadow
+  const core::ImageF* positions = nullptr;               // the G-buffer's, for the distance thirds
+  float eye[3] = {0, 0, 0};                              // the camera's
+  bool distance_thirds = false;                          // metrics.distance_thirds
   DistanceScale distance_scale = DistanceScale::Linear;  // metrics.distance_scale
 };
 
