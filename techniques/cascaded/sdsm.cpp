@@ -23,6 +23,7 @@
 #include "cascaded/cascade_depth_array.h"
 #include "cascaded/cascade_fit.h"
 #include "cascaded/cascade_lookup_glsl.h"
+#include "cascaded/cascade_lookup_pass.h"
 #include "cascaded/cascaded_variants.h"
 #include "cascaded/sample_reduction.h"
 #include "common/glsl_pcf.h"
@@ -133,34 +134,8 @@ class SampleDistributionShadowMap final : public plugin::Technique {
       }
     }
     auto pass = timer.scope("lookup");
-    glm::mat4 vp[kMaxPartitions];
-    glm::vec4 box[kMaxPartitions];
-    for (int i = 0; i < partitions_; ++i) {
-      const CascadeBox& b = plan.boxes[size_t(i)];
-      vp[i] = b.view_projection;
-      box[i] = {b.hi.x - b.lo.x, b.hi.y - b.lo.y, b.near_depth, b.far_depth};
-    }
-    glProgramUniformMatrix4fv(lookup_.id(), lookup_.location("cascade_vp"), partitions_, GL_FALSE,
-                              &vp[0][0][0]);
-    glProgramUniform4fv(lookup_.id(), lookup_.location("cascade_box"), partitions_, &box[0][0]);
-    lookup_.set("cascade_end", std::vector<float>(plan.splits.begin() + 1, plan.splits.end()));
-    lookup_.set("cascade_band", plan.bands);
-    lookup_.set("camera_view", in.view);
-    lookup_.set_if_active("to_sun", light.to_sun());
-    lookup_.set_if_active("sun_spread", 2.0f * std::tan(0.5f * light.angular_diameter));
-    glBindFramebuffer(GL_FRAMEBUFFER, in.visibility_framebuffer);
-    glViewport(0, 0, in.width, in.height);
-    glDisable(GL_DEPTH_TEST);
-    lookup_.use();
-    glBindTextureUnit(0, in.gbuffer_position);
-    glBindTextureUnit(2, in.gbuffer_normal);
-    glBindTextureUnit(4, maps_.texture());
-    glBindSampler(4, compare_sampler_.get());
-    glBindTextureUnit(5, maps_.texture());
-    glBindSampler(5, raw_sampler_.get());
-    gl::draw_fullscreen_triangle();
-    glBindSampler(4, 0);
-    glBindSampler(5, 0);
+    draw_cascade_lookup(lookup_, plan, in, light, maps_.texture(), compare_sampler_.get(),
+                        raw_sampler_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
   }
 
