@@ -37,6 +37,11 @@ struct TechniqueInfo {
   // for each variant (two_map_bound's gradient shade needs opaque casters,
   // its other shades do not).
   std::function<Needs(const core::Params&)> needs_of_params = nullptr;
+  // Frames that depend on the frames before them since prepare(): per-frame
+  // sample sequences, temporal accumulation. Frame k after prepare() is then
+  // a deterministic function of the inputs of frames 1..k, not of frame k's
+  // alone; the timing contract and the measured V treat it so.
+  bool temporal = false;
 };
 
 // A module load_plugins could not load: its path and the loader's own
