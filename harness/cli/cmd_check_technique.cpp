@@ -85,7 +85,7 @@ int cmd_check_technique(const CheckTechniqueArgs& a) {
   // `none` and the controls are V = 1 anywhere: nothing they draw moves.
   const bool expect_change = tv.info->name != "none" && tv.info->family != "control";
   const std::vector<run::ContractCheck> checks = run::check_timing_contract(
-      *stage, [&] { return tv.info->create(tv.params); }, expect_change);
+      *stage, [&] { return tv.info->create(tv.params); }, expect_change, tv.info->temporal);
   int failed = 0;
   for (const run::ContractCheck& c : checks) {
     std::printf("%s  %s\n", c.passed() ? "PASS" : "FAIL", c.name.c_str());

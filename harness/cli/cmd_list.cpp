@@ -51,8 +51,9 @@ int list_markdown(const Registry& r) {
       "## Techniques\n");
   for (const auto& t : r.all()) {
     const std::string needs = needs_of(t);
-    std::printf("\n### %s\n\n%s (family `%s`).%s\n\n%s", t.name.c_str(), t.summary.c_str(),
+    std::printf("\n### %s\n\n%s (family `%s`).%s%s\n\n%s", t.name.c_str(), t.summary.c_str(),
                 t.family.c_str(), needs.empty() ? "" : (" Needs:" + needs + ".").c_str(),
+                t.temporal ? " Temporal: its V is measured on frame `frames.history`." : "",
                 markdown_param_table(t.params).c_str());
   }
   std::printf("\n## Scenes\n");
@@ -128,8 +129,8 @@ int cmd_list(const ListArgs& a) {
     if (!wanted(t.name)) continue;
     if (!std::exchange(heading, true)) std::printf("techniques:\n");
     const std::string needs = needs_of(t);
-    std::printf("  %-16s [%s] %s%s\n", t.name.c_str(), t.family.c_str(), t.summary.c_str(),
-                needs.empty() ? "" : ("  needs:" + needs).c_str());
+    std::printf("  %-16s [%s] %s%s%s\n", t.name.c_str(), t.family.c_str(), t.summary.c_str(),
+                needs.empty() ? "" : ("  needs:" + needs).c_str(), t.temporal ? "  temporal" : "");
     print_params(t.params);
   }
   if (a.names.empty()) {

@@ -97,6 +97,16 @@ ConfigBlock frames_block() {
                   "timed frames"),
       [](Experiment& e, const json& v) { e.auto_max_seconds = v.get<double>(); },
       [](const Experiment& e) { return json(e.auto_max_seconds); });
+  b.keys.emplace_back(
+      Decides::Error,
+      int_param("history", 32, 1, 100000,
+                "a temporal technique's frames depend on the frames before them (per-frame "
+                "samples, temporal accumulation: `shadowbench list` marks it): its V is measured "
+                "on this frame of a fresh `prepare()` on the still scene, so that its error does "
+                "not depend on how many frames the timing took (`technique.measured_frame`); "
+                "the other techniques' frames are all alike"),
+      [](Experiment& e, const json& v) { e.history_frames = v.get<int>(); },
+      [](const Experiment& e) { return json(e.history_frames); });
   // frames.timed: an integer, as the table says, or "auto"; auto_block and
   // timed cannot both give the count.
   b.finish = [](Experiment& e, const json& given, const ConfigReader& r) {

@@ -122,6 +122,10 @@ struct Experiment {
   // until the median's 95 % interval is within ± auto_target, at most
   // auto_max_frames frames or auto_max_seconds seconds (run/frame_schedule.h).
   bool timed_auto = false;
+  // frames.history: a temporal technique's V (plugin TechniqueInfo::
+  // temporal) is measured on this frame of a fresh prepare() of a still
+  // scene, whatever its timed frames were.
+  int history_frames = 32;
   double auto_target = 0.03;
   int auto_max_frames = 1000;
   double auto_max_seconds = 10;

@@ -32,7 +32,8 @@ struct PhasesRecord {
     v.field("frames", &PhasesRecord::frames,
             {"s",
              "every frame it rendered: the compile frame, warm-up and timed frames, the "
-             "control frames next to them, `--pass-timing fine`'s"});
+             "control frames next to them, `--pass-timing fine`'s; for a temporal technique "
+             "also the second `prepare()` and the `frames.history` frames its V is measured on"});
     v.field("measure", &PhasesRecord::measure,
             {"s", "read-back, checks, shading, metrics, classes"});
     v.field("images", &PhasesRecord::images, {"s", "writing the images"});

@@ -172,6 +172,9 @@ struct TechniqueRecord {
   std::optional<std::int64_t> gpu_bytes;
   std::optional<std::int64_t> gpu_own_bytes;
   std::optional<std::map<std::string, std::int64_t>> gpu_need_bytes;
+  // A temporal technique's: the frame after a fresh prepare() whose V was
+  // measured (frames.history). Absent for the others.
+  std::optional<std::int64_t> measured_frame;
 
   // Sets the parts and their sum.
   void set_gpu_bytes(std::int64_t own, const std::map<std::string, std::int64_t>& needs);
@@ -205,6 +208,11 @@ struct TechniqueRecord {
              "holds on the GPU for it, the bytes it holds: `edge_adjacency`, "
              "`silhouette_edges`, a plugin need's upload; `{}` when none; absent from older "
              "records"});
+    v.field("measured_frame", &T::measured_frame,
+            {"",
+             "a temporal technique's (one whose frames depend on the frames before them): its "
+             "V, its errors and its stability figures come from this frame of a fresh "
+             "`prepare()` on the still scene (`frames.history`); absent for the others"});
   }
 
   // gpu_bytes is the sum of its parts, when they are there.

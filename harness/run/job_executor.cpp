@@ -217,7 +217,7 @@ class JobExecutor::Impl {
         return std::move(out.visibility);
       };
       stability.emplace(*e_.stability, sv.max_rmse.value_or(e_.stability->max_rmse), st.scene, in,
-                        basis.regions.measured, render, reference);
+                        basis.regions.measured, render, reference, e_.history_frames);
     }
     std::optional<Control> control;
     if (e_.control) control = prepare_control(*e_.control, frame, timing_source_);

@@ -208,6 +208,7 @@ JobRecord identity_record(const Experiment& e, const RunOptions& o, const Embree
   r.technique.family = tv.info->family;
   r.technique.variant = tv.name;
   r.technique.params = tv.params.json();
+  if (tv.info->temporal) r.technique.measured_frame = e.history_frames;
   if (const PluginIdentity* p = plugin_of(e, tv))
     r.technique.plugin = PluginRecord{p->file, p->size, p->sha256, p->api_version};
   r.resolution = res.label();

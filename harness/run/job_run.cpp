@@ -12,6 +12,7 @@
 #include "run/frame_schedule.h"
 #include "run/host_info.h"
 #include "run/run_images.h"
+#include "run/technique_frames.h"
 #include "run/technique_phase.h"
 
 namespace sb::run {
@@ -96,9 +97,33 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv,
   frames.tell_phases(s.events);
   r.timing = time_frames(frames, schedule_of(s, tv));
   r.technique.set_gpu_bytes(allocations.peak_bytes(), need_gpu_bytes);
-  phases.frames = lap.seconds();
   if (delay != nullptr) r.warnings.push_back(delay->describe());
-  if (time_only) return;
+  if (time_only) {
+    phases.frames = lap.seconds();
+    return;
+  }
+  // A temporal technique's last frame depends on how many came before it,
+  // which the timing decided: its V is measured on a fixed frame of a fresh
+  // instance instead, untimed, as the job's frames are drawn.
+  if (tv.info->temporal) {
+    technique.reset();
+    technique = in_technique_phase(who, "prepare", [&] {
+      s.events.job_phase("prepare() again, for the measured frames");
+      std::unique_ptr<Technique> t = tv.info->create(tv.params);
+      t->prepare(s.frame.in);
+      gl::throw_if_errors(tv.name + " prepare");
+      return t;
+    });
+    for (int k = 1; k <= s.e.history_frames; ++k) {
+      const std::string name = "measured sequence frame " + std::to_string(k);
+      s.events.job_phase("render(), " + name);
+      gl::PassTimer timer(s.timing_source);
+      in_technique_phase(who, "render", [&] {
+        render_frame(timer, *technique, name, gl::PassDetail::Coarse, s.frame, nullptr);
+      });
+    }
+  }
+  phases.frames = lap.seconds();
 
   s.events.job_phase("read-back");
   ImageF visibility = in_technique_phase(who, "read-back", [&] {

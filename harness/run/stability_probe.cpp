@@ -25,7 +25,8 @@ using record::StabilityRecord;
 
 StabilityProbe::StabilityProbe(const StabilityConfig& config, double max_rmse, const Scene& scene,
                                const FrameInputs& in, std::vector<uint8_t> measured,
-                               RenderVisibility render, ReferenceVisibility reference)
+                               RenderVisibility render, ReferenceVisibility reference,
+                               int history_frames)
     : config_(config),
       max_rmse_(max_rmse),
       moved_(scene),
@@ -33,7 +34,8 @@ StabilityProbe::StabilityProbe(const StabilityConfig& config, double max_rmse, c
       in_(in),
       measured_(std::move(measured)),
       render_(std::move(render)),
-      reference_(std::move(reference)) {
+      reference_(std::move(reference)),
+      history_frames_(history_frames) {
   in_.scene = &moved_;
   // The casters' extent, which the maps are fitted to (a ground plane's
   // would make the step depend on how far the ground reaches).
@@ -124,6 +126,7 @@ SensitivityRecord StabilityProbe::parameter(const TechniqueVariant& tv, const Pa
     params[spec.name] = v;
     std::unique_ptr<Technique> t = tv.info->create(Params(params));
     t->prepare(in_);
+    for (int k = 1; tv.info->temporal && k < history_frames_; ++k) (void)render_(*t, in_);
     return render_(*t, in_);
   };
   try {

@@ -35,9 +35,11 @@ class StabilityProbe {
   // attached shadow applied.
   using ReferenceVisibility = std::function<core::ImageF(const core::Scene&)>;
 
+  // `history_frames`: the frames a temporal technique's variant renders
+  // before its V is read (frames.history), as the job's did.
   StabilityProbe(const config::StabilityConfig& config, double max_rmse, const core::Scene& scene,
                  const plugin::FrameInputs& in, std::vector<uint8_t> measured,
-                 RenderVisibility render, ReferenceVisibility reference);
+                 RenderVisibility render, ReferenceVisibility reference, int history_frames = 1);
 
   // `prepared` has rendered the job's frames under the scene's light.
   record::StabilityRecord measure(const config::TechniqueVariant& tv, plugin::Technique& prepared);
@@ -65,6 +67,7 @@ class StabilityProbe {
   std::vector<uint8_t> measured_;
   RenderVisibility render_;
   ReferenceVisibility reference_;
+  int history_frames_;
   float step_ = 0;  // flicker translation per frame, world units
   std::optional<metrics::FlickerStats> reference_flicker_;
   std::optional<std::pair<core::ImageF, core::ImageF>> reference_light_size_;

@@ -142,12 +142,19 @@ ImageF ContractStage::render(Technique& technique, bool poison) {
 
 ContractStage::Frames ContractStage::across_a_move(const TechniqueFactory& create,
                                                    const std::function<void()>& to_first,
-                                                   const std::function<void()>& to_second) {
+                                                   const std::function<void()>& to_second,
+                                                   bool temporal) {
   Frames f;
   to_first();
   const std::unique_ptr<Technique> a = create();
   a->prepare(in_);
-  f.a_first = render(*a);
+  if (temporal) {
+    const std::unique_ptr<Technique> first = create();
+    first->prepare(in_);
+    f.a_first = render(*first);
+  } else {
+    f.a_first = render(*a);
+  }
   to_second();
   f.a_moved = render(*a);
   const std::unique_ptr<Technique> b = create();
@@ -194,13 +201,13 @@ std::string prepare_kept_nothing_that_moved(const ContractStage::Frames& f, bool
 }  // namespace
 
 ContractCheck check_light_move(ContractStage& stage, const TechniqueFactory& create,
-                               bool expect_change) {
+                               bool expect_change, bool temporal) {
   return run_check("prepare() keeps nothing of the light (moved after it)", [&] {
     const AreaLight first = stage.scene().light, second = moved_light(first);
     std::string failure;
     try {
       const auto f = stage.across_a_move(
-          create, [&] { stage.set_light(first); }, [&] { stage.set_light(second); });
+          create, [&] { stage.set_light(first); }, [&] { stage.set_light(second); }, temporal);
       failure = prepare_kept_nothing_that_moved(f, expect_change, "light");
     } catch (...) {
       stage.set_light(first);
@@ -212,13 +219,14 @@ ContractCheck check_light_move(ContractStage& stage, const TechniqueFactory& cre
 }
 
 ContractCheck check_camera_move(ContractStage& stage, const TechniqueFactory& create,
-                                bool expect_change) {
+                                bool expect_change, bool temporal) {
   return run_check("prepare() keeps nothing of the camera (moved after it)", [&] {
     const Camera first = stage.scene().camera, second = moved_camera(first);
     std::string failure;
     try {
       const auto f = stage.across_a_move(
-          create, [&] { stage.look_through(first); }, [&] { stage.look_through(second); });
+          create, [&] { stage.look_through(first); }, [&] { stage.look_through(second); },
+          temporal);
       failure = prepare_kept_nothing_that_moved(f, expect_change, "camera");
     } catch (...) {
       stage.look_through(first);
@@ -264,7 +272,21 @@ ContractCheck check_visibility_written(ContractStage& stage, const TechniqueFact
   });
 }
 
-ContractCheck check_deterministic(ContractStage& stage, const TechniqueFactory& create) {
+ContractCheck check_deterministic(ContractStage& stage, const TechniqueFactory& create,
+                                  bool temporal) {
+  if (temporal)
+    return run_check("frames are deterministic (two instances render the same three frames)", [&] {
+      const std::unique_ptr<Technique> a = create(), b = create();
+      a->prepare(stage.inputs());
+      b->prepare(stage.inputs());
+      std::vector<ImageF> frames;
+      for (int frame = 1; frame <= 3; ++frame) frames.push_back(stage.render(*a));
+      for (int frame = 1; frame <= 3; ++frame)
+        if (const size_t n = differing_pixels(frames[size_t(frame - 1)], stage.render(*b)); n > 0)
+          return "frame " + std::to_string(frame) + " of a second instance differs from the " +
+                 "first's in " + std::to_string(n) + " pixels, with nothing moved";
+      return std::string();
+    });
   return run_check("frames are deterministic (three in a row are equal)", [&] {
     const std::unique_ptr<Technique> t = create();
     t->prepare(stage.inputs());
@@ -278,11 +300,12 @@ ContractCheck check_deterministic(ContractStage& stage, const TechniqueFactory& 
 }
 
 std::vector<ContractCheck> check_timing_contract(ContractStage& stage,
-                                                 const TechniqueFactory& create,
-                                                 bool expect_change) {
-  return {check_light_move(stage, create, expect_change),
-          check_camera_move(stage, create, expect_change), check_visibility_written(stage, create),
-          check_deterministic(stage, create), check_gbuffer_untouched(stage, create)};
+                                                 const TechniqueFactory& create, bool expect_change,
+                                                 bool temporal) {
+  return {check_light_move(stage, create, expect_change, temporal),
+          check_camera_move(stage, create, expect_change, temporal),
+          check_visibility_written(stage, create), check_deterministic(stage, create, temporal),
+          check_gbuffer_untouched(stage, create)};
 }
 
 }  // namespace sb::run

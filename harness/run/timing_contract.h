@@ -20,6 +20,12 @@
 // prepare() or an earlier frame shows), two frames in a row are equal, and
 // no frame writes the G-buffer's colour attachments, which every technique
 // reads (the runner renders them once per (scene, resolution)).
+//
+// A temporal technique (TechniqueInfo::temporal) carries state from frame to
+// frame by design, so for it "A's second frame" becomes A's first frame
+// after the move (prepared under L1, nothing rendered before the move), and
+// "two frames in a row are equal" becomes "two instances prepared alike
+// render the same sequence of frames".
 #include <functional>
 #include <memory>
 #include <string>
@@ -86,11 +92,13 @@ class ContractStage {
 
   // Technique A, prepared after `to_first`, renders there and again after
   // `to_second`; technique B, prepared after `to_second`, renders there.
+  // `temporal`: A renders nothing before the move, and a_first is a third
+  // instance's first frame.
   struct Frames {
     core::ImageF a_first, a_moved, b_moved;
   };
   Frames across_a_move(const TechniqueFactory& create, const std::function<void()>& to_first,
-                       const std::function<void()>& to_second);
+                       const std::function<void()>& to_second, bool temporal = false);
 
   // The G-buffer's colour attachments: position, geometric normal, shading
   // normal, albedo.
@@ -116,22 +124,25 @@ struct ContractCheck {
 
 // Moving the light (the camera) between prepare() and a frame changes
 // nothing against a technique prepared after the move; `expect_change`: and
-// the move changes V (not for controls, which are V = 1 anywhere).
+// the move changes V (not for controls, which are V = 1 anywhere);
+// `temporal`: the technique's TechniqueInfo::temporal.
 ContractCheck check_light_move(ContractStage& stage, const TechniqueFactory& create,
-                               bool expect_change);
+                               bool expect_change, bool temporal = false);
 ContractCheck check_camera_move(ContractStage& stage, const TechniqueFactory& create,
-                                bool expect_change);
+                                bool expect_change, bool temporal = false);
 // Two frames leave the G-buffer's colour attachments as they were.
 ContractCheck check_gbuffer_untouched(ContractStage& stage, const TechniqueFactory& create);
 // Each of three frames writes V, finite and in [0,1], into every pixel.
 ContractCheck check_visibility_written(ContractStage& stage, const TechniqueFactory& create);
-// Three frames in a row, nothing moved between them, are equal.
-ContractCheck check_deterministic(ContractStage& stage, const TechniqueFactory& create);
+// Three frames in a row, nothing moved between them, are equal; `temporal`:
+// two instances' first three frames are equal, frame by frame.
+ContractCheck check_deterministic(ContractStage& stage, const TechniqueFactory& create,
+                                  bool temporal = false);
 
 // All of the above, in that order; a check whose technique throws fails
 // with the exception's message.
 std::vector<ContractCheck> check_timing_contract(ContractStage& stage,
-                                                 const TechniqueFactory& create,
-                                                 bool expect_change);
+                                                 const TechniqueFactory& create, bool expect_change,
+                                                 bool temporal = false);
 
 }  // namespace sb::run

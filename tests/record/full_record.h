@@ -108,6 +108,7 @@ inline record::JobRecord every_member_record() {
   r.reason = "a visibility check failed";
   r.technique.plugin = record::PluginRecord{"shadow_map.so", 812345, std::string(64, 'a'), 1};
   r.technique.set_gpu_bytes(3456, {{"edge_adjacency", 640}});
+  r.technique.measured_frame = 32;
   r.host.gl_stack = record::parse_gl_stack("llvmpipe (LLVM 15.0.6, 256 bits)", "4.5 Mesa 22.3.6");
   r.host.env = {{"LP_NUM_THREADS", "2"}};
   r.host.kernel = "6.1.0";

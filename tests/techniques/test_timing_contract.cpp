@@ -5,6 +5,7 @@
 // and the technique variants of configs/quick.json.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -99,13 +100,13 @@ class TimingContract : public ::testing::Test {
   // The check for every variant under test: `none` and the controls are
   // V = 1 anywhere, so moving changes nothing of theirs.
   void expect_for_every_variant(ContractCheck (*check)(ContractStage&, const run::TechniqueFactory&,
-                                                       bool)) {
+                                                       bool, bool)) {
     const std::vector<TechniqueVariant> variants = variants_under_test(plugins_);
     ASSERT_GE(variants.size(), plugins_.all().size());
     for (const TechniqueVariant& tv : variants) {
       const bool expect_change = tv.info->name != "none" && tv.info->family != "control";
       const ContractCheck c = check(
-          *stage_, [&] { return tv.info->create(tv.params); }, expect_change);
+          *stage_, [&] { return tv.info->create(tv.params); }, expect_change, tv.info->temporal);
       EXPECT_TRUE(c.passed()) << tv.name << ": " << c.name << ": " << c.failure;
     }
   }
@@ -152,6 +153,65 @@ TEST_F(TimingContract, NoTechniqueWritesTheGBufferColourAttachments) {
         run::check_gbuffer_untouched(*stage_, [&] { return tv.info->create(tv.params); });
     EXPECT_TRUE(c.passed()) << tv.name << ": " << c.failure;
   }
+}
+
+// A temporal technique in miniature: V everywhere is a function of its
+// frame count since prepare() and of the light's x where it reads it (at
+// every frame, or, a breach, once in prepare()). A shared counter across
+// instances (another breach) makes two instances render different frames.
+class FrameCounting final : public Technique {
+ public:
+  enum class Light { EveryFrame, FromPrepare };
+  explicit FrameCounting(Light light, int* shared = nullptr) : light_(light), shared_(shared) {}
+  void prepare(const FrameInputs& in) override {
+    frame_ = 0;
+    prepared_x_ = in.scene->light.center.x;
+  }
+  void render(const FrameInputs& in, gl::PassTimer& timer) override {
+    auto pass = timer.scope("count");
+    int& frame = shared_ != nullptr ? *shared_ : frame_;
+    ++frame;
+    const float x = light_ == Light::EveryFrame ? in.scene->light.center.x : prepared_x_;
+    const float v[4] = {0.5f / float(frame) + 0.1f * (0.5f + 0.5f * std::sin(x)), 0, 0, 0};
+    glClearNamedFramebufferfv(in.visibility_framebuffer, GL_COLOR, 0, v);
+  }
+
+ private:
+  Light light_;
+  int* shared_;
+  int frame_ = 0;
+  float prepared_x_ = 0;
+};
+
+// A technique whose frames depend on its frame count passes the checks as
+// a temporal one, and fails "three in a row are equal" as any other: the
+// temporal checks are not weaker than they need to be.
+TEST_F(TimingContract, ATemporalTechniqueIsCheckedFrameByFrameAgainstAFreshInstance) {
+  const auto counting = [] {
+    return std::make_unique<FrameCounting>(FrameCounting::Light::EveryFrame);
+  };
+  EXPECT_FALSE(run::check_deterministic(*stage_, counting, false).passed());
+  EXPECT_TRUE(run::check_deterministic(*stage_, counting, true).passed());
+  const ContractCheck light = run::check_light_move(*stage_, counting, true, true);
+  EXPECT_TRUE(light.passed()) << light.failure;
+  EXPECT_FALSE(run::check_light_move(*stage_, counting, true, false).passed());
+
+  const auto keeps_light = [] {
+    return std::make_unique<FrameCounting>(FrameCounting::Light::FromPrepare);
+  };
+  const ContractCheck kept = run::check_light_move(*stage_, keeps_light, true, true);
+  EXPECT_FALSE(kept.passed());
+  EXPECT_NE(kept.failure.find("prepare() keeps something that depends on the light"),
+            std::string::npos)
+      << kept.failure;
+
+  int shared = 0;
+  const auto shares_state = [&] {
+    return std::make_unique<FrameCounting>(FrameCounting::Light::EveryFrame, &shared);
+  };
+  const ContractCheck twins = run::check_deterministic(*stage_, shares_state, true);
+  EXPECT_FALSE(twins.passed());
+  EXPECT_NE(twins.failure.find("of a second instance differs"), std::string::npos) << twins.failure;
 }
 
 std::vector<uint32_t> read_depth_stencil(GLuint texture) {
