@@ -30,6 +30,11 @@ struct FlickerRecord {
   double frac_over_005 = 0;    // share of |ΔV| over 0.05: "frac_over_0.05"
   std::int64_t nonfinite = 0;  // pixel pairs left out: NaN or infinite V
   double reference_mean = 0, reference_p99 = 0, reference_max = 0, reference_frac_over_005 = 0;
+  // RMSE of V against the reference of the same light, on the measured
+  // pixels, at the first frame (the light not yet moved) and the last: a
+  // technique that keeps history lags behind the moving light (ghosting),
+  // and its last RMSE grows. Absent from older records.
+  std::optional<double> rmse_first, rmse_last;
 
   template <class V>
   static void describe(V& v) {
@@ -41,6 +46,14 @@ struct FlickerRecord {
     v.field("max", &F::max, {"", "largest |ΔV|"});
     v.field("frac_over_0.05", &F::frac_over_005, {"", "share of |ΔV| over 0.05"});
     v.field("nonfinite", &F::nonfinite, {"", "pixel pairs left out: NaN or infinite V"});
+    v.field("rmse_first", &F::rmse_first,
+            {"",
+             "RMSE of V against the reference of the same light at the first frame, the light "
+             "not yet moved; absent from older records"});
+    v.field("rmse_last", &F::rmse_last,
+            {"",
+             "the same at the last frame: above `rmse_first` where a technique's history lags "
+             "behind the moving light (ghosting); absent from older records"});
     v.object("reference", {"", "the reference's own change for the same motion"}, [](auto& sub) {
       sub.field("mean", &F::reference_mean, {"", ""});
       sub.field("p99", &F::reference_p99, {"", ""});

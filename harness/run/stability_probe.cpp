@@ -79,6 +79,21 @@ std::pair<double, double> StabilityProbe::points(double value, double lo, double
   return {minus, plus};
 }
 
+double StabilityProbe::measured_rmse(const ImageF& a, const ImageF& b,
+                                     const std::vector<uint8_t>& measured) {
+  double sum = 0;
+  size_t n = 0;
+  for (size_t i = 0; i < a.pixel_count(); ++i) {
+    if (measured[i] == 0) continue;
+    const double d =
+        double(a.data[i * size_t(a.channels)]) - double(b.data[i * size_t(b.channels)]);
+    if (!std::isfinite(d)) continue;
+    sum += d * d;
+    ++n;
+  }
+  return n == 0 ? 0.0 : std::sqrt(sum / double(n));
+}
+
 bool StabilityProbe::is_stiff(double relative, double reference_relative) const {
   return relative > config_.stiff_threshold + reference_relative;
 }
@@ -93,6 +108,8 @@ FlickerRecord StabilityProbe::flicker(Technique& prepared) {
     }
     moved_.light = light_;
     reference_flicker_ = metrics::flicker(refs, &measured_);
+    reference_first_ = refs.front();
+    reference_last_ = refs.back();
   }
   std::vector<ImageF> frames;
   for (int i = 0; i < k; ++i) {
@@ -109,6 +126,8 @@ FlickerRecord StabilityProbe::flicker(Technique& prepared) {
   r.max = f.max;
   r.frac_over_005 = f.frac_over_005;
   r.nonfinite = std::int64_t(f.nonfinite);
+  r.rmse_first = measured_rmse(frames.front(), reference_first_, measured_);
+  r.rmse_last = measured_rmse(frames.back(), reference_last_, measured_);
   r.reference_mean = reference_flicker_->mean;
   r.reference_p99 = reference_flicker_->p99;
   r.reference_max = reference_flicker_->max;

@@ -58,6 +58,10 @@ class StabilityProbe {
   // points it is taken at, kept inside [lo, hi] (one-sided at a bound).
   std::pair<double, double> points(double value, double lo, double hi) const;
   bool is_stiff(double relative, double reference_relative = 0.0) const;
+  // RMSE of a's first channel against b's over the `measured` pixels (finite
+  // differences only).
+  static double measured_rmse(const core::ImageF& a, const core::ImageF& b,
+                              const std::vector<uint8_t>& measured);
 
   config::StabilityConfig config_;
   double max_rmse_;
@@ -70,6 +74,7 @@ class StabilityProbe {
   int history_frames_;
   float step_ = 0;  // flicker translation per frame, world units
   std::optional<metrics::FlickerStats> reference_flicker_;
+  core::ImageF reference_first_, reference_last_;  // the flicker's first and last lights'
   std::optional<std::pair<core::ImageF, core::ImageF>> reference_light_size_;
 };
 

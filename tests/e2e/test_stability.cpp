@@ -59,6 +59,10 @@ TEST(Stability, FlickerIsZeroForNoneAndAStillLightAndPositiveForAHardMapUnderSub
     SCOPED_TRACE(r["technique_variant"].get<std::string>());
     EXPECT_EQ(r["stability"]["flicker"]["mean"], 0.0);
     EXPECT_EQ(r["stability"]["flicker"]["reference"]["mean"], 0.0);
+    // Nothing moved: the first and last frames' error is the job's own.
+    const double job_rmse = r["metrics"]["visibility"]["all"]["rmse"].get<double>();
+    EXPECT_NEAR(r["stability"]["flicker"]["rmse_first"].get<double>(), job_rmse, 1e-6);
+    EXPECT_NEAR(r["stability"]["flicker"]["rmse_last"].get<double>(), job_rmse, 1e-6);
   }
 }
 

@@ -151,7 +151,8 @@ inline record::JobRecord every_member_record() {
   stability.max_rmse = 0.1;
   stability.flicker_factor = 2;
   stability.stiff_threshold = 1;
-  stability.flicker = record::FlickerRecord{3, 0.25, 0.01, 0.1, 0.2, 0.05, 1, 0.01, 0.1, 0.2, 0.05};
+  stability.flicker =
+      record::FlickerRecord{3, 0.25, 0.01, 0.1, 0.2, 0.05, 1, 0.01, 0.1, 0.2, 0.05, 0.02, 0.03};
   record::SensitivityRecord sensitivity;
   sensitivity.reference_relative = 0.5;
   sensitivity.error = "the perturbed variant failed";
