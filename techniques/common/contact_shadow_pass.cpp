@@ -72,13 +72,12 @@ ParamSpec positive(ParamSpec spec) {
 }  // namespace
 
 std::vector<ParamSpec> contact_shadow_params(const std::string& prefix) {
-  const ContactShadowSettings d;
-  return {positive(core::float_param(prefix + "length", d.length, 0.0, 1e6,
+  return {positive(core::float_param(prefix + "length", 0.5, 0.0, 1e6,
                                      "contact shadows: march length from the surface towards the "
                                      "light, world units")),
-          core::int_param(prefix + "steps", d.steps, 1, 256,
+          core::int_param(prefix + "steps", 16, 1, 256,
                           "contact shadows: steps along the march (samples of the depth buffer)"),
-          positive(core::float_param(prefix + "thickness", d.thickness, 0.0, 1e6,
+          positive(core::float_param(prefix + "thickness", 0.2, 0.0, 1e6,
                                      "contact shadows: how deep behind its visible surface an "
                                      "occluder is assumed, world units of view depth"))};
 }

@@ -2,9 +2,10 @@
 // Screen-space contact shadows: a short ray march towards the light through
 // the camera's G-buffer, the pattern engines add on top of their shadow maps
 // to catch the small occlusions where an object touches its receiver, which
-// a map's resolution and bias miss (Sousa, Kasyan & Schulz 2013, "CryENGINE
-// 3: three years of work in review"; Unreal Engine's "contact shadows";
-// Aldridge 2023, "Bend Studio's screen space shadows", SIGGRAPH course).
+// a map's resolution and bias miss (Sousa et al. at Crytek; Unreal Engine's
+// "contact shadows", whose world-space length and jittered start this
+// follows; Aldridge 2023, "Bend Studio's screen space shadows", SIGGRAPH,
+// which marches pixel by pixel from the light's screen position instead).
 //
 // Per G-buffer pixel p with surface point P (position w = 1) and geometric
 // normal n, towards the light's centre (a local light) or along to_sun()
@@ -56,12 +57,12 @@
 
 namespace sb::techniques {
 
-// The march's parameters.
+// The march's parameters (their defaults: contact_shadow_params()).
 // units: length and thickness in world units; steps a count.
 struct ContactShadowSettings {
-  float length = 0.5f;     // world units, from the surface towards the light
-  int steps = 16;          // points along it
-  float thickness = 0.2f;  // how deep behind its visible surface an occluder is assumed
+  float length = 0.0f;     // world units, from the surface towards the light
+  int steps = 0;           // points along it
+  float thickness = 0.0f;  // how deep behind its visible surface an occluder is assumed
 };
 
 // The march's parameters as declared, names prefixed by `prefix` ("" for the

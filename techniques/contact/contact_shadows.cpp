@@ -36,9 +36,10 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
   using namespace sb;
   registry.add({.name = "contact_shadows",
                 .family = "contact",
-                .summary = "screen-space contact shadows alone: a short march towards the light "
-                           "through the depth buffer (Sousa et al. 2013, Unreal Engine, Bend "
-                           "Studio 2023); an option of the map techniques (contact: true)",
+                .summary =
+                    "screen-space contact shadows alone: a short march towards the light "
+                    "through the G-buffer's depths (Sousa et al. at Crytek, Unreal Engine, Bend "
+                    "Studio 2023); an option of the map techniques (contact: true)",
                 .needs = Needs{need::kSunOrLocalLight},
                 .params = techniques::contact_shadow_params(""),
                 .create = [](const Params& p) {
