@@ -19,6 +19,7 @@ layout(binding = 0) uniform sampler2D position_tex;
 layout(binding = 2) uniform sampler2D normal_tex;
 uniform mat4 view;
 uniform mat4 view_projection;
+uniform vec3 eye;           // the camera's position
 uniform vec3 light_point;   // a local light's centre
 uniform vec3 to_sun;        // the sun's direction, unit
 uniform bool sun;
@@ -40,7 +41,7 @@ void main() {
   d = normalize(d);
   if (dot(n, d) <= 0.0) { visibility = 0.0; return; }
   ivec2 size = textureSize(position_tex, 0);
-  vec3 start = pos.xyz + n * (2.0 * pixel_world * view_depth(pos.xyz));
+  vec3 start = pos.xyz + n * (0.25 * pixel_world * view_depth(pos.xyz));
   float step_length = reach / float(steps);
   float jitter = interleaved_gradient_noise(gl_FragCoord.xy);
   for (int i = 0; i < steps; ++i) {
@@ -52,8 +53,16 @@ void main() {
     ivec2 q = min(ivec2((ndc * 0.5 + 0.5) * vec2(size)), size - 1);
     if (q == p) continue;
     vec4 seen = texelFetch(position_tex, q, 0);
-    if (seen.w < 0.5 || texelFetch(normal_tex, q, 0).w < 0.5) continue;
-    float behind = view_depth(s) - view_depth(seen.xyz);
+    vec4 seen_normal = texelFetch(normal_tex, q, 0);
+    if (seen.w < 0.5 || seen_normal.w < 0.5) continue;
+    // The seen triangle's plane where the camera ray through s meets it
+    // (E + t·(s − E)), not its depth at q's centre: a step a fraction of a
+    // pixel beside a steep surface is not behind it.
+    float z = view_depth(s);
+    float facing = dot(seen_normal.xyz, s - eye);
+    float behind = abs(facing) > 1e-4 * length(s - eye)
+        ? (1.0 - dot(seen_normal.xyz, seen.xyz - eye) / facing) * z
+        : z - view_depth(seen.xyz);
     if (behind > 0.0 && behind < thickness) { visibility = 0.0; return; }
   }
   visibility = 1.0;
@@ -77,7 +86,7 @@ std::vector<ParamSpec> contact_shadow_params(const std::string& prefix) {
                                      "light, world units")),
           core::int_param(prefix + "steps", 16, 1, 256,
                           "contact shadows: steps along the march (samples of the depth buffer)"),
-          positive(core::float_param(prefix + "thickness", 0.2, 0.0, 1e6,
+          positive(core::float_param(prefix + "thickness", 0.05, 0.0, 1e6,
                                      "contact shadows: how deep behind its visible surface an "
                                      "occluder is assumed, world units of view depth"))};
 }
@@ -110,6 +119,7 @@ void ContactShadowPass::draw(const FrameInputs& in, ContactCombine combine) cons
   program_.use();
   program_.set("view", in.view);
   program_.set("view_projection", in.view_projection);
+  program_.set("eye", glm::vec3(glm::inverse(in.view)[3]));
   program_.set("sun", light.is_sun() ? 1 : 0);
   program_.set("to_sun", light.to_sun());
   program_.set("light_point", light.center);

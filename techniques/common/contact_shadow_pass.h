@@ -10,9 +10,8 @@
 // Per G-buffer pixel p with surface point P (position w = 1) and geometric
 // normal n, towards the light's centre (a local light) or along to_sun()
 // (the sun), direction d:
-//   start  S0 = P + n·(2 pixels' world size at P's view depth): off the
-//          surface, so that a flat receiver does not shadow itself where a
-//          step lands between two pixel centres;
+//   start  S0 = P + n·(a quarter of a pixel's world size at P's view depth):
+//          off the surface, against rounding;
 //   march  `steps` points S_i = S0 + d·(i + j)·length/steps, i = 0..steps-1,
 //          with j in [0,1) a fixed interleaved-gradient noise of the pixel
 //          (Jimenez 2014): the same every frame, so frames are deterministic;
@@ -20,7 +19,11 @@
 //   test   each S_i projected with FrameInputs::view_projection to pixel q
 //          (q ≠ p); the surface seen there (gbuffer_position, exact, no depth
 //          reconstruction) hides S_i when S_i lies behind it by less than
-//          `thickness` in view depth: 0 < z(S_i) − z(seen) < thickness;
+//          `thickness` in view depth: 0 < z(S_i) − z(seen) < thickness, the
+//          seen depth taken on the seen triangle's plane (gbuffer_normal)
+//          where the camera ray through S_i meets it, not at q's centre, so
+//          that a step a fraction of a pixel off a steep or curved surface is
+//          not behind it (a grazing plane falls back to q's centre);
 //   V      0 at the first hidden step, else 1 (no fade). 0 also where d is
 //          below P's tangent plane (as the map lookup's above_horizon());
 //          1 on the background.
@@ -32,8 +35,11 @@
 // hidden behind another surface from the camera, casts nothing; every
 // occluder is assumed `thickness` deep behind its visible surface, so a
 // thin one is too thick (shadows leak past its far side) and a thick one
-// too thin (rays pass behind it); the light is its centre only (V is 0 or
-// 1, hard); and it reaches `length` from the surface and no farther.
+// too thin (rays pass behind it), and a ray that grazes an occluder's far
+// side within `thickness` of its visible surface counts as blocked (a dark
+// fringe where the sphere grid's spheres meet the ground); the light is its
+// centre only (V is 0 or 1, hard, where an area light's penumbra is soft);
+// and it reaches `length` from the surface and no farther.
 //
 // What the kit guarantees here (shadowbench::shadow_kit, installed):
 //   in     FrameInputs' G-buffer (position, geometric normal), view,
