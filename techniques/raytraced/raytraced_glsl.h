@@ -143,28 +143,32 @@ bool opaque(uint k, vec3 w) {
   return !(float(alpha) / 255.0 < m1.w);
 }
 
-// The ray's frame for the watertight test (Woop, Benthin & Wald 2013).
+// The ray's frame for the watertight test (Woop, Benthin & Wald 2013): the
+// axis of the direction's largest component becomes z (cyclic, so the
+// handedness stays), then a shear makes the ray the +z axis.
 struct Shear {
-  ivec3 k;  // kx, ky, kz
-  vec3 s;   // sx, sy, sz
+  int kz;
+  vec3 s;  // sx, sy, sz
 };
+vec3 permute(vec3 v, int kz) { return kz == 0 ? v.yzx : (kz == 1 ? v.zxy : v); }
 Shear make_shear(vec3 d) {
   vec3 a = abs(d);
   int kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
-  int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
-  return Shear(ivec3(kx, ky, kz), vec3(-d[kx] / d[kz], -d[ky] / d[kz], 1.0 / d[kz]));
+  vec3 p = permute(d, kz);
+  return Shear(kz, vec3(-p.x / p.z, -p.y / p.z, 1.0 / p.z));
 }
+// Each corner transformed alone and the edge functions unfused (`precise`),
+// so that two triangles sharing an edge compute it alike, with opposite signs.
 float ray_triangle(vec3 o, Shear sh, uint k, out vec3 w) {
-  vec3 q0 = tris[3u * k].xyz - o, q1 = tris[3u * k + 1u].xyz - o, q2 = tris[3u * k + 2u].xyz - o;
-  vec3 p0 = vec3(q0[sh.k.x], q0[sh.k.y], q0[sh.k.z]);
-  vec3 p1 = vec3(q1[sh.k.x], q1[sh.k.y], q1[sh.k.z]);
-  vec3 p2 = vec3(q2[sh.k.x], q2[sh.k.y], q2[sh.k.z]);
+  precise vec3 p0 = permute(tris[3u * k].xyz - o, sh.kz);
+  precise vec3 p1 = permute(tris[3u * k + 1u].xyz - o, sh.kz);
+  precise vec3 p2 = permute(tris[3u * k + 2u].xyz - o, sh.kz);
   p0.xy += sh.s.xy * p0.z;
   p1.xy += sh.s.xy * p1.z;
   p2.xy += sh.s.xy * p2.z;
-  float e0 = p1.x * p2.y - p1.y * p2.x;
-  float e1 = p2.x * p0.y - p2.y * p0.x;
-  float e2 = p0.x * p1.y - p0.y * p1.x;
+  precise float e0 = p1.x * p2.y - p1.y * p2.x;
+  precise float e1 = p2.x * p0.y - p2.y * p0.x;
+  precise float e2 = p0.x * p1.y - p0.y * p1.x;
   if (e0 == 0.0 || e1 == 0.0 || e2 == 0.0) {
     e0 = float(double(p1.x) * double(p2.y) - double(p1.y) * double(p2.x));
     e1 = float(double(p2.x) * double(p0.y) - double(p2.y) * double(p0.x));
