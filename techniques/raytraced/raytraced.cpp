@@ -14,7 +14,12 @@
 // The points: Owen-scrambled 2-D Sobol (Burley 2020, "Practical Hash-based
 // Owen Scrambling", JCGT 9(4)), scrambled per pixel and per frame: frame k
 // since prepare() draws other points than frame k - 1 (TechniqueInfo::
-// temporal), so a denoiser or temporal filter can gather them.
+// temporal), so a denoiser or temporal filter can gather them. Or
+// (`sequence: blue_noise`) one scrambled set per frame for every pixel,
+// shifted toroidally per pixel by two void-and-cluster masks
+// (common/blue_noise.h), blue-noise dithered sampling after Georgiev &
+// Fajardo 2016: each shifted point of a scrambled set is still uniform, so
+// the estimate stays unbiased, and its error is spread as blue noise.
 //
 // Parameters, defaults and ranges: docs/parameters.md (generated from their
 // declarations by `shadowbench list --markdown`).
@@ -22,6 +27,7 @@
 #include <memory>
 #include <string>
 
+#include "common/blue_noise.h"
 #include "gl/debug.h"
 #include "gl/objects.h"
 #include "gl/program.h"
@@ -44,10 +50,17 @@ class Raytraced final : public Technique {
     casters_ = GpuCasters(*in.scene, leaf_size_);
     const std::string source = "#version 450 core\n#define STACK_SIZE " +
                                std::to_string(kMaxBvhDepth + 2) + "\n" + kRaytracedInputsGlsl +
-                               kSobolGlsl + kRayOffsetGlsl + kTraversalGlsl + kRaytracedMainGlsl;
+                               kSobolGlsl + kRayOffsetGlsl + kTraversalGlsl + kBlueNoiseGlsl +
+                               kRaytracedMainGlsl;
     program_ = gl::Program::compute("raytraced", source);
     program_.set("spp", spp_);
     program_.set("has_casters", casters_.empty() ? 0 : 1);
+    program_.set("blue", sequence_ == "blue_noise" ? 1 : 0);
+    if (sequence_ == "blue_noise") {
+      // Masks of the parameters alone: two independent ones, one a coordinate.
+      blue_x_ = make_blue_noise_texture(kBlueNoiseSide, unsigned(seed_));
+      blue_y_ = make_blue_noise_texture(kBlueNoiseSide, unsigned(seed_) + 0x9e3779b9u);
+    }
     frame_ = 0;
     gl::throw_if_errors("raytraced prepare");
   }
@@ -75,6 +88,10 @@ class Raytraced final : public Technique {
     casters_.bind();
     glBindTextureUnit(0, in.gbuffer_position);
     glBindTextureUnit(1, in.gbuffer_normal);
+    if (blue_x_) {
+      glBindTextureUnit(4, blue_x_.get());
+      glBindTextureUnit(5, blue_y_.get());
+    }
     glBindImageTexture(0, trace_target(in), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     glDispatchCompute(GLuint((in.width + 7) / 8), GLuint((in.height + 7) / 8), 1);
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
@@ -94,6 +111,8 @@ class Raytraced final : public Technique {
   uint64_t frame_ = 0;  // render() calls since prepare()
   GpuCasters casters_;
   gl::Program program_;
+  static constexpr int kBlueNoiseSide = 64;
+  gl::Texture blue_x_, blue_y_;  // sequence "blue_noise" only
 };
 
 }  // namespace
@@ -109,9 +128,10 @@ SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
        .needs = Needs{need::kSunOrLocalLight},
        .params = {int_param("spp", 4, 1, 64, "shadow rays per pixel and frame"),
                   int_param("leaf_size", 4, 1, 16, "most triangles in a leaf of the hierarchy"),
-                  choice_param("sequence", "sobol", {"sobol"},
+                  choice_param("sequence", "sobol", {"sobol", "blue_noise"},
                                "light samples: Owen-scrambled Sobol (Burley 2020), scrambled per "
-                               "pixel and frame"),
+                               "pixel and frame; blue_noise: one scrambled set per frame, shifted "
+                               "per pixel by two 64² blue-noise masks (Georgiev & Fajardo 2016)"),
                   int_param("seed", 1, 0, 2147483647, "scrambling seed")},
        .create =
            [](const Params& p) { return std::make_unique<techniques::raytraced::Raytraced>(p); },

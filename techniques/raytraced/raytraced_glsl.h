@@ -27,6 +27,11 @@ uniform vec3 light_center;
 uniform vec3 corner, eu, ev;  // a local light: corner + s*eu + t*ev
 uniform vec3 axis, e1, e2;    // the sun: axis + tan_radius*(x*e1 + y*e2), (x, y) on the disk
 uniform float tan_radius;
+// sequence "blue_noise": one scrambled point set per frame, shifted per pixel
+// by two blue-noise masks (units 4 and 5).
+uniform bool blue;
+layout(binding = 4) uniform sampler2D blue_x;
+layout(binding = 5) uniform sampler2D blue_y;
 )glsl";
 
 // Sample points: Burley 2020, "Practical Hash-based Owen Scrambling"
@@ -220,7 +225,7 @@ bool occluded(vec3 o, vec3 d, float tfar) {
 }
 )glsl";
 
-// The pass: per covered pixel, `spp` rays from the offset point to the
+// The pass (after kBlueNoiseGlsl): per covered pixel, `spp` rays from the offset point to the
 // light's samples, parametrised as the reference's (reference/pixel_rays.cpp):
 // a local light's (s, t) on corner + s·eu + t·ev, rays ending 1e-4 short of
 // it; the sun's through Shirley and Chiu's concentric map onto the disk on
@@ -261,10 +266,15 @@ void main() {
   precise vec3 origin = p.xyz + ray_offset(p.xyz) * n;
   precise vec3 base = corner - origin;
   uint seed = hash32(uint(px.y * size.x + px.x) ^ frame_seed);
+  vec2 shift = vec2(0.0);
+  if (blue) {
+    seed = hash32(frame_seed);
+    shift = vec2(blue_noise(blue_x, vec2(px)), blue_noise(blue_y, vec2(px)));
+  }
   float infinity = uintBitsToFloat(0x7f800000u);
   int reached = 0;
   for (int i = 0; i < spp; ++i) {
-    vec2 st = owen_sobol(uint(i), seed);
+    vec2 st = fract(owen_sobol(uint(i), seed) + shift);
     vec3 d;
     float tfar;
     if (sun) {

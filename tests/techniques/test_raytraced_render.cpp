@@ -90,15 +90,16 @@ class RaytracedRender : public ::testing::Test {
     ASSERT_NE(info_, nullptr);
   }
 
-  std::unique_ptr<plugin::Technique> make(int spp, int seed = 1) const {
+  std::unique_ptr<plugin::Technique> make(int spp, const std::string& sequence = "sobol") const {
     return info_->create(
-        core::resolve_params(info_->params, {{"spp", spp}, {"seed", seed}}, "", ""));
+        core::resolve_params(info_->params, {{"spp", spp}, {"sequence", sequence}}, "", ""));
   }
 
-  Agreement agreement(const Scene& scene, int spp, const std::string& name) {
+  Agreement agreement(const Scene& scene, int spp, const std::string& name,
+                      const std::string& sequence) {
     ContractStage stage(scene, kWidth, kHeight, {info_}, plugins_);
     EXPECT_EQ(stage.skip_reason(0), "");
-    const auto t = make(spp);
+    const auto t = make(spp, sequence);
     t->prepare(stage.inputs());
     const ImageF v = stage.render(*t);
     const ImageF v2 = stage.render(*t);  // the next frame: other samples
@@ -167,8 +168,9 @@ class RaytracedRender : public ::testing::Test {
     return a;
   }
 
-  void expect_same_expectation(const Scene& scene, int spp, const std::string& name) {
-    const Agreement a = agreement(scene, spp, name);
+  void expect_same_expectation(const Scene& scene, int spp, const std::string& name,
+                               const std::string& sequence = "sobol") {
+    const Agreement a = agreement(scene, spp, name, sequence);
     ASSERT_GT(a.covered, kWidth * kHeight / 3);
     ASSERT_GT(a.penumbra, 150) << "too few soft pixels to tell";
     EXPECT_LT(std::abs(a.mean_z), 4.0 * a.standard_error);
@@ -204,6 +206,12 @@ TEST_F(RaytracedRender, SameExpectedVAsTheReferenceUnderTheSun) {
 TEST_F(RaytracedRender, SameExpectedVAsTheReferenceThroughTheLeavesMasks) {
   for (int spp : {4, 16})
     expect_same_expectation(scene_of("foliage", {{"trees", 2}}), spp, "foliage");
+}
+
+// The blue-noise shifts of one scrambled set keep every sample uniform.
+TEST_F(RaytracedRender, SameExpectedVAsTheReferenceWithBlueNoiseShifts) {
+  expect_same_expectation(sphere_grid(), 16, "sphere_grid_blue", "blue_noise");
+  expect_same_expectation(scene_of("foliage", {{"trees", 2}}), 16, "foliage_blue", "blue_noise");
 }
 
 // The frame index scrambles the samples: with nothing moved, a second frame
