@@ -210,6 +210,47 @@ TEST_F(RaytracedRender, SameExpectedVAsTheReferenceThroughTheLeavesMasks) {
     expect_same_expectation(scene_of("foliage", {{"trees", 2}}), spp, "foliage");
 }
 
+// A point light (size 0) leaves nothing to sample: every sample of both is
+// the light's centre, so V is 0 or 1 and must be the reference's but where
+// the two traversals' rounding differ on a silhouette (a few pixels).
+TEST_F(RaytracedRender, UnderAPointLightVIsTheReferencesHardShadow) {
+  Scene s = scene_of("sphere_grid", {{"analytic", false}, {"light_size", 0.0}});
+  ASSERT_TRUE(s.light.is_point());
+  ContractStage stage(s, kWidth, kHeight, {info_}, plugins_);
+  ASSERT_EQ(stage.skip_reason(0), "");
+  const auto t = make(4);
+  t->prepare(stage.inputs());
+  const ImageF v = stage.render(*t);
+  const std::vector<ImageF> g = stage.read_gbuffer();
+  const reference::Result ref =
+      reference::compute(stage.scene(), g[0], g[1], reference::Settings(4, 7));
+  int covered = 0, shadowed = 0, differ = 0;
+  for (size_t i = 0; i < v.pixel_count(); ++i) {
+    if (!(g[0].data[i * 4 + 3] > 0.5f)) continue;
+    ++covered;
+    shadowed += ref.visibility.data[i] == 0.0f;
+    differ += v.data[i] != ref.visibility.data[i];
+  }
+  std::printf("point light: %d covered, %d in shadow, %d differ\n", covered, shadowed, differ);
+  EXPECT_GT(shadowed, covered / 20);
+  EXPECT_LE(differ, covered / 500);
+}
+
+// No casters at all (only the ground): every covered pixel sees the light.
+TEST_F(RaytracedRender, WithoutCastersEveryPixelSeesTheLight) {
+  Scene s;
+  s.name = "bare_ground";
+  s.meshes.push_back(make_ground_plane("ground", {0.0f, 0.0f, 0.0f}, 6.0f));
+  s.light.center = {0.0f, 4.0f, 0.0f};
+  s.camera.eye = {0.0f, 5.0f, 5.0f};
+  s.camera.target = {0.0f, 0.0f, 0.0f};
+  ContractStage stage(s, kWidth, kHeight, {info_}, plugins_);
+  const auto t = make(4);
+  t->prepare(stage.inputs());
+  const ImageF v = stage.render(*t);
+  for (float x : v.data) ASSERT_EQ(x, 1.0f);
+}
+
 // A plate (a double-sided quad, x in [-1, 1], z in [-0.5, 0.5]) at height 2
 // over the ground, under a 1×1 square light at height 4 facing down: a
 // ground point p sees light point L blocked exactly when L lies in the
