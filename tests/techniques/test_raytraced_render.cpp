@@ -17,9 +17,10 @@
 // samples shifted by 3% of its side fail on the sphere grid (the mean of z),
 // by 2% along the segment, the sun's by 5% of its radius (the last check),
 // and leaves traced without their masks fail all four.
-// Also: a plate over the ground against its closed-form V, frames that
-// differ with nothing moved (the frame index scrambles the
-// samples), and the GPU memory the casters take.
+// Also: a plate over the ground against its closed-form V, a point light's
+// hard shadow against the reference's, no casters, frames that differ with
+// nothing moved (the frame index scrambles the samples), and the GPU memory
+// the casters take.
 //
 // With SB_RAYTRACED_IMAGES=<folder> set, V is written there as PGM images.
 #include <gtest/gtest.h>
