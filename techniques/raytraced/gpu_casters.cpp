@@ -59,8 +59,8 @@ GpuCasters::GpuCasters(const core::Scene& scene, int leaf_size) {
 
   std::vector<glm::vec4> nodes;
   nodes.reserve(2 * bvh.nodes.size());
-  for (const BvhNode& n : bvh.nodes) {
-    nodes.emplace_back(n.lo, as_float(n.leaf() ? n.first : n.right));
+  for (const BvhNode& n : bvh.nodes) {  // a leaf's skip is the next node: not stored
+    nodes.emplace_back(n.lo, as_float(n.leaf() ? n.first : n.skip));
     nodes.emplace_back(n.hi, as_float(n.count));
   }
   std::vector<glm::vec4> tris;

@@ -4,7 +4,9 @@
 // technique.gpu_bytes counts them). Built in prepare(): scene geometry and
 // the leaf size only.
 //
-//   binding 0  nodes      2 vec4 per node: (lo, first-or-right), (hi, count)
+//   binding 0  nodes      2 vec4 per node, depth-first: (lo, first-or-skip),
+//                         (hi, count); an inner node (count 0) holds its skip,
+//                         the node after its subtree (a stackless walk)
 //   binding 1  triangles  3 vec4 per triangle in leaf order: the corners,
 //                         corner a's w the triangle's entry in `masks` as
 //                         uint bits (0xffffffff: opaque)

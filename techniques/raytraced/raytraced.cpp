@@ -48,8 +48,7 @@ class Raytraced final : public Technique {
 
   void prepare(const FrameInputs& in) override {
     casters_ = GpuCasters(*in.scene, leaf_size_);
-    const std::string source = "#version 450 core\n#define STACK_SIZE " +
-                               std::to_string(kMaxBvhDepth + 2) + "\n" + kRaytracedInputsGlsl +
+    const std::string source = std::string("#version 450 core\n") + kRaytracedInputsGlsl +
                                kSobolGlsl + kRayOffsetGlsl + kTraversalGlsl + kBlueNoiseGlsl +
                                kRaytracedMainGlsl;
     program_ = gl::Program::compute("raytraced", source);

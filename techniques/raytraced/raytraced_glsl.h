@@ -3,7 +3,6 @@
 // Sobol points, Burley 2020), the ray offset's point query (the reference's
 // rule, reference/ray_offset.h), the any-hit traversal with alpha masks, and
 // the main pass that writes V. The buffers' layout is gpu_casters.h's.
-// The C++ side prepends `#define STACK_SIZE n` (shadow_bvh.h: kMaxBvhDepth + 2).
 namespace sb::techniques::raytraced {
 
 // Inputs, outputs and the casters' buffers.
@@ -100,24 +99,19 @@ float ray_offset(vec3 pf) {
   double largest = 0.0;
   if (has_casters) {
     float reach = float(radius) * 1.0625;
-    uint stack[STACK_SIZE];
-    int top = 0;
-    stack[top++] = 0u;
-    while (top > 0) {
-      uint i = stack[--top];
+    uint n = uint(nodes.length()) / 2u;
+    for (uint i = 0u; i < n;) {
       vec4 a = nodes[2u * i], b = nodes[2u * i + 1u];
-      if (any(greaterThan(a.xyz - pf, vec3(reach))) || any(greaterThan(pf - b.xyz, vec3(reach))))
-        continue;
-      uint count = floatBitsToUint(b.w), first = floatBitsToUint(a.w);
-      if (count == 0u) {
-        stack[top++] = first;
-        stack[top++] = i + 1u;
+      uint count = floatBitsToUint(b.w), ref = floatBitsToUint(a.w);
+      if (any(greaterThan(a.xyz - pf, vec3(reach))) || any(greaterThan(pf - b.xyz, vec3(reach)))) {
+        i = count == 0u ? ref : i + 1u;  // past the subtree
         continue;
       }
-      for (uint k = first; k < first + count; ++k)
+      for (uint k = ref; k < ref + count; ++k)  // no triangles for an inner node
         largest = max(largest, lies_on_scale(p, radius, dvec3(tris[3u * k].xyz),
                                              dvec3(tris[3u * k + 1u].xyz),
                                              dvec3(tris[3u * k + 2u].xyz)));
+      ++i;  // into the subtree, or past the leaf
     }
   }
   return float(kOffsetRelative * max(largest_coordinate(p), largest));
@@ -202,24 +196,20 @@ vec3 safe_inverse(vec3 d) {
 bool occluded(vec3 o, vec3 d, float tfar) {
   vec3 inv = safe_inverse(d);
   Shear sh = make_shear(d);
-  uint stack[STACK_SIZE];
-  int top = 0;
-  stack[top++] = 0u;
-  while (top > 0) {
-    uint i = stack[--top];
+  uint n = uint(nodes.length()) / 2u;
+  for (uint i = 0u; i < n;) {
     vec4 a = nodes[2u * i], b = nodes[2u * i + 1u];
-    if (!ray_box(o, inv, a.xyz, b.xyz, tfar)) continue;
-    uint count = floatBitsToUint(b.w), first = floatBitsToUint(a.w);
-    if (count == 0u) {
-      stack[top++] = first;
-      stack[top++] = i + 1u;
+    uint count = floatBitsToUint(b.w), ref = floatBitsToUint(a.w);
+    if (!ray_box(o, inv, a.xyz, b.xyz, tfar)) {
+      i = count == 0u ? ref : i + 1u;  // past the subtree
       continue;
     }
-    for (uint k = first; k < first + count; ++k) {
+    for (uint k = ref; k < ref + count; ++k) {  // no triangles for an inner node
       vec3 w;
       float t = ray_triangle(o, sh, k, w);
       if (t > 0.0 && t <= tfar && opaque(k, w)) return true;
     }
+    ++i;  // into the subtree, or past the leaf
   }
   return false;
 }

@@ -150,6 +150,9 @@ ShadowBvh build_shadow_bvh(const std::vector<BvhTriangle>& triangles, int leaf_s
   }
   b.out.nodes.reserve(2 * triangles.size());
   b.build(0, uint32_t(triangles.size()), 0);
+  std::vector<BvhNode>& nodes = b.out.nodes;
+  for (size_t i = nodes.size(); i-- > 0;)
+    nodes[i].skip = nodes[i].leaf() ? uint32_t(i) + 1 : nodes[nodes[i].right].skip;
   return std::move(b.out);
 }
 

@@ -9,7 +9,10 @@
 //          per leaf, 1..64);
 //   out    nodes in depth-first order: an inner node's left child is the
 //          next node, its right child `right`; a leaf's triangles are
-//          order[first .. first + count) (indices into the input);
+//          order[first .. first + count) (indices into the input); every
+//          node's `skip` the node after its subtree, so a walk needs no
+//          stack: into a node whose box it enters (the next node), past it
+//          (skip) when it misses;
 //   cost   O(n log n): 16 bins per axis and node.
 //
 // The ray-triangle test is watertight (Woop, Benthin & Wald 2013): a ray
@@ -30,6 +33,7 @@ struct BvhNode {
   uint32_t first = 0;  // leaf: first entry of `order`; inner: unused
   uint32_t count = 0;  // leaf: triangles (> 0); inner: 0
   uint32_t right = 0;  // inner: the right child (the left one is the next node)
+  uint32_t skip = 0;   // the node after this one's subtree (nodes.size() after the root's)
   bool leaf() const { return count > 0; }
 };
 
@@ -39,7 +43,7 @@ struct ShadowBvh {
   int depth = 0;  // of the deepest leaf, the root's 0
 };
 
-// Most levels the shaders' traversal stacks hold: build() throws JobError
+// Most levels build() makes (it recurses once a level): it throws JobError
 // past it.
 inline constexpr int kMaxBvhDepth = 60;
 
@@ -71,16 +75,11 @@ bool occluded(const ShadowBvh& bvh, const std::vector<BvhTriangle>& triangles,
               const glm::vec3& origin, const glm::vec3& dir, float tfar, const Opaque& opaque) {
   if (bvh.nodes.empty()) return false;
   const glm::vec3 inv = safe_inverse(dir);
-  uint32_t stack[kMaxBvhDepth + 2];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const uint32_t i = stack[--top];
+  // The shader's stackless walk (raytraced_glsl.h).
+  for (uint32_t i = 0; i < bvh.nodes.size();) {
     const BvhNode& n = bvh.nodes[i];
-    if (!ray_box(origin, inv, n.lo, n.hi, tfar)) continue;
-    if (!n.leaf()) {
-      stack[top++] = n.right;
-      stack[top++] = i + 1;
+    if (!ray_box(origin, inv, n.lo, n.hi, tfar)) {
+      i = n.skip;
       continue;
     }
     for (uint32_t k = n.first; k < n.first + n.count; ++k) {
@@ -89,6 +88,7 @@ bool occluded(const ShadowBvh& bvh, const std::vector<BvhTriangle>& triangles,
       const float d = ray_triangle(origin, dir, triangles[t], w);
       if (d > 0.0f && d <= tfar && opaque(t, w)) return true;
     }
+    ++i;
   }
   return false;
 }

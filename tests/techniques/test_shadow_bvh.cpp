@@ -1,6 +1,7 @@
 // raytraced's hierarchy over the caster triangles (raytraced/shadow_bvh.h),
 // on the CPU: its structure (every triangle in exactly one leaf, no leaf
-// over the leaf size, every box holding its children and its triangles),
+// over the leaf size, every box holding its children and its triangles,
+// every skip past its node's subtree),
 // its any-hit query against brute force over every triangle on random rays,
 // with and without a mask that rejects some hits, and the watertight test
 // on rays through the edges two triangles share (no GL).
@@ -53,6 +54,9 @@ bool contains(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& p) {
 void check_subtree(const ShadowBvh& bvh, const std::vector<BvhTriangle>& tris, uint32_t i,
                    int leaf_size, std::vector<int>& seen) {
   const BvhNode& n = bvh.nodes[i];
+  // The stackless walk's skip: past the subtree, which ends where the right
+  // child's does.
+  EXPECT_EQ(n.skip, n.leaf() ? i + 1 : bvh.nodes[n.right].skip) << "node " << i;
   if (n.leaf()) {
     EXPECT_LE(n.count, uint32_t(leaf_size));
     for (uint32_t k = n.first; k < n.first + n.count; ++k) {
@@ -86,6 +90,7 @@ TEST(ShadowBvh, EveryTriangleIsInExactlyOneLeafAndEveryBoxHoldsWhatIsBelowIt) {
     for (size_t k = 0; k < sorted.size(); ++k) ASSERT_EQ(sorted[k], k) << "order is no permutation";
     std::vector<int> seen(tris.size(), 0);
     check_subtree(bvh, tris, 0, leaf_size, seen);
+    EXPECT_EQ(bvh.nodes[0].skip, bvh.nodes.size());
     for (size_t k = 0; k < seen.size(); ++k) EXPECT_EQ(seen[k], 1) << "entry " << k;
     EXPECT_LE(bvh.depth, kMaxBvhDepth);
     EXPECT_LT(bvh.depth, 40) << "leaf size " << leaf_size;  // log2(3040) ≈ 12: SAH keeps it low
