@@ -23,15 +23,16 @@ ParamSpec int_param(std::string name, int def, int min, int max, std::string doc
           {},
           {},
           false,
-          Decides::Both};
+          Decides::Both,
+          {}};
 }
 ParamSpec float_param(std::string name, double def, double min, double max, std::string doc) {
   return {std::move(name), ParamType::Float, def, min, max, {}, std::move(doc), {}, false, {}, {},
-          false,           Decides::Both};
+          false,           Decides::Both,    {}};
 }
 ParamSpec bool_param(std::string name, bool def, std::string doc) {
   return {std::move(name), ParamType::Bool, def, 0, 1, {}, std::move(doc), {}, false, {}, {},
-          false,           Decides::Both};
+          false,           Decides::Both,   {}};
 }
 ParamSpec choice_param(std::string name, std::string def, std::vector<std::string> choices,
                        std::string doc) {
@@ -47,7 +48,8 @@ ParamSpec choice_param(std::string name, std::string def, std::vector<std::strin
           {},
           {},
           false,
-          Decides::Both};
+          Decides::Both,
+          {}};
 }
 
 ParamSpec string_param(std::string name, std::string def, std::string doc) {
@@ -63,7 +65,8 @@ ParamSpec string_param(std::string name, std::string def, std::string doc) {
           {},
           {},
           false,
-          Decides::Both};
+          Decides::Both,
+          {}};
 }
 
 ParamSpec path_param(std::string name, std::string doc) {

@@ -50,6 +50,11 @@ struct ParamSpec {
   // both unless declared otherwise. A path parameter (is_path) is part of a
   // job's identity by the content of the file it names, not by the path.
   Decides decides = Decides::Both;
+  // The parameter that turns this one's feature on, or "" for none: a Bool
+  // ("contact" for contact_length) or a Choice whose value "none" is off
+  // ("denoiser" for a denoiser's own): while it is off this one changes
+  // nothing, and the stability suite takes no sensitivity to it.
+  std::string enabled_by;
 };
 
 // Adds the rule "odd integer" to an Int parameter.

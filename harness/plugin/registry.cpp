@@ -50,6 +50,18 @@ void Registry::add(TechniqueInfo info) {
     throw std::logic_error("technique '" + info.name + "' registered twice" +
                            (first.empty() ? std::string() : ", first by " + first));
   }
+  // A switch the stability suite reads must be one of the technique's own
+  // Bool or Choice parameters.
+  for (const core::ParamSpec& p : info.params) {
+    if (p.enabled_by.empty()) continue;
+    const auto sw = std::find_if(info.params.begin(), info.params.end(),
+                                 [&](const core::ParamSpec& q) { return q.name == p.enabled_by; });
+    if (sw == info.params.end() ||
+        (sw->type != core::ParamType::Bool && sw->type != core::ParamType::Choice))
+      throw std::logic_error("technique '" + info.name + "': parameter '" + p.name +
+                             "' is enabled by '" + p.enabled_by +
+                             "', which is not a bool or choice parameter of it");
+  }
   origins_[info.name] = loading_;
   if (!loading_.empty() && identities_.count(loading_) == 0)
     identities_.emplace(loading_, identify_plugin(loading_));

@@ -190,6 +190,18 @@ SensitivityRecord StabilityProbe::light_size(Technique& prepared) {
   return r;
 }
 
+namespace {
+
+// A switch parameter's value (ParamSpec::enabled_by): true, or a choice other
+// than "none".
+bool feature_on(const nlohmann::json& value) {
+  if (value.is_boolean()) return value.get<bool>();
+  if (value.is_string()) return value.get<std::string>() != "none";
+  return true;
+}
+
+}  // namespace
+
 StabilityRecord StabilityProbe::measure(const TechniqueVariant& tv, Technique& prepared) {
   StabilityRecord r;
   r.max_rmse = max_rmse_;
@@ -201,6 +213,8 @@ StabilityRecord StabilityProbe::measure(const TechniqueVariant& tv, Technique& p
     if (spec.type != ParamType::Float) continue;
     const double value = tv.params.json().at(spec.name).get<double>();
     if (spec.sentinel && value == *spec.sentinel) continue;
+    // Off, its feature makes the variants equal: a sensitivity of 0 that says nothing.
+    if (!spec.enabled_by.empty() && !feature_on(tv.params.json().at(spec.enabled_by))) continue;
     r.sensitivity[spec.name] = parameter(tv, spec, value);
   }
   if (light_.width() > 0.0f && light_.height() > 0.0f)

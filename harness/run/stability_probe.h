@@ -5,7 +5,8 @@
 //    sub-texel step per frame, pooled |ΔV| between consecutive frames,
 //    beside the reference's change for the same motion;
 //  - sensitivity: for every continuous parameter (ParamType::Float, not at
-//    its sentinel), a variant at p + h and one at p - h, prepared and
+//    its sentinel, its feature on: ParamSpec::enabled_by), a variant at
+//    p + h and one at p - h, prepared and
 //    rendered like the job; and for the light's size, the prepared
 //    technique under a light scaled by 1 ± h, beside the reference's change.
 // One probe per (scene, resolution): the references of the moved lights are

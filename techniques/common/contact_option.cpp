@@ -43,7 +43,10 @@ plugin::TechniqueInfo with_contact_option(plugin::TechniqueInfo info) {
   std::vector<core::ParamSpec> added = {core::bool_param(
       "contact", false,
       "add screen-space contact shadows: V = min(V, V_contact), timed as pass \"contact\"")};
-  for (auto& p : contact_shadow_params(kPrefix)) added.push_back(std::move(p));
+  for (auto& p : contact_shadow_params(kPrefix)) {
+    p.enabled_by = "contact";  // off, they change nothing: no sensitivity to them
+    added.push_back(std::move(p));
+  }
   for (const auto& p : added)
     for (const auto& own : info.params)
       if (own.name == p.name)

@@ -102,6 +102,9 @@ TEST(Stability, ASensitivityIsTheCentralDifferenceOfTwoVariants) {
   const json& s = probed.records.at(0)["stability"]["sensitivity"];
   ASSERT_TRUE(s.contains("exponent")) << s.dump();
   EXPECT_FALSE(s.contains("sigma"));  // 0 is its sentinel: "from k"
+  // The contact option's, with contact off: its variants would be equal.
+  EXPECT_FALSE(s.contains("contact_length"));
+  EXPECT_FALSE(s.contains("contact_thickness"));
   EXPECT_TRUE(s["light_size"].contains("reference_relative"));
 
   json sweep = stability_config(

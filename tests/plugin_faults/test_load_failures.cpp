@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "../common/text.h"
 #include "broken_plugins.h"
@@ -112,6 +114,31 @@ TEST(PluginLoadFailures, ValidateOfAConfigUsingItNamesThePluginAndItsMessage) {
   EXPECT_TRUE(has(plan.output, "fail 32x24  my_pcf/k=3  (unknown technique \"my_pcf\" (plugin "))
       << plan.output;
   EXPECT_TRUE(has(plan.output, "fail 32x24  my_pcf/k=5")) << plan.output;
+}
+
+// A parameter enabled by a switch that is not there, or not a switch, is
+// the plugin's mistake: refused when it registers, not when the stability
+// suite reads it.
+TEST(PluginLoadFailures, AParameterEnabledByNoSwitchIsRefusedWhenRegistered) {
+  const auto info = [](std::vector<core::ParamSpec> params) {
+    plugin::TechniqueInfo t;
+    t.name = "switched";
+    t.family = "test";
+    t.params = std::move(params);
+    return t;
+  };
+  core::ParamSpec length = core::float_param("length", 1.0, 0.0, 2.0, "a length");
+  length.enabled_by = "on";
+  Registry r;
+  EXPECT_THROW(r.add(info({length})), std::logic_error);
+  EXPECT_THROW(r.add(info({core::float_param("on", 1.0, 0.0, 2.0, "not a switch"), length})),
+               std::logic_error);
+  EXPECT_NO_THROW(r.add(info({core::bool_param("on", false, "the switch"), length})));
+  length.enabled_by = "mode";
+  plugin::TechniqueInfo choice =
+      info({core::choice_param("mode", "none", {"none", "fast"}, "the switch"), length});
+  choice.name = "switched_by_choice";
+  EXPECT_NO_THROW(r.add(std::move(choice)));
 }
 
 }  // namespace
