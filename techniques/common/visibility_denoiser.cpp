@@ -164,10 +164,45 @@ float geometry_cost(vec3 x, vec3 n, vec3 ns, ivec2 q) {
 }
 )";
 
+// The guide the à-trous passes read, one RGBA32F texel per pixel so that a
+// tap is one fetch: V and its variance, the view depth (-1 on background;
+// the tap's position is rebuilt along its pixel's ray, a perspective
+// camera's) and the shading normal, octahedral in 2 × 12 bits.
+const char* const kGuide = R"(
+uniform vec3 eye;
+uniform vec3 view_forward;
+// The ray through pixel q's centre, reaching view depth 1 at
+// ray_origin + q.x * ray_dx + q.y * ray_dy (affine in q: no matrix per tap).
+uniform vec3 ray_origin;
+uniform vec3 ray_dx;
+uniform vec3 ray_dy;
+
+vec2 sign_not_zero(vec2 v) { return vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0); }
+// Octahedral, 12 bits a coordinate, as one float holding an integer below
+// 2^24 (exact in fp32; integer targets are a slow path on llvmpipe).
+float pack_normal(vec3 n) {
+  n /= abs(n.x) + abs(n.y) + abs(n.z);
+  vec2 e = n.z >= 0.0 ? n.xy : (1.0 - abs(n.yx)) * sign_not_zero(n.xy);
+  vec2 i = floor(clamp(e * 0.5 + 0.5, 0.0, 1.0) * 4095.0 + 0.5);
+  return i.x * 4096.0 + i.y;
+}
+vec3 unpack_normal(float bits) {
+  float ix = floor(bits / 4096.0);
+  vec2 e = vec2(ix, bits - ix * 4096.0) / 4095.0 * 2.0 - 1.0;
+  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+  if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * sign_not_zero(n.xy);
+  return normalize(n);
+}
+// The world point at view depth `depth` through pixel q's centre.
+vec3 along_ray(ivec2 q, float depth) {
+  return eye + (ray_origin + float(q.x) * ray_dx + float(q.y) * ray_dy) * depth;
+}
+)";
+
 const char* const kVarianceFragment = R"(
 layout(binding = 0) uniform sampler2D source;
 uniform bool spatial_only;
-out vec4 result;
+out vec4 guide;
 
 // (V, m1, m2, history length) at q.
 vec4 moments_at(ivec2 q) {
@@ -181,17 +216,17 @@ void main() {
   ivec2 size = textureSize(source, 0);
   vec4 x = texelFetch(position, p, 0);
   if (x.w == 0.0) {
-    result = vec4(1.0, 0.0, 0.0, 0.0);
+    guide = vec4(1.0, 0.0, -1.0, 0.0);
     return;
   }
   vec4 centre = moments_at(p);
+  vec3 ns = texelFetch(shading_normal, p, 0).xyz;
   float variance;
   if (centre.w >= 4.0) {
     variance = max(centre.z - centre.y * centre.y, 0.0);
   } else {
     // Short history: the moments of a 7x7 edge-stopped window.
     vec3 n = texelFetch(normal, p, 0).xyz;
-    vec3 ns = texelFetch(shading_normal, p, 0).xyz;
     vec3 s = vec3(0.0);
     for (int dy = -3; dy <= 3; ++dy)
       for (int dx = -3; dx <= 3; ++dx) {
@@ -203,34 +238,47 @@ void main() {
     float m1 = s.x / s.z;
     variance = max(s.y / s.z - m1 * m1, 0.0) * 4.0 / max(centre.w, 1.0);
   }
-  result = vec4(centre.x, variance, 0.0, 0.0);
+  guide = vec4(centre.x, variance, dot(x.xyz - eye, view_forward), pack_normal(ns));
 }
 )";
 
+// FINAL: the last iteration, writing V into the technique's R32F target.
 const char* const kAtrousFragment = R"(
-layout(binding = 0) uniform sampler2D source;  // (V, variance)
+layout(binding = 0) uniform sampler2D source;  // the guide
+layout(binding = 2) uniform sampler2D normal;   // geometric, for the plane
 uniform int step_size;
+uniform float sigma_plane;
+uniform float sigma_normal;
 uniform float sigma_variance;
 uniform bool copy_only;
+#ifdef FINAL
+layout(location = 0) out vec4 result;
+#else
 layout(location = 0) out vec4 result;
 layout(location = 1) out vec4 history;
+#endif
 
-const float kB3[3] = float[3](3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
-const float kGauss[2] = float[2](0.5, 0.25);
+// The 1D B3 spline and 3-tap Gaussian weights, by arithmetic: llvmpipe
+// indexes an array per pixel slowly.
+float b3(int d) { return d == 0 ? 0.375 : (abs(d) == 1 ? 0.25 : 0.0625); }
+float gauss(int d) { return d == 0 ? 0.5 : 0.25; }
+
+void write(float v, float variance, vec4 centre) {
+#ifdef FINAL
+  result = vec4(v);
+#else
+  result = vec4(v, variance, centre.zw);
+  history = vec4(v);
+#endif
+}
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   ivec2 size = textureSize(source, 0);
-  vec4 x = texelFetch(position, p, 0);
-  if (x.w == 0.0) {
-    result = vec4(1.0, 0.0, 0.0, 0.0);
-    history = vec4(1.0);
-    return;
-  }
-  vec2 centre = texelFetch(source, p, 0).rg;
-  if (copy_only) {
-    result = vec4(centre, 0.0, 0.0);
-    history = vec4(centre.x);
+  vec4 g = texelFetch(source, p, 0);
+  float v = g.x, dist = g.z;
+  if (dist < 0.0 || copy_only) {
+    write(dist < 0.0 ? 1.0 : v, g.y, g);
     return;
   }
   // The variance, 3x3 Gaussian-blurred over geometry pixels (the paper's
@@ -238,41 +286,71 @@ void main() {
   float blurred = 0.0, blur_weight = 0.0;
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
-      ivec2 q = clamp(p + ivec2(dx, dy), ivec2(0), size - 1);
-      float k = kGauss[abs(dx)] * kGauss[abs(dy)] * texelFetch(position, q, 0).w;
-      blurred += k * texelFetch(source, q, 0).g;
+      vec4 t = texelFetch(source, clamp(p + ivec2(dx, dy), ivec2(0), size - 1), 0);
+      float k = t.z < 0.0 ? 0.0 : gauss(dx) * gauss(dy);
+      blurred += k * t.y;
       blur_weight += k;
     }
-  float scale = sigma_variance * sqrt(max(blurred / blur_weight, 0.0)) + 1e-6;
+  float luminance = 1.442695 / (sigma_variance * sqrt(max(blurred / blur_weight, 0.0)) + 1e-6);
 
+  // Positions rebuilt the same way at the centre and the taps: the
+  // centre's plane distance is 0.
+  vec3 x = along_ray(p, dist);
   vec3 n = texelFetch(normal, p, 0).xyz;
-  vec3 ns = texelFetch(shading_normal, p, 0).xyz;
-  float luminance = 1.442695 / scale;
+  vec3 ns = unpack_normal(g.w);
   float sum = 0.0, variance = 0.0, weights = 0.0;
   for (int dy = -2; dy <= 2; ++dy)
     for (int dx = -2; dx <= 2; ++dx) {
-      // Taps off the image weigh 0; the centre's cost is 0.
+      // Taps off the image or on background weigh 0. Weights as one exp2:
+      // exp(-plane / sigma_plane) · pow(n·n', sigma_normal) · exp(-|ΔV| / scale).
       ivec2 q = p + step_size * ivec2(dx, dy);
       bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
       q = clamp(q, ivec2(0), size - 1);
-      vec2 v = texelFetch(source, q, 0).rg;
-      float cost = geometry_cost(x.xyz, n, ns, q) + luminance * abs(v.x - centre.x);
-      float w = inside ? kB3[abs(dx)] * kB3[abs(dy)] * exp2(-cost) : 0.0;
-      sum += w * v.x;
-      variance += w * w * v.y;
+      vec4 t = texelFetch(source, q, 0);
+      float vq = t.x, dq = t.z;
+      vec3 d = along_ray(q, dq) - x;
+      float plane = abs(dot(n, d)) / (sigma_plane * length(d) + 1e-6);
+      float facing = max(dot(ns, unpack_normal(t.w)), 1e-30);
+      float cost = 1.442695 * plane - sigma_normal * log2(facing) + luminance * abs(vq - v);
+      float w = inside && dq >= 0.0 ? b3(dx) * b3(dy) * exp2(-cost) : 0.0;
+      sum += w * vq;
+      variance += w * w * t.y;
       weights += w;
     }
-  result = vec4(sum / weights, variance / (weights * weights), 0.0, 0.0);
-  history = vec4(result.x);
+  write(sum / weights, variance / (weights * weights), g);
 }
 )";
 
-std::string with_edge_stopping(const char* body) {
-  return std::string("#version 450 core\n") + kEdgeStopping + body;
+std::string variance_source() {
+  return std::string("#version 450 core\n") + kEdgeStopping + kGuide + kVarianceFragment;
+}
+std::string atrous_source(bool final_iteration) {
+  return std::string("#version 450 core\n") + (final_iteration ? "#define FINAL\n" : "") + kGuide +
+         kAtrousFragment;
 }
 
 void check(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("denoiser: " + what);
+}
+
+glm::vec3 eye_of(const plugin::FrameInputs& in) { return glm::vec3(glm::inverse(in.view)[3]); }
+
+// kGuide's camera: the eye, the view direction and the affine ray of a
+// perspective projection (view-space x at depth 1 is (ndc.x + P[2][0]) /
+// P[0][0], likewise y).
+void set_camera(const gl::Program& program, const plugin::FrameInputs& in) {
+  const glm::mat3 to_world = glm::mat3(glm::inverse(in.view));
+  const glm::mat4& P = in.projection;
+  const auto ray = [&](float px, float py) {
+    const float ndc_x = (px + 0.5f) / float(in.width) * 2.0f - 1.0f;
+    const float ndc_y = (py + 0.5f) / float(in.height) * 2.0f - 1.0f;
+    return to_world * glm::vec3((ndc_x + P[2][0]) / P[0][0], (ndc_y + P[2][1]) / P[1][1], -1.0f);
+  };
+  program.set("eye", eye_of(in));
+  program.set_if_active("view_forward", to_world * glm::vec3(0.0f, 0.0f, -1.0f));
+  program.set_if_active("ray_origin", ray(0.0f, 0.0f));
+  program.set_if_active("ray_dx", ray(1.0f, 0.0f) - ray(0.0f, 0.0f));
+  program.set_if_active("ray_dy", ray(0.0f, 1.0f) - ray(0.0f, 0.0f));
 }
 
 // A texture's every texel set to `value` (the histories start defined).
@@ -353,8 +431,8 @@ void VisibilityDenoiser::prepare(int width, int height) {
       normal_[k] = {};
     }
   }
-  ping_ = gl::make_texture_2d(GL_RG32F, width, height);
-  pong_ = gl::make_texture_2d(GL_RG32F, width, height);
+  ping_ = gl::make_texture_2d(GL_RGBA32F, width, height);
+  pong_ = gl::make_texture_2d(GL_RGBA32F, width, height);
   clear_texture(ping_, 0.0f);
   clear_texture(pong_, 0.0f);
   ping_fb_ = gl::make_framebuffer({ping_.get()}, 0);
@@ -393,16 +471,18 @@ void VisibilityDenoiser::prepare(int width, int height) {
     window_program_ = gl::Program("denoiser_window", {vertex, "", kWindowRowsFragment});
     window_program_.set("radius", settings_.clamp_radius);
   }
-  variance_program_ =
-      gl::Program("denoiser_variance", {vertex, "", with_edge_stopping(kVarianceFragment)});
-  atrous_program_ =
-      gl::Program("denoiser_atrous", {vertex, "", with_edge_stopping(kAtrousFragment)});
-  for (const gl::Program* program : {&variance_program_, &atrous_program_}) {
+  variance_program_ = gl::Program("denoiser_variance", {vertex, "", variance_source()});
+  variance_program_.set("sigma_plane", settings_.sigma_plane);
+  variance_program_.set("sigma_normal", settings_.sigma_normal);
+  variance_program_.set("spatial_only", settings_.temporal ? 0 : 1);
+  atrous_program_ = gl::Program("denoiser_atrous", {vertex, "", atrous_source(false)});
+  atrous_final_program_ = gl::Program("denoiser_atrous_final", {vertex, "", atrous_source(true)});
+  for (const gl::Program* program : {&atrous_program_, &atrous_final_program_}) {
     program->set("sigma_plane", settings_.sigma_plane);
     program->set("sigma_normal", settings_.sigma_normal);
+    program->set("sigma_variance", settings_.sigma_variance);
+    program->set("copy_only", settings_.atrous_iterations == 0 ? 1 : 0);
   }
-  variance_program_.set("spatial_only", settings_.temporal ? 0 : 1);
-  atrous_program_.set("sigma_variance", settings_.sigma_variance);
   gl::throw_if_errors("preparing the visibility denoiser");
 }
 
@@ -423,7 +503,7 @@ void VisibilityDenoiser::denoise(const plugin::FrameInputs& in, GLuint noisy,
   }
   {
     auto pass = timer.scope("atrous");
-    atrous_passes(in, noisy, current);
+    atrous_passes(in, current);
   }
   previous_view_projection_ = in.view_projection;
   has_history_ = settings_.temporal;
@@ -446,7 +526,7 @@ void VisibilityDenoiser::temporal_pass(const plugin::FrameInputs& in, GLuint noi
   }
   temporal_program_.use();
   temporal_program_.set("prev_view_projection", previous_view_projection_);
-  temporal_program_.set("eye", glm::vec3(glm::inverse(in.view)[3]));
+  temporal_program_.set("eye", eye_of(in));
   temporal_program_.set("has_history", has_history_ ? 1 : 0);
   glBindTextureUnit(2, in.gbuffer_normal);
   glBindTextureUnit(3, color_[previous].get());
@@ -465,6 +545,7 @@ void VisibilityDenoiser::variance_pass(const plugin::FrameInputs& in, GLuint noi
   glDisable(GL_SCISSOR_TEST);
   glViewport(0, 0, width_, height_);
   variance_program_.use();
+  set_camera(variance_program_, in);
   glBindTextureUnit(0, settings_.temporal ? moments_[current].get() : noisy);
   glBindTextureUnit(1, in.gbuffer_position);
   glBindTextureUnit(2, in.gbuffer_normal);
@@ -473,23 +554,20 @@ void VisibilityDenoiser::variance_pass(const plugin::FrameInputs& in, GLuint noi
   gl::draw_fullscreen_triangle();
 }
 
-void VisibilityDenoiser::atrous_passes(const plugin::FrameInputs& in, GLuint /*noisy*/,
-                                       int current) {
-  atrous_program_.use();
-  glBindTextureUnit(1, in.gbuffer_position);
+void VisibilityDenoiser::atrous_passes(const plugin::FrameInputs& in, int current) {
   glBindTextureUnit(2, in.gbuffer_normal);
-  glBindTextureUnit(3, in.gbuffer_shading_normal);
   const int n = settings_.atrous_iterations;
-  atrous_program_.set("copy_only", n == 0 ? 1 : 0);
   // Iteration i reads ping (even i) or pong (odd i); the last one writes V.
   for (int i = 0; i < std::max(n, 1); ++i) {
     const bool last = i == std::max(n, 1) - 1;
-    const GLuint source = i % 2 == 0 ? ping_.get() : pong_.get();
+    const gl::Program& program = last ? atrous_final_program_ : atrous_program_;
     GLuint target = i % 2 == 0 ? pong_fb_.get() : ping_fb_.get();
     if (i == 0 && settings_.temporal) target = history_fb_[current].get();
     if (last) target = in.visibility_framebuffer;
-    atrous_program_.set("step_size", 1 << i);
-    glBindTextureUnit(0, source);
+    program.use();
+    set_camera(program, in);
+    program.set("step_size", 1 << i);
+    glBindTextureUnit(0, i % 2 == 0 ? ping_.get() : pong_.get());
     glBindFramebuffer(GL_FRAMEBUFFER, target);
     gl::draw_fullscreen_triangle();
   }

@@ -109,7 +109,7 @@ class VisibilityDenoiser {
  private:
   void temporal_pass(const plugin::FrameInputs& in, GLuint noisy, int current, int previous);
   void variance_pass(const plugin::FrameInputs& in, GLuint noisy, int current);
-  void atrous_passes(const plugin::FrameInputs& in, GLuint noisy, int current);
+  void atrous_passes(const plugin::FrameInputs& in, int current);
 
   DenoiserSettings settings_;
   int width_ = 0;
@@ -125,7 +125,7 @@ class VisibilityDenoiser {
   // The clamp's window, summed along rows: (Σv, Σv², count).
   gl::Texture window_rows_;
   gl::Framebuffer window_rows_fb_;
-  // À-trous ping-pong: (V, variance).
+  // À-trous ping-pong: the guide (V, variance, eye distance, normal).
   gl::Texture ping_;
   gl::Texture pong_;
   gl::Framebuffer ping_fb_;
@@ -134,6 +134,7 @@ class VisibilityDenoiser {
   gl::Program temporal_program_;
   gl::Program variance_program_;
   gl::Program atrous_program_;
+  gl::Program atrous_final_program_;
   glm::mat4 previous_view_projection_{1.0f};
   bool has_history_ = false;
   int parity_ = 0;
