@@ -263,6 +263,18 @@ layout(location = 1) out vec4 history;
 float b3(int d) { return d == 0 ? 0.375 : (abs(d) == 1 ? 0.25 : 0.0625); }
 float gauss(int d) { return d == 0 ? 0.5 : 0.25; }
 
+// pow(c, sigma_normal): by squarings when sigma_normal is a power of two
+// (the paper's 128: 7 multiplies), else by exp2 and log2.
+float facing_weight(float c) {
+#ifdef NORMAL_SQUARINGS
+  c = max(c, 0.0);
+  for (int i = 0; i < NORMAL_SQUARINGS; ++i) c *= c;
+  return c;
+#else
+  return exp2(sigma_normal * log2(max(c, 1e-30)));
+#endif
+}
+
 void write(float v, float variance, vec4 centre) {
 #ifdef FINAL
   result = vec4(v);
@@ -298,21 +310,23 @@ void main() {
   vec3 x = along_ray(p, dist);
   vec3 n = texelFetch(normal, p, 0).xyz;
   vec3 ns = unpack_normal(g.w);
+  float plane_scale = 1.442695 / sigma_plane;
   float sum = 0.0, variance = 0.0, weights = 0.0;
   for (int dy = -2; dy <= 2; ++dy)
     for (int dx = -2; dx <= 2; ++dx) {
-      // Taps off the image or on background weigh 0. Weights as one exp2:
-      // exp(-plane / sigma_plane) · pow(n·n', sigma_normal) · exp(-|ΔV| / scale).
+      // Taps off the image or on background weigh 0. The weight:
+      // exp(-plane / sigma_plane) · pow(n·n', sigma_normal) · exp(-|ΔV| / scale),
+      // the exponentials as one exp2 (transcendentals are what costs here).
       ivec2 q = p + step_size * ivec2(dx, dy);
       bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
       q = clamp(q, ivec2(0), size - 1);
       vec4 t = texelFetch(source, q, 0);
       float vq = t.x, dq = t.z;
       vec3 d = along_ray(q, dq) - x;
-      float plane = abs(dot(n, d)) / (sigma_plane * length(d) + 1e-6);
-      float facing = max(dot(ns, unpack_normal(t.w)), 1e-30);
-      float cost = 1.442695 * plane - sigma_normal * log2(facing) + luminance * abs(vq - v);
-      float w = inside && dq >= 0.0 ? b3(dx) * b3(dy) * exp2(-cost) : 0.0;
+      float plane = abs(dot(n, d)) * inversesqrt(dot(d, d) + 1e-12);
+      float cost = plane_scale * plane + luminance * abs(vq - v);
+      float facing = facing_weight(dot(ns, unpack_normal(t.w)));
+      float w = inside && dq >= 0.0 ? b3(dx) * b3(dy) * facing * exp2(-cost) : 0.0;
       sum += w * vq;
       variance += w * w * t.y;
       weights += w;
@@ -324,9 +338,12 @@ void main() {
 std::string variance_source() {
   return std::string("#version 450 core\n") + kEdgeStopping + kGuide + kVarianceFragment;
 }
-std::string atrous_source(bool final_iteration) {
-  return std::string("#version 450 core\n") + (final_iteration ? "#define FINAL\n" : "") + kGuide +
-         kAtrousFragment;
+std::string atrous_source(bool final_iteration, float sigma_normal) {
+  std::string defines = final_iteration ? "#define FINAL\n" : "";
+  for (int k = 0; k <= 10; ++k)
+    if (sigma_normal == float(1 << k))
+      defines += "#define NORMAL_SQUARINGS " + std::to_string(k) + "\n";
+  return "#version 450 core\n" + defines + kGuide + kAtrousFragment;
 }
 
 void check(bool ok, const std::string& what) {
@@ -475,11 +492,13 @@ void VisibilityDenoiser::prepare(int width, int height) {
   variance_program_.set("sigma_plane", settings_.sigma_plane);
   variance_program_.set("sigma_normal", settings_.sigma_normal);
   variance_program_.set("spatial_only", settings_.temporal ? 0 : 1);
-  atrous_program_ = gl::Program("denoiser_atrous", {vertex, "", atrous_source(false)});
-  atrous_final_program_ = gl::Program("denoiser_atrous_final", {vertex, "", atrous_source(true)});
+  atrous_program_ =
+      gl::Program("denoiser_atrous", {vertex, "", atrous_source(false, settings_.sigma_normal)});
+  atrous_final_program_ = gl::Program("denoiser_atrous_final",
+                                      {vertex, "", atrous_source(true, settings_.sigma_normal)});
   for (const gl::Program* program : {&atrous_program_, &atrous_final_program_}) {
     program->set("sigma_plane", settings_.sigma_plane);
-    program->set("sigma_normal", settings_.sigma_normal);
+    program->set_if_active("sigma_normal", settings_.sigma_normal);
     program->set("sigma_variance", settings_.sigma_variance);
     program->set("copy_only", settings_.atrous_iterations == 0 ? 1 : 0);
   }

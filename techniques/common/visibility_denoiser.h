@@ -40,11 +40,13 @@
 //          program in use, textures on units 0–6 and the visibility
 //          framebuffer bound;
 //   cost   per frame, timed as "temporal" (with temporal), "variance" and
-//          "atrous": full-screen passes of about 2·(2·clamp_radius + 1) + 20
-//          fetches (temporal), 5 (49 on pixels with under 4 frames of
-//          history, every pixel with temporal off) and 9 + 25·4 per
-//          iteration; memory per pixel 2 × 44 bytes of history (with
-//          temporal; 16 more with the clamp) and 2 × 8 of ping-pong.
+//          "atrous": full-screen passes fetching per pixel about
+//          4·clamp_radius + 2 (the clamp's row sums) and 3 + 16 +
+//          2·clamp_radius + 1 texels (temporal), 4 (3 × 49 on pixels with
+//          under 4 frames of history, and on every pixel with temporal
+//          off: variance), and 36 per à-trous iteration; memory per pixel
+//          2 × 44 bytes of history and 16 of the clamp's sums (with
+//          temporal), and 2 × 16 of à-trous guides.
 #include <optional>
 #include <string>
 #include <vector>

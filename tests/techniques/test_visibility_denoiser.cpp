@@ -12,7 +12,8 @@
 //                 (the paper's SVGF) it still ghosts;
 //   moving camera: reprojection keeps the history across a small pan;
 //   determinism:  the same inputs give the same outputs, also after a
-//                 second prepare().
+//                 second prepare();
+//   gpu_bytes:    every texture it makes is metered.
 // DISABLED_PassTimesAt640x480 prints the passes' times (not a test: run it
 // with --gtest_also_run_disabled_tests --gtest_filter='*PassTimes*').
 #include <gtest/gtest.h>
@@ -29,6 +30,7 @@
 
 #include "common/visibility_denoiser.h"
 #include "core/scene_types.h"
+#include "gl/allocation_meter.h"
 #include "gl/context.h"
 #include "gl/objects.h"
 #include "plugin/registry.h"
@@ -283,6 +285,23 @@ TEST_F(VisibilityDenoiserTest, SameInputsGiveTheSameOutputs) {
   for (size_t k = 0; k < first.size(); ++k) {
     EXPECT_EQ(run::differing_pixels(first[k], second[k]), 0u) << "frame " << k + 1;
     EXPECT_EQ(run::differing_pixels(first[k], again[k]), 0u) << "frame " << k + 1;
+  }
+}
+
+// gpu_bytes: the histories (per pixel and frame of the two: V, m1, m2 and
+// length in RGBA32F, the filtered V in R32F, the position in RGBA32F, the
+// normal in RGBA16F), the clamp's window sums (RGBA32F) and the two guides
+// (RGBA32F), all metered; without temporal, the guides only.
+TEST_F(VisibilityDenoiserTest, MetersItsTextures) {
+  const std::int64_t pixels = kWidth * kHeight;
+  for (const bool temporal : {true, false}) {
+    DenoiserSettings s;
+    s.temporal = temporal;
+    VisibilityDenoiser d(s);
+    gl::AllocationWindow window;
+    d.prepare(kWidth, kHeight);
+    const std::int64_t history = 2 * (16 + 4 + 16 + 8) + 16;
+    EXPECT_EQ(window.live_bytes(), pixels * ((temporal ? history : 0) + 2 * 16)) << temporal;
   }
 }
 
