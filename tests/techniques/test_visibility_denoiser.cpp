@@ -1,6 +1,6 @@
 // The visibility denoiser (common/visibility_denoiser.h) on synthetic noisy
 // frames whose truth is known: a ground plane seen from above, the truth a
-// soft shadow edge across it, V = smoothstep over 2 world units in x, and
+// soft shadow edge across it, V = smoothstep over 3 world units in x, and
 // each frame's input Binomial(4, V) / 4 drawn afresh per pixel (a technique
 // shooting 4 shadow rays). Frames go through the harness's own frame path
 // (run/timing_contract.h's ContractStage).
@@ -11,6 +11,8 @@
 //                 clamp has dropped the old shadow, and without rejection
 //                 (the paper's SVGF) it still ghosts;
 //   moving camera: reprojection keeps the history across a small pan;
+//   edges:        on a box on the ground, the à-trous's plane and normal
+//                 weights keep each surface's V from its neighbours';
 //   determinism:  the same inputs give the same outputs, also after a
 //                 second prepare();
 //   gpu_bytes:    every texture it makes is metered.
@@ -35,6 +37,7 @@
 #include "gl/objects.h"
 #include "plugin/registry.h"
 #include "run/timing_contract.h"
+#include "scenes/mesh_builders.h"
 #include "scenes/sphere_grid.h"
 #include "splitmix64_sequence.h"
 
@@ -286,6 +289,52 @@ TEST_F(VisibilityDenoiserTest, SameInputsGiveTheSameOutputs) {
     EXPECT_EQ(run::differing_pixels(first[k], second[k]), 0u) << "frame " << k + 1;
     EXPECT_EQ(run::differing_pixels(first[k], again[k]), 0u) << "frame " << k + 1;
   }
+}
+
+// A box on the ground, each surface its own V: the top 0.5, the sides 0.75,
+// the ground 0.25 (each frame's input noisy around them). Near the box's
+// outline, the à-trous taps across it must weigh nothing: with its plane and
+// normal tests the error there is a fraction of what the same filter without
+// them (sigma_plane huge, sigma_normal 0) leaves.
+TEST_F(VisibilityDenoiserTest, EdgeStoppingKeepsSurfacesApart) {
+  Scene scene = ground_scene();
+  scene.meshes.push_back(make_box("box", {0.0f, 1.0f, 0.0f}, {1.5f, 1.0f, 1.5f}));
+  stage_ = std::make_unique<ContractStage>(scene, kWidth, kHeight,
+                                           std::vector<const plugin::TechniqueInfo*>{}, plugins_);
+  position_ = stage_->read_gbuffer()[0];
+  const ImageF normal = stage_->read_gbuffer()[1];
+  ImageF truth(kWidth, kHeight, 1, 1.0f);
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x)
+      if (geometry(x, y))
+        truth.at(x, y) = normal.at(x, y, 1) < 0.5f ? 0.75f : point(x, y).y > 1.0f ? 0.5f : 0.25f;
+  // Pixels within 3 of another surface's (background aside).
+  const auto near_outline = [&](int x, int y) {
+    for (int dy = -3; dy <= 3; ++dy)
+      for (int dx = -3; dx <= 3; ++dx) {
+        const int u = std::clamp(x + dx, 0, kWidth - 1), v = std::clamp(y + dy, 0, kHeight - 1);
+        if (geometry(u, v) && truth.at(u, v) != truth.at(x, y)) return true;
+      }
+    return false;
+  };
+  DenoiserSettings with;
+  with.temporal = false;
+  DenoiserSettings without = with;
+  without.sigma_plane = 1e6f;
+  without.sigma_normal = 0.0f;
+  NoisyDenoised stopped(with), blurred(without);
+  stopped.prepare(stage_->inputs());
+  blurred.prepare(stage_->inputs());
+  const ImageF a = frame(stopped, truth, 1);
+  const double input_error = rmse(stopped.input, truth, near_outline);
+  const double stopped_error = rmse(a, truth, near_outline);
+  const double blurred_error = rmse(frame(blurred, truth, 1), truth, near_outline);
+  std::printf(
+      "near the box's outline: input %.4f, edge-stopped %.4f, without the geometry "
+      "weights %.4f\n",
+      input_error, stopped_error, blurred_error);
+  EXPECT_LT(stopped_error, 0.5 * input_error);
+  EXPECT_LT(stopped_error, 0.6 * blurred_error);
 }
 
 // gpu_bytes: the histories (per pixel and frame of the two: V, m1, m2 and
