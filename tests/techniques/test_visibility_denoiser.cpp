@@ -188,9 +188,20 @@ TEST_F(VisibilityDenoiserTest, StillSceneConvergesTowardTheTruth) {
   ImageF last;
   for (uint64_t k = 2; k <= 16; ++k) last = frame(t, truth, k);
   const double last_error = rmse(last, truth, penumbra(truth));
-  std::printf("input %.4f, frame 1 %.4f, frame 16 %.4f\n", input_error, first_error, last_error);
+  // The clamp costs the still scene little: the paper's (no rejection)
+  // after as many frames.
+  DenoiserSettings paper;
+  paper.rejection = HistoryRejection::None;
+  NoisyDenoised none(paper);
+  none.prepare(stage_->inputs());
+  ImageF none_last;
+  for (uint64_t k = 1; k <= 16; ++k) none_last = frame(none, truth, k);
+  const double none_error = rmse(none_last, truth, penumbra(truth));
+  std::printf("input %.4f, frame 1 %.4f, frame 16 %.4f (without rejection %.4f)\n", input_error,
+              first_error, last_error, none_error);
   EXPECT_LE(first_error, input_error);
   EXPECT_LT(last_error, 0.6 * first_error);
+  EXPECT_LT(last_error, 1.5 * none_error);
   // Background pixels read 1.
   for (int y = 0; y < kHeight; ++y)
     for (int x = 0; x < kWidth; ++x)
@@ -228,7 +239,8 @@ TEST_F(VisibilityDenoiserTest, ClampDropsAMovedLightsOldShadowAndNoneGhosts) {
   const double none_error = error_after_the_light_moved(paper, a, b, error);
   std::printf("where the light's move changed V, 3 frames on: clamp %.4f, none %.4f\n", clamp_error,
               none_error);
-  EXPECT_LT(clamp_error, 0.08);
+  // Clamping without restarting the history leaves about 0.06 here.
+  EXPECT_LT(clamp_error, 0.04);
   EXPECT_GT(none_error, 0.2);
 }
 
