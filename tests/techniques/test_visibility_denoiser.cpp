@@ -366,6 +366,34 @@ TEST_F(VisibilityDenoiserTest, MetersItsTextures) {
   }
 }
 
+// A technique's denoiser parameters: declared with their defaults, every
+// one read (config/unread_params.h), "none" turning the denoiser off.
+TEST(DenoiserParams, ReadIntoSettings) {
+  const std::vector<core::ParamSpec> specs = techniques::denoiser_params("none");
+  const core::Params defaults = core::resolve_params(specs, nlohmann::json::object(), "", "");
+  EXPECT_FALSE(techniques::denoiser_settings(defaults).has_value());
+  EXPECT_TRUE(defaults.unread().empty());
+  const core::Params given = core::resolve_params(specs,
+                                                  {{"denoiser", "svgf"},
+                                                   {"denoiser_temporal", false},
+                                                   {"denoiser_rejection", "none"},
+                                                   {"denoiser_iterations", 2},
+                                                   {"denoiser_alpha", 0.5},
+                                                   {"denoiser_clamp_gamma", 2.0}},
+                                                  "", "");
+  const std::optional<DenoiserSettings> s = techniques::denoiser_settings(given);
+  ASSERT_TRUE(s.has_value());
+  EXPECT_FALSE(s->temporal);
+  EXPECT_EQ(s->rejection, HistoryRejection::None);
+  EXPECT_EQ(s->atrous_iterations, 2);
+  EXPECT_EQ(s->alpha, 0.5f);
+  EXPECT_EQ(s->clamp_gamma, 2.0f);
+  EXPECT_EQ(
+      techniques::denoiser_settings(core::resolve_params(specs, {{"denoiser", "svgf"}}, "", ""))
+          ->rejection,
+      HistoryRejection::Clamp);
+}
+
 // Not a test: the passes' times at 640x480, median of 8 frames after 4.
 TEST(VisibilityDenoiserTimes, DISABLED_PassTimesAt640x480) {
   const auto context = gl::create_context(gl::Backend::OSMesa);
