@@ -143,24 +143,40 @@ void main() {
 }
 )";
 
-// Shared by the variance and à-trous passes: the edge-stopping weights.
+// Shared by the variance and à-trous passes: the normal weight. The
+// transcendentals are what costs on llvmpipe.
+const char* const kFacing = R"(
+uniform float sigma_normal;
+
+// pow(c, sigma_normal): by squarings when sigma_normal is a power of two
+// (the paper's 128: 7 multiplies), else by exp2 and log2.
+float facing_weight(float c) {
+#ifdef NORMAL_SQUARINGS
+  c = max(c, 0.0);
+  for (int i = 0; i < NORMAL_SQUARINGS; ++i) c *= c;
+  return c;
+#else
+  return exp2(sigma_normal * log2(max(c, 1e-30)));
+#endif
+}
+)";
+
+// The variance pass's edge-stopping weight, from the G-buffer.
 const char* const kEdgeStopping = R"(
 layout(binding = 1) uniform sampler2D position;
 layout(binding = 2) uniform sampler2D normal;
 layout(binding = 3) uniform sampler2D shading_normal;
 uniform float sigma_plane;
-uniform float sigma_normal;
 
-// -log2 of how much tap q's surface is this pixel's: off its plane, facing
-// elsewhere (pow(n.n', sigma_normal) and exp(-plane / sigma_plane) as one
-// exp2, the cheapest form on llvmpipe); infinite on background. Branch-free.
-float geometry_cost(vec3 x, vec3 n, vec3 ns, ivec2 q) {
+// How much tap q's surface is this pixel's: exp(-plane distance / (sigma_plane
+// × tap distance)) · pow(n·n', sigma_normal); 0 on background. Branch-free.
+float geometry_weight(vec3 x, vec3 n, vec3 ns, ivec2 q) {
   vec4 xq = texelFetch(position, q, 0);
   vec3 d = xq.xyz - x;
-  float plane = abs(dot(n, d)) / (sigma_plane * length(d) + 1e-6);
-  float facing = max(dot(ns, texelFetch(shading_normal, q, 0).xyz), 1e-30);
-  float cost = 1.442695 * plane - sigma_normal * log2(facing);
-  return xq.w == 0.0 ? 1e30 : cost;
+  float plane = abs(dot(n, d)) * inversesqrt(dot(d, d) + 1e-12);
+  float w = exp2(-1.442695 / sigma_plane * plane) *
+            facing_weight(dot(ns, texelFetch(shading_normal, q, 0).xyz));
+  return xq.w == 0.0 ? 0.0 : w;
 }
 )";
 
@@ -232,7 +248,7 @@ void main() {
       for (int dx = -3; dx <= 3; ++dx) {
         ivec2 q = p + ivec2(dx, dy);
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
-        float w = exp2(-geometry_cost(x.xyz, n, ns, q));
+        float w = geometry_weight(x.xyz, n, ns, q);
         s += w * vec3(moments_at(q).yz, 1.0);
       }
     float m1 = s.x / s.z;
@@ -248,7 +264,6 @@ layout(binding = 0) uniform sampler2D source;  // the guide
 layout(binding = 2) uniform sampler2D normal;   // geometric, for the plane
 uniform int step_size;
 uniform float sigma_plane;
-uniform float sigma_normal;
 uniform float sigma_variance;
 uniform bool copy_only;
 #ifdef FINAL
@@ -262,18 +277,6 @@ layout(location = 1) out vec4 history;
 // indexes an array per pixel slowly.
 float b3(int d) { return d == 0 ? 0.375 : (abs(d) == 1 ? 0.25 : 0.0625); }
 float gauss(int d) { return d == 0 ? 0.5 : 0.25; }
-
-// pow(c, sigma_normal): by squarings when sigma_normal is a power of two
-// (the paper's 128: 7 multiplies), else by exp2 and log2.
-float facing_weight(float c) {
-#ifdef NORMAL_SQUARINGS
-  c = max(c, 0.0);
-  for (int i = 0; i < NORMAL_SQUARINGS; ++i) c *= c;
-  return c;
-#else
-  return exp2(sigma_normal * log2(max(c, 1e-30)));
-#endif
-}
 
 void write(float v, float variance, vec4 centre) {
 #ifdef FINAL
@@ -335,15 +338,20 @@ void main() {
 }
 )";
 
-std::string variance_source() {
-  return std::string("#version 450 core\n") + kEdgeStopping + kGuide + kVarianceFragment;
-}
-std::string atrous_source(bool final_iteration, float sigma_normal) {
-  std::string defines = final_iteration ? "#define FINAL\n" : "";
+// The sources' head: the version, `extra` defines, and NORMAL_SQUARINGS
+// when sigma_normal is a power of two (kFacing).
+std::string head(float sigma_normal, const std::string& extra) {
+  std::string out = "#version 450 core\n" + extra;
   for (int k = 0; k <= 10; ++k)
     if (sigma_normal == float(1 << k))
-      defines += "#define NORMAL_SQUARINGS " + std::to_string(k) + "\n";
-  return "#version 450 core\n" + defines + kGuide + kAtrousFragment;
+      out += "#define NORMAL_SQUARINGS " + std::to_string(k) + "\n";
+  return out + kFacing;
+}
+std::string variance_source(float sigma_normal) {
+  return head(sigma_normal, "") + kEdgeStopping + kGuide + kVarianceFragment;
+}
+std::string atrous_source(bool final_iteration, float sigma_normal) {
+  return head(sigma_normal, final_iteration ? "#define FINAL\n" : "") + kGuide + kAtrousFragment;
 }
 
 void check(bool ok, const std::string& what) {
@@ -488,9 +496,10 @@ void VisibilityDenoiser::prepare(int width, int height) {
     window_program_ = gl::Program("denoiser_window", {vertex, "", kWindowRowsFragment});
     window_program_.set("radius", settings_.clamp_radius);
   }
-  variance_program_ = gl::Program("denoiser_variance", {vertex, "", variance_source()});
+  variance_program_ =
+      gl::Program("denoiser_variance", {vertex, "", variance_source(settings_.sigma_normal)});
   variance_program_.set("sigma_plane", settings_.sigma_plane);
-  variance_program_.set("sigma_normal", settings_.sigma_normal);
+  variance_program_.set_if_active("sigma_normal", settings_.sigma_normal);
   variance_program_.set("spatial_only", settings_.temporal ? 0 : 1);
   atrous_program_ =
       gl::Program("denoiser_atrous", {vertex, "", atrous_source(false, settings_.sigma_normal)});

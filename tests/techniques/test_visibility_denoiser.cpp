@@ -10,7 +10,8 @@
 //   moving light: the truth's edge jumps 4 units; three frames later the
 //                 clamp has dropped the old shadow, and without rejection
 //                 (the paper's SVGF) it still ghosts;
-//   moving camera: reprojection keeps the history across a small pan;
+//   moving camera: reprojection keeps the history across a small pan, and
+//                 drops it on ground a box hid (disocclusion);
 //   edges:        on a box on the ground, the à-trous's plane and normal
 //                 weights keep each surface's V from its neighbours';
 //   determinism:  the same inputs give the same outputs, also after a
@@ -163,6 +164,24 @@ class VisibilityDenoiserTest : public ::testing::Test {
     EXPECT_GT(n, 500);
     return std::sqrt(sum / std::max(n, 1));
   }
+  // The ground with a box on it, each surface its own V: the top 0.5, the
+  // sides 0.75, the ground 0.25.
+  void use_box_scene() {
+    Scene scene = ground_scene();
+    scene.meshes.push_back(make_box("box", {0.0f, 1.0f, 0.0f}, {1.5f, 1.0f, 1.5f}));
+    stage_ = std::make_unique<ContractStage>(scene, kWidth, kHeight,
+                                             std::vector<const plugin::TechniqueInfo*>{}, plugins_);
+    position_ = stage_->read_gbuffer()[0];
+  }
+  ImageF surface_truth() const {
+    const ImageF normal = stage_->read_gbuffer()[1];
+    ImageF truth(kWidth, kHeight, 1, 1.0f);
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x)
+        if (geometry(x, y))
+          truth.at(x, y) = normal.at(x, y, 1) < 0.5f ? 0.75f : point(x, y).y > 1.0f ? 0.5f : 0.25f;
+    return truth;
+  }
   // Sixteen frames of truth `a`, then three of `b`: the last frame's error.
   double error_after_the_light_moved(NoisyDenoised& t, const ImageF& a, const ImageF& b,
                                      const std::function<double(const ImageF&)>& error) {
@@ -309,17 +328,8 @@ TEST_F(VisibilityDenoiserTest, SameInputsGiveTheSameOutputs) {
 // normal tests the error there is a fraction of what the same filter without
 // them (sigma_plane huge, sigma_normal 0) leaves.
 TEST_F(VisibilityDenoiserTest, EdgeStoppingKeepsSurfacesApart) {
-  Scene scene = ground_scene();
-  scene.meshes.push_back(make_box("box", {0.0f, 1.0f, 0.0f}, {1.5f, 1.0f, 1.5f}));
-  stage_ = std::make_unique<ContractStage>(scene, kWidth, kHeight,
-                                           std::vector<const plugin::TechniqueInfo*>{}, plugins_);
-  position_ = stage_->read_gbuffer()[0];
-  const ImageF normal = stage_->read_gbuffer()[1];
-  ImageF truth(kWidth, kHeight, 1, 1.0f);
-  for (int y = 0; y < kHeight; ++y)
-    for (int x = 0; x < kWidth; ++x)
-      if (geometry(x, y))
-        truth.at(x, y) = normal.at(x, y, 1) < 0.5f ? 0.75f : point(x, y).y > 1.0f ? 0.5f : 0.25f;
+  use_box_scene();
+  const ImageF truth = surface_truth();
   // Pixels within 3 of another surface's (background aside).
   const auto near_outline = [&](int x, int y) {
     for (int dy = -3; dy <= 3; ++dy)
@@ -347,6 +357,57 @@ TEST_F(VisibilityDenoiserTest, EdgeStoppingKeepsSurfacesApart) {
       input_error, stopped_error, blurred_error);
   EXPECT_LT(stopped_error, 0.5 * input_error);
   EXPECT_LT(stopped_error, 0.6 * blurred_error);
+}
+
+// The camera moves past the box: ground it hid comes into view. Without
+// the clamp (rejection none, the paper's), only the reprojection's plane and
+// normal tests keep those pixels from the box's history: one frame after the
+// move their error is a fraction of what it is with the plane test
+// disabled (reprojection_tolerance huge).
+TEST_F(VisibilityDenoiserTest, DisocclusionRestartsTheHistory) {
+  use_box_scene();
+  const core::Camera first = stage_->scene().camera;
+  core::Camera moved = first;
+  moved.eye += glm::vec3(2.0f, 0.0f, 0.0f);
+  const auto error_where_disoccluded = [&](DenoiserSettings s) {
+    look_through(first);
+    const ImageF before = position_;
+    const glm::mat4 first_view_projection = stage_->inputs().view_projection;
+    NoisyDenoised t(s);
+    t.prepare(stage_->inputs());
+    for (uint64_t k = 1; k <= 16; ++k) frame(t, surface_truth(), k);
+    look_through(moved);
+    const ImageF truth = surface_truth();
+    const ImageF v = frame(t, truth, 17);
+    // Ground pixels where the first view saw the box's top (which faces
+    // the same way: only the plane test tells them apart).
+    double sum = 0.0;
+    int n = 0;
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x) {
+        if (!geometry(x, y)) continue;
+        const glm::vec4 c = first_view_projection * glm::vec4(point(x, y), 1.0f);
+        const int u = int(std::floor((c.x / c.w * 0.5f + 0.5f) * kWidth));
+        const int w = kHeight - 1 - int(std::floor((c.y / c.w * 0.5f + 0.5f) * kHeight));
+        if (u < 0 || u >= kWidth || w < 0 || w >= kHeight || before.at(u, w, 3) == 0.0f) continue;
+        const glm::vec3 seen{before.at(u, w, 0), before.at(u, w, 1), before.at(u, w, 2)};
+        if (seen.y < 1.99f || point(x, y).y > 0.01f) continue;
+        const double d = double(v.at(x, y)) - double(truth.at(x, y));
+        sum += d * d;
+        ++n;
+      }
+    EXPECT_GT(n, 100);
+    return std::sqrt(sum / std::max(n, 1));
+  };
+  DenoiserSettings tested;
+  tested.rejection = HistoryRejection::None;
+  DenoiserSettings untested = tested;
+  untested.reprojection_tolerance = 1e6f;
+  const double rejected = error_where_disoccluded(tested);
+  const double kept = error_where_disoccluded(untested);
+  std::printf("disoccluded pixels, a frame after the move: %.4f, without the plane test %.4f\n",
+              rejected, kept);
+  EXPECT_LT(rejected, 0.3 * kept);
 }
 
 // gpu_bytes: the histories (per pixel and frame of the two: V, m1, m2 and
