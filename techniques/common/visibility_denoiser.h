@@ -37,7 +37,7 @@
 //   GL     prepare() makes the textures (counted in gpu_bytes), framebuffers
 //          and programs; denoise() turns depth, stencil, blending and the
 //          scissor off, sets the viewport to width×height, and leaves a
-//          program in use, textures on units 0–6 and the visibility
+//          program in use, textures on units 0–7 and the visibility
 //          framebuffer bound;
 //   cost   per frame, timed as "temporal" (with temporal), "variance" and
 //          "atrous": full-screen passes fetching per pixel about
