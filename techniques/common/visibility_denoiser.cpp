@@ -358,6 +358,18 @@ void check(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("denoiser: " + what);
 }
 
+// What a full-screen pass needs, whatever the technique left: no depth,
+// stencil, blending, scissor or culling, every colour written.
+void set_pass_state(int width, int height) {
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_BLEND);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_CULL_FACE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glViewport(0, 0, width, height);
+}
+
 glm::vec3 eye_of(const plugin::FrameInputs& in) { return glm::vec3(glm::inverse(in.view)[3]); }
 
 // kGuide's camera: the eye, the view direction and the affine ray of a
@@ -540,11 +552,7 @@ void VisibilityDenoiser::denoise(const plugin::FrameInputs& in, GLuint noisy,
 
 void VisibilityDenoiser::temporal_pass(const plugin::FrameInputs& in, GLuint noisy, int current,
                                        int previous) {
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_STENCIL_TEST);
-  glDisable(GL_BLEND);
-  glDisable(GL_SCISSOR_TEST);
-  glViewport(0, 0, width_, height_);
+  set_pass_state(width_, height_);
   glBindTextureUnit(0, noisy);
   glBindTextureUnit(1, in.gbuffer_position);
   if (window_program_.id() != 0) {
@@ -567,11 +575,7 @@ void VisibilityDenoiser::temporal_pass(const plugin::FrameInputs& in, GLuint noi
 }
 
 void VisibilityDenoiser::variance_pass(const plugin::FrameInputs& in, GLuint noisy, int current) {
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_STENCIL_TEST);
-  glDisable(GL_BLEND);
-  glDisable(GL_SCISSOR_TEST);
-  glViewport(0, 0, width_, height_);
+  set_pass_state(width_, height_);
   variance_program_.use();
   set_camera(variance_program_, in);
   glBindTextureUnit(0, settings_.temporal ? moments_[current].get() : noisy);

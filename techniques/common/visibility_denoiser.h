@@ -35,10 +35,10 @@
 //          1..k (a technique using it is TechniqueInfo::temporal); prepare()
 //          forgets every history;
 //   GL     prepare() makes the textures (counted in gpu_bytes), framebuffers
-//          and programs; denoise() turns depth, stencil, blending and the
-//          scissor off, sets the viewport to width×height, and leaves a
-//          program in use, textures on units 0–7 and the visibility
-//          framebuffer bound;
+//          and programs; denoise() turns depth, stencil, blending, the
+//          scissor and culling off, writes every colour channel, sets the
+//          viewport to width×height, and leaves a program in use, textures
+//          on units 0–7 and the visibility framebuffer bound;
 //   cost   per frame, timed as "temporal" (with temporal), "variance" and
 //          "atrous": full-screen passes fetching per pixel about
 //          4·clamp_radius + 2 (the clamp's row sums) and 3 + 16 +

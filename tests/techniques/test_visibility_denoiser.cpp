@@ -410,6 +410,32 @@ TEST_F(VisibilityDenoiserTest, DisocclusionRestartsTheHistory) {
   EXPECT_LT(rejected, 0.3 * kept);
 }
 
+// The iteration counts with their own paths: none (V copied: without
+// temporal, the input itself) and one (V written straight into the target,
+// the history copied from it).
+TEST_F(VisibilityDenoiserTest, NoneOrOneIteration) {
+  const ImageF truth = truth_image(soft_edge(0.0f));
+  DenoiserSettings copy;
+  copy.temporal = false;
+  copy.atrous_iterations = 0;
+  NoisyDenoised identity(copy);
+  identity.prepare(stage_->inputs());
+  const ImageF v = frame(identity, truth, 1);
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x)
+      ASSERT_EQ(v.at(x, y), geometry(x, y) ? identity.input.at(x, y) : 1.0f) << x << ", " << y;
+  DenoiserSettings one;
+  one.atrous_iterations = 1;
+  NoisyDenoised t(one);
+  t.prepare(stage_->inputs());
+  const double first = rmse(frame(t, truth, 1), truth, penumbra(truth));
+  ImageF last;
+  for (uint64_t k = 2; k <= 16; ++k) last = frame(t, truth, k);
+  const double sixteenth = rmse(last, truth, penumbra(truth));
+  std::printf("one iteration: frame 1 %.4f, frame 16 %.4f\n", first, sixteenth);
+  EXPECT_LT(sixteenth, 0.6 * first);
+}
+
 // gpu_bytes: the histories (per pixel and frame of the two: V, m1, m2 and
 // length in RGBA32F, the filtered V in R32F, the position in RGBA32F, the
 // normal in RGBA16F), the clamp's window sums (RGBA32F) and the two guides
