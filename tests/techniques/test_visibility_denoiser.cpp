@@ -18,7 +18,8 @@
 //                 second prepare();
 //   gpu_bytes:    every texture it makes is metered.
 // DISABLED_PassTimesAt640x480 prints the passes' times (not a test: run it
-// with --gtest_also_run_disabled_tests --gtest_filter='*PassTimes*').
+// with --gtest_also_run_disabled_tests --gtest_filter='*PassTimes*';
+// SB_DENOISER_ITERATIONS=n sets the à-trous iterations).
 #include <gtest/gtest.h>
 
 #include <algorithm>
