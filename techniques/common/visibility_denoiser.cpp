@@ -405,7 +405,7 @@ HistoryRejection history_rejection_from_string(const std::string& s) {
 }
 
 std::vector<ParamSpec> denoiser_params(const std::string& default_denoiser) {
-  return {
+  std::vector<ParamSpec> out = {
       core::choice_param("denoiser", default_denoiser, {"none", "svgf"},
                          "the noisy V denoised: none, or svgf (spatiotemporal "
                          "variance-guided filtering, Schied 2017; common/visibility_denoiser.h)"),
@@ -420,6 +420,9 @@ std::vector<ParamSpec> denoiser_params(const std::string& default_denoiser) {
                         "svgf: the temporal blend's floor (1 keeps no history)"),
       core::float_param("denoiser_clamp_gamma", 1.0, 0.0, 16.0,
                         "svgf: the clamp's half-width in local standard deviations")};
+  // With no denoiser the rest change nothing (no sensitivity to them).
+  for (size_t i = 1; i < out.size(); ++i) out[i].enabled_by = "denoiser";
+  return out;
 }
 
 std::optional<DenoiserSettings> denoiser_settings(const core::Params& p) {

@@ -21,13 +21,20 @@
 // Fajardo 2016: each shifted point of a scrambled set is still uniform, so
 // the estimate stays unbiased, and its error is spread as blue noise.
 //
+// With `denoiser: svgf` the rays' V goes into a texture of its own and the
+// kit's spatiotemporal denoiser (common/visibility_denoiser.h; Schied et al.
+// 2017, with a neighbourhood clamp against a moving light's ghosts) filters
+// it into the visibility target, its passes timed in the same frame.
+//
 // Parameters, defaults and ranges: docs/parameters.md (generated from their
 // declarations by `shadowbench list --markdown`).
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "common/blue_noise.h"
+#include "common/visibility_denoiser.h"
 #include "gl/debug.h"
 #include "gl/objects.h"
 #include "gl/program.h"
@@ -44,7 +51,8 @@ class Raytraced final : public Technique {
       : spp_(p.get_int("spp")),
         leaf_size_(p.get_int("leaf_size")),
         sequence_(p.get_string("sequence")),
-        seed_(uint64_t(p.get_int("seed"))) {}
+        seed_(uint64_t(p.get_int("seed"))),
+        denoiser_settings_(denoiser_settings(p)) {}
 
   void prepare(const FrameInputs& in) override {
     casters_ = GpuCasters(*in.scene, leaf_size_);
@@ -61,10 +69,21 @@ class Raytraced final : public Technique {
       blue_y_ = make_blue_noise_texture(kBlueNoiseSide, unsigned(seed_) + 0x9e3779b9u);
     }
     frame_ = 0;
+    if (denoiser_settings_) {
+      noisy_ = gl::make_texture_2d(GL_R32F, in.width, in.height);
+      denoiser_.emplace(*denoiser_settings_);
+      denoiser_->prepare(in.width, in.height);
+    }
     gl::throw_if_errors("raytraced prepare");
   }
 
   void render(const FrameInputs& in, gl::PassTimer& timer) override {
+    trace(in, timer);
+    if (denoiser_) denoiser_->denoise(in, noisy_.get(), timer);
+  }
+
+ private:
+  void trace(const FrameInputs& in, gl::PassTimer& timer) {
     auto pass = timer.scope("trace");
     ++frame_;
     const AreaLight& l = in.scene->light;
@@ -91,17 +110,12 @@ class Raytraced final : public Technique {
       glBindTextureUnit(4, blue_x_.get());
       glBindTextureUnit(5, blue_y_.get());
     }
-    glBindImageTexture(0, trace_target(in), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindImageTexture(0, denoiser_ ? noisy_.get() : in.visibility_texture, 0, GL_FALSE, 0,
+                       GL_WRITE_ONLY, GL_R32F);
     glDispatchCompute(GLuint((in.width + 7) / 8), GLuint((in.height + 7) / 8), 1);
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   }
-
- private:
-  // Where the rays' V goes: the visibility target itself. A denoiser would
-  // trace into an R32F texture of its own here, then filter it into the
-  // visibility target.
-  static GLuint trace_target(const FrameInputs& in) { return in.visibility_texture; }
 
   int spp_;
   int leaf_size_;
@@ -112,6 +126,10 @@ class Raytraced final : public Technique {
   gl::Program program_;
   static constexpr int kBlueNoiseSide = 64;
   gl::Texture blue_x_, blue_y_;  // sequence "blue_noise" only
+  std::optional<DenoiserSettings> denoiser_settings_;
+  // With a denoiser: the rays' V, and the filter that writes the target.
+  gl::Texture noisy_;
+  std::optional<VisibilityDenoiser> denoiser_;
 };
 
 }  // namespace
@@ -119,19 +137,22 @@ class Raytraced final : public Technique {
 
 SHADOWBENCH_PLUGIN_ENTRY(sb::Registry& registry) {
   using namespace sb;
+  std::vector<core::ParamSpec> params = {
+      int_param("spp", 4, 1, 64, "shadow rays per pixel and frame"),
+      int_param("leaf_size", 4, 1, 16, "most triangles in a leaf of the hierarchy"),
+      choice_param("sequence", "sobol", {"sobol", "blue_noise"},
+                   "light samples: Owen-scrambled Sobol (Burley 2020), scrambled per "
+                   "pixel and frame; blue_noise: one scrambled set per frame, shifted "
+                   "per pixel by two 64² blue-noise masks (Georgiev & Fajardo 2016)"),
+      int_param("seed", 1, 0, 2147483647, "scrambling seed")};
+  for (core::ParamSpec& p : techniques::denoiser_params("none")) params.push_back(std::move(p));
   registry.add(
       {.name = "raytraced",
        .family = "raytraced",
        .summary = "N shadow rays per pixel to Owen-scrambled Sobol points on the light, through a "
                   "BVH of the casters on the GPU (compute shader)",
        .needs = Needs{need::kSunOrLocalLight},
-       .params = {int_param("spp", 4, 1, 64, "shadow rays per pixel and frame"),
-                  int_param("leaf_size", 4, 1, 16, "most triangles in a leaf of the hierarchy"),
-                  choice_param("sequence", "sobol", {"sobol", "blue_noise"},
-                               "light samples: Owen-scrambled Sobol (Burley 2020), scrambled per "
-                               "pixel and frame; blue_noise: one scrambled set per frame, shifted "
-                               "per pixel by two 64² blue-noise masks (Georgiev & Fajardo 2016)"),
-                  int_param("seed", 1, 0, 2147483647, "scrambling seed")},
+       .params = std::move(params),
        .create =
            [](const Params& p) { return std::make_unique<techniques::raytraced::Raytraced>(p); },
        // Jobs of 1, 4 and 16 spp took 2.2-2.4×, 4.8-6.2× and 17-21× a 1024² hard

@@ -56,7 +56,9 @@ std::vector<TechniqueVariant> variants_under_test(const Registry& plugins) {
        {{{"name", "blurred_visibility"}, {"params", {{"space", "light"}}}},
         {{"name", "two_map_bound"}, {"params", {{"shade", {"gradient", "midpoint"}}}}},
         {{"name", "pcss"}, {"label", "pcss+contact"}, {"params", {{"contact", true}}}},
-        {{"name", "contact_shadows"}, {"params", {{"length", 2.0}}}}}},
+        {{"name", "contact_shadows"}, {"params", {{"length", 2.0}}}},
+        {{"name", "raytraced"},
+         {"params", {{"denoiser", "svgf"}, {"denoiser_temporal", {true, false}}}}}}},
       {"resolutions", {{kWidth, kHeight}}}};
   const auto extra = parse_experiment(modes, "<modes>", plugins).techniques;
   out.insert(out.end(), extra.begin(), extra.end());
