@@ -17,7 +17,11 @@ EXAMPLE_FILES = ("CMakeLists.txt", "my_pcf.cpp", "my_pcf.json", "README.md")
 WARNINGS = "-Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion -Werror"
 TOLERANCE = 1e-6
 # pcf_box's parameters that my_pcf lacks, at the values my_pcf's filter is.
-PCF_BOX_ONLY = {"filter": "nearest", "receiver_plane_bias": False}
+# pcf_box's parameters my_pcf lacks, at what my_pcf implements: nearest taps,
+# no receiver plane, and the kit's contact option off (with_contact_option,
+# which the template does not apply).
+PCF_BOX_ONLY = {"filter": "nearest", "receiver_plane_bias": False, "contact": False,
+                "contact_length": 0.5, "contact_steps": 16, "contact_thickness": 0.05}
 
 
 def small_config(installed_config, out_path):
@@ -79,7 +83,7 @@ def build_and_compare(prefix, work, cmake, cxx, env, run):
             raise SystemExit(f"no ok record of {name}: {found.get(name)}")
     mine, builtin, none = found["my_pcf"], found["pcf_box"], found["none"]
     # Every parameter my_pcf has, pcf_box has with the same value; pcf_box's
-    # others are at what my_pcf implements: nearest taps, no receiver plane.
+    # others are at what my_pcf implements (PCF_BOX_ONLY).
     shared = {k: builtin[1].get(k) for k in mine[1]}
     rest = {k: v for k, v in builtin[1].items() if k not in mine[1]}
     if shared != mine[1] or rest != PCF_BOX_ONLY:

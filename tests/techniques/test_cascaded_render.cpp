@@ -19,6 +19,7 @@
 #include <string>
 
 #include "core/scene_types.h"
+#include "debug_images.h"
 #include "gl/allocation_meter.h"
 #include "gl/context.h"
 #include "plugin/registry.h"
@@ -94,13 +95,7 @@ float analytic_away_from_edges(const glm::vec3& p, float margin) {
 }
 
 void maybe_write(const ImageF& img, const std::string& name) {
-  const char* dir = std::getenv("SB_CSM_IMAGES");
-  if (!dir) return;
-  std::ofstream f(std::string(dir) + "/" + name + ".pgm", std::ios::binary);
-  f << "P5\n" << img.width << " " << img.height << "\n255\n";
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x)
-      f.put(char(std::clamp(int(std::lround(255.0f * img.at(x, y))), 0, 255)));
+  write_pgm_if_asked(img, "SB_CSM_IMAGES", name);
 }
 
 class CascadedRender : public ::testing::Test {

@@ -28,6 +28,7 @@
 #include "config/unread_params.h"
 #include "core/error.h"
 #include "core/scene_types.h"
+#include "debug_images.h"
 #include "gl/context.h"
 #include "plugin/registry.h"
 #include "run/timing_contract.h"
@@ -101,13 +102,7 @@ bool segment_crosses_plate_interior(const glm::vec3& p, const glm::vec3& d, floa
 }
 
 void maybe_write(const ImageF& img, const std::string& name) {
-  const char* dir = std::getenv("SB_CONTACT_IMAGES");
-  if (!dir) return;
-  std::ofstream f(std::string(dir) + "/" + name + ".pgm", std::ios::binary);
-  f << "P5\n" << img.width << " " << img.height << "\n255\n";
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x)
-      f.put(char(std::clamp(int(std::lround(255.0f * img.at(x, y))), 0, 255)));
+  write_pgm_if_asked(img, "SB_CONTACT_IMAGES", name);
 }
 
 class ContactShadows : public ::testing::Test {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/scene_types.h"
+#include "debug_images.h"
 #include "gl/context.h"
 #include "plugin/registry.h"
 #include "reference/reference.h"
@@ -44,13 +45,7 @@ Scene sphere_grid() {
 }
 
 void maybe_write(const ImageF& img, const std::string& name) {
-  const char* dir = std::getenv("SB_RAYTRACED_IMAGES");
-  if (!dir) return;
-  std::ofstream f(std::string(dir) + "/" + name + ".pgm", std::ios::binary);
-  f << "P5\n" << img.width << " " << img.height << "\n255\n";
-  for (int y = img.height - 1; y >= 0; --y)
-    for (int x = 0; x < img.width; ++x)
-      f.put(char(std::clamp(int(std::lround(255.0f * img.at(x, y))), 0, 255)));
+  write_pgm_if_asked(img, "SB_RAYTRACED_IMAGES", name, true);
 }
 
 class RaytracedDenoised : public ::testing::Test {

@@ -34,6 +34,7 @@
 #include <string>
 
 #include "core/scene_types.h"
+#include "debug_images.h"
 #include "gl/allocation_meter.h"
 #include "gl/context.h"
 #include "plugin/registry.h"
@@ -61,13 +62,7 @@ Scene scene_of(const std::string& type, const nlohmann::json& params) {
 }
 
 void maybe_write(const ImageF& img, const std::string& name) {
-  const char* dir = std::getenv("SB_RAYTRACED_IMAGES");
-  if (!dir) return;
-  std::ofstream f(std::string(dir) + "/" + name + ".pgm", std::ios::binary);
-  f << "P5\n" << img.width << " " << img.height << "\n255\n";
-  for (int y = img.height - 1; y >= 0; --y)  // GL's row 0 at the bottom
-    for (int x = 0; x < img.width; ++x)
-      f.put(char(std::clamp(int(std::lround(255.0f * img.at(x, y))), 0, 255)));
+  write_pgm_if_asked(img, "SB_RAYTRACED_IMAGES", name, true);
 }
 
 struct Agreement {

@@ -25,6 +25,7 @@
 
 #include "common/light_frustum.h"
 #include "core/scene_types.h"
+#include "debug_images.h"
 #include "gl/context.h"
 #include "plugin/registry.h"
 #include "run/timing_contract.h"
@@ -106,13 +107,7 @@ bool near_contact(const glm::vec3& p, float margin) {
 }
 
 void maybe_write(const ImageF& img, const std::string& name) {
-  const char* dir = std::getenv("SB_SUN_IMAGES");
-  if (!dir) return;
-  std::ofstream f(std::string(dir) + "/" + name + ".pgm", std::ios::binary);
-  f << "P5\n" << img.width << " " << img.height << "\n255\n";
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x)
-      f.put(char(std::clamp(int(std::lround(255.0f * img.at(x, y))), 0, 255)));
+  write_pgm_if_asked(img, "SB_SUN_IMAGES", name);
 }
 
 // Per ground pixel: V, and the analytic answer `margin` away from edges.
