@@ -123,7 +123,7 @@ class ContactShadows : public ::testing::Test {
   ImageF render(const TechniqueInfo* info, const nlohmann::json& params, const std::string& name) {
     const auto t = info->create(resolve_params(info->params, params, "", ""));
     t->prepare(stage_->inputs());
-    const ImageF v = stage_->render(*t);
+    ImageF v = stage_->render(*t);
     maybe_write(v, name);
     return v;
   }
