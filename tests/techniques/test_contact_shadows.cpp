@@ -217,16 +217,25 @@ Scene penumbra_scene() {
   return s;
 }
 
+// The penumbra scene under the sun, 2° across, from the local light's
+// direction: for the techniques that run only under the sun.
+Scene sun_penumbra_scene() {
+  Scene s = penumbra_scene();
+  s.light = core::make_sun_light(glm::normalize(glm::vec3(0.5f, 5.0f, 0.3f)), {0.0f, 0.0f, 0.0f},
+                                 glm::radians(2.0f), 6.0f);
+  return s;
+}
+
 // Test 2: see the top of the file.
 TEST_F(ContactShadows, WithAMapTechniqueAreTheMinimumOfBoth) {
   const TechniqueInfo* contact = find("contact_shadows");
   ASSERT_NE(contact, nullptr);
   const nlohmann::json march = {{"length", 2.0}, {"steps", 32}, {"thickness", 0.3}};
-  for (const char* name : {"pcss", "shadow_map", "vsm"}) {
+  const auto expect_minimum = [&](const char* name, const Scene& scene) {
     SCOPED_TRACE(name);
     const TechniqueInfo* info = find(name);
     ASSERT_NE(info, nullptr);
-    stage(penumbra_scene(), {info, contact});
+    stage(scene, {info, contact});
     const nlohmann::json map_params = {{"size", 512}};
     nlohmann::json with_contact = map_params;
     with_contact["contact"] = true;
@@ -247,7 +256,11 @@ TEST_F(ContactShadows, WithAMapTechniqueAreTheMinimumOfBoth) {
     EXPECT_EQ(above, 0) << "pixels where " << name << "+contact is above " << name;
     EXPECT_EQ(not_min, 0) << "pixels where " << name << "+contact is not min(" << name
                           << ", contact_shadows)";
-  }
+  };
+  for (const char* name : {"pcss", "shadow_map", "vsm"}) expect_minimum(name, penumbra_scene());
+  // The techniques of the sun take it as well (along to_sun()).
+  for (const char* name : {"cascaded_shadow_map", "sdsm", "virtual_shadow_map"})
+    expect_minimum(name, sun_penumbra_scene());
 }
 
 // A technique with the option on keeps the contract every built-in keeps.
@@ -264,8 +277,9 @@ TEST_F(ContactShadows, DecoratedTechniqueKeepsTheTimingContract) {
 
 // Test 3: see the top of the file.
 TEST_F(ContactShadows, ParametersAreDeclaredValidatedAndRead) {
-  for (const char* name : {"shadow_map", "pcf_box", "pcf_gauss", "pcf_jitter", "pcss", "vsm", "esm",
-                           "evsm", "msm", "csm_convolution"}) {
+  for (const char* name :
+       {"shadow_map", "pcf_box", "pcf_gauss", "pcf_jitter", "pcss", "vsm", "esm", "evsm", "msm",
+        "csm_convolution", "cascaded_shadow_map", "sdsm", "virtual_shadow_map"}) {
     SCOPED_TRACE(name);
     const TechniqueInfo* info = find(name);
     ASSERT_NE(info, nullptr);
