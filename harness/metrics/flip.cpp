@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -31,10 +32,14 @@ using flip_detail::max_colour_distance;
 using flip_detail::Scratch;
 using flip_detail::Setup;
 using flip_detail::spatial_filters;
+using flip_detail::Tile;
 using flip_detail::tile_on;
 
-FlipResult detail::flip_on(SimdPath path, const ImageF& reference, const ImageF& test,
-                           double pixels_per_degree) {
+namespace {
+
+// The arguments checked, and everything the tiles share.
+Setup make_setup(detail::SimdPath path, const ImageF& reference, const ImageF& test,
+                 double pixels_per_degree) {
   auto channels_ok = [](const ImageF& i) {
     return i.channels == 1 || i.channels == 3 || i.channels == 4;
   };
@@ -48,10 +53,9 @@ FlipResult detail::flip_on(SimdPath path, const ImageF& reference, const ImageF&
                                 std::to_string(pixels_per_degree));
   if (!runs_here(path)) throw std::invalid_argument("flip: this CPU has no " + to_string(path));
 
-  const int w = reference.width, h = reference.height;
   Setup s{{&reference, &test},
-          w,
-          h,
+          reference.width,
+          reference.height,
           spatial_filters(pixels_per_degree),
           feature_filters(pixels_per_degree),
           0,
@@ -66,28 +70,39 @@ FlipResult detail::flip_on(SimdPath path, const ImageF& reference, const ImageF&
   s.knee = pccmax;
   s.slope_below = kPt / pccmax;
   s.slope_above = (1.0f - kPt) / (cmax - pccmax);
+  return s;
+}
 
+// Each tile of `tiles` into `error`, in parallel.
+void run_tiles(detail::SimdPath path, const Setup& s, const std::vector<Tile>& tiles, int widest,
+               float* error) {
+  tbb::enumerable_thread_specific<Scratch> scratch(widest, s.radius);
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, tiles.size(), 1),
+      [&](const tbb::blocked_range<std::size_t>& r) {
+        Scratch& sc = scratch.local();
+        for (std::size_t i = r.begin(); i < r.end(); ++i) tile_on(path, s, sc, tiles[i], error);
+      },
+      tbb::simple_partitioner());
+}
+
+}  // namespace
+
+FlipResult detail::flip_on(SimdPath path, const ImageF& reference, const ImageF& test,
+                           double pixels_per_degree) {
+  const Setup s = make_setup(path, reference, test, pixels_per_degree);
+  const int w = s.width, h = s.height;
   FlipResult result;
   result.error = ImageF(w, h, 1);
   // Tiles of 256 columns by 128 rows: the rings fit a core's L2 cache, and
   // the first 2 radius rows each tile filters before its first output row
   // cost a sixth more of the horizontal filtering.
   constexpr int kTileColumns = 256, kTileRows = 128;
-  const int columns = (w + kTileColumns - 1) / kTileColumns;
-  const int tiles = columns * ((h + kTileRows - 1) / kTileRows);
-  tbb::enumerable_thread_specific<Scratch> scratch(std::min(w, kTileColumns), s.radius);
-  tbb::parallel_for(
-      tbb::blocked_range<int>(0, tiles, 1),
-      [&](const tbb::blocked_range<int>& r) {
-        Scratch& sc = scratch.local();
-        for (int i = r.begin(); i < r.end(); ++i) {
-          const int x0 = (i % columns) * kTileColumns, y0 = (i / columns) * kTileRows;
-          tile_on(path, s, sc,
-                  {y0, std::min(h, y0 + kTileRows), x0, std::min(w, x0 + kTileColumns)},
-                  result.error.data.data());
-        }
-      },
-      tbb::simple_partitioner());
+  std::vector<Tile> tiles;
+  for (int y0 = 0; y0 < h; y0 += kTileRows)
+    for (int x0 = 0; x0 < w; x0 += kTileColumns)
+      tiles.push_back({y0, std::min(h, y0 + kTileRows), x0, std::min(w, x0 + kTileColumns)});
+  run_tiles(path, s, tiles, std::min(w, kTileColumns), result.error.data.data());
   std::vector<double> row_sums(static_cast<std::size_t>(h), 0.0);
   tbb::parallel_for(0, h, [&](int y) {
     const float* row = &result.error.data[static_cast<std::size_t>(y) * w];
@@ -99,6 +114,46 @@ FlipResult detail::flip_on(SimdPath path, const ImageF& reference, const ImageF&
   for (double v : row_sums) total += v;  // in row order: the same sum on any thread count
   result.mean = total / static_cast<double>(reference.pixel_count());
   return result;
+}
+
+ImageF detail::flip_map_within_on(SimdPath path, const ImageF& reference, const ImageF& test,
+                                  const std::vector<uint8_t>& needed, double pixels_per_degree) {
+  const Setup s = make_setup(path, reference, test, pixels_per_degree);
+  const int w = s.width, h = s.height;
+  if (needed.size() != reference.pixel_count())
+    throw std::invalid_argument("flip: the mask of needed pixels is not the image's size");
+  ImageF map(w, h, 1);
+  // Blocks smaller than flip()'s tiles, each cut to the rows and columns of
+  // its needed pixels: a thin region (a terminator's crescents) costs its
+  // own rows, plus 2 radius rows and columns of filtering per block.
+  constexpr int kBlockColumns = 128, kBlockRows = 64;
+  std::vector<Tile> tiles;
+  for (int by = 0; by < h; by += kBlockRows)
+    for (int bx = 0; bx < w; bx += kBlockColumns) {
+      Tile t{h, by, w, bx};  // empty until a needed pixel widens it
+      for (int y = by; y < std::min(h, by + kBlockRows); ++y)
+        for (int x = bx; x < std::min(w, bx + kBlockColumns); ++x)
+          if (needed[static_cast<std::size_t>(y) * w + x]) {
+            t.y0 = std::min(t.y0, y), t.y1 = std::max(t.y1, y + 1);
+            t.x0 = std::min(t.x0, x), t.x1 = std::max(t.x1, x + 1);
+          }
+      if (t.y0 < t.y1) tiles.push_back(t);
+    }
+  run_tiles(path, s, tiles, std::min(w, kBlockColumns), map.data.data());
+  for (std::size_t p = 0; p < needed.size(); ++p)
+    if (!needed[p]) map.data[p] = 0.0f;
+  return map;
+}
+
+int flip_radius(double pixels_per_degree) {
+  return std::max(spatial_filters(pixels_per_degree).radius,
+                  feature_filters(pixels_per_degree).radius);
+}
+
+ImageF flip_map_within(const ImageF& reference, const ImageF& test,
+                       const std::vector<uint8_t>& needed, double pixels_per_degree) {
+  return detail::flip_map_within_on(detail::widest_simd_path(), reference, test, needed,
+                                    pixels_per_degree);
 }
 
 FlipResult flip(const ImageF& reference, const ImageF& test, double pixels_per_degree) {

@@ -19,6 +19,9 @@
 //    the two magnitude differences over sqrt(2), raised to q_f = 0.5;
 //  - FLIP = colour difference ^ (1 - feature difference).
 // The mean is the plain mean of the map (the paper's pooled value).
+#include <cstdint>
+#include <vector>
+
 #include "core/image.h"
 #include "metrics/simd_path.h"
 
@@ -42,6 +45,19 @@ struct FlipResult {
 FlipResult flip(const core::ImageF& reference, const core::ImageF& test,
                 double pixels_per_degree = kFlipDefaultPixelsPerDegree);
 
+// The distance in pixels (along x and along y) beyond which a pixel's
+// values change no FLIP value: the wider of the colour and feature filters'
+// radii. Two test images equal on the square of this radius around a pixel
+// give it the same FLIP value, to the bit.
+int flip_radius(double pixels_per_degree = kFlipDefaultPixelsPerDegree);
+
+// flip()'s map at the pixels where `needed` (one byte a pixel) is not 0, the
+// same bits there, and 0 elsewhere: it costs only the rows and columns near
+// the needed pixels. Throws as flip() does, and for a mask of another size.
+core::ImageF flip_map_within(const core::ImageF& reference, const core::ImageF& test,
+                             const std::vector<uint8_t>& needed,
+                             double pixels_per_degree = kFlipDefaultPixelsPerDegree);
+
 // An sRGB-encoded image (an 8-bit PNG read as v / 255) decoded to linear
 // values (IEC 61966-2-1), as FLIP's LDR inputs are: every channel but a 4th
 // (alpha), which is kept.
@@ -53,6 +69,9 @@ namespace detail {
 // does not run, as for flip()'s bad arguments.
 FlipResult flip_on(SimdPath path, const core::ImageF& reference, const core::ImageF& test,
                    double pixels_per_degree = kFlipDefaultPixelsPerDegree);
+core::ImageF flip_map_within_on(SimdPath path, const core::ImageF& reference,
+                                const core::ImageF& test, const std::vector<uint8_t>& needed,
+                                double pixels_per_degree = kFlipDefaultPixelsPerDegree);
 }  // namespace detail
 
 }  // namespace sb::metrics

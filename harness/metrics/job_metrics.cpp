@@ -1,9 +1,12 @@
 #include "metrics/job_metrics.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
 #include "metrics/flip.h"
+#include "metrics/flip_reuse.h"
 #include "metrics/geometry_region.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
@@ -108,12 +111,15 @@ double masked_mean(const ImageF& map, const std::vector<uint8_t>& mask) {
 // Each region's mean of the FLIP map of test against ref, the map computed
 // as the region's SSIM is (compare_images): one map of the technique's
 // measured pixels for the regions that share it, and for the others a map
-// with every pixel outside the region from ref. A region with no pixel of
-// its own pass has no FLIP.
+// with every pixel outside the region from ref, made only where it differs
+// from a map made already (`known`, and the shared one: flip_reuse.h). A
+// region with no pixel of its own pass has no FLIP.
 void add_flip_means(ImageMetrics& m, const ImageF& test, const ImageF& ref, const Regions& regions,
-                    const std::vector<JobRegion>& job, double pixels_per_degree) {
+                    const std::vector<JobRegion>& job, double pixels_per_degree,
+                    std::vector<KnownFlipMap> known = {}) {
   const ImageF t = with_unmeasured_from(test, ref, regions.measured);
-  const ImageF map = flip(ref, t, pixels_per_degree).error;
+  const ImageF map = flip_map_reusing(ref, t, nullptr, known, pixels_per_degree);
+  known.push_back({&t, &map});
   for (const JobRegion& r : job) {
     RegionStats& slot = record::find_region(r.region->key)->slot(m);
     switch (pass_of(r, t, ref, regions)) {
@@ -121,8 +127,9 @@ void add_flip_means(ImageMetrics& m, const ImageF& test, const ImageF& ref, cons
         slot.flip_mean = masked_mean(map, r.mask);
         break;
       case Pass::Own:
-        slot.flip_mean = masked_mean(
-            flip(ref, with_unmeasured_from(test, ref, r.mask), pixels_per_degree).error, r.mask);
+        slot.flip_mean = masked_mean(flip_map_reusing(ref, with_unmeasured_from(test, ref, r.mask),
+                                                      &r.mask, known, pixels_per_degree),
+                                     r.mask);
         break;
       case Pass::Empty:
         break;
@@ -132,11 +139,26 @@ void add_flip_means(ImageMetrics& m, const ImageF& test, const ImageF& ref, cons
 
 // The image as shaded.png holds it (8 bits a value), decoded from sRGB: what
 // FLIP's own tool reads from the file, so that the figure can be recomputed
-// from it.
+// from it. A byte's decoded value is looked up: linear_from_srgb's own value
+// for it.
 ImageF as_flip_reads_png(const ImageF& shaded) {
+  static const std::array<float, 256> decoded = [] {
+    ImageF bytes(256, 1, 1);
+    for (int b = 0; b < 256; ++b)
+      bytes.data[static_cast<std::size_t>(b)] = static_cast<float>(b) / 255.0f;
+    const ImageF linear = linear_from_srgb(bytes);
+    std::array<float, 256> table{};
+    std::copy(linear.data.begin(), linear.data.end(), table.begin());
+    return table;
+  }();
   ImageF q = shaded;
-  for (float& v : q.data) v = static_cast<float>(io::png_byte(v)) / 255.0f;
-  return linear_from_srgb(q);
+  const std::size_t nc = static_cast<std::size_t>(q.channels);
+  for (std::size_t i = 0; i < q.data.size(); ++i) {
+    const uint8_t byte = io::png_byte(q.data[i]);
+    // A 4th channel (alpha) is not sRGB-encoded: linear_from_srgb keeps it.
+    q.data[i] = nc == 4 && i % 4 == 3 ? static_cast<float>(byte) / 255.0f : decoded[byte];
+  }
+  return q;
 }
 
 }  // namespace
@@ -200,9 +222,10 @@ MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const Imag
   add_flip_means(m.visibility, visibility, ref_visibility, regions, of_visibility,
                  flip_pixels_per_degree);
   const ImageF shaded_png = as_flip_reads_png(shaded), ref_png = as_flip_reads_png(ref_shaded);
-  add_flip_means(m.shaded, shaded_png, ref_png, regions, of_shaded, flip_pixels_per_degree);
   // As FLIP's tool compares the two PNGs: every pixel, nothing replaced.
   FlipResult whole = flip(ref_png, shaded_png, flip_pixels_per_degree);
+  add_flip_means(m.shaded, shaded_png, ref_png, regions, of_shaded, flip_pixels_per_degree,
+                 {{&shaded_png, &whole.error}});
   m.flip_shaded = whole.mean;
   if (flip_map != nullptr) *flip_map = std::move(whole.error);
   return m;

@@ -120,6 +120,35 @@ std::int64_t count_ones(const std::vector<uint8_t>& mask) {
   return std::count(mask.begin(), mask.end(), uint8_t(1));
 }
 
+std::vector<uint8_t> dilated(const std::vector<uint8_t>& mask, int width, int height, int radius) {
+  const auto at = [width](int x, int y) {
+    return static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+  };
+  // Along x, then along y: a running count of the 1s in the window.
+  std::vector<uint8_t> rows(mask.size()), out(mask.size());
+  for (int y = 0; y < height; ++y) {
+    int ones = 0;
+    for (int x = 0; x < std::min(radius, width); ++x) ones += mask[at(x, y)] != 0;
+    for (int x = 0; x < width; ++x) {
+      if (x + radius < width) ones += mask[at(x + radius, y)] != 0;
+      if (x - radius - 1 >= 0) ones -= mask[at(x - radius - 1, y)] != 0;
+      rows[at(x, y)] = ones > 0 ? 1 : 0;
+    }
+  }
+  std::vector<int> ones(static_cast<size_t>(width),
+                        0);  // per column, rows y - radius ... y + radius
+  const auto add_row = [&](int y, int sign) {
+    for (int x = 0; x < width; ++x) ones[static_cast<size_t>(x)] += sign * rows[at(x, y)];
+  };
+  for (int y = 0; y < std::min(radius, height); ++y) add_row(y, 1);
+  for (int y = 0; y < height; ++y) {
+    if (y + radius < height) add_row(y + radius, 1);
+    if (y - radius - 1 >= 0) add_row(y - radius - 1, -1);
+    for (int x = 0; x < width; ++x) out[at(x, y)] = ones[static_cast<size_t>(x)] > 0 ? 1 : 0;
+  }
+  return out;
+}
+
 bool mask_within(const std::vector<uint8_t>& inner, const std::vector<uint8_t>& outer) {
   for (size_t i = 0; i < inner.size(); ++i)
     if (inner[i] && !outer[i]) return false;

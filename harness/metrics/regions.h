@@ -81,6 +81,10 @@ std::vector<uint8_t> mask_and(std::vector<uint8_t> a, const std::vector<uint8_t>
 
 std::int64_t count_ones(const std::vector<uint8_t>& mask);
 
+// 1 where a 1 of `mask` (width x height) lies within `radius` pixels along x
+// and along y: the mask grown by a square.
+std::vector<uint8_t> dilated(const std::vector<uint8_t>& mask, int width, int height, int radius);
+
 // True when every 1 of `inner` is a 1 of `outer`.
 bool mask_within(const std::vector<uint8_t>& inner, const std::vector<uint8_t>& outer);
 

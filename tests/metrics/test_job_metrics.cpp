@@ -178,6 +178,41 @@ TEST(JobMetrics, TheTerminatorRegionIsTheHorizonCutPixelsMeasuredOnTheirOwn) {
   EXPECT_EQ(worse.shaded.terminator->to_json(), m.shaded.terminator->to_json());
 }
 
+// Each region's FLIP is the mean over its pixels of FLIP's whole map of its
+// own image (the technique's values in the region, or in the measured
+// pixels for the regions that share them, the reference's elsewhere), to
+// the bit, however much of that map the job took from another image's.
+TEST(JobMetrics, EachRegionsFlipIsTheMeanOfItsOwnImagesWholeMap) {
+  const ImageF ref = reference_visibility(true);
+  const Regions regions = regions_of(true, ref);
+  // Wrong everywhere, differently on each kind of pixel.
+  ImageF v = plus_on(plus_on(plus_on(ref, 'c', true, 0.4f), 'g', true, -0.2f), 's', true, -0.5f);
+  for (std::size_t p = 0; p < v.data.size(); ++p) v.data[p] += 0.01f * float(p % 7);
+  const record::MetricsRecord m = measured(v, ref, regions);
+  const auto mean_over = [](const ImageF& map, const std::vector<uint8_t>& mask) {
+    double sum = 0;
+    std::size_t n = 0;
+    for (std::size_t p = 0; p < mask.size(); ++p)
+      if (mask[p]) sum += map.data[p], ++n;
+    return sum / double(n);
+  };
+  int checked = 0;
+  for (const RegionMask& r : regions.masks) {
+    if (r.per_job || count_ones(r.mask) == 0) continue;
+    const bool own = r.surround == Surround::Reference;
+    const ImageF own_image = with_unmeasured_from(v, ref, own ? r.mask : regions.measured);
+    const double expected = mean_over(flip(ref, own_image).error, r.mask);
+    const record::Region* region = record::find_region(r.key);
+    ASSERT_NE(region, nullptr);
+    record::ImageMetrics copy = m.visibility;
+    SCOPED_TRACE(r.key);
+    ASSERT_TRUE(region->slot(copy).flip_mean.has_value());
+    EXPECT_EQ(*region->slot(copy).flip_mean, expected);
+    ++checked;
+  }
+  EXPECT_GE(checked, 3);  // all, geometry, terminator at least
+}
+
 TEST(JobMetrics, AViewWithoutHorizonCutPixelsHasAnEmptyTerminatorRegion) {
   const ImageF ref = reference_visibility(false);
   const Regions regions = regions_of(false, ref);
