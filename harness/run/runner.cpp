@@ -100,7 +100,7 @@ class StoreEvents final : public ParentEvents {
   }
   void scene_planned(const std::string& scene, const std::vector<std::string>& lines,
                      const std::string& bad_input) override {
-    if (!planned_.insert(scene).second) return;  // each child plans its scene again
+    if (!planned_.insert(scene).second) return;  // each child reports its scene again
     for (const auto& l : lines) {
       std::string line = "scene " + scene;
       line += ": ";
