@@ -78,8 +78,10 @@ class Resolver {
 }  // namespace
 
 ResolvedNeeds resolve_needs(const Scene& scene, const std::vector<const TechniqueInfo*>& techniques,
-                            const Registry* plugins, Derive derive) {
+                            const Registry* plugins, Derive derive,
+                            const plugin::DerivedData* decided) {
   ResolvedNeeds out;
+  if (decided != nullptr) out.data = *decided;
   Resolver resolver(scene, plugins, out);
   std::vector<std::vector<const NeedProvider*>> per_technique(techniques.size());
   out.skip_reason.assign(techniques.size(), "");
@@ -98,7 +100,7 @@ ResolvedNeeds resolve_needs(const Scene& scene, const std::vector<const Techniqu
   }
   // Plan needs of every technique (even those about to be skipped: their
   // reasons come from these), in the techniques' order.
-  for (size_t t = 0; t < techniques.size(); ++t)
+  for (size_t t = 0; t < techniques.size() && decided == nullptr; ++t)
     for (const NeedProvider* p : per_technique[t])
       if (p->when == NeedProvider::When::Plan) resolver.derive(*p);
   for (size_t t = 0; t < techniques.size(); ++t) {
@@ -123,10 +125,12 @@ ResolvedNeeds resolve_needs(const Scene& scene, const std::vector<const Techniqu
     for (const NeedProvider* p : per_technique[t]) {
       if (!seen.insert(p->name).second) continue;
       if (p->when == NeedProvider::When::Run) {
-        if (derive == Derive::All)
+        if (derive == Derive::All) {
           resolver.derive(*p);
-        else
+        } else {
           out.log.push_back(p->summary + " (built when run)");
+          ++out.deferred;
+        }
       }
       if (p->upload) out.uploads.push_back(p);
     }

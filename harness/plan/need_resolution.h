@@ -3,6 +3,7 @@
 // need's provider (a plugin's, else the harness's, scenes/need_providers.h),
 // computes what was asked for and nothing else, in dependency order, and
 // decides which techniques the scene cannot serve.
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,7 @@ struct ResolvedNeeds {
   // runner calls each once the scene is on the GPU.
   std::vector<const plugin::NeedProvider*> uploads;
   std::vector<std::string> log;  // one line per datum derived or deferred
+  size_t deferred = 0;           // of log's last lines, the Run needs left for the run
 };
 
 // The provider of `name`: the harness's, else `plugins`' (may be null).
@@ -34,8 +36,13 @@ struct ResolvedNeeds {
 const plugin::NeedProvider* find_need_provider(const std::string& name,
                                                const plugin::Registry* plugins);
 
+// `decided`, when given, is the data of a Derive::Decide resolution of the
+// same scene and techniques: its Plan needs are taken from it, not derived
+// again, and the log holds only what this call derives (the run completing
+// the plan's build of a scene, plan::derive_run_needs).
 ResolvedNeeds resolve_needs(const core::Scene& scene,
                             const std::vector<const plugin::TechniqueInfo*>& techniques,
-                            const plugin::Registry* plugins, Derive derive);
+                            const plugin::Registry* plugins, Derive derive,
+                            const plugin::DerivedData* decided = nullptr);
 
 }  // namespace sb::plan

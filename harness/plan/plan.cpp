@@ -20,22 +20,48 @@ using core::Scene;
 using plugin::DerivedData;
 using plugin::TechniqueInfo;
 
-ScenePlan plan_scene(const Experiment& e, const SceneVariant& sv, Derive derive) {
-  ScenePlan p;
-  p.variant = &sv;
-  // A variant whose needs depend on its parameters is planned as a copy of
-  // its technique with those needs added.
-  std::vector<TechniqueInfo> with_param_needs;
-  with_param_needs.reserve(e.techniques.size());
+namespace {
+
+// The techniques as the needs see them: a variant whose needs depend on its
+// parameters is a copy of its technique with those needs added (kept in
+// `copies`).
+std::vector<const TechniqueInfo*> technique_infos(const Experiment& e,
+                                                  std::vector<TechniqueInfo>& copies) {
+  copies.reserve(e.techniques.size());
   std::vector<const TechniqueInfo*> infos;
   for (const auto& tv : e.techniques) {
     infos.push_back(tv.info);
     if (tv.info->needs_of_params == nullptr) continue;
-    TechniqueInfo& copy = with_param_needs.emplace_back(*tv.info);
+    TechniqueInfo& copy = copies.emplace_back(*tv.info);
     for (auto& n : tv.info->needs_of_params(tv.params).names) copy.needs.names.push_back(n);
     infos.back() = &copy;
   }
+  return infos;
+}
+
+// Runs `build`; what it throws is recorded in `p` (a scene's bad input, or
+// any other failure), never thrown on.
+template <class Build>
+void recording_failure(ScenePlan& p, Build build) {
   try {
+    build();
+  } catch (const InputError& ex) {
+    p.input_error = core::bounded_text(ex.what(), core::kMessageChars);
+    p.error = "bad scene input: " + p.input_error;
+    p.bad_input = true;
+  } catch (const std::exception& ex) {
+    p.error = "building the scene failed: " + core::bounded_text(ex.what(), core::kMessageChars);
+  }
+}
+
+}  // namespace
+
+ScenePlan plan_scene(const Experiment& e, const SceneVariant& sv, Derive derive) {
+  ScenePlan p;
+  p.variant = &sv;
+  std::vector<TechniqueInfo> copies;
+  const std::vector<const TechniqueInfo*> infos = technique_infos(e, copies);
+  recording_failure(p, [&] {
     p.scene = build_scene(sv, e.file);
     if (sv.infer_receivers) p.inferred_receivers = infer_receivers(p.scene);
     if (!p.inferred_receivers.empty()) {
@@ -57,14 +83,44 @@ ScenePlan plan_scene(const Experiment& e, const SceneVariant& sv, Derive derive)
     p.skip_reason = std::move(needs.skip_reason);
     p.needs = std::move(needs.needs);
     for (auto& l : needs.log) p.log.push_back(std::move(l));
-  } catch (const InputError& ex) {
-    p.input_error = core::bounded_text(ex.what(), core::kMessageChars);
-    p.error = "bad scene input: " + p.input_error;
-    p.bad_input = true;
-  } catch (const std::exception& ex) {
-    p.error = "building the scene failed: " + core::bounded_text(ex.what(), core::kMessageChars);
-  }
+    p.derived_for = derive;
+    p.deferred_log = needs.deferred;
+  });
   return p;
+}
+
+void derive_run_needs(const Experiment& e, ScenePlan& p) {
+  if (!p.error.empty() || p.derived_for == Derive::All) return;
+  std::vector<TechniqueInfo> copies;
+  const std::vector<const TechniqueInfo*> infos = technique_infos(e, copies);
+  recording_failure(p, [&] {
+    ResolvedNeeds needs = resolve_needs(p.scene, infos, e.registry, Derive::All, &p.derived);
+    p.derived = std::move(needs.data);
+    p.uploads = std::move(needs.uploads);
+    p.skip_reason = std::move(needs.skip_reason);
+    p.needs = std::move(needs.needs);
+    p.log.resize(p.log.size() - p.deferred_log);
+    for (auto& l : needs.log) p.log.push_back(std::move(l));
+    p.derived_for = Derive::All;
+    p.deferred_log = 0;
+  });
+}
+
+size_t scene_bytes(const Scene& scene) {
+  size_t bytes = 0;
+  for (const core::Mesh& m : scene.meshes)
+    bytes += m.positions.size() * sizeof(m.positions[0]) + m.normals.size() * sizeof(m.normals[0]) +
+             m.uvs.size() * sizeof(m.uvs[0]) + m.indices.size() * sizeof(m.indices[0]);
+  for (const core::TextureImage& t : scene.textures) bytes += t.rgba.size();
+  return bytes;
+}
+
+void drop_scene_data(ScenePlan& p) {
+  std::vector<core::InputFile> inputs = std::move(p.scene.inputs);
+  p.scene = Scene{};
+  p.scene.inputs = std::move(inputs);
+  p.derived = DerivedData{};
+  p.kept = false;
 }
 
 const char* to_string(JobOutcome::Status status) {
@@ -113,8 +169,9 @@ size_t Plan::count(PlannedJob::Status s) const {
   return n;
 }
 
-Plan make_plan(const Experiment& e, int shard_count) {
+Plan make_plan(const Experiment& e, int shard_count, size_t keep_bytes) {
   Plan plan;
+  size_t kept_bytes = 0;
   for (size_t s = 0; s < e.scenes.size(); ++s) {
     ScenePlan sp = plan_scene(e, e.scenes[s], Derive::Decide);
     for (size_t r = 0; r < e.resolutions.size(); ++r)
@@ -129,12 +186,15 @@ Plan make_plan(const Experiment& e, int shard_count) {
         j.outcome = decide_job(e, sp, t);
         plan.jobs.push_back(std::move(j));
       }
-    // A sweep of big scenes must not stay in memory; the files it was built
-    // from stay, for the jobs' identity (run/job_identity.h).
-    std::vector<core::InputFile> inputs = std::move(sp.scene.inputs);
-    sp.scene = Scene{};
-    sp.scene.inputs = std::move(inputs);
-    sp.derived = DerivedData{};
+    // A sweep of big scenes must not stay in memory: the builds over the
+    // budget are dropped, and the run builds those scenes again.
+    const size_t bytes = scene_bytes(sp.scene);
+    if (keep_bytes > 0 && (e.scenes.size() == 1 || kept_bytes + bytes <= keep_bytes)) {
+      sp.kept = true;
+      kept_bytes += bytes;
+    } else {
+      drop_scene_data(sp);
+    }
     plan.scenes.push_back(std::move(sp));
   }
   assign_shards(plan, shard_count);

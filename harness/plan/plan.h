@@ -5,8 +5,10 @@
 // why, and which derived data each scene needs (the union of the needs of
 // the techniques that will run on it). `shadowbench plan` and `validate`
 // print it (`plan --json` writes it, plan/plan_json.h); `run` writes it to
-// the run folder as plan.json and executes its jobs, and the executor checks
-// that the scene it builds leads to the same decisions (outcome_mismatch).
+// the run folder as plan.json and executes its jobs. The run uses the plan's
+// build of a scene when the plan kept it (make_plan's keep_bytes), adding
+// the Run needs' data; else it builds the scene again and the executor
+// checks that it leads to the same decisions (outcome_mismatch).
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -30,11 +32,34 @@ struct ScenePlan {
   bool bad_input = false;        // ... because its input (a glTF file, say) is bad
   std::string input_error;       // then the InputError's message (file and place)
   std::vector<std::string> log;  // one line per decision or derived datum
+  // What was derived: with Decide, the Run needs are left for the run, and
+  // log's last `deferred_log` lines say so ("... (built when run)").
+  Derive derived_for = Derive::Decide;
+  size_t deferred_log = 0;
+  // make_plan kept this build (the scene and its data, or its error) for the
+  // run, which uses it instead of building the scene again; when false only
+  // scene.inputs is left.
+  bool kept = false;
 };
 
 // Builds the scene and decides its jobs. Never throws for bad scene input:
 // it is recorded in `error` and `bad_input`.
 ScenePlan plan_scene(const config::Experiment& e, const config::SceneVariant& sv, Derive derive);
+
+// Makes a Derive::Decide plan of a scene what plan_scene(..., Derive::All)
+// would have made, in place: derives the Run needs of the techniques that
+// will run (their lines replace the "built when run" ones), without building
+// the scene or deriving its Plan needs again. Does nothing for a scene that
+// did not build or is derived already; a failure is recorded in `error`.
+void derive_run_needs(const config::Experiment& e, ScenePlan& p);
+
+// What keeping a built scene costs: the bytes of its meshes' vertex and
+// index arrays and of its textures.
+size_t scene_bytes(const core::Scene& scene);
+
+// Drops a plan's scene data but the files it was built from (for the jobs'
+// identity, run/job_identity.h); `kept` becomes false.
+void drop_scene_data(ScenePlan& p);
 
 // What is decided for one job before it runs.
 struct JobOutcome {
@@ -67,15 +92,24 @@ struct PlannedJob {
 };
 
 struct Plan {
-  std::vector<ScenePlan> scenes;  // scene data dropped but its inputs (Derive::Decide plans)
+  std::vector<ScenePlan> scenes;  // Derive::Decide plans; the data of those not kept dropped
   std::vector<PlannedJob> jobs;   // scene-major, then resolution, then technique
   int shard_count = 1;
   size_t count(PlannedJob::Status s) const;
 };
 
-// The whole experiment's plan, without GL and without keeping scene data,
-// its jobs laid out in `shard_count` shards (plan/shards.h).
-Plan make_plan(const config::Experiment& e, int shard_count = 1);
+// The whole experiment's plan, without GL, its jobs laid out in
+// `shard_count` shards (plan/shards.h). Each scene is built once to decide
+// its jobs; its build is kept (ScenePlan::kept) while the scenes kept, in
+// plan order, hold at most `keep_bytes` (scene_bytes) together, so that a
+// sweep of big scenes is not held at once. The only scene of an experiment is
+// kept whatever its size when keep_bytes > 0: the run would build it again
+// at once. keep_bytes 0 (plan, validate) keeps none.
+Plan make_plan(const config::Experiment& e, int shard_count = 1, size_t keep_bytes = 0);
+
+// make_plan's keep_bytes for a run (run/runner.h): 1 GiB, about 40 million
+// triangles of meshes like bench/scene_once.py's (24 MB per million).
+inline constexpr size_t kRunKeptSceneBytes = size_t(1) << 30;
 
 // Human-readable: per scene, what it derives and infers; per job, run, skip
 // or fail with the reason.

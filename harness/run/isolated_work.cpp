@@ -165,8 +165,8 @@ std::string seconds_text(double s) { return format_number("%g", s); }
 }  // namespace
 
 IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const EmbreeChoice& embree,
-                             size_t scene, const ResolutionWork& work, const TimeLimits& limits,
-                             ParentEvents& events) {
+                             size_t scene, const ResolutionWork& work, plan::ScenePlan* planned,
+                             const TimeLimits& limits, ParentEvents& events) {
   const SceneVariant& sv = e.scenes.at(scene);
   const Resolution& res = e.resolutions.at(work.resolution);
   std::vector<const PlannedJob*> remaining = work.jobs;
@@ -198,7 +198,7 @@ IsolatedOutcome run_isolated(const Experiment& e, const RunOptions& o, const Emb
         pipe.fatal(ex.what());
         return kExitContextFailed;
       }
-      executor->run_scene(scene, {chunk});
+      executor->run_scene(scene, {chunk}, planned);  // the child's copy: the parent's stays
       return 0;
     });
     replies.keep_parent_end();

@@ -43,10 +43,13 @@ struct IsolatedOutcome {
 
 // Runs `work`'s jobs of scene variant `scene`, one child after another, each
 // job ending in one job_finished event. The children are forked: they read
-// the parent's PlannedJobs that `work` points to. Throws std::runtime_error when a
+// the parent's PlannedJobs that `work` points to, and each completes its own
+// copy of `planned`, the plan's build of the scene (JobExecutor::run_scene);
+// the parent's is left as it was. Throws std::runtime_error when a
 // child cannot make its GL context (as the run would fail in-process).
 IsolatedOutcome run_isolated(const config::Experiment& e, const RunOptions& o,
                              const EmbreeChoice& embree, size_t scene, const ResolutionWork& work,
-                             const TimeLimits& limits, ParentEvents& events);
+                             plan::ScenePlan* planned, const TimeLimits& limits,
+                             ParentEvents& events);
 
 }  // namespace sb::run

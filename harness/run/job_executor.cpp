@@ -37,6 +37,7 @@ using core::Scene;
 using gl::GpuScene;
 using plan::decide_job;
 using plan::Derive;
+using plan::derive_run_needs;
 using plan::JobOutcome;
 using plan::outcome_mismatch;
 using plan::plan_scene;
@@ -92,11 +93,18 @@ class JobExecutor::Impl {
                      gl::to_string(timing_source_)});
   }
 
-  void run_scene(const SceneVariant& sv, const std::vector<ResolutionWork>& work) {
+  void run_scene(const SceneVariant& sv, const std::vector<ResolutionWork>& work,
+                 ScenePlan* planned) {
     // The plan (made in the parent, before any GL context) decided every
-    // job; the scene is built again for its data, with the Run needs
-    // derived, and must lead to the same decisions.
-    const ScenePlan st = plan_scene(e_, sv, Derive::All);
+    // job. Its build of the scene, when it kept one (a forked child's copy
+    // of it), gets the Run needs' data; else the scene is built again, with
+    // them, and must lead to the same decisions.
+    std::optional<ScenePlan> rebuilt;
+    if (planned != nullptr && planned->kept)
+      derive_run_needs(e_, *planned);
+    else
+      rebuilt = plan_scene(e_, sv, Derive::All);
+    const ScenePlan& st = rebuilt ? *rebuilt : *planned;
     events_.scene_planned(sv.name, st.log, st.bad_input ? st.input_error : std::string());
 
     UploadedScene uploaded;
@@ -281,8 +289,9 @@ JobExecutor::JobExecutor(const Experiment& e, const RunOptions& o, EmbreeChoice 
 
 JobExecutor::~JobExecutor() = default;
 
-void JobExecutor::run_scene(size_t scene, const std::vector<ResolutionWork>& work) {
-  impl_->run_scene(impl_->experiment().scenes.at(scene), work);
+void JobExecutor::run_scene(size_t scene, const std::vector<ResolutionWork>& work,
+                            plan::ScenePlan* planned) {
+  impl_->run_scene(impl_->experiment().scenes.at(scene), work, planned);
 }
 
 }  // namespace sb::run

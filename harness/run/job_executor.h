@@ -1,7 +1,8 @@
 #pragma once
 // Runs jobs in this process, on a GL context of its own. For one scene
-// variant: builds it (with its derived data) and checks that it leads to the
-// plan's decisions, uploads it once, and per resolution renders
+// variant: takes the plan's build of it, when the plan kept one, and derives
+// its Run needs, or else builds it (with its derived data) and checks that it
+// leads to the plan's decisions; uploads it once, and per resolution renders
 // the G-buffer and the reference once, then prepares, times and measures
 // each technique variant asked for, telling `events` as it goes. Which jobs
 // to run (resumed ones are not) and in which process is the caller's choice
@@ -47,8 +48,12 @@ class JobExecutor {
   // Every job of `work` ends in one job_finished event: ok, skipped (the
   // plan's reason) or failed (the error), so one failing job never stops the
   // others. A job whose planned outcome the built scene contradicts fails
-  // with both (outcome_mismatch). Throws only for what breaks the process.
-  void run_scene(size_t scene, const std::vector<ResolutionWork>& work);
+  // with both (outcome_mismatch). `planned` is the plan's ScenePlan of the
+  // scene: when it is kept (plan::ScenePlan::kept), its build is used and
+  // completed in place (plan::derive_run_needs) instead of building the
+  // scene again. Throws only for what breaks the process.
+  void run_scene(size_t scene, const std::vector<ResolutionWork>& work,
+                 plan::ScenePlan* planned = nullptr);
 
  private:
   class Impl;

@@ -31,6 +31,7 @@ namespace sb::run {
 
 using config::Experiment;
 using core::write_file_atomically;
+using plan::drop_scene_data;
 using plan::make_plan;
 using plan::Plan;
 using plan::plan_to_json;
@@ -99,7 +100,7 @@ class StoreEvents final : public ParentEvents {
   }
   void scene_planned(const std::string& scene, const std::vector<std::string>& lines,
                      const std::string& bad_input) override {
-    if (!planned_.insert(scene).second) return;  // each child plans its scene again
+    if (!planned_.insert(scene).second) return;  // each child reports its scene again
     for (const auto& l : lines) {
       std::string line = "scene " + scene;
       line += ": ";
@@ -178,8 +179,9 @@ class Runner {
   RunSummary run() {
     // The one plan, made before any GL context and kept beside the records:
     // every job's outcome, cost and shard. Children are forked, so they read
-    // the same PlannedJobs.
-    plan_ = make_plan(e_, o_.shard.count);
+    // the same PlannedJobs, and the scenes the plan built and kept: each
+    // scene is built once in the run, in this process.
+    plan_ = make_plan(e_, o_.shard.count, o_.keep_scene_bytes);
     o_.only.check(plan_);
     {
       const ParentIoSpan io("plan");
@@ -199,6 +201,12 @@ class Runner {
         order.push_back(j.id);
       }
     store_.set_order(order);
+    // Scenes none of those jobs is in (another shard's, or unselected) are
+    // not held for nothing.
+    std::vector<bool> used(plan_.scenes.size(), false);
+    for (const PlannedJob* j : jobs) used[j->scene] = true;
+    for (size_t s = 0; s < used.size(); ++s)
+      if (!used[s]) drop_scene_data(plan_.scenes[s]);
     progress_ = Progress(stderr, !o_.quiet && isatty(fileno(stderr)), jobs.size());
     StoreEvents events(store_, progress_, summary_, o_.quiet, jobs.size());
     report_untrusted_records();
@@ -233,6 +241,7 @@ class Runner {
         if (retime != nullptr) work.back().retime[j.id] = retime;
       }
       if (!work.empty()) run_scene(scene, work, events);
+      drop_scene_data(plan_.scenes[scene]);  // done with: the next scenes' memory
     }
     progress_.clear();
     {
@@ -247,7 +256,7 @@ class Runner {
     if (o_.isolation == Isolation::None) {
       // One GL context for the whole run, made when the first job needs it.
       if (!executor_) executor_ = std::make_unique<JobExecutor>(e_, o_, embree_, events);
-      executor_->run_scene(scene, work);
+      executor_->run_scene(scene, work, &plan_.scenes[scene]);
       return;
     }
     load_child_libraries();
@@ -262,7 +271,8 @@ class Runner {
           pieces.push_back(std::move(piece));
         }
       for (const ResolutionWork& piece : pieces) {
-        const IsolatedOutcome out = run_isolated(e_, o_, embree_, scene, piece, limits_, events);
+        const IsolatedOutcome out =
+            run_isolated(e_, o_, embree_, scene, piece, &plan_.scenes[scene], limits_, events);
         summary_.crashed += out.crashed;
         summary_.timed_out += out.timed_out;
       }

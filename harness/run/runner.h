@@ -16,6 +16,7 @@
 #include "gl/context.h"
 #include "gl/pass_timer.h"
 #include "plan/job_selection.h"
+#include "plan/plan.h"
 #include "plan/shards.h"
 #include "plugin/registry.h"
 #include "record/session_record.h"
@@ -70,6 +71,9 @@ struct RunOptions {
   // `run --retime`: a kept ok job is rendered and timed again in this
   // session, its metrics, images and reference kept from its record.
   bool retime = false;
+  // The plan's builds of the scenes kept for their jobs (plan::make_plan's
+  // keep_bytes); a scene over it is built again to run. Tests lower it.
+  size_t keep_scene_bytes = plan::kRunKeptSceneBytes;
 };
 
 struct RunSummary {
