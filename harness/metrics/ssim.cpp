@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -174,7 +176,21 @@ std::vector<double> detail::ssim_on(SimdPath path, const ImageF& a, const ImageF
   // does not depend on how TBB split the work: [mask * rows + y].
   std::vector<double> row_sum(n * rows, 0.0);
   std::vector<size_t> row_count(n * rows, 0);
-  ssim_rows(path, a, b, k, kR, a.height - kR, x0, x1, [&](int y, const double* row) {
+  // Only the rows where some mask has a pixel (every row when one is null):
+  // a row's values depend on no other row's, and a row with no pixel adds
+  // nothing.
+  std::vector<uint8_t> wanted(rows, 0);
+  for (int y = kR; y < a.height - kR; ++y)
+    for (const auto* mask : masks) {
+      if (mask != nullptr) {
+        const auto row = mask->begin() + static_cast<std::ptrdiff_t>(y) * a.width;
+        if (std::find_if(row + x0, row + x1, [](uint8_t v) { return v != 0; }) == row + x1)
+          continue;
+      }
+      wanted[static_cast<size_t>(y)] = 1;
+      break;
+    }
+  const auto sink = [&](int y, const double* row) {
     for (size_t m = 0; m < n; ++m) {
       const std::vector<uint8_t>* mask = masks[m];
       double sum = 0;
@@ -188,7 +204,17 @@ std::vector<double> detail::ssim_on(SimdPath path, const ImageF& a, const ImageF
       row_sum[m * rows + static_cast<size_t>(y)] = sum;
       row_count[m * rows + static_cast<size_t>(y)] = count;
     }
-  });
+  };
+  for (int y0 = kR; y0 < a.height - kR;) {
+    if (!wanted[static_cast<size_t>(y0)]) {
+      ++y0;
+      continue;
+    }
+    int y1 = y0;
+    while (y1 < a.height - kR && wanted[static_cast<size_t>(y1)]) ++y1;
+    ssim_rows(path, a, b, k, y0, y1, x0, x1, sink);
+    y0 = y1;
+  }
   std::vector<double> out(n);
   for (size_t m = 0; m < n; ++m) {
     double sum = 0;

@@ -70,7 +70,7 @@ void expect_map_within(const ImageF& map, const ImageF& whole, const std::vector
 
 TEST(FlipMapWithin, GivesFlipsBitsAtEveryNeededPixelOnEveryVectorWidth) {
   using detail::SimdPath;
-  // Sizes that are not multiples of a block (128 x 64), a vector or a tile,
+  // Sizes that are not multiples of a block (256 x 128), a vector or a tile,
   // one narrower than a filter, grey and colour.
   const struct { int w, h, channels; } sizes[] = {{300, 137, 3}, {131, 65, 1}, {5, 70, 3}};
   for (const auto& size : sizes) {
