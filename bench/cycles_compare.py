@@ -24,7 +24,9 @@ stretch of a shared machine meets both. Prints each round and the medians.
                   it), so Cycles is asked for less than equal noise.
 
 Needs blender on PATH (Debian 12: `apt-get install blender`, 3.4.1) and a
-build with bench_reference. Usage:
+build with bench_reference. Run it as below, with the system Python of its
+first line: started from a pyenv Python, Blender's own Python found no
+numpy. Usage:
   bench/cycles_compare.py [--build build] [--rounds 3] [--samples 64 256]
 (with 64 among the samples for the equal-samples ratio).
 """
@@ -57,10 +59,11 @@ def cycles(glb, samples, seed, folder):
         ["blender", "-b", "-noaudio", "--python", os.path.join(here, "cycles_sphere_grid.py"),
          "--", glb, str(samples), os.path.join(folder, "cycles.png"), str(seed)],
         check=True, capture_output=True, text=True).stdout
-    m = re.search(r"SHADOWBENCH_CYCLES samples=(\d+) wall_s=([0-9.]+)", out)
+    m = re.search(r"SHADOWBENCH_CYCLES samples=(\d+) wall_s=([0-9.]+) threads=\d+ cpu_s=([0-9.]+)",
+                  out)
     if not m:
         sys.exit("no SHADOWBENCH_CYCLES line in Blender's output:\n" + out[-2000:])
-    return float(m.group(2))
+    return float(m.group(2)), float(m.group(3))
 
 
 def main():
@@ -76,6 +79,7 @@ def main():
     uniform, adaptive, adaptive_noise = [], [], []
     uniform_cpu, adaptive_cpu = [], []
     times = {n: [] for n in args.samples}
+    cpus = {n: [] for n in args.samples}
     for r in range(args.rounds):
         u, a = bench_reference(args.build)
         uniform.append(u["trace_s"])
@@ -86,8 +90,10 @@ def main():
         line = "round %d: uniform 64 spp %.3f s (cpu %.3f), adaptive %.3f s (cpu %.3f, noise %.5f)" % (
             r + 1, uniform[-1], uniform_cpu[-1], adaptive[-1], adaptive_cpu[-1], adaptive_noise[-1])
         for n in args.samples:
-            times[n].append(cycles(glb, n, r, folder))
-            line += ", Cycles %d: %.2f s" % (n, times[n][-1])
+            wall, cpu = cycles(glb, n, r, folder)
+            times[n].append(wall)
+            cpus[n].append(cpu)
+            line += ", Cycles %d: %.2f s (cpu %.2f)" % (n, wall, cpu)
         print(line, flush=True)
 
     med = statistics.median
@@ -96,21 +102,24 @@ def main():
     print("  adaptive         %.3f s wall, %.3f s cpu, penumbra noise %.5f" % (
         med(adaptive), med(adaptive_cpu), med(adaptive_noise)))
     for n in args.samples:
-        print("  Cycles %4d      %.2f s" % (n, med(times[n])))
+        print("  Cycles %4d      %.2f s wall, %.2f s cpu" % (n, med(times[n]), med(cpus[n])))
     if 64 in times:
-        print("equal samples (64): Cycles %.1fx the uniform reference's time" % (
-            med(times[64]) / med(uniform)))
+        print("equal samples (64): Cycles %.1fx the uniform reference's time (%.1fx its cpu)" % (
+            med(times[64]) / med(uniform), med(cpus[64]) / med(uniform_cpu)))
     noise = med(adaptive_noise)
     n_eq = 64.0 * (CYCLES_NOISE_64 / noise) ** (1.0 / CYCLES_NOISE_EXPONENT)
     counts = sorted(args.samples)
-    if len(counts) >= 2:
-        lo, hi = counts[0], counts[-1]
-        slope = (med(times[hi]) - med(times[lo])) / (hi - lo)
-        t_eq = med(times[lo]) + slope * (n_eq - lo)
-    else:
-        t_eq = med(times[counts[0]]) * n_eq / counts[0]
+
+    def at_equal_noise(t):
+        if len(counts) >= 2:
+            lo, hi = counts[0], counts[-1]
+            return med(t[lo]) + (med(t[hi]) - med(t[lo])) / (hi - lo) * (n_eq - lo)
+        return med(t[counts[0]]) * n_eq / counts[0]
+
+    t_eq, c_eq = at_equal_noise(times), at_equal_noise(cpus)
     print("equal noise (%.5f): Cycles needs about %.0f samples, about %.0f s: %.0fx the adaptive "
-          "reference's time" % (noise, n_eq, t_eq, t_eq / med(adaptive)))
+          "reference's time (%.0f cpu s: %.0fx its cpu)" % (
+              noise, n_eq, t_eq, t_eq / med(adaptive), c_eq, c_eq / med(adaptive_cpu)))
 
 
 if __name__ == "__main__":
