@@ -5,6 +5,10 @@
 // BM_RobustOverFast is the cost of Embree's robust mode (embree_scene.h):
 //   build/bench/bench_reference --benchmark_filter=Robust --benchmark_repetitions=5
 //
+// cpu_s is the process's CPU time (user + system, all threads) per
+// reference: on a machine shared with other work it moves less than the
+// wall time (trace_s), which counts the time other processes ran.
+//
 // BM_AdaptiveAtUniformNoise is the adaptive reference (reference.adaptive,
 // 4-, 16- and 64-sample pilots, up to 1024) with its target set to the largest standard
 // error of the uniform 1024-spp reference (computed once, untimed): the same
@@ -43,17 +47,28 @@ double max_std_error(const sb::reference::Result& r) {
   return double(most);
 }
 
+// The process's user + system time, all threads: on a shared machine it
+// counts only the time this process ran, unlike wall time.
+double process_cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  const auto seconds = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
+  return seconds(u.ru_utime) + seconds(u.ru_stime);
+}
+
 // Seconds per uniform 1024-spp reference, from BM_Reference when it ran.
 double uniform_1024_seconds = 0;
 
 void BM_Reference(benchmark::State& state) {
   const sb::bench::SceneWorkload& w = workload();
   const sb::reference::Settings settings{int(state.range(0)), 1};
-  double traced = 0;
+  double traced = 0, cpu = 0;
   sb::reference::Result last;
   for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
+    const double cpu0 = process_cpu_seconds();
     sb::reference::Result r =
         sb::reference::compute(w.scene, w.gbuffer.positions, w.gbuffer.normals, settings);
+    cpu += process_cpu_seconds() - cpu0;
     benchmark::DoNotOptimize(r.visibility.data.data());
     traced += r.seconds;
     last = std::move(r);
@@ -62,6 +77,7 @@ void BM_Reference(benchmark::State& state) {
   state.counters["Mrays/s"] =
       benchmark::Counter(rays * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["trace_s"] = traced / double(state.iterations());
+  state.counters["cpu_s"] = cpu / double(state.iterations());
   state.counters["max_std_error"] = max_std_error(last);
   state.counters["penumbra_rms_std_error"] = last.penumbra_rms_std_error;
   if (settings.spp == 1024) uniform_1024_seconds = traced / double(state.iterations());
@@ -85,10 +101,12 @@ void BM_AdaptiveAtUniformNoise(benchmark::State& state) {
   settings.adaptive = true;
   settings.pilot_spp = int(state.range(0));
   settings.target_std_error = target;
-  double traced = 0, worst = 0, mean_spp = 0, rms = 0;
+  double traced = 0, cpu = 0, worst = 0, mean_spp = 0, rms = 0;
   for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
+    const double cpu0 = process_cpu_seconds();
     const sb::reference::Result r =
         sb::reference::compute(w.scene, w.gbuffer.positions, w.gbuffer.normals, settings);
+    cpu += process_cpu_seconds() - cpu0;
     benchmark::DoNotOptimize(r.visibility.data.data());
     traced += r.seconds;
     worst = max_std_error(r);
@@ -97,6 +115,7 @@ void BM_AdaptiveAtUniformNoise(benchmark::State& state) {
   }
   const double seconds = traced / double(state.iterations());
   state.counters["trace_s"] = seconds;
+  state.counters["cpu_s"] = cpu / double(state.iterations());
   state.counters["target_std_error"] = target;
   state.counters["max_std_error"] = worst;
   state.counters["penumbra_rms_std_error"] = rms;
@@ -125,15 +144,6 @@ struct TracedImage {
   double seconds = 0;             // wall time
   double cpu_seconds = 0;         // user + system time of all threads
 };
-
-// The process's user + system time, all threads: on a shared machine it
-// counts only the time this process ran, unlike wall time.
-double process_cpu_seconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  const auto seconds = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
-  return seconds(u.ru_utime) + seconds(u.ru_stime);
-}
 
 TracedImage trace_with(const sb::bench::SceneWorkload& w, sb::reference::detail::Device& device,
                        sb::reference::detail::Traversal traversal, int spp) {

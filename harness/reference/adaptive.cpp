@@ -173,8 +173,11 @@ AdaptiveImages trace_adaptive(const RaySetup& setup, Strata strata, int pilot_sp
 
   const ImageF& positions = setup.positions;
   const int width = positions.width, height = positions.height;
-  AdaptiveImages out{ImageF(width, height, 1, 1.0f), ImageF(width, height, 1, 0.0f),
-                     ImageF(width, height, 1, 0.0f), ImageF(width, height, 1, 0.0f)};
+  AdaptiveImages out{ImageF(width, height, 1, 1.0f),
+                     ImageF(width, height, 1, 0.0f),
+                     ImageF(width, height, 1, 0.0f),
+                     ImageF(width, height, 1, 0.0f),
+                     {}};
   const size_t pixels = positions.pixel_count();
   std::vector<Pilot> pilot(pixels, Pilot::None);
   // The level each pixel's estimate takes; -1: it stops at its pilot.
@@ -287,6 +290,9 @@ AdaptiveImages trace_adaptive(const RaySetup& setup, Strata strata, int pilot_sp
     }
     work.swap(next);
   }
+  out.settled.assign(pixels, Settled::Unknown);
+  for (size_t pix = 0; pix < pixels; ++pix)
+    if (proven[pix]) out.settled[pix] = Settled::Proven;
   return out;
 }
 

@@ -52,8 +52,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
+#include "reference/settled.h"
 #include "reference/stratify.h"
 
 namespace sb::reference {
@@ -79,6 +81,8 @@ struct AdaptiveImages {
   // Light samples traced per pixel, pilot included (0 off the surfaces): at
   // most spp + pilot_spp.
   core::ImageF samples;
+  // Per pixel: Settled::Proven where the pilot's proof held (settled.h).
+  std::vector<Settled> settled;
 };
 
 // Pixels stopped at their pilot without a proof (the window rule), as the

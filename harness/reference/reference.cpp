@@ -1,7 +1,6 @@
 #include "reference/reference.h"
 
 #include <tbb/blocked_range.h>
-#include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -22,7 +21,9 @@
 #include "reference/key_lock.h"
 #include "reference/method.h"
 #include "reference/pixel_rays.h"
+#include "reference/settled.h"
 #include "reference/stratify.h"
+#include "reference/uniform_trace.h"
 #include "scenes/topology.h"
 
 namespace sb::reference {
@@ -43,6 +44,7 @@ using detail::embree_config_of;
 using detail::FlatScene;
 using detail::FtzDazScope;
 using detail::method_of;
+using detail::Settled;
 
 void check_inputs(const ImageF& positions, const ImageF& normals, const Settings& s) {
   if (s.spp < 1 || s.spp > kMaxSpp)
@@ -127,41 +129,6 @@ detail::Strata strata_of(const AreaLight& light) {
   return light.width() > 0.0f ? detail::Strata::AlongS : detail::Strata::AlongT;
 }
 
-// Every covered pixel's spp samples, in trace order (4×4 blocks of strata,
-// one packet each; stratify.h).
-void trace(const detail::RaySetup& setup, Result& r) {
-  const detail::Layout& layout = setup.layout;
-  const ImageF& positions = setup.positions;
-  const int width = positions.width;
-  const size_t spp = size_t(layout.spp);
-  std::vector<uint32_t> all(spp);
-  for (size_t i = 0; i < spp; ++i) all[i] = uint32_t(i);
-  const float stop_bound = float(detail::stop_rms_bound(layout.spp));
-
-  tbb::parallel_for(tbb::blocked_range2d<int>(0, positions.height, 8, 0, width, 8),
-                    [&](const tbb::blocked_range2d<int>& tile) {
-                      FtzDazScope ftz;
-                      detail::PixelRays rays(setup);
-                      std::vector<uint8_t> reached(spp), visible(spp);
-                      for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
-                        for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-                          const size_t pix = size_t(y) * size_t(width) + size_t(x);
-                          if (!covered(positions, pix)) continue;  // V = 1, error 0 preset
-                          rays.start(pix);
-                          rays.trace(all.data(), spp, reached.data());
-                          size_t count = 0;
-                          for (size_t i = 0; i < spp; ++i) {
-                            visible[layout.order[i].cell] = reached[i];
-                            count += reached[i];
-                          }
-                          r.visibility.data[pix] = float(double(count) / double(spp));
-                          r.std_error.data[pix] =
-                              float(detail::standard_error(visible.data(), layout));
-                          if (count == 0 || count == spp) r.stop_bound.data[pix] = stop_bound;
-                        }
-                    });
-}
-
 // What the cache file of `key` must say to be the reference `s` asks for.
 detail::CacheFileExpectation cache_expectation(const std::string& key, const ImageF& positions,
                                                const Settings& s) {
@@ -201,9 +168,10 @@ bool proofs_hold(const Scene& scene) {
 
 // Result::penumbra of a Monte Carlo estimate (reference.h): a soft estimate
 // proves a pixel soft; one whose samples all agreed asks `exact` (null: the
-// scene has no exact form, and the soft estimates are the region).
+// scene has no exact form, and the soft estimates are the region), unless
+// tracing settled it (settled.h; empty: nothing settled).
 void find_penumbra(const ImageF& positions, const ImageF& normals, const ExactVisibility* exact,
-                   Result& r) {
+                   const std::vector<Settled>& settled, Result& r) {
   const size_t n = positions.pixel_count();
   r.penumbra.assign(n, 0);
   r.penumbra_source = exact != nullptr ? kPenumbraExact : kPenumbraSampled;
@@ -214,12 +182,18 @@ void find_penumbra(const ImageF& positions, const ImageF& normals, const ExactVi
           const float v = r.visibility.data[i];
           if (v > 0.0f && v < 1.0f) {
             r.penumbra[i] = 1;
-          } else if (exact != nullptr) {
-            const float* p = &positions.data[i * 4];
-            const float* q = &normals.data[i * size_t(normals.channels)];
-            r.penumbra[i] =
-                exact->partly_lit(glm::dvec3(p[0], p[1], p[2]), glm::dvec3(q[0], q[1], q[2])) ? 1
-                                                                                              : 0;
+            continue;
+          }
+          const Settled known = settled.empty() ? Settled::Unknown : settled[i];
+          if (exact == nullptr || known == Settled::Proven) continue;
+          const float* p = &positions.data[i * 4];
+          const float* q = &normals.data[i * size_t(normals.channels)];
+          const glm::dvec3 point(p[0], p[1], p[2]), normal(q[0], q[1], q[2]);
+          if (known == Settled::Unknown) {
+            r.penumbra[i] = exact->partly_lit(point, normal) ? 1 : 0;
+          } else {  // partly_lit without the proofs, which cannot hold here
+            const double exact_v = exact->visibility(point, normal);
+            r.penumbra[i] = exact_v > kPartlyLitMargin && exact_v < 1.0 - kPartlyLitMargin ? 1 : 0;
           }
         }
       });
@@ -283,6 +257,7 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
 
   const auto t0 = std::chrono::steady_clock::now();
   std::optional<ExactVisibility> exact;
+  std::vector<detail::Settled> settled;
   {
     Device device(r.isa);
     FlatScene casters(
@@ -295,25 +270,30 @@ Result compute(const Scene& scene, const ImageF& positions, const ImageF& geomet
     const detail::Strata strata = strata_of(scene.light);
     const detail::Layout layout = detail::make_layout(s.spp, strata);
     const detail::RaySetup setup(scene, casters, layout, positions, geometric_normals, s.seed);
+    // The proofs that agreeing samples missed nothing; the one for occluded
+    // samples needs to know which casters are closed.
+    const ExactVisibility* whole_light = proofs_hold(scene) && exact ? &*exact : nullptr;
     if (s.adaptive) {
-      // The proofs that an agreeing pilot missed nothing; the one for
-      // occluded pilots needs to know which casters are closed.
-      const ExactVisibility* whole_light = proofs_hold(scene) && exact ? &*exact : nullptr;
       detail::AdaptiveImages a =
           detail::trace_adaptive(setup, strata, s.pilot_spp, s.target_std_error, whole_light);
       r.visibility = std::move(a.visibility);
       r.std_error = std::move(a.std_error);
       r.stop_bound = std::move(a.stop_bound);
       r.samples = std::move(a.samples);
+      settled = std::move(a.settled);
       r.method = kAdaptiveMethod;
     } else {
-      trace(setup, r);
+      detail::UniformImages u = detail::trace_uniform(setup, whole_light);
+      r.visibility = std::move(u.visibility);
+      r.std_error = std::move(u.std_error);
+      r.stop_bound = std::move(u.stop_bound);
+      settled = std::move(u.settled);
       r.samples = uniform_samples(positions, s.spp);
     }
     device.check("rtcOccluded16");
   }
   find_penumbra(positions, geometric_normals,
-                exact && exact->unsupported().empty() ? &*exact : nullptr, r);
+                exact && exact->unsupported().empty() ? &*exact : nullptr, settled, r);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   summarise(r, positions, s);
   return r;

@@ -94,18 +94,22 @@ namespace {
 // collapsed-strata sum of that grouping, times N² the variance.
 double line_groups(const uint8_t* visible, int first, int step, int count, int offset) {
   if (count < 2) return 0.0;
-  std::vector<int> bounds = {0};
-  for (int b = offset == 0 ? 2 : 1; b < count; b += 2) bounds.push_back(b);
-  bounds.push_back(count);
-  if (bounds.size() > 2 && bounds[1] - bounds[0] == 1) bounds.erase(bounds.begin() + 1);
-  if (bounds.size() > 2 && bounds[bounds.size() - 1] - bounds[bounds.size() - 2] == 1)
-    bounds.erase(bounds.end() - 2);
+  // The groups' bounds: 0, then every second cell from offset == 0 ? 2 : 1,
+  // then count; a group of one cell at either end joins its neighbour.
+  // Walked in place (no list: this runs for every traced pixel).
+  int lo = 0;
+  int next = offset == 0 ? 2 : 1;
+  if (next == 1 && next < count) next = 3;  // the leading single cell joins the first pair
   double sum = 0.0;
-  for (size_t g = 0; g + 1 < bounds.size(); ++g) {
-    const int size = bounds[g + 1] - bounds[g];
+  while (lo < count) {
+    int hi = next < count ? next : count;
+    if (hi < count && count - hi == 1) hi = count;  // the trailing single cell joins the last
+    const int size = hi - lo;
     int m = 0;
-    for (int i = bounds[g]; i < bounds[g + 1]; ++i) m += visible[first + i * step];
+    for (int i = lo; i < hi; ++i) m += visible[first + i * step];
     sum += double(m) * double(size - m) / double(size - 1);
+    lo = hi;
+    next = hi + 2;
   }
   return sum;
 }
