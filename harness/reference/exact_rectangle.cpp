@@ -191,17 +191,42 @@ void ExactVisibility::collect_polygons(const glm::dvec3& surface, const glm::dve
   // in the pyramid, so every triangle it can cross is visited.
   const glm::dvec3 to_centre = f.centre - p;
   PartCrossings crossings(p, to_centre);
+  // The pyramid's bounding box: a box outside it cannot meet the pyramid,
+  // nor the segment inside it, and its cheaper test comes first.
+  glm::dvec3 reach_lo = p, reach_hi = p;
+  for (const glm::dvec3& corner : corners) {
+    reach_lo = glm::min(reach_lo, corner);
+    reach_hi = glm::max(reach_hi, corner);
+  }
   casters_.traverse(
-      [&](const glm::dvec3& lo, const glm::dvec3& hi) { return detail::box_meets(lo, hi, planes); },
+      [&](const glm::dvec3& lo, const glm::dvec3& hi) {
+        return lo.x <= reach_hi.x && lo.y <= reach_hi.y && lo.z <= reach_hi.z &&
+               reach_lo.x <= hi.x && reach_lo.y <= hi.y && reach_lo.z <= hi.z &&
+               detail::box_meets(lo, hi, planes);
+      },
       [&](const CasterTriangle& t) {
         const glm::dvec3& normal = t.normal;
         const double facing = glm::dot(normal, p - t.a);
         if (t.part != kNoPart) crossings.add(t.part, t.outward, t.a, t.b, t.c, normal);
-        if (std::fabs(facing) <= on_plane * glm::length(normal)) return;
         if (double(t.outward) * facing < 0.0) return;  // a closed caster's far side
+        if (std::fabs(facing) <= on_plane * glm::length(normal)) return;
         if (glm::dot(n, t.a - surface) < 0.0 && glm::dot(n, t.b - surface) < 0.0 &&
             glm::dot(n, t.c - surface) < 0.0)
           return;  // below the tangent plane: inside the horizon polygon
+        // Wholly outside one plane: nothing; inside all: the triangle itself,
+        // as clipping would leave them.
+        bool inside = true;
+        for (const Plane* plane : cuts) {
+          const double da = plane->distance(t.a), db = plane->distance(t.b),
+                       dc = plane->distance(t.c);
+          if (da < 0.0 && db < 0.0 && dc < 0.0) return;
+          inside = inside && da >= 0.0 && db >= 0.0 && dc >= 0.0;
+        }
+        if (inside) {
+          const std::array<glm::dvec3, 3> whole{t.a, t.b, t.c};
+          add(whole.data(), 3, true);
+          return;
+        }
         // Clipped on two buffers: a plane adds at most one corner to a convex
         // polygon, so 3 + 6 in all; one made a little concave by rounding
         // may gain more, and takes the allocating path when the buffers

@@ -87,25 +87,17 @@ glm::dvec3 ExactVisibility::viewpoint(const glm::dvec3& surface, const glm::dvec
 double ExactVisibility::visibility(const glm::dvec3& p, const glm::dvec3& n) const {
   if (light_.is_sun()) return sun_visibility(p, n);
   if (light_.is_segment()) return std::clamp(1.0 - union_length(hidden_intervals(p, n)), 0.0, 1.0);
-  return rectangle_visibility(p, n, viewpoint(p, n), /*prove_umbra=*/true);
+  return rectangle_visibility(p, n, viewpoint(p, n));
 }
 
 double ExactVisibility::rectangle_visibility(const glm::dvec3& surface, const glm::dvec3& n,
-                                             const glm::dvec3& origin, bool prove_umbra) const {
+                                             const glm::dvec3& origin) const {
   const detail::Frame f(light_);
   const auto corners = f.corners();
   // All of the light on or below the tangent plane: the horizon polygon is
   // the light, and the union would be too.
   if (std::all_of(corners.begin(), corners.end(),
                   [&](const glm::dvec3& c) { return glm::dot(n, c - surface) <= 0.0; }))
-    return 0.0;
-  // An umbra point, proved without the union, which costs most there. Only
-  // where all of the light lies above origin's plane: the proof's own
-  // horizon is that plane, not the tangent plane.
-  if (prove_umbra &&
-      std::all_of(corners.begin(), corners.end(),
-                  [&](const glm::dvec3& c) { return glm::dot(n, c - origin) > 0.0; }) &&
-      hides_whole_light(surface, origin, n))
     return 0.0;
   thread_local FlatPolygons polygons;
   collect_polygons(surface, n, origin, polygons);
@@ -117,7 +109,7 @@ bool ExactVisibility::partly_lit(const glm::dvec3& p, const glm::dvec3& n) const
   if (!light_.is_segment() && !light_.is_point() && !light_.is_sun()) {
     const glm::dvec3 origin = viewpoint(p, n);
     if (sees_whole_light(p, origin, n) || hides_whole_light(p, origin, n)) return false;
-    const double v = rectangle_visibility(p, n, origin, /*prove_umbra=*/false);
+    const double v = rectangle_visibility(p, n, origin);
     return v > kPartlyLitMargin && v < 1.0 - kPartlyLitMargin;
   }
   const double v = visibility(p, n);

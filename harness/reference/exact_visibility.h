@@ -213,10 +213,8 @@ class ExactVisibility {
   static double union_area(const FlatPolygons& polygons, double half_width, double half_height);
 
   // A rectangle's V at surface, seen from origin (viewpoint(surface, n)).
-  // With `prove_umbra`, hides_whole_light() first: where it holds, V is 0
-  // without the union (whose rounding would leave under 1e-8 of the light).
   double rectangle_visibility(const glm::dvec3& surface, const glm::dvec3& n,
-                              const glm::dvec3& origin, bool prove_umbra) const;
+                              const glm::dvec3& origin) const;
 
   // The sun's V at p (sun_occluding_polygons, union_disk_area).
   double sun_visibility(const glm::dvec3& p, const glm::dvec3& n) const;
