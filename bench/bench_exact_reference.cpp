@@ -9,15 +9,24 @@
 // 256 spp; and the sphere grid under a linear light (its light 2 × 0): the
 // exact reference, and Monte Carlo stratified along the segment against
 // square cells on the same segment, with their error against the exact one.
+//
+// BM_ExactOverMonteCarlo is the exact reference's time over the 256-spp
+// Monte Carlo reference's (issue 65: at most 1), on the sphere grid and on
+// 1 and 16 jeeps, the two taking turns in one process (the order swaps
+// every iteration), so that a loaded machine slows both alike:
+//   build/bench/bench_exact_reference --benchmark_filter=Over --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
 // Boost 1.74's rescaling of coordinates before an overlay reads an
 // uninitialised factor (GCC 12 and clang-tidy both say so); without it the
 // overlay works in the input's doubles.
 #define BOOST_GEOMETRY_NO_ROBUSTNESS
+#include <sys/resource.h>
+
 #include <boost/geometry.hpp>
 #include <boost/geometry/geometries/point_xy.hpp>
 #include <boost/geometry/geometries/polygon.hpp>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <vector>
@@ -33,54 +42,55 @@ using BoostPolygon = bg::model::polygon<BoostPoint, /*clockwise=*/false>;
 using BoostMulti = bg::model::multi_polygon<BoostPolygon>;
 using Polygons = std::vector<std::vector<glm::dvec2>>;
 
-struct Workload {
-  sb::bench::SceneWorkload grid;
-  // The occluding polygons of every 7th penumbra pixel (of the Monte Carlo
-  // reference at 64 spp), for the union benchmarks.
-  std::vector<Polygons> penumbra_sets;
-};
+const sb::bench::SceneWorkload& grid() {
+  static const sb::bench::SceneWorkload w = sb::bench::default_sphere_grid();
+  return w;
+}
 
-const Workload& workload() {
-  static const Workload w = [] {
-    Workload out{sb::bench::default_sphere_grid(), {}};
-    const sb::reference::GBuffer& g = out.grid.gbuffer;
+// The occluding polygons of every 7th penumbra pixel of the sphere grid (of
+// the Monte Carlo reference at 64 spp), for the union benchmarks.
+const std::vector<Polygons>& penumbra_sets() {
+  static const std::vector<Polygons> sets = [] {
+    std::vector<Polygons> out;
+    const sb::bench::SceneWorkload& w = grid();
+    const sb::reference::GBuffer& g = w.gbuffer;
     const sb::reference::Result mc =
-        sb::reference::compute(out.grid.scene, g.positions, g.normals, {64, 1});
-    const sb::reference::ExactVisibility exact(out.grid.scene);
+        sb::reference::compute(w.scene, g.positions, g.normals, {64, 1});
+    const sb::reference::ExactVisibility exact(w.scene);
     size_t penumbra = 0;
     for (size_t i = 0; i < g.positions.pixel_count(); ++i) {
       const float* p = &g.positions.data[i * 4];
       const float v = mc.visibility.data[i];
       if (!(p[3] > 0.5f) || v <= 0.0f || v >= 1.0f || penumbra++ % 7 != 0) continue;
       const float* n = &g.normals.data[i * size_t(g.normals.channels)];
-      out.penumbra_sets.push_back(
+      out.push_back(
           exact.occluding_polygons(glm::dvec3(p[0], p[1], p[2]), glm::dvec3(n[0], n[1], n[2])));
     }
     return out;
   }();
-  return w;
+  return sets;
 }
 
 // As the harness computes it: BVH build, closedness, the whole image.
 void BM_ExactReference(benchmark::State& state) {
-  const Workload& w = workload();
+  const sb::bench::SceneWorkload& w = grid();
   sb::reference::Settings settings;
   settings.exact = true;
   for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
-    const sb::reference::Result r = sb::reference::compute(w.grid.scene, w.grid.gbuffer.positions,
-                                                           w.grid.gbuffer.normals, settings);
+    const sb::reference::Result r =
+        sb::reference::compute(w.scene, w.gbuffer.positions, w.gbuffer.normals, settings);
     benchmark::DoNotOptimize(r.visibility.data.data());
   }
-  state.counters["covered_px"] = double(w.grid.covered);
+  state.counters["covered_px"] = double(w.covered);
 }
 BENCHMARK(BM_ExactReference)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_MonteCarloReference(benchmark::State& state) {
-  const Workload& w = workload();
+  const sb::bench::SceneWorkload& w = grid();
   const sb::reference::Settings settings{int(state.range(0)), 1};
   for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
-    const sb::reference::Result r = sb::reference::compute(w.grid.scene, w.grid.gbuffer.positions,
-                                                           w.grid.gbuffer.normals, settings);
+    const sb::reference::Result r =
+        sb::reference::compute(w.scene, w.gbuffer.positions, w.gbuffer.normals, settings);
     benchmark::DoNotOptimize(r.visibility.data.data());
   }
 }
@@ -135,6 +145,59 @@ BENCHMARK(BM_MonteCarloReferenceJeeps)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+// The process's user + system time, all threads: on a shared machine it
+// counts only the time this process ran, unlike wall time.
+double process_cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  const auto seconds = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
+  return seconds(u.ru_utime) + seconds(u.ru_stime);
+}
+
+// Argument: 0 for the sphere grid, else that many jeeps. Time: the exact
+// reference's (manual). Counters: exact_s and mc256_s, each's wall time
+// per iteration; exact_over_mc256, their ratio of total wall times, and
+// exact_over_mc256_cpu, of total process CPU times.
+void BM_ExactOverMonteCarlo(benchmark::State& state) {
+  const int count = int(state.range(0));
+  const sb::bench::SceneWorkload& w = count == 0 ? grid() : jeeps(count);
+  sb::reference::Settings exact;
+  exact.exact = true;
+  const sb::reference::Settings mc{256, 1};
+  double wall[2] = {0.0, 0.0}, cpu[2] = {0.0, 0.0};
+  bool exact_first = true;
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
+    double exact_wall = 0.0;
+    for (const int which : {exact_first ? 0 : 1, exact_first ? 1 : 0}) {
+      const double cpu0 = process_cpu_seconds();
+      const auto t0 = std::chrono::steady_clock::now();
+      const sb::reference::Result r = sb::reference::compute(
+          w.scene, w.gbuffer.positions, w.gbuffer.normals, which == 0 ? exact : mc);
+      benchmark::DoNotOptimize(r.visibility.data.data());
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      wall[which] += seconds;
+      cpu[which] += process_cpu_seconds() - cpu0;
+      if (which == 0) exact_wall = seconds;
+    }
+    state.SetIterationTime(exact_wall);
+    exact_first = !exact_first;
+  }
+  const double iterations = double(state.iterations());
+  state.counters["exact_s"] = wall[0] / iterations;
+  state.counters["mc256_s"] = wall[1] / iterations;
+  state.counters["exact_over_mc256"] = wall[1] > 0.0 ? wall[0] / wall[1] : 0.0;
+  state.counters["exact_over_mc256_cpu"] = cpu[1] > 0.0 ? cpu[0] / cpu[1] : 0.0;
+  state.counters["covered_px"] = double(w.covered);
+}
+BENCHMARK(BM_ExactOverMonteCarlo)
+    ->ArgName("jeeps")
+    ->Arg(0)
+    ->Arg(1)
+    ->Arg(16)
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime();
+
 // The default sphere grid's light is 2×2: half sizes 1.
 double clipper_union_area(const Polygons& set) {
   return sb::reference::ExactVisibility::union_area(set, 1.0, 1.0);
@@ -154,33 +217,33 @@ double boost_union_area(const Polygons& set) {
 }
 
 void BM_UnionClipper(benchmark::State& state) {
-  const Workload& w = workload();
+  const std::vector<Polygons>& sets = penumbra_sets();
   for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
     double sum = 0.0;
-    for (const Polygons& set : w.penumbra_sets) sum += clipper_union_area(set);
+    for (const Polygons& set : sets) sum += clipper_union_area(set);
     benchmark::DoNotOptimize(sum);
   }
-  state.counters["sets"] = double(w.penumbra_sets.size());
+  state.counters["sets"] = double(sets.size());
 }
 BENCHMARK(BM_UnionClipper)->Unit(benchmark::kMillisecond);
 
 void BM_UnionBoostGeometry(benchmark::State& state) {
-  const Workload& w = workload();
+  const std::vector<Polygons>& sets = penumbra_sets();
   double worst = 0.0;
   for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
     double sum = 0.0;
-    for (const Polygons& set : w.penumbra_sets) sum += boost_union_area(set);
+    for (const Polygons& set : sets) sum += boost_union_area(set);
     benchmark::DoNotOptimize(sum);
   }
   // How far the two libraries' areas lie apart (as a fraction of the 2×2
   // light's area 4), and on how many sets by more than 1e-6.
   double differ = 0.0;
-  for (const Polygons& set : w.penumbra_sets) {
+  for (const Polygons& set : sets) {
     const double d = std::abs(boost_union_area(set) - clipper_union_area(set)) / 4.0;
     worst = std::max(worst, d);
     differ += d > 1e-6;
   }
-  state.counters["sets"] = double(w.penumbra_sets.size());
+  state.counters["sets"] = double(sets.size());
   state.counters["sets_differing"] = differ;
   state.counters["max_area_difference"] = worst;
 }

@@ -3,6 +3,7 @@
 // double precision, with what closed_parts.h finds about them, in a
 // bounding-volume hierarchy that queries walk by culling its boxes.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <type_traits>
@@ -59,16 +60,17 @@ class CasterBvh {
 template <typename Keep, typename Visit>
 bool CasterBvh::traverse(const Keep& keep, const Visit& visit) const {
   if (nodes_.empty()) return true;
-  // One per thread, kept: a walk per pixel would otherwise allocate.
-  thread_local std::vector<uint32_t> stack;
-  stack.assign(1, 0);
-  while (!stack.empty()) {
-    const Node& node = nodes_[stack.back()];
-    stack.pop_back();
+  // The median split halves every node, so the depth is at most 32 and
+  // the stack, one deeper per level, never holds more than 33.
+  std::array<uint32_t, 64> stack;
+  size_t size = 1;
+  stack[0] = 0;
+  while (size > 0) {
+    const Node& node = nodes_[stack[--size]];
     if (!keep(node.lo, node.hi)) continue;
     if (node.count == 0) {
-      stack.push_back(node.left);
-      stack.push_back(node.right);
+      stack[size++] = node.left;
+      stack[size++] = node.right;
       continue;
     }
     for (uint32_t i = node.first; i < node.first + node.count; ++i) {

@@ -87,9 +87,21 @@ glm::dvec3 ExactVisibility::viewpoint(const glm::dvec3& surface, const glm::dvec
 double ExactVisibility::visibility(const glm::dvec3& p, const glm::dvec3& n) const {
   if (light_.is_sun()) return sun_visibility(p, n);
   if (light_.is_segment()) return std::clamp(1.0 - union_length(hidden_intervals(p, n)), 0.0, 1.0);
+  return rectangle_visibility(p, n, viewpoint(p, n));
+}
+
+double ExactVisibility::rectangle_visibility(const glm::dvec3& surface, const glm::dvec3& n,
+                                             const glm::dvec3& origin) const {
   const detail::Frame f(light_);
-  const auto polygons = occluding_polygons(p, n);
-  if (polygons.empty()) return 1.0;
+  const auto corners = f.corners();
+  // All of the light on or below the tangent plane: the horizon polygon is
+  // the light, and the union would be too.
+  if (std::all_of(corners.begin(), corners.end(),
+                  [&](const glm::dvec3& c) { return glm::dot(n, c - surface) <= 0.0; }))
+    return 0.0;
+  thread_local FlatPolygons polygons;
+  collect_polygons(surface, n, origin, polygons);
+  if (polygons.ends.empty()) return 1.0;
   return std::clamp(1.0 - union_area(polygons, f.hw, f.hh) / (4.0 * f.hw * f.hh), 0.0, 1.0);
 }
 
@@ -97,6 +109,8 @@ bool ExactVisibility::partly_lit(const glm::dvec3& p, const glm::dvec3& n) const
   if (!light_.is_segment() && !light_.is_point() && !light_.is_sun()) {
     const glm::dvec3 origin = viewpoint(p, n);
     if (sees_whole_light(p, origin, n) || hides_whole_light(p, origin, n)) return false;
+    const double v = rectangle_visibility(p, n, origin);
+    return v > kPartlyLitMargin && v < 1.0 - kPartlyLitMargin;
   }
   const double v = visibility(p, n);
   return v > kPartlyLitMargin && v < 1.0 - kPartlyLitMargin;

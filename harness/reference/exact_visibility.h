@@ -165,6 +165,18 @@ class ExactVisibility {
   static double union_area(const std::vector<std::vector<glm::dvec2>>& polygons, double half_width,
                            double half_height);
 
+  // Polygons in one buffer: polygon i's corners are corners[ends[i - 1]
+  // (0 for i = 0), ends[i]). What a pixel's polygons go into, reused, so
+  // that a pixel allocates nothing once its thread's buffers have grown.
+  struct FlatPolygons {
+    std::vector<glm::dvec2> corners;
+    std::vector<uint32_t> ends;
+    void clear() {
+      corners.clear();
+      ends.clear();
+    }
+  };
+
   // Every covered pixel of a G-buffer (positions.w > 0.5; normals: RGB),
   // in parallel over rows; background pixels get 1.
   core::ImageF image(const core::ImageF& positions, const core::ImageF& normals) const;
@@ -193,6 +205,16 @@ class ExactVisibility {
  private:
   // The offset viewpoint p + eps·n (see above).
   glm::dvec3 viewpoint(const glm::dvec3& surface, const glm::dvec3& n) const;
+
+  // occluding_polygons() into `out`, the occluders seen from `origin`
+  // (viewpoint(surface, n)).
+  void collect_polygons(const glm::dvec3& surface, const glm::dvec3& n, const glm::dvec3& origin,
+                        FlatPolygons& out) const;
+  static double union_area(const FlatPolygons& polygons, double half_width, double half_height);
+
+  // A rectangle's V at surface, seen from origin (viewpoint(surface, n)).
+  double rectangle_visibility(const glm::dvec3& surface, const glm::dvec3& n,
+                              const glm::dvec3& origin) const;
 
   // The sun's V at p (sun_occluding_polygons, union_disk_area).
   double sun_visibility(const glm::dvec3& p, const glm::dvec3& n) const;

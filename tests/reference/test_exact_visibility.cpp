@@ -216,6 +216,32 @@ TEST(ReferenceExact, APointInsideAClosedCasterIsInItsUmbraAsEveryShadowRayIs) {
   EXPECT_EQ(exact.visibility({0.1, 1.0, 0.2}, {0, 1, 0}), 1.0);
 }
 
+// The union drops the edges that two polygons run along in opposite
+// directions before Clipper sees them: triangles tiling a ring (sharing
+// edges, around a hole) cover the ring's area, and two overlapping squares
+// their union's, by inclusion and exclusion.
+TEST(ReferenceExact, TheUnionOfTrianglesTilingARingIsTheRingsArea) {
+  const std::vector<glm::dvec2> outer{{-0.8, -0.8}, {0.8, -0.8}, {0.8, 0.8}, {-0.8, 0.8}};
+  const std::vector<glm::dvec2> inner{{-0.3, -0.3}, {0.3, -0.3}, {0.3, 0.3}, {-0.3, 0.3}};
+  std::vector<std::vector<glm::dvec2>> ring;
+  for (size_t i = 0; i < 4; ++i) {
+    const size_t j = (i + 1) % 4;
+    ring.push_back({outer[i], outer[j], inner[j]});
+    ring.push_back({outer[i], inner[j], inner[i]});
+  }
+  EXPECT_NEAR(ExactVisibility::union_area(ring, 1.0, 1.0), 1.6 * 1.6 - 0.6 * 0.6, 1e-8);
+  // A triangle inside the ring changes nothing; one over the hole fills it.
+  ring.push_back({{-0.7, -0.7}, {-0.4, -0.7}, {-0.4, -0.4}});
+  EXPECT_NEAR(ExactVisibility::union_area(ring, 1.0, 1.0), 1.6 * 1.6 - 0.6 * 0.6, 1e-8);
+  ring.push_back({{-0.3, -0.3}, {0.3, -0.3}, {0.3, 0.3}});
+  ring.push_back({{-0.3, -0.3}, {0.3, 0.3}, {-0.3, 0.3}});
+  EXPECT_NEAR(ExactVisibility::union_area(ring, 1.0, 1.0), 1.6 * 1.6, 1e-8);
+  const std::vector<std::vector<glm::dvec2>> squares{
+      {{-0.5, -0.5}, {0.3, -0.5}, {0.3, 0.3}, {-0.5, 0.3}},
+      {{-0.3, -0.3}, {0.5, -0.3}, {0.5, 0.5}, {-0.3, 0.5}}};
+  EXPECT_NEAR(ExactVisibility::union_area(squares, 1.0, 1.0), 0.64 + 0.64 - 0.36, 1e-8);
+}
+
 TEST(ReferenceExact, MasksAnalyticShapesAndLightsOfNoAreaAreNamedAsUnsupported) {
   sb::core::Scene masked = plate_scene(false);
   masked.meshes[0].alpha_mode = sb::core::AlphaMode::Mask;
