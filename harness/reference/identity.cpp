@@ -43,8 +43,10 @@ constexpr uint32_t kMethodVersion = 7;
 // largest coordinate; 5: each closed part (triangles connected through
 // shared edges) oriented by its own volume, and a point inside one when it
 // winds around the point more than around the light's centre, not by the
-// mesh's total volume and the first crossing.
-constexpr uint32_t kExactMethodVersion = 5;
+// mesh's total volume and the first crossing; 6: the edges two projected
+// triangles share dropped before the union, so an umbra pixel reads 0, not
+// a rounding residue of about 1e-8.
+constexpr uint32_t kExactMethodVersion = 6;
 // Bumped whenever the adaptive reference's figures may change for the same
 // settings. 2: where the proofs apply, an agreeing pilot stops only when
 // proven to see the whole light or none of it (sample counts fall, and a
