@@ -69,32 +69,39 @@ Pass pass_of(const JobRegion& r, const ImageF& t, const ImageF& ref, const Regio
 // SSIM's windows reach past the mask, so the unmeasured pixels take the
 // reference's values first: they add no error to a neighbour either. Every
 // region sharing that image is measured in one pass of the SSIM window (the
-// window's cost does not depend on how many masks average it).
+// window's cost does not depend on how many masks average it); a region
+// measured on its own image has its own pass. The error statistics are per
+// pixel, and every image equals `test` on its regions' pixels: so every
+// region's are one pass over `test`.
 ImageMetrics compare_images(const ImageF& test, const ImageF& ref, const Regions& regions,
                             const std::vector<JobRegion>& job) {
   const ImageF t = with_unmeasured_from(test, ref, regions.measured);
   std::vector<Pass> passes;
-  std::vector<const std::vector<uint8_t>*> shared;
+  std::vector<const std::vector<uint8_t>*> shared, measured;
   for (const JobRegion& r : job) {
     passes.push_back(pass_of(r, t, ref, regions));
+    if (passes.back() != Pass::Empty) measured.push_back(&r.mask);
     if (passes.back() == Pass::Shared) shared.push_back(&r.mask);
   }
-  const std::vector<ErrorStats> stats = compare(t, ref, shared);
+  const std::vector<ErrorStats> stats = compare_without_ssim(test, ref, measured);
+  const bool fits = ssim_fits(test);
+  const std::vector<double> shared_ssim =
+      fits && !shared.empty() ? ssim(t, ref, 1.0, shared) : std::vector<double>{};
   ImageMetrics m;
-  size_t next_shared = 0;
+  size_t next = 0, next_shared = 0;
   for (size_t i = 0; i < job.size(); ++i) {
     RegionStats& slot = record::find_region(job[i].region->key)->slot(m);
-    switch (passes[i]) {
-      case Pass::Shared:
-        slot = stats[next_shared++];
-        break;
-      case Pass::Own:
-        slot = compare_within(test, ref, job[i].mask);
-        break;
-      case Pass::Empty:
-        slot = no_pixels();
-        break;
+    if (passes[i] == Pass::Empty) {
+      slot = no_pixels();
+      continue;
     }
+    slot = stats[next++];
+    const double own_ssim =
+        passes[i] == Pass::Shared
+            ? (fits ? shared_ssim[next_shared++] : std::nan(""))
+            : (fits ? ssim(with_unmeasured_from(test, ref, job[i].mask), ref, 1.0, &job[i].mask)
+                    : std::nan(""));
+    if (slot.pixel_count > 0) slot.ssim = own_ssim;
   }
   return m;
 }

@@ -32,6 +32,14 @@ ErrorStats compare(const core::ImageF& test, const core::ImageF& ref,
 std::vector<ErrorStats> compare(const core::ImageF& test, const core::ImageF& ref,
                                 const std::vector<const std::vector<uint8_t>*>& masks);
 
+// compare() over several masks, SSIM left out (1; NaN over no pixel). Its
+// figures are per pixel: over a mask they depend only on the mask's pixels.
+std::vector<ErrorStats> compare_without_ssim(const core::ImageF& test, const core::ImageF& ref,
+                                             const std::vector<const std::vector<uint8_t>*>& masks);
+
+// Whether SSIM's window fits the image (else compare() gives SSIM NaN).
+bool ssim_fits(const core::ImageF& image);
+
 // SSIM constants and window (Wang et al. 2004, as scikit-image's
 // structural_similarity(gaussian_weights=True, sigma=1.5,
 // use_sample_covariance=False)).
