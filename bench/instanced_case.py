@@ -3,7 +3,7 @@
 reference one 14-triangle mesh (a heptagonal bipyramid, closed and convex)
 at one place above a ground quad, and a two-job config for it.
 
-    bench/instanced_case.py OUT_DIR [COUNT [TECHNIQUE]]
+    bench/instanced_case.py OUT_DIR [COUNT [TECHNIQUE]] [--flat] [--scale=S]
 
 COUNT defaults to 200000 (2.8 M triangles after instancing), TECHNIQUE to
 shadow_map. OUT_DIR gets instances.glb (a few MB: never commit it) and
@@ -12,7 +12,11 @@ counts, the 16-spp Monte Carlo reference, no cache. Timed by hand:
 
     /usr/bin/time build/shadowbench run OUT_DIR/instances.json --out OUT_DIR/run
 
-(docs/performance.md, "Heavy instancing"). With --flat the same triangles
+(docs/performance.md, "Heavy instancing"). --scale=S scales the shared mesh
+(default 1: 1 wide, 1.2 tall, over an 8 × 8 ground): at 1, shadow_map's
+frames are fill-bound on llvmpipe (every copy covers the same texels of
+the light map, 200,000-fold overdraw), which is the technique's measured
+work, not the harness's; at 0.1 the draws themselves dominate. With --flat the same triangles
 are written as COUNT separate meshes (one node each) instead of one shared
 mesh: the flattened twin the instanced scene must trace the same as.
 """
@@ -48,6 +52,7 @@ def pad4(b):
 def main():
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
     flat = "--flat" in sys.argv
+    scale = float(next((a.split("=", 1)[1] for a in sys.argv if a.startswith("--scale=")), 1.0))
     out = os.path.abspath(args[0])
     count = int(args[1]) if len(args) > 1 else 200000
     technique = args[2] if len(args) > 2 else "shadow_map"
@@ -76,6 +81,7 @@ def main():
     gpos, gidx = ground()
     meshes = [add_mesh_data(gpos, gidx)]
     bpos, bidx = bipyramid()
+    bpos = [(scale * x, scale * y, scale * z) for x, y, z in bpos]
     # All instances at one place: 1.2 above the ground, the bipyramid's
     # centre at y = 1.2 (apex 1.8, bottom 0.6).
     place = [0.0, 1.2, 0.0]
