@@ -1,8 +1,9 @@
 #pragma once
 // The scene's geometry on the GPU: one vertex buffer (position at location 0,
 // normal at 1, texture coordinate at 2), one index buffer, one draw range per
-// mesh, the scene's textures, and — only when a technique in the plan asked
-// for it — a GL_TRIANGLES_ADJACENCY index buffer of the casters.
+// mesh (consecutive meshes drawn alike are drawn together), the scene's
+// textures, and — only when a technique in the plan asked for it — a
+// GL_TRIANGLES_ADJACENCY index buffer of the casters.
 #include <cstdint>
 #include <functional>
 #include <vector>
