@@ -42,6 +42,15 @@ gl::Texture upload(const TextureImage& t) {
   return tex;
 }
 
+// Whether two meshes are drawn with the same state: then one draw of both
+// makes the same pixels as two.
+bool same_draw(const DrawInfo& a, const DrawInfo& b) {
+  return a.albedo == b.albedo && a.texture == b.texture && a.alpha_tested == b.alpha_tested &&
+         a.alpha_cutoff == b.alpha_cutoff && a.double_sided == b.double_sided &&
+         a.casts_shadow == b.casts_shadow && a.cullable == b.cullable &&
+         a.in_receiver_maps == b.in_receiver_maps;
+}
+
 }  // namespace
 
 GpuScene::GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>& adjacency,
@@ -75,15 +84,24 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>&
       info.cullable = m.casts_shadow && flags[i].closed;
       info.in_receiver_maps = !m.casts_shadow && flags[i].nothing_behind;
     }
-    ranges_.push_back({GLsizei(m.indices.size()), GLsizeiptr(index_data.size() * 4), base,
-                       m.casts_shadow, info, i});
-    index_data.insert(index_data.end(), m.indices.begin(), m.indices.end());
+    // Indices are stored with the mesh's base vertex added (base_vertex 0),
+    // so that neighbours drawn alike can share one draw (batches_).
+    ranges_.push_back(
+        {GLsizei(m.indices.size()), GLsizeiptr(index_data.size() * 4), 0, m.casts_shadow, info, i});
+    for (uint32_t k : m.indices) index_data.push_back(k + uint32_t(base));
     if (i < adjacency.size() && !adjacency[i].empty() && m.casts_shadow) {
       adjacency_ranges_.push_back({GLsizei(adjacency[i].size()),
                                    GLsizeiptr(adjacency_data.size() * 4), base, true, info, i});
       adjacency_data.insert(adjacency_data.end(), adjacency[i].begin(), adjacency[i].end());
     }
     base += GLint(m.positions.size());
+  }
+  for (const Range& r : ranges_) {
+    if (!batches_.empty() && same_draw(batches_.back().info, r.info) &&
+        batches_.back().first_byte + GLsizeiptr(batches_.back().count) * 4 == r.first_byte)
+      batches_.back().count += r.count;
+    else
+      batches_.push_back(r);
   }
   vertices_ = gl::make_buffer(GLsizeiptr(vertex_data.size() * sizeof(float)), vertex_data.data());
   indices_ = gl::make_buffer(GLsizeiptr(index_data.size() * 4), index_data.data());
@@ -119,7 +137,7 @@ void GpuScene::draw(const Range& r, GLenum mode) const {
 
 void GpuScene::draw_all(const std::function<void(const DrawInfo&)>& setup) const {
   glBindVertexArray(vao_.get());
-  for (const auto& r : ranges_) {
+  for (const auto& r : batches_) {
     setup(r.info);
     draw(r, GL_TRIANGLES);
   }
@@ -128,7 +146,7 @@ void GpuScene::draw_all(const std::function<void(const DrawInfo&)>& setup) const
 void GpuScene::draw_casters_and_map_receivers(
     const std::function<void(const DrawInfo&)>& setup) const {
   glBindVertexArray(vao_.get());
-  for (const auto& r : ranges_)
+  for (const auto& r : batches_)
     if (r.casts_shadow || r.info.in_receiver_maps) {
       setup(r.info);
       draw(r, GL_TRIANGLES);
@@ -137,7 +155,7 @@ void GpuScene::draw_casters_and_map_receivers(
 
 void GpuScene::draw_casters(const std::function<void(const DrawInfo&)>& setup) const {
   glBindVertexArray(vao_.get());
-  for (const auto& r : ranges_)
+  for (const auto& r : batches_)
     if (r.casts_shadow) {
       setup(r.info);
       draw(r, GL_TRIANGLES);
@@ -146,7 +164,7 @@ void GpuScene::draw_casters(const std::function<void(const DrawInfo&)>& setup) c
 
 void GpuScene::draw_casters() const {
   glBindVertexArray(vao_.get());
-  for (const auto& r : ranges_)
+  for (const auto& r : batches_)
     if (r.casts_shadow) draw(r, GL_TRIANGLES);
 }
 

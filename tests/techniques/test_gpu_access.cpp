@@ -104,6 +104,37 @@ void main() {
   EXPECT_NEAR(std::accumulate(areas.begin(), areas.end(), 0.0), 22.0, 1e-4);
 }
 
+// Meshes drawn alike one after another share one draw (a glTF placing one
+// mesh 200,000 times paid 200,000 draws a pass, issue 65): a pass's setup
+// runs once per draw. Meshes drawn differently keep their own.
+TEST_F(GpuAccess, NeighboursDrawnAlikeShareOneDraw) {
+  Scene scene;
+  scene.meshes.push_back(make_box("receiver", {0, -1, 0}, {5.0f, 0.1f, 5.0f}));
+  scene.meshes.back().casts_shadow = false;
+  for (int i = 0; i < 1000; ++i)
+    scene.meshes.push_back(make_box("copy", {0, 1, 0}, {0.5f, 1.0f, 1.5f}));
+  const gl::Program depth("depth", {gl::kSceneVertexShader, "", ""});
+  depth.use();
+  int draws = 0;
+  const GpuScene gpu(scene, {});
+  gpu.draw_all([&](const gl::DrawInfo&) { ++draws; });
+  EXPECT_EQ(draws, 2);
+  draws = 0;
+  gpu.draw_casters([&](const gl::DrawInfo& info) {
+    EXPECT_TRUE(info.casts_shadow);
+    ++draws;
+  });
+  EXPECT_EQ(draws, 1);
+  ASSERT_EQ(gpu.mesh_ranges().size(), 1001u);  // the per-mesh view stays
+
+  for (size_t i = 1; i < scene.meshes.size(); i += 2) scene.meshes[i].albedo = glm::vec3(0.2f);
+  const GpuScene mixed(scene, {});
+  draws = 0;
+  mixed.draw_all([&](const gl::DrawInfo&) { ++draws; });
+  EXPECT_EQ(draws, 1001);
+  gl::throw_if_errors("batched draws");
+}
+
 TEST_F(GpuAccess, TessellatedProgramsLinkAndCompileErrorsNameTheStage) {
   const char* vertex =
       "#version 450 core\nlayout(location = 0) in vec3 p;\n"
