@@ -21,7 +21,7 @@ using detail::PartCrossings;
 using detail::Plane;
 using detail::Polygon3;
 
-constexpr double kIntegerRange = 1073741824.0;  // 2^30: the disk's radius
+constexpr double kDiskIntegerRange = 1073741824.0;  // 2^30: the disk's radius
 
 double cross2(const glm::dvec2& a, const glm::dvec2& b) { return a.x * b.y - a.y * b.x; }
 
@@ -57,8 +57,8 @@ double ExactVisibility::disk_area_inside(const std::vector<glm::dvec2>& polygon,
 
 double ExactVisibility::union_disk_area(const std::vector<std::vector<glm::dvec2>>& polygons,
                                         double radius) {
-  const double scale = kIntegerRange / radius;
-  const double square = (2.0 * kIntegerRange) * (2.0 * kIntegerRange);
+  const double scale = kDiskIntegerRange / radius;
+  const double square = (2.0 * kDiskIntegerRange) * (2.0 * kDiskIntegerRange);
   const double disk = std::numbers::pi * radius * radius;
   ClipperLib::Paths paths;
   paths.reserve(polygons.size());
