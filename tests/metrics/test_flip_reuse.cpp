@@ -42,7 +42,8 @@ std::vector<std::vector<uint8_t>> masks(int w, int h) {
     for (int x = 0; x < w; ++x) {
       const double dx = x - 0.5 * w, dy = y - 0.5 * h, r = 0.3 * std::min(w, h);
       const double d = std::sqrt(dx * dx + dy * dy);
-      crescent[static_cast<std::size_t>(y * w + x)] = d > r && d < r + 2 && dy > 0 ? 1 : 0;
+      crescent[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
+               static_cast<std::size_t>(x)] = d > r && d < r + 2 && dy > 0 ? 1 : 0;
     }
   out.push_back(crescent);
   std::vector<uint8_t> corner(static_cast<std::size_t>(w * h));
@@ -136,7 +137,8 @@ TEST(Dilated, MarksEveryPixelWithinTheSquareOfAOne) {
         bool near = false;
         for (int v = std::max(0, y - radius); v <= std::min(h - 1, y + radius); ++v)
           for (int u = std::max(0, x - radius); u <= std::min(w - 1, x + radius); ++u)
-            near = near || mask[static_cast<std::size_t>(v * w + u)] != 0;
+            near = near || mask[static_cast<std::size_t>(v) * static_cast<std::size_t>(w) +
+                                static_cast<std::size_t>(u)] != 0;
         EXPECT_EQ(grown[static_cast<std::size_t>(y * w + x)], near ? 1 : 0)
             << x << "," << y << " radius " << radius;
       }
