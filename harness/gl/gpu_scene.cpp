@@ -42,15 +42,6 @@ gl::Texture upload(const TextureImage& t) {
   return tex;
 }
 
-// Whether two meshes are drawn with the same state: then one draw of both
-// makes the same pixels as two.
-bool same_draw(const DrawInfo& a, const DrawInfo& b) {
-  return a.albedo == b.albedo && a.texture == b.texture && a.alpha_tested == b.alpha_tested &&
-         a.alpha_cutoff == b.alpha_cutoff && a.double_sided == b.double_sided &&
-         a.casts_shadow == b.casts_shadow && a.cullable == b.cullable &&
-         a.in_receiver_maps == b.in_receiver_maps;
-}
-
 }  // namespace
 
 GpuScene::GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>& adjacency,
@@ -97,7 +88,7 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>&
     base += GLint(m.positions.size());
   }
   for (const Range& r : ranges_) {
-    if (!batches_.empty() && same_draw(batches_.back().info, r.info) &&
+    if (!batches_.empty() && batches_.back().info == r.info &&
         batches_.back().first_byte + GLsizeiptr(batches_.back().count) * 4 == r.first_byte)
       batches_.back().count += r.count;
     else

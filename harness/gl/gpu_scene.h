@@ -28,6 +28,8 @@ struct DrawInfo {
   // it to give their filters a floor (filtered_map.h). Any other receiver in
   // a map would occlude what lies behind it, which it does not.
   bool in_receiver_maps = false;
+  // Meshes whose DrawInfo is equal draw alike: neighbours share one draw.
+  bool operator==(const DrawInfo&) const = default;
 };
 
 // What the plan derived about each mesh; empty: nothing culled, no receiver
