@@ -126,9 +126,10 @@ ImageF detail::flip_map_within_on(SimdPath path, const ImageF& reference, const 
   // flip()'s tiles, each cut to the rows and columns of its needed pixels:
   // a thin region (a terminator's crescents) costs its own rows and columns,
   // plus 2 radius rows and columns of filtering per tile. (Smaller blocks fit
-  // such a region closer, but their margins cost more: a 640x480 sphere
-  // grid's terminator costs 0.44 of the whole map in tiles of 256 x 128, 0.49
-  // in 128 x 64, 0.58 in 32 x 32.)
+  // such a region closer, but their margins cost more: counted on a 640x480
+  // sphere grid's terminator mask, the cut tiles with their margins cover
+  // 0.44 of the image in tiles of 256 x 128, 0.49 in 128 x 64, 0.58 in
+  // 32 x 32.)
   constexpr int kBlockColumns = 256, kBlockRows = 128;
   std::vector<Tile> tiles;
   for (int by = 0; by < h; by += kBlockRows)
