@@ -8,6 +8,8 @@
 // the light is partly seen: a worst case for the regions' own maps), each
 // shaded on the CPU (grey Lambert, 0.1 ambient). Not timed: making those.
 //   build/bench/bench_job_metrics
+// BM_MeasureJob is a job after the first (the reference prepared);
+// BM_PrepareReference what the first pays besides.
 // Load-independent, for before/after: instruction counts of one measure():
 //   valgrind --tool=callgrind --toggle-collect='sb::metrics::measure*'
 //     build/bench/bench_job_metrics --benchmark_filter=MeasureJob/1 --benchmark_min_time=0.0001
@@ -25,6 +27,7 @@
 #include "metrics/flip.h"
 #include "metrics/job_metrics.h"
 #include "metrics/light_horizon.h"
+#include "metrics/prepared_reference.h"
 #include "metrics/regions.h"
 #include "reference/reference.h"
 
@@ -82,26 +85,46 @@ const JobWorkload& job() {
   return w;
 }
 
-// Real time: the comparisons and FLIP run on all cores. The argument is the
-// number of threads (0: TBB's default); on one, callgrind counts all the
-// work.
-void BM_MeasureJob(benchmark::State& state) {
-  const JobWorkload& w = job();
-  std::optional<tbb::global_control> threads;
+// The number of threads from the argument (0: TBB's default); on one,
+// callgrind counts all the work.
+void limit_threads(const benchmark::State& state, std::optional<tbb::global_control>& threads) {
   if (state.range(0) > 0)
     threads.emplace(tbb::global_control::max_allowed_parallelism,
                     static_cast<std::size_t>(state.range(0)));
-  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
+}
+
+// A job after the first of its (scene, resolution): the reference's half
+// of FLIP made already, as the harness keeps it (metrics/prepared_reference.h).
+// Real time: the comparisons and FLIP run on all cores.
+void BM_MeasureJob(benchmark::State& state) {
+  const JobWorkload& w = job();
+  std::optional<tbb::global_control> threads;
+  limit_threads(state, threads);
+  const sb::metrics::PreparedReference reference(w.ref_visibility, w.ref_shaded,
+                                                 sb::metrics::kFlipDefaultPixelsPerDegree);
+  (void)reference.flip_visibility();  // made by the first job
+  for (auto _ : state) {              // NOLINT(clang-analyzer-deadcode.DeadStores)
     sb::core::ImageF flip_map;
-    const auto m =
-        sb::metrics::measure(w.visibility, w.shaded, w.ref_visibility, w.ref_shaded, w.regions,
-                             sb::metrics::kFlipDefaultPixelsPerDegree, &flip_map);
+    const auto m = sb::metrics::measure(w.visibility, w.shaded, reference, w.regions, &flip_map);
     benchmark::DoNotOptimize(m.flip_shaded);
+  }
+}
+
+// What the first job pays besides: the reference's half of FLIP, made.
+void BM_PrepareReference(benchmark::State& state) {
+  const JobWorkload& w = job();
+  std::optional<tbb::global_control> threads;
+  limit_threads(state, threads);
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores)
+    const sb::metrics::PreparedReference reference(w.ref_visibility, w.ref_shaded,
+                                                   sb::metrics::kFlipDefaultPixelsPerDegree);
+    benchmark::DoNotOptimize(reference.flip_shaded_png().planes().data());
   }
 }
 
 }  // namespace
 
 BENCHMARK(BM_MeasureJob)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_PrepareReference)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 BENCHMARK_MAIN();

@@ -36,6 +36,28 @@ struct FlipResult {
   double mean = 0;
 };
 
+// What flip() computes of a reference image alone: its colour filtered and
+// in Hunt L*a*b*, its edge and point magnitudes (five floats a pixel).
+// Made once for the many test images measured against one reference, it
+// halves their filtering, and flip() against it gives the same bits as
+// against the image. Throws as flip() does for a bad image or viewing
+// distance.
+class FlipReference {
+ public:
+  explicit FlipReference(const core::ImageF& reference,
+                         double pixels_per_degree = kFlipDefaultPixelsPerDegree,
+                         detail::SimdPath path = detail::widest_simd_path());
+  int width() const { return width_; }
+  int height() const { return height_; }
+  double pixels_per_degree() const { return pixels_per_degree_; }
+  const std::vector<float>& planes() const { return planes_; }
+
+ private:
+  int width_, height_;
+  double pixels_per_degree_;
+  std::vector<float> planes_;
+};
+
 // FLIP of `test` against `reference`, both linear RGB (3 or 4 channels; a
 // 4th is ignored) or grey (1 channel, as R = G = B), the same size; values
 // are clamped to [0, 1] first, as the paper's LDR input is, and NaN is read
@@ -44,6 +66,10 @@ struct FlipResult {
 // image, or pixels_per_degree not in (0, 1000].
 FlipResult flip(const core::ImageF& reference, const core::ImageF& test,
                 double pixels_per_degree = kFlipDefaultPixelsPerDegree);
+
+// flip(image, test) for the FlipReference of `image`, the same bits; throws
+// also for a test image of another size.
+FlipResult flip(const FlipReference& reference, const core::ImageF& test);
 
 // The distance in pixels (along x and along y) beyond which a pixel's
 // values change no FLIP value: the wider of the colour and feature filters'
@@ -57,6 +83,8 @@ int flip_radius(double pixels_per_degree = kFlipDefaultPixelsPerDegree);
 core::ImageF flip_map_within(const core::ImageF& reference, const core::ImageF& test,
                              const std::vector<uint8_t>& needed,
                              double pixels_per_degree = kFlipDefaultPixelsPerDegree);
+core::ImageF flip_map_within(const FlipReference& reference, const core::ImageF& test,
+                             const std::vector<uint8_t>& needed);
 
 // An sRGB-encoded image (an 8-bit PNG read as v / 255) decoded to linear
 // values (IEC 61966-2-1), as FLIP's LDR inputs are: every channel but a 4th
@@ -72,6 +100,9 @@ FlipResult flip_on(SimdPath path, const core::ImageF& reference, const core::Ima
 core::ImageF flip_map_within_on(SimdPath path, const core::ImageF& reference,
                                 const core::ImageF& test, const std::vector<uint8_t>& needed,
                                 double pixels_per_degree = kFlipDefaultPixelsPerDegree);
+FlipResult flip_on(SimdPath path, const FlipReference& reference, const core::ImageF& test);
+core::ImageF flip_map_within_on(SimdPath path, const FlipReference& reference,
+                                const core::ImageF& test, const std::vector<uint8_t>& needed);
 }  // namespace detail
 
 }  // namespace sb::metrics

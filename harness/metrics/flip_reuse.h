@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "metrics/flip.h"
 
 namespace sb::metrics {
 
@@ -25,8 +26,8 @@ struct KnownFlipMap {
 // null; 0 elsewhere), the same bits, computed only where none of `known`
 // holds the value: from the known map that leaves the fewest pixels to
 // compute.
-core::ImageF flip_map_reusing(const core::ImageF& reference, const core::ImageF& test,
+core::ImageF flip_map_reusing(const FlipReference& reference, const core::ImageF& test,
                               const std::vector<uint8_t>* mask,
-                              const std::vector<KnownFlipMap>& known, double pixels_per_degree);
+                              const std::vector<KnownFlipMap>& known);
 
 }  // namespace sb::metrics

@@ -1,6 +1,7 @@
 #include "metrics/flip_tile.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -148,13 +149,20 @@ template <int Lanes>
   sum_of_taps<Lanes>(src, taps, width, out);
 }
 
+// Whether a tile filters side 0 (the reference) or 1 (the test).
+inline bool filters(const Setup& s, int side) {
+  return side == 0 ? s.sides != Sides::TestOnly : s.sides != Sides::ReferenceOnly;
+}
+
 // FLIP of output row y from the rings: the vertical filters, each side's
 // Hunt L*a*b* and feature magnitudes, then the colour and feature
-// differences. Returns the row's sum.
+// differences (under ReferenceOnly, the reference's values into the
+// prepared planes instead).
 template <int Lanes>
-[[gnu::always_inline]] inline void flip_row(const Setup& s, Scratch& sc, int y, int first, int w,
-                                            float* out) {
+[[gnu::always_inline]] inline void flip_row(const Setup& s, Scratch& sc, int y, int first, int x0,
+                                            int w, float* out) {
   for (int side = 0; side < 2; ++side) {
+    if (!filters(s, side)) continue;
     float* o = sc.line(side * 8);
     filter_column<Lanes>(sc, side, kY, y, first, s.spatial.y, w, o);
     filter_column<Lanes>(sc, side, kCx, y, first, s.spatial.cx, w, o + w);
@@ -168,6 +176,7 @@ template <int Lanes>
   // Each side's Hunt L*a*b* and feature magnitudes, over the row (loops the
   // compiler vectorises), into the side's first six lines.
   for (int side = 0; side < 2; ++side) {
+    if (!filters(s, side)) continue;
     float* o = sc.line(side * 8);
     float *ly = o, *la = o + w, *lb = o + 2 * w, *edge = o + 4 * w, *point = o + 5 * w;
     for (int x = 0; x < w; ++x) {
@@ -180,21 +189,36 @@ template <int Lanes>
       point[x] = std::sqrt(ddx * ddx + ddy * ddy);
     }
   }
-  const float *r = sc.line(0), *t = sc.line(8);
+  // The reference's values: its lines, or its prepared planes' row.
+  std::array<const float*, kPreparedPlanes> r{};
+  const std::size_t plane = static_cast<std::size_t>(s.width) * s.height;
+  const std::size_t at = static_cast<std::size_t>(y) * s.width + x0;
+  for (int k = 0; k < kPreparedPlanes; ++k) {
+    // Lines 0, 1, 2 hold L*a*b*, 4 and 5 the magnitudes.
+    const int line = k < kEdge ? k : k + 1;
+    const float* own = sc.line(0) + static_cast<std::size_t>(line) * w;
+    if (s.sides == Sides::ReferenceOnly)
+      std::memcpy(s.prepared_out + k * plane + at, own,
+                  static_cast<std::size_t>(w) * sizeof(float));
+    r[k] = s.sides == Sides::TestOnly ? s.prepared_in + k * plane + at : own;
+  }
+  if (s.sides == Sides::ReferenceOnly) return;
+  const float* t = sc.line(8);
   float* colour = sc.line(6);  // the reference's dy, no longer needed
   // Locals, not references: a choice between values in registers is a
   // select, one between loads is a branch.
   const float knee = s.knee, slope_below = s.slope_below, slope_above = s.slope_above;
   const float feature_norm = s.feature_norm;
+  const float *rl = r[kL], *ra = r[kA], *rb = r[kB], *redge = r[kEdge], *rpoint = r[kPoint];
   for (int x = 0; x < w; ++x) {
-    const float dl = r[x] - t[x], da = r[w + x] - t[w + x], db = r[2 * w + x] - t[2 * w + x];
+    const float dl = rl[x] - t[x], da = ra[x] - t[w + x], db = rb[x] - t[2 * w + x];
     const float c = fast_pow(std::abs(dl) + std::sqrt(da * da + db * db), kQc);
     colour[x] = c < knee ? c * slope_below : kPt + (c - knee) * slope_above;
   }
   for (int x = 0; x < w; ++x) {
     // q_f = 0.5: the square root.
-    const float edge = std::abs(r[4 * w + x] - t[4 * w + x]);
-    const float point = std::abs(r[5 * w + x] - t[5 * w + x]);
+    const float edge = std::abs(redge[x] - t[4 * w + x]);
+    const float point = std::abs(rpoint[x] - t[5 * w + x]);
     const float feature = std::sqrt(feature_norm * (edge > point ? edge : point));
     out[x] = fast_pow(colour[x], 1.0f - feature);
   }
@@ -206,8 +230,8 @@ template <int Lanes>
 [[gnu::always_inline]] inline void enter_rows(const Setup& s, Scratch& sc, const Tile& t, int v,
                                               int first) {
   const int row = std::clamp(v, 0, s.height - 1), slot = (v - first) % sc.slots();
-  enter_row<Lanes>(s, sc, 0, row, slot, t.x0, t.x1);
-  enter_row<Lanes>(s, sc, 1, row, slot, t.x0, t.x1);
+  for (int side = 0; side < 2; ++side)
+    if (filters(s, side)) enter_row<Lanes>(s, sc, side, row, slot, t.x0, t.x1);
 }
 
 // The ring first holds the rows y0 - radius ... y0 + radius - 1, then takes
@@ -219,8 +243,8 @@ template <int Lanes>
   for (int v = t.y0 - r; v < t.y0 + r; ++v) enter_rows<Lanes>(s, sc, t, v, first);
   for (int y = t.y0; y < t.y1; ++y) {
     enter_rows<Lanes>(s, sc, t, y + r, first);
-    flip_row<Lanes>(s, sc, y, first, t.x1 - t.x0,
-                    error + static_cast<std::size_t>(y) * s.width + t.x0);
+    flip_row<Lanes>(s, sc, y, first, t.x0, t.x1 - t.x0,
+                    error ? error + static_cast<std::size_t>(y) * s.width + t.x0 : nullptr);
   }
 }
 

@@ -16,6 +16,7 @@
 // their bits the same.
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "core/image.h"
@@ -28,6 +29,16 @@ namespace sb::metrics::flip_detail {
 // derivatives and Gaussian (features), all filtered horizontally.
 enum Quantity { kY, kCx, kCz1, kCz2, kDx, kDdx, kG, kQuantities };
 
+// What FLIP computes of one image alone, per pixel, before the two are
+// compared: its filtered colour in Hunt L*a*b* and its edge and point
+// magnitudes. A reference's are kept as planes (FlipReference).
+enum Prepared { kL, kA, kB, kEdge, kPoint, kPreparedPlanes };
+
+// Which images a tile filters: both, making the map; the reference only,
+// writing its values into `Setup::prepared`; or the test only, reading the
+// reference's from there. Each image's values are the same bits either way.
+enum class Sides : std::uint8_t { Both, ReferenceOnly, TestOnly };
+
 struct Setup {
   const core::ImageF* image[2];  // the reference, the test
   int width, height;
@@ -36,6 +47,11 @@ struct Setup {
   int radius;  // the larger filter radius: the rings' half height
   std::array<std::array<float, 3>, 3> xyz_to_rgb;
   float knee, slope_below, slope_above, feature_norm;
+  Sides sides = Sides::Both;
+  // kPreparedPlanes planes of width x height, plane after plane: written
+  // under ReferenceOnly, read under TestOnly.
+  float* prepared_out = nullptr;
+  const float* prepared_in = nullptr;
 };
 
 // A thread's rows, reused from tile to tile, `width` columns wide.
@@ -73,7 +89,8 @@ struct Tile {
   int y0, y1, x0, x1;
 };
 
-// FLIP of tile `t` into `error` (the whole map, `s.width` wide), on the
+// FLIP of tile `t` into `error` (the whole map, `s.width` wide; null under
+// ReferenceOnly), on the
 // given vector width (which this CPU must run).
 void tile_on(detail::SimdPath path, const Setup& s, Scratch& sc, const Tile& t, float* error);
 

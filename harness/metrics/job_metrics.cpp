@@ -1,7 +1,6 @@
 #include "metrics/job_metrics.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <vector>
 
@@ -10,6 +9,7 @@
 #include "metrics/geometry_region.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
+#include "metrics/prepared_reference.h"
 #include "record/figures.h"
 
 namespace sb::metrics {
@@ -34,17 +34,30 @@ RegionStats no_pixels() {
 // from the job's V).
 struct JobRegion {
   const RegionMask* region;
-  std::vector<uint8_t> mask;
+  const std::vector<uint8_t>* mask;
 };
 
+// Each per-job region's pixels, made once from the job's V, at its index in
+// `regions.masks` (empty for the others).
+std::vector<std::vector<uint8_t>> per_job_masks(const Regions& regions, const ImageF& visibility) {
+  std::vector<std::vector<uint8_t>> out(regions.masks.size());
+  for (size_t i = 0; i < out.size(); ++i)
+    if (regions.masks[i].per_job) out[i] = job_mask(regions.masks[i], visibility, regions);
+  return out;
+}
+
 // The regions one image of a job is measured over, in catalogue order:
-// `visibility_only` ones when `with_visibility_only`.
-std::vector<JobRegion> job_regions(const Regions& regions, const ImageF& visibility,
+// `visibility_only` ones when `with_visibility_only`. `made` is
+// per_job_masks'.
+std::vector<JobRegion> job_regions(const Regions& regions,
+                                   const std::vector<std::vector<uint8_t>>& made,
                                    bool with_visibility_only) {
   std::vector<JobRegion> out;
-  for (const RegionMask& r : regions.masks)
+  for (size_t i = 0; i < regions.masks.size(); ++i) {
+    const RegionMask& r = regions.masks[i];
     if (with_visibility_only || !r.visibility_only)
-      out.push_back({&r, job_mask(r, visibility, regions)});
+      out.push_back({&r, r.per_job ? &made[i] : &r.mask});
+  }
   return out;
 }
 
@@ -58,9 +71,31 @@ enum class Pass : std::uint8_t { Shared, Own, Empty };
 // has the reference's values in `t` and is measured on the technique's own.
 Pass pass_of(const JobRegion& r, const ImageF& t, const ImageF& ref, const Regions& regions) {
   if (r.region->surround == Surround::Technique) return Pass::Shared;
-  if (count_ones(r.mask) == 0) return Pass::Empty;
-  return mask_within(r.mask, regions.measured) && matches_outside(t, ref, r.mask) ? Pass::Shared
-                                                                                  : Pass::Own;
+  if (count_ones(*r.mask) == 0) return Pass::Empty;
+  return mask_within(*r.mask, regions.measured) && matches_outside(t, ref, *r.mask) ? Pass::Shared
+                                                                                    : Pass::Own;
+}
+
+// How each region of one image of a job is measured: `t`, the technique's
+// measured pixels with the reference's values elsewhere, shared by the
+// regions that share a pass; each region's pass; and a region measured on
+// its own, its own image (the technique's values inside it, the
+// reference's outside). Its SSIM and its FLIP use the same images.
+struct Passes {
+  ImageF t;
+  std::vector<Pass> of;
+  std::vector<ImageF> own;  // empty but for Pass::Own
+};
+
+Passes passes_of(const ImageF& test, const ImageF& ref, const Regions& regions,
+                 const std::vector<JobRegion>& job) {
+  Passes p;
+  p.t = with_unmeasured_from(test, ref, regions.measured);
+  for (const JobRegion& r : job) {
+    p.of.push_back(pass_of(r, p.t, ref, regions));
+    p.own.push_back(p.of.back() == Pass::Own ? with_unmeasured_from(test, ref, *r.mask) : ImageF());
+  }
+  return p;
 }
 
 // The figures of `test` against `ref` over each region, each in its slot of
@@ -73,34 +108,30 @@ Pass pass_of(const JobRegion& r, const ImageF& t, const ImageF& ref, const Regio
 // measured on its own image has its own pass. The error statistics are per
 // pixel, and every image equals `test` on its regions' pixels: so every
 // region's are one pass over `test`.
-ImageMetrics compare_images(const ImageF& test, const ImageF& ref, const Regions& regions,
-                            const std::vector<JobRegion>& job) {
-  const ImageF t = with_unmeasured_from(test, ref, regions.measured);
-  std::vector<Pass> passes;
+ImageMetrics compare_images(const ImageF& test, const ImageF& ref,
+                            const std::vector<JobRegion>& job, const Passes& passes) {
   std::vector<const std::vector<uint8_t>*> shared, measured;
-  for (const JobRegion& r : job) {
-    passes.push_back(pass_of(r, t, ref, regions));
-    if (passes.back() != Pass::Empty) measured.push_back(&r.mask);
-    if (passes.back() == Pass::Shared) shared.push_back(&r.mask);
+  for (size_t i = 0; i < job.size(); ++i) {
+    if (passes.of[i] != Pass::Empty) measured.push_back(job[i].mask);
+    if (passes.of[i] == Pass::Shared) shared.push_back(job[i].mask);
   }
   const std::vector<ErrorStats> stats = compare_without_ssim(test, ref, measured);
   const bool fits = ssim_fits(test);
   const std::vector<double> shared_ssim =
-      fits && !shared.empty() ? ssim(t, ref, 1.0, shared) : std::vector<double>{};
+      fits && !shared.empty() ? ssim(passes.t, ref, 1.0, shared) : std::vector<double>{};
   ImageMetrics m;
   size_t next = 0, next_shared = 0;
   for (size_t i = 0; i < job.size(); ++i) {
     RegionStats& slot = record::find_region(job[i].region->key)->slot(m);
-    if (passes[i] == Pass::Empty) {
+    if (passes.of[i] == Pass::Empty) {
       slot = no_pixels();
       continue;
     }
     slot = stats[next++];
     const double own_ssim =
-        passes[i] == Pass::Shared
+        passes.of[i] == Pass::Shared
             ? (fits ? shared_ssim[next_shared++] : std::nan(""))
-            : (fits ? ssim(with_unmeasured_from(test, ref, job[i].mask), ref, 1.0, &job[i].mask)
-                    : std::nan(""));
+            : (fits ? ssim(passes.own[i], ref, 1.0, job[i].mask) : std::nan(""));
     if (slot.pixel_count > 0) slot.ssim = own_ssim;
   }
   return m;
@@ -115,57 +146,31 @@ double masked_mean(const ImageF& map, const std::vector<uint8_t>& mask) {
   return n == 0 ? std::nan("") : sum / static_cast<double>(n);
 }
 
-// Each region's mean of the FLIP map of test against ref, the map computed
-// as the region's SSIM is (compare_images): one map of the technique's
-// measured pixels for the regions that share it, and for the others a map
-// with every pixel outside the region from ref, made only where it differs
-// from a map made already (`known`, and the shared one: flip_reuse.h). A
-// region with no pixel of its own pass has no FLIP.
-void add_flip_means(ImageMetrics& m, const ImageF& test, const ImageF& ref, const Regions& regions,
-                    const std::vector<JobRegion>& job, double pixels_per_degree,
+// Each region's mean of the FLIP map of its image against the reference
+// (`prepared`, its FLIP half), the images those of its SSIM (`passes`):
+// one map of `t` for the regions that share it, and for a region measured
+// on its own image a map made only where that image differs from a map
+// made already (`known`, and t's: flip_reuse.h). A region with no pixel of
+// its own pass has no FLIP.
+void add_flip_means(ImageMetrics& m, const FlipReference& prepared,
+                    const std::vector<JobRegion>& job, const Passes& passes,
                     std::vector<KnownFlipMap> known = {}) {
-  const ImageF t = with_unmeasured_from(test, ref, regions.measured);
-  const ImageF map = flip_map_reusing(ref, t, nullptr, known, pixels_per_degree);
-  known.push_back({&t, &map});
-  for (const JobRegion& r : job) {
-    RegionStats& slot = record::find_region(r.region->key)->slot(m);
-    switch (pass_of(r, t, ref, regions)) {
+  const ImageF map = flip_map_reusing(prepared, passes.t, nullptr, known);
+  known.push_back({&passes.t, &map});
+  for (size_t i = 0; i < job.size(); ++i) {
+    RegionStats& slot = record::find_region(job[i].region->key)->slot(m);
+    switch (passes.of[i]) {
       case Pass::Shared:
-        slot.flip_mean = masked_mean(map, r.mask);
+        slot.flip_mean = masked_mean(map, *job[i].mask);
         break;
       case Pass::Own:
-        slot.flip_mean = masked_mean(flip_map_reusing(ref, with_unmeasured_from(test, ref, r.mask),
-                                                      &r.mask, known, pixels_per_degree),
-                                     r.mask);
+        slot.flip_mean = masked_mean(flip_map_reusing(prepared, passes.own[i], job[i].mask, known),
+                                     *job[i].mask);
         break;
       case Pass::Empty:
         break;
     }
   }
-}
-
-// The image as shaded.png holds it (8 bits a value), decoded from sRGB: what
-// FLIP's own tool reads from the file, so that the figure can be recomputed
-// from it. A byte's decoded value is looked up: linear_from_srgb's own value
-// for it.
-ImageF as_flip_reads_png(const ImageF& shaded) {
-  static const std::array<float, 256> decoded = [] {
-    ImageF bytes(256, 1, 1);
-    for (int b = 0; b < 256; ++b)
-      bytes.data[static_cast<std::size_t>(b)] = static_cast<float>(b) / 255.0f;
-    const ImageF linear = linear_from_srgb(bytes);
-    std::array<float, 256> table{};
-    std::copy(linear.data.begin(), linear.data.end(), table.begin());
-    return table;
-  }();
-  ImageF q = shaded;
-  const std::size_t nc = static_cast<std::size_t>(q.channels);
-  for (std::size_t i = 0; i < q.data.size(); ++i) {
-    const uint8_t byte = io::png_byte(q.data[i]);
-    // A 4th channel (alpha) is not sRGB-encoded: linear_from_srgb keeps it.
-    q.data[i] = nc == 4 && i % 4 == 3 ? static_cast<float>(byte) / 255.0f : decoded[byte];
-  }
-  return q;
 }
 
 }  // namespace
@@ -219,30 +224,45 @@ ImageF invalid_visibility_image(const ImageF& visibility) {
   return out;
 }
 
-MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const ImageF& ref_visibility,
-                      const ImageF& ref_shaded, const Regions& regions,
-                      double flip_pixels_per_degree, ImageF* flip_map) {
-  const std::vector<JobRegion> of_visibility = job_regions(regions, visibility, true);
-  const std::vector<JobRegion> of_shaded = job_regions(regions, visibility, false);
-  MetricsRecord m{compare_images(visibility, ref_visibility, regions, of_visibility),
-                  compare_images(shaded, ref_shaded, regions, of_shaded)};
-  add_flip_means(m.visibility, visibility, ref_visibility, regions, of_visibility,
-                 flip_pixels_per_degree);
-  const ImageF shaded_png = as_flip_reads_png(shaded), ref_png = as_flip_reads_png(ref_shaded);
+MetricsRecord measure(const ImageF& visibility, const ImageF& shaded,
+                      const PreparedReference& reference, const Regions& regions,
+                      ImageF* flip_map) {
+  const ImageF &ref_visibility = reference.visibility(), &ref_shaded = reference.shaded();
+  const std::vector<std::vector<uint8_t>> made = per_job_masks(regions, visibility);
+  const std::vector<JobRegion> of_visibility = job_regions(regions, made, true);
+  const std::vector<JobRegion> of_shaded = job_regions(regions, made, false);
+  const Passes visibility_passes = passes_of(visibility, ref_visibility, regions, of_visibility);
+  MetricsRecord m{compare_images(visibility, ref_visibility, of_visibility, visibility_passes),
+                  compare_images(shaded, ref_shaded, of_shaded,
+                                 passes_of(shaded, ref_shaded, regions, of_shaded))};
+  add_flip_means(m.visibility, reference.flip_visibility(), of_visibility, visibility_passes);
+  // FLIP reads the shaded images as their PNGs hold them.
+  const ImageF shaded_png = as_flip_reads_png(shaded);
   // As FLIP's tool compares the two PNGs: every pixel, nothing replaced.
-  FlipResult whole = flip(ref_png, shaded_png, flip_pixels_per_degree);
-  add_flip_means(m.shaded, shaded_png, ref_png, regions, of_shaded, flip_pixels_per_degree,
+  FlipResult whole = flip(reference.flip_shaded_png(), shaded_png);
+  add_flip_means(m.shaded, reference.flip_shaded_png(), of_shaded,
+                 passes_of(shaded_png, reference.shaded_png(), regions, of_shaded),
                  {{&shaded_png, &whole.error}});
   m.flip_shaded = whole.mean;
   if (flip_map != nullptr) *flip_map = std::move(whole.error);
   return m;
 }
 
+MetricsRecord measure(const ImageF& visibility, const ImageF& shaded, const ImageF& ref_visibility,
+                      const ImageF& ref_shaded, const Regions& regions,
+                      double flip_pixels_per_degree, ImageF* flip_map) {
+  return measure(visibility, shaded,
+                 PreparedReference(ref_visibility, ref_shaded, flip_pixels_per_degree), regions,
+                 flip_map);
+}
+
 ImageMetrics measure_visibility(const ImageF& visibility, const ImageF& ref_visibility,
-                                const Regions& regions, double flip_pixels_per_degree) {
-  const std::vector<JobRegion> job = job_regions(regions, visibility, false);
-  ImageMetrics m = compare_images(visibility, ref_visibility, regions, job);
-  add_flip_means(m, visibility, ref_visibility, regions, job, flip_pixels_per_degree);
+                                const FlipReference& ref_flip, const Regions& regions) {
+  const std::vector<std::vector<uint8_t>> made = per_job_masks(regions, visibility);
+  const std::vector<JobRegion> job = job_regions(regions, made, false);
+  const Passes passes = passes_of(visibility, ref_visibility, regions, job);
+  ImageMetrics m = compare_images(visibility, ref_visibility, job, passes);
+  add_flip_means(m, ref_flip, job, passes);
   return m;
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/image.h"
+#include "metrics/prepared_reference.h"
 #include "metrics/regions.h"
 #include "record/job_record.h"
 #include "record/metrics_record.h"
@@ -37,16 +38,23 @@ core::ImageF invalid_visibility_image(const core::ImageF& visibility);
 // (MetricsRecord::flip_shaded: shaded.png against the reference's, both
 // decoded from sRGB as FLIP's tool reads them, every pixel, nothing
 // replaced), whose map goes into *flip_map when given (one channel, in [0, 1]).
+// `reference` holds the reference's V and shaded image and FLIP's viewing
+// distance.
+record::MetricsRecord measure(const core::ImageF& visibility, const core::ImageF& shaded,
+                              const PreparedReference& reference, const Regions& regions,
+                              core::ImageF* flip_map = nullptr);
+// The same, preparing the reference for this one job.
 record::MetricsRecord measure(const core::ImageF& visibility, const core::ImageF& shaded,
                               const core::ImageF& ref_visibility, const core::ImageF& ref_shaded,
                               const Regions& regions, double flip_pixels_per_degree,
                               core::ImageF* flip_map = nullptr);
 
 // The visibility's error against another reference (the second one), over
-// the same regions: only the reference differs.
+// the same regions: only the reference differs. `ref_flip` is FLIP's half
+// of `ref_visibility`, at the viewing distance it was made for.
 record::ImageMetrics measure_visibility(const core::ImageF& visibility,
-                                        const core::ImageF& ref_visibility, const Regions& regions,
-                                        double flip_pixels_per_degree);
+                                        const core::ImageF& ref_visibility,
+                                        const FlipReference& ref_flip, const Regions& regions);
 
 // A reference whose noise (`penumbra_rms_std_error`, reference::Result's)
 // is comparable to the error cannot rank techniques.

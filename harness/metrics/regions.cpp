@@ -1,6 +1,10 @@
 #include "metrics/regions.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <array>
 #include <glm/vec3.hpp>
 #include <optional>
 #include <stdexcept>
@@ -124,28 +128,38 @@ std::vector<uint8_t> dilated(const std::vector<uint8_t>& mask, int width, int he
   const auto at = [width](int x, int y) {
     return static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
   };
-  // Along x, then along y: a running count of the 1s in the window.
+  // Along x, then along y: a running count of the 1s in the window; rows,
+  // then bands of columns, in parallel.
   std::vector<uint8_t> rows(mask.size()), out(mask.size());
-  for (int y = 0; y < height; ++y) {
-    int ones = 0;
-    for (int x = 0; x < std::min(radius, width); ++x) ones += mask[at(x, y)] != 0;
-    for (int x = 0; x < width; ++x) {
-      if (x + radius < width) ones += mask[at(x + radius, y)] != 0;
-      if (x - radius - 1 >= 0) ones -= mask[at(x - radius - 1, y)] != 0;
-      rows[at(x, y)] = ones > 0 ? 1 : 0;
+  tbb::parallel_for(tbb::blocked_range<int>(0, height, 16), [&](const tbb::blocked_range<int>& r) {
+    for (int y = r.begin(); y != r.end(); ++y) {
+      int ones = 0;
+      for (int x = 0; x < std::min(radius, width); ++x) ones += mask[at(x, y)] != 0;
+      for (int x = 0; x < width; ++x) {
+        if (x + radius < width) ones += mask[at(x + radius, y)] != 0;
+        if (x - radius - 1 >= 0) ones -= mask[at(x - radius - 1, y)] != 0;
+        rows[at(x, y)] = ones > 0 ? 1 : 0;
+      }
     }
-  }
-  std::vector<int> ones(static_cast<size_t>(width),
-                        0);  // per column, rows y - radius ... y + radius
-  const auto add_row = [&](int y, int sign) {
-    for (int x = 0; x < width; ++x) ones[static_cast<size_t>(x)] += sign * rows[at(x, y)];
-  };
-  for (int y = 0; y < std::min(radius, height); ++y) add_row(y, 1);
-  for (int y = 0; y < height; ++y) {
-    if (y + radius < height) add_row(y + radius, 1);
-    if (y - radius - 1 >= 0) add_row(y - radius - 1, -1);
-    for (int x = 0; x < width; ++x) out[at(x, y)] = ones[static_cast<size_t>(x)] > 0 ? 1 : 0;
-  }
+  });
+  constexpr int kBand = 64;
+  tbb::parallel_for(tbb::blocked_range<int>(0, (width + kBand - 1) / kBand, 1),
+                    [&](const tbb::blocked_range<int>& bands) {
+                      for (int b = bands.begin(); b != bands.end(); ++b) {
+                        const int x0 = b * kBand, x1 = std::min(width, x0 + kBand);
+                        // per column, rows y - radius ... y + radius
+                        std::array<int, kBand> ones{};
+                        const auto add_row = [&](int y, int sign) {
+                          for (int x = x0; x < x1; ++x) ones[x - x0] += sign * rows[at(x, y)];
+                        };
+                        for (int y = 0; y < std::min(radius, height); ++y) add_row(y, 1);
+                        for (int y = 0; y < height; ++y) {
+                          if (y + radius < height) add_row(y + radius, 1);
+                          if (y - radius - 1 >= 0) add_row(y - radius - 1, -1);
+                          for (int x = x0; x < x1; ++x) out[at(x, y)] = ones[x - x0] > 0 ? 1 : 0;
+                        }
+                      }
+                    });
   return out;
 }
 
@@ -163,11 +177,14 @@ void apply_attached_shadow(const std::vector<uint8_t>& attached, ImageF& visibil
 ImageF with_unmeasured_from(const ImageF& test, const ImageF& ref,
                             const std::vector<uint8_t>& measured) {
   ImageF out = test;
-  for (size_t i = 0; i < measured.size(); ++i)
-    if (!measured[i])
-      for (int c = 0; c < out.channels; ++c)
-        out.data[i * size_t(out.channels) + size_t(c)] =
-            ref.data[i * size_t(ref.channels) + size_t(c)];
+  const size_t nc = static_cast<size_t>(out.channels);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, measured.size(), 16384),
+                    [&](const tbb::blocked_range<size_t>& r) {
+                      for (size_t i = r.begin(); i != r.end(); ++i)
+                        if (!measured[i])
+                          for (size_t c = 0; c < nc; ++c)
+                            out.data[i * nc + c] = ref.data[i * nc + c];
+                    });
   return out;
 }
 

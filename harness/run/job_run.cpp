@@ -143,12 +143,11 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv,
   // Shaded from the same V as the metrics, as the reference is: untimed.
   const ImageF shaded = shade(s.frame, visibility);
   ImageF flip_map;
-  r.metrics = metrics::measure(visibility, shaded, b.ref.visibility, b.ref_shaded, b.regions,
-                               s.e.flip_pixels_per_degree, &flip_map);
+  r.metrics = metrics::measure(visibility, shaded, *b.prepared, b.regions, &flip_map);
   if (b.second)
     r.second_reference = SecondReferenceRecord{
-        *b.second_record, metrics::measure_visibility(visibility, b.second->visibility, b.regions,
-                                                      s.e.flip_pixels_per_degree)};
+        *b.second_record,
+        metrics::measure_visibility(visibility, b.second->visibility, *b.second_flip, b.regions)};
   r.classes = ClassesRecord{metrics::confusion_matrix(visibility, b.ref.visibility,
                                                       b.regions.mask("geometry"), 1e-6f,
                                                       &b.regions.mask("penumbra"))};

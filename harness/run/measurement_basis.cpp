@@ -139,12 +139,16 @@ MeasurementBasis make_measurement_basis(const Experiment& e, const RunOptions& o
     metrics::apply_attached_shadow(regions.attached, b.second->visibility);
     b.second_record = reference_record(*b.second, e.reference, embree, regions,
                                        metrics::mask_and(b.second->penumbra, regions.measured));
+    b.second_flip =
+        std::make_shared<metrics::FlipReference>(b.second->visibility, e.flip_pixels_per_degree);
   }
   b.ref_shaded = [&] {
     targets.upload_visibility(b.ref.visibility);
     targets.render_shading(scene);
     return targets.read_shaded();
   }();
+  b.prepared = std::make_shared<metrics::PreparedReference>(b.ref.visibility, b.ref_shaded,
+                                                            e.flip_pixels_per_degree);
   b.ref_images =
       write_reference_images(o, "reference/" + file_safe(scene_name) + "__" + res.label(), b.ref,
                              b.ref_shaded, regions, b.positions, b.normals);

@@ -3,12 +3,15 @@
 // before any job's frames: the G-buffer's points read back, the reference
 // at them (and the second one, reference.second_method), the regions, the
 // reference shaded, its part of every record and its images.
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "config/experiment.h"
 #include "core/image.h"
 #include "core/scene.h"
+#include "metrics/flip.h"
+#include "metrics/prepared_reference.h"
 #include "metrics/regions.h"
 #include "record/job_record.h"
 #include "record/reference_record.h"
@@ -26,12 +29,15 @@ struct MeasurementBasis {
   std::string cache_dir;            // where references are cached; "" when they are not
   reference::Result ref;            // attached shadow applied
   core::ImageF ref_shaded;          // the reference's V, shaded
+  // Both, with FLIP's half of each made by the first job that measures.
+  std::shared_ptr<const metrics::PreparedReference> prepared;
   metrics::Regions regions;
   record::ReferenceRecord ref_record;
   // reference.second_method's reference, and its record part.
   std::optional<reference::Result> second;
   std::optional<record::ReferenceRecord> second_record;
-  record::ImagesRecord ref_images;  // every job's record names them
+  std::shared_ptr<const metrics::FlipReference> second_flip;  // FLIP's half of its V
+  record::ImagesRecord ref_images;                            // every job's record names them
 
   // The reference of `scene` (the same one with its light moved, say) at
   // the G-buffer's points, with the first one's settings and cache.

@@ -1,7 +1,8 @@
 // FLIP computed only where it is needed (metrics/flip.h flip_map_within,
-// metrics/flip_reuse.h): at every pixel asked for, the bits of the whole
-// map flip() makes, on every vector width this CPU runs; the mask growth
-// it relies on against a brute-force search.
+// FlipReference, metrics/flip_reuse.h): at every pixel asked for, the bits
+// of the whole map flip() makes, on every vector width this CPU runs, with
+// the reference's half made once or not; the mask growth it relies on
+// against a brute-force search.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -90,6 +91,42 @@ TEST(FlipMapWithin, GivesFlipsBitsAtEveryNeededPixelOnEveryVectorWidth) {
   }
 }
 
+// The reference's half prepared on one vector width and the test's on
+// another: still flip()'s map and mean, to the bit.
+TEST(FlipReference, GivesFlipsBitsOnEveryPairOfVectorWidths) {
+  using detail::SimdPath;
+  const struct { int w, h, channels; } sizes[] = {{300, 137, 3}, {131, 65, 1}, {5, 70, 4}};
+  const SimdPath paths[] = {SimdPath::Baseline, SimdPath::Avx2, SimdPath::Avx512};
+  for (const auto& size : sizes) {
+    const ImageF ref = random_image(size.w, size.h, size.channels, 5);
+    const ImageF test = random_image(size.w, size.h, size.channels, 6);
+    const FlipResult whole = flip(ref, test);
+    const auto all = masks(size.w, size.h);
+    for (const SimdPath prepared_on : paths) {
+      if (!detail::runs_here(prepared_on)) continue;
+      const FlipReference prepared(ref, kFlipDefaultPixelsPerDegree, prepared_on);
+      for (const SimdPath path : paths) {
+        if (!detail::runs_here(path)) continue;
+        SCOPED_TRACE(detail::to_string(prepared_on) + " then " + detail::to_string(path) + ", " +
+                     std::to_string(size.w) + "x" + std::to_string(size.h));
+        const FlipResult got = detail::flip_on(path, prepared, test);
+        EXPECT_EQ(got.error.data, whole.error.data);
+        EXPECT_EQ(got.mean, whole.mean);
+        expect_map_within(detail::flip_map_within_on(path, prepared, test, all[1]), whole.error,
+                          all[1]);
+      }
+    }
+  }
+}
+
+TEST(FlipReference, RefusesATestImageOfAnotherSize) {
+  const FlipReference prepared(random_image(16, 16, 3, 1));
+  EXPECT_THROW(flip(prepared, ImageF(16, 15, 3)), std::invalid_argument);
+  EXPECT_THROW(flip_map_within(prepared, ImageF(15, 16, 3), std::vector<uint8_t>(240, 1)),
+               std::invalid_argument);
+  EXPECT_THROW(FlipReference(ImageF(16, 16, 2)), std::invalid_argument);
+}
+
 TEST(FlipMapWithin, RefusesAMaskOfAnotherSize) {
   const ImageF a(8, 8, 3);
   EXPECT_THROW(flip_map_within(a, a, std::vector<uint8_t>(63, 1)), std::invalid_argument);
@@ -109,21 +146,18 @@ TEST(FlipMapReusing, EqualsFlipsMapWhereverTheKnownImageDiffers) {
       for (int c = 0; c < 3; ++c) test.at(x, y, c) = ref.at(x, y, c);
   const ImageF whole = flip(ref, test).error;
   const std::vector<KnownFlipMap> known = {{&known_test, &known_map}};
+  const FlipReference prepared(ref);
   // The known map is wrong near the patch: reusing it there would show.
   std::size_t differ = 0;
   for (std::size_t p = 0; p < whole.data.size(); ++p) differ += whole.data[p] != known_map.data[p];
   ASSERT_GT(differ, 60u);
   for (const auto& mask : masks(w, h))
-    expect_map_within(flip_map_reusing(ref, test, &mask, known, kFlipDefaultPixelsPerDegree), whole,
-                      mask);
+    expect_map_within(flip_map_reusing(prepared, test, &mask, known), whole, mask);
   // Every pixel, no mask: the whole map.
-  EXPECT_EQ(flip_map_reusing(ref, test, nullptr, known, kFlipDefaultPixelsPerDegree).data,
-            whole.data);
+  EXPECT_EQ(flip_map_reusing(prepared, test, nullptr, known).data, whole.data);
   // A known image of another size or channel count is not used.
   const ImageF grey(w, h, 1), grey_map(w, h, 1);
-  EXPECT_EQ(
-      flip_map_reusing(ref, test, nullptr, {{&grey, &grey_map}}, kFlipDefaultPixelsPerDegree).data,
-      whole.data);
+  EXPECT_EQ(flip_map_reusing(prepared, test, nullptr, {{&grey, &grey_map}}).data, whole.data);
 }
 
 TEST(Dilated, MarksEveryPixelWithinTheSquareOfAOne) {
