@@ -8,8 +8,9 @@
 //                and timed frames, the control frames next to them, and
 //                --pass-timing fine's frames
 //   "measure"    reading V back, checking it, shading it, its metrics
-//                against the reference(s) and its classes
-//   "images"     writing visibility.exr, shaded.png and error.png
+//                against the reference(s) and its classes; meanwhile the
+//                images that need no figure are written
+//   "images"     writing the images: what is left of it after "measure"
 //   "stability"  the "stability" block's extra frames and references
 //
 //   overhead_s = duration_s - frames - stability: what the harness spends
@@ -35,8 +36,11 @@ struct PhasesRecord {
              "control frames next to them, `--pass-timing fine`'s; for a temporal technique "
              "also the second `prepare()` and the `frames.history` frames its V is measured on"});
     v.field("measure", &PhasesRecord::measure,
-            {"s", "read-back, checks, shading, metrics, classes"});
-    v.field("images", &PhasesRecord::images, {"s", "writing the images"});
+            {"s",
+             "read-back, checks, shading, metrics, classes; the images that need no figure are "
+             "written meanwhile"});
+    v.field("images", &PhasesRecord::images,
+            {"s", "writing the images: what is left of it once the metrics are done"});
     v.field("stability", &PhasesRecord::stability,
             {"s", "the stability block's frames and references"});
   }

@@ -1,7 +1,10 @@
 #include "run/job_run.h"
 
+#include <tbb/task_group.h>
+
 #include <chrono>
 #include <memory>
+#include <utility>
 
 #include "core/error.h"
 #include "gl/allocation_meter.h"
@@ -41,6 +44,30 @@ class Lap {
 
  private:
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+// Work on another TBB task, waited for before the scope it reads ends: on
+// the way out of an exception too, where the task's own error is dropped
+// for the one already thrown.
+class TaskAside {
+ public:
+  template <class F>
+  void run(F&& f) {
+    group_.run(std::forward<F>(f));
+  }
+  void wait() { group_.wait(); }  // rethrows the task's exception
+  TaskAside() = default;
+  TaskAside(const TaskAside&) = delete;
+  TaskAside& operator=(const TaskAside&) = delete;
+  ~TaskAside() {
+    try {
+      group_.wait();
+    } catch (...) {  // NOLINT(bugprone-empty-catch): the scope's own exception wins
+    }
+  }
+
+ private:
+  tbb::task_group group_;
 };
 
 FrameSchedule schedule_of(const JobSetting& s, const TechniqueVariant& tv) {
@@ -142,6 +169,16 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv,
   metrics::apply_attached_shadow(b.regions.attached, visibility);
   // Shaded from the same V as the metrics, as the reference is: untimed.
   const ImageF shaded = shade(s.frame, visibility);
+  // The images that need no figure are written while the figures are
+  // worked out: both run on the CPU with no frame running, and the images'
+  // encoding fills the cores the metrics' serial steps leave idle.
+  TaskAside images;
+  record::ImagesRecord written;
+  if (s.o.write_images)
+    images.run([&] {
+      written =
+          write_job_images(s.o.run_dir, r.job_id, visibility, shaded, b.ref.visibility, b.regions);
+    });
   ImageF flip_map;
   r.metrics = metrics::measure(visibility, shaded, *b.prepared, b.regions, &flip_map);
   if (b.second)
@@ -157,9 +194,11 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv,
       r.warnings.push_back(*warning);
   phases.measure = lap.seconds();
   s.events.job_phase("images");
-  if (s.o.write_images)
-    r.images.add(write_job_images(s.o.run_dir, r.job_id, visibility, shaded, b.ref.visibility,
-                                  b.regions, flip_map));
+  if (s.o.write_images) {
+    images.wait();
+    r.images.add(written);
+    r.images.add(write_flip_image(s.o.run_dir, r.job_id, flip_map));
+  }
   phases.images = lap.seconds();
   // Metrics and images are kept for inspection (the executor moves the
   // figures into the record's "partial"), but the job fails.

@@ -66,12 +66,11 @@ ImageF heat_colours(const ImageF& map) {
 
 ImagesRecord write_job_images(const std::string& run_dir, const std::string& job_id,
                               const ImageF& visibility, const ImageF& shaded,
-                              const ImageF& ref_visibility, const metrics::Regions& regions,
-                              const ImageF& flip_map) {
+                              const ImageF& ref_visibility, const metrics::Regions& regions) {
   const std::string rel = "jobs/" + job_id;
   const fs::path dir = fs::path(run_dir) / rel;
   core::make_own_folder(run_dir, rel);
-  // Five files at once: no frame runs now, and one file's encoding keeps
+  // Four files at once: no frame runs now, and one file's encoding keeps
   // one core busy (zlib), so the job's images take about half the time.
   tbb::parallel_invoke(
       [&] {
@@ -87,15 +86,24 @@ ImagesRecord write_job_images(const std::string& run_dir, const std::string& job
             metrics::error_heatmap(
                 metrics::with_unmeasured_from(visibility, ref_visibility, regions.measured),
                 ref_visibility, kHeatmapFullScale));
-      },
-      [&] { metrics::io::write_png((dir / "flip_shaded.png").string(), heat_colours(flip_map)); });
+      });
   ImagesRecord images;
   images.visibility = rel + "/visibility.exr";
   images.shaded = rel + "/shaded.png";
   images.error_heatmap = rel + "/error.png";
   images.error_heatmap_full_scale = kHeatmapFullScale;
-  images.flip_shaded = rel + "/flip_shaded.png";
   images.masks["soft_union"] = rel + "/mask_soft_union.png";
+  return images;
+}
+
+ImagesRecord write_flip_image(const std::string& run_dir, const std::string& job_id,
+                              const ImageF& flip_map) {
+  const std::string rel = "jobs/" + job_id;
+  core::make_own_folder(run_dir, rel);
+  metrics::io::write_png((fs::path(run_dir) / rel / "flip_shaded.png").string(),
+                         heat_colours(flip_map));
+  ImagesRecord images;
+  images.flip_shaded = rel + "/flip_shaded.png";
   return images;
 }
 

@@ -23,13 +23,18 @@ record::ImagesRecord write_reference_images(const RunOptions& o, const std::stri
                                             const core::ImageF& positions,
                                             const core::ImageF& normals);
 
-// The technique's V, its shaded image, its error heat map, the shaded
-// image's whole-image FLIP map (metrics::measure's `flip_map`) and its
-// soft_union mask, under <run_dir>/jobs/<job id>.
+// The technique's V, its shaded image, its error heat map and its
+// soft_union mask, under <run_dir>/jobs/<job id>: the images that need no
+// figure of the job, so that they can be written while its figures are
+// worked out.
 record::ImagesRecord write_job_images(const std::string& run_dir, const std::string& job_id,
                                       const core::ImageF& visibility, const core::ImageF& shaded,
                                       const core::ImageF& ref_visibility,
-                                      const metrics::Regions& regions,
+                                      const metrics::Regions& regions);
+
+// The shaded image's whole-image FLIP map (metrics::measure's `flip_map`)
+// in heat-map colours, as <run_dir>/jobs/<job id>/flip_shaded.png.
+record::ImagesRecord write_flip_image(const std::string& run_dir, const std::string& job_id,
                                       const core::ImageF& flip_map);
 
 // The pixels of the technique's V (before the attached-shadow mask) that
