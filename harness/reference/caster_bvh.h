@@ -45,6 +45,20 @@ class CasterBvh {
   template <typename Keep, typename Visit>
   bool traverse(const Keep& keep, const Visit& visit) const;
 
+  // Appends to `out` the leaves (as indices for traverse_leaves) that
+  // traverse(keep, ·) would visit, in its order.
+  template <typename Keep>
+  void leaves(const Keep& keep, std::vector<uint32_t>& out) const;
+
+  // Calls visit(lo, hi, first, last) for each of `leaves` (from leaves())
+  // whose own box [lo, hi] keep accepts, in their order, its triangles
+  // [first, last): the triangles that traverse(keep, ·) visits, in its
+  // order, when `leaves` came from a keep that accepts every box `keep`
+  // does, or at least every box holding a triangle that the visit acts on.
+  template <typename Keep, typename VisitLeaf>
+  void traverse_leaves(const std::vector<uint32_t>& leaves, const Keep& keep,
+                       const VisitLeaf& visit) const;
+
  private:
   struct Node {
     glm::dvec3 lo, hi;
@@ -52,10 +66,23 @@ class CasterBvh {
     uint32_t left = 0, right = 0;   // inner: children (count == 0)
   };
   uint32_t build(uint32_t first, uint32_t count);
+  template <typename Visit>
+  bool visit_leaf(const Node& node, const Visit& visit) const;
 
   std::vector<CasterTriangle> triangles_;
   std::vector<Node> nodes_;
 };
+
+template <typename Visit>
+bool CasterBvh::visit_leaf(const Node& node, const Visit& visit) const {
+  for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+    if constexpr (std::is_void_v<std::invoke_result_t<const Visit&, const CasterTriangle&>>)
+      visit(triangles_[i]);
+    else if (!visit(triangles_[i]))
+      return false;
+  }
+  return true;
+}
 
 template <typename Keep, typename Visit>
 bool CasterBvh::traverse(const Keep& keep, const Visit& visit) const {
@@ -73,14 +100,39 @@ bool CasterBvh::traverse(const Keep& keep, const Visit& visit) const {
       stack[size++] = node.right;
       continue;
     }
-    for (uint32_t i = node.first; i < node.first + node.count; ++i) {
-      if constexpr (std::is_void_v<std::invoke_result_t<const Visit&, const CasterTriangle&>>)
-        visit(triangles_[i]);
-      else if (!visit(triangles_[i]))
-        return false;
-    }
+    if (!visit_leaf(node, visit)) return false;
   }
   return true;
+}
+
+template <typename Keep>
+void CasterBvh::leaves(const Keep& keep, std::vector<uint32_t>& out) const {
+  if (nodes_.empty()) return;
+  std::array<uint32_t, 64> stack;  // as traverse()'s
+  size_t size = 1;
+  stack[0] = 0;
+  while (size > 0) {
+    const uint32_t index = stack[--size];
+    const Node& node = nodes_[index];
+    if (!keep(node.lo, node.hi)) continue;
+    if (node.count == 0) {
+      stack[size++] = node.left;
+      stack[size++] = node.right;
+    } else {
+      out.push_back(index);
+    }
+  }
+}
+
+template <typename Keep, typename VisitLeaf>
+void CasterBvh::traverse_leaves(const std::vector<uint32_t>& leaves, const Keep& keep,
+                                const VisitLeaf& visit) const {
+  for (const uint32_t index : leaves) {
+    const Node& node = nodes_[index];
+    if (keep(node.lo, node.hi))
+      visit(node.lo, node.hi, triangles_.data() + node.first,
+            triangles_.data() + node.first + node.count);
+  }
 }
 
 }  // namespace sb::reference::detail
