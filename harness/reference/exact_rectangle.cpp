@@ -6,11 +6,13 @@
 #include <clipper.hpp>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <utility>
 
 #include "reference/closed_parts.h"
 #include "reference/exact_visibility.h"
 #include "reference/light_frame.h"
+#include "reference/separate_loops.h"
 
 namespace sb::reference {
 
@@ -26,6 +28,14 @@ using detail::Polygon3;
 constexpr double kIntegerRange = 1073741824.0;  // 2^30: the light's larger half-size
 
 using ClipperLib::IntPoint;
+
+// std::llround (halves away from zero) without the library call, which
+// cost a tenth of the union's instructions: x minus its truncation is exact.
+ClipperLib::cInt round_to_integer(double x) {
+  const auto whole = static_cast<ClipperLib::cInt>(x);  // towards zero
+  const double rest = x - static_cast<double>(whole);
+  return rest >= 0.5 ? whole + 1 : rest <= -0.5 ? whole - 1 : whole;
+}
 
 bool operator<(const IntPoint& a, const IntPoint& b) {
   return a.X < b.X || (a.X == b.X && a.Y < b.Y);
@@ -128,9 +138,9 @@ void ExactVisibility::collect_polygons(const glm::dvec3& surface, const glm::dve
                                        const glm::dvec3& origin, FlatPolygons& out,
                                        const std::vector<uint32_t>* leaves) const {
   out.clear();
-  const Frame f(light_);
+  const Frame& f = frame_;
   // The light below the tangent plane through the surface point.
-  const auto corners = f.corners();
+  const auto& corners = corners_;
   std::array<glm::dvec3, 8> below{};
   const size_t below_count =
       detail::clip_into(corners.data(), corners.size(), Plane{-n, surface}, below.data());
@@ -300,8 +310,7 @@ double ExactVisibility::union_area(const FlatPolygons& polygons, double half_wid
     path.clear();
     for (uint32_t i = first; i < end; ++i) {
       const glm::dvec2& q = polygons.corners[i];
-      path.emplace_back(ClipperLib::cInt(std::llround(q.x * scale)),
-                        ClipperLib::cInt(std::llround(q.y * scale)));
+      path.emplace_back(round_to_integer(q.x * scale), round_to_integer(q.y * scale));
     }
     first = end;
     const double area = ClipperLib::Area(path);
@@ -314,14 +323,20 @@ double ExactVisibility::union_area(const FlatPolygons& polygons, double half_wid
     // One polygon is its own union.
     covered = ClipperLib::Area(paths[0]);
   } else {
-    ClipperLib::Clipper clipper;
     thread_local ClipperLib::Paths loops;
     const size_t loop_count = cancel_shared_edges(paths, used, loops);
-    for (size_t i = 0; i < loop_count; ++i) clipper.AddPath(loops[i], ClipperLib::ptSubject, true);
-    thread_local ClipperLib::Paths united;
-    united.clear();
-    clipper.Execute(ClipperLib::ctUnion, united, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-    for (const auto& path : united) covered += ClipperLib::Area(path);
+    // Usually a shadow's outline, or a few apart: their areas, no Clipper.
+    if (const std::optional<double> separate = detail::separate_loops_area(loops, loop_count)) {
+      covered = *separate;
+    } else {
+      ClipperLib::Clipper clipper;
+      for (size_t i = 0; i < loop_count; ++i)
+        clipper.AddPath(loops[i], ClipperLib::ptSubject, true);
+      thread_local ClipperLib::Paths united;
+      united.clear();
+      clipper.Execute(ClipperLib::ctUnion, united, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+      for (const auto& path : united) covered += ClipperLib::Area(path);
+    }
   }
   return std::clamp(covered, 0.0, light_area) / (scale * scale);
 }

@@ -38,7 +38,10 @@ std::string ExactVisibility::unsupported_reason(const Scene& scene) {
 }
 
 ExactVisibility::ExactVisibility(const Scene& scene, const std::vector<bool>& closed)
-    : light_(scene.light), unsupported_(unsupported_reason(scene)) {
+    : light_(scene.light),
+      frame_(light_),
+      corners_(frame_.corners()),
+      unsupported_(unsupported_reason(scene)) {
   std::vector<detail::CasterTriangle> triangles;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const Mesh& mesh = scene.meshes[m];
@@ -97,8 +100,7 @@ double ExactVisibility::visibility(const glm::dvec3& p, const glm::dvec3& n) con
 }
 
 bool ExactVisibility::light_above(const glm::dvec3& surface, const glm::dvec3& n) const {
-  const auto corners = detail::Frame(light_).corners();
-  return !std::all_of(corners.begin(), corners.end(),
+  return !std::all_of(corners_.begin(), corners_.end(),
                       [&](const glm::dvec3& c) { return glm::dot(n, c - surface) <= 0.0; });
 }
 
@@ -108,7 +110,7 @@ double ExactVisibility::rectangle_visibility(const glm::dvec3& surface, const gl
   // All of the light on or below the tangent plane: the horizon polygon is
   // the light, and the union would be too.
   if (!light_above(surface, n)) return 0.0;
-  const detail::Frame f(light_);
+  const detail::Frame& f = frame_;
   thread_local FlatPolygons polygons;
   collect_polygons(surface, n, origin, polygons, leaves);
   if (polygons.ends.empty()) return 1.0;
@@ -153,7 +155,7 @@ void ExactVisibility::rectangle_image(const ImageF& positions, const ImageF& nor
   constexpr int kTile = 8;
   const int columns = (positions.width + kTile - 1) / kTile;
   const int rows = (positions.height + kTile - 1) / kTile;
-  const detail::Frame f(light_);
+  const detail::Frame& f = frame_;
   tbb::parallel_for(0, columns * rows, [&](int tile) {
     struct Pixel {
       size_t i;
