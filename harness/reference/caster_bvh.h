@@ -45,18 +45,27 @@ class CasterBvh {
   template <typename Keep, typename Visit>
   bool traverse(const Keep& keep, const Visit& visit) const;
 
-  // Appends to `out` the leaves (as indices for traverse_leaves) that
-  // traverse(keep, ·) would visit, in its order.
-  template <typename Keep>
-  void leaves(const Keep& keep, std::vector<uint32_t>& out) const;
+  // A leaf of the hierarchy, and which of its triangles a query keeps
+  // (bit i: its i-th; a leaf has at most four).
+  struct Leaf {
+    uint32_t node;
+    uint32_t triangles;
+  };
 
-  // Calls visit(lo, hi, first, last) for each of `leaves` (from leaves())
-  // whose own box [lo, hi] keep accepts, in their order, its triangles
-  // [first, last): the triangles that traverse(keep, ·) visits, in its
-  // order, when `leaves` came from a keep that accepts every box `keep`
-  // does, or at least every box holding a triangle that the visit acts on.
+  // Appends to `out` the leaves that traverse(keep, ·) would visit, in its
+  // order, each with the triangles that keep_triangle(triangle) accepts
+  // (none: not appended).
+  template <typename Keep, typename KeepTriangle>
+  void leaves(const Keep& keep, const KeepTriangle& keep_triangle, std::vector<Leaf>& out) const;
+
+  // Calls visit(lo, hi, first, kept) for each of `leaves` (from leaves())
+  // whose own box [lo, hi] keep accepts, in their order: its triangles
+  // first[i] for each bit i of kept. These are the triangles that
+  // traverse(keep, ·) visits, in its order, when the leaves came from
+  // leaves() with tests that accept every box and triangle that keep does,
+  // or at least every one holding a triangle that the visit acts on.
   template <typename Keep, typename VisitLeaf>
-  void traverse_leaves(const std::vector<uint32_t>& leaves, const Keep& keep,
+  void traverse_leaves(const std::vector<Leaf>& leaves, const Keep& keep,
                        const VisitLeaf& visit) const;
 
  private:
@@ -105,8 +114,9 @@ bool CasterBvh::traverse(const Keep& keep, const Visit& visit) const {
   return true;
 }
 
-template <typename Keep>
-void CasterBvh::leaves(const Keep& keep, std::vector<uint32_t>& out) const {
+template <typename Keep, typename KeepTriangle>
+void CasterBvh::leaves(const Keep& keep, const KeepTriangle& keep_triangle,
+                       std::vector<Leaf>& out) const {
   if (nodes_.empty()) return;
   std::array<uint32_t, 64> stack;  // as traverse()'s
   size_t size = 1;
@@ -118,20 +128,22 @@ void CasterBvh::leaves(const Keep& keep, std::vector<uint32_t>& out) const {
     if (node.count == 0) {
       stack[size++] = node.left;
       stack[size++] = node.right;
-    } else {
-      out.push_back(index);
+      continue;
     }
+    uint32_t kept = 0;
+    for (uint32_t i = 0; i < node.count; ++i)
+      if (keep_triangle(triangles_[node.first + i])) kept |= 1u << i;
+    if (kept != 0) out.push_back({index, kept});
   }
 }
 
 template <typename Keep, typename VisitLeaf>
-void CasterBvh::traverse_leaves(const std::vector<uint32_t>& leaves, const Keep& keep,
+void CasterBvh::traverse_leaves(const std::vector<Leaf>& leaves, const Keep& keep,
                                 const VisitLeaf& visit) const {
-  for (const uint32_t index : leaves) {
-    const Node& node = nodes_[index];
+  for (const Leaf& leaf : leaves) {
+    const Node& node = nodes_[leaf.node];
     if (keep(node.lo, node.hi))
-      visit(node.lo, node.hi, triangles_.data() + node.first,
-            triangles_.data() + node.first + node.count);
+      visit(node.lo, node.hi, triangles_.data() + node.first, leaf.triangles);
   }
 }
 

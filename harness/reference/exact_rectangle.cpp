@@ -3,6 +3,7 @@
 // onto the light's plane, and their union's area, by Clipper.
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <clipper.hpp>
 #include <cmath>
 #include <cstddef>
@@ -136,7 +137,7 @@ std::vector<std::vector<glm::dvec2>> ExactVisibility::occluding_polygons(
 
 void ExactVisibility::collect_polygons(const glm::dvec3& surface, const glm::dvec3& n,
                                        const glm::dvec3& origin, FlatPolygons& out,
-                                       const std::vector<uint32_t>* leaves) const {
+                                       const std::vector<detail::CasterBvh::Leaf>* leaves) const {
   out.clear();
   const Frame& f = frame_;
   // The light below the tangent plane through the surface point.
@@ -269,11 +270,11 @@ void ExactVisibility::collect_polygons(const glm::dvec3& surface, const glm::dve
                          std::fabs(f.centre.x), std::fabs(f.centre.y), std::fabs(f.centre.z)});
     casters_.traverse_leaves(*leaves, keep,
                              [&](const glm::dvec3& lo, const glm::dvec3& hi,
-                                 const CasterTriangle* first, const CasterTriangle* last) {
+                                 const CasterTriangle* first, uint32_t kept) {
                                const bool may_cross = detail::segment_meets_box(
                                    p, to_centre, lo - margin, hi + margin);
-                               for (const CasterTriangle* t = first; t != last; ++t)
-                                 visit(*t, may_cross);
+                               for (; kept != 0; kept &= kept - 1)
+                                 visit(first[std::countr_zero(kept)], may_cross);
                              });
   } else {
     casters_.traverse(keep, [&](const CasterTriangle& t) { visit(t, true); });

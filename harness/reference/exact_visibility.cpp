@@ -104,9 +104,9 @@ bool ExactVisibility::light_above(const glm::dvec3& surface, const glm::dvec3& n
                       [&](const glm::dvec3& c) { return glm::dot(n, c - surface) <= 0.0; });
 }
 
-double ExactVisibility::rectangle_visibility(const glm::dvec3& surface, const glm::dvec3& n,
-                                             const glm::dvec3& origin,
-                                             const std::vector<uint32_t>* leaves) const {
+double ExactVisibility::rectangle_visibility(
+    const glm::dvec3& surface, const glm::dvec3& n, const glm::dvec3& origin,
+    const std::vector<detail::CasterBvh::Leaf>* leaves) const {
   // All of the light on or below the tangent plane: the horizon polygon is
   // the light, and the union would be too.
   if (!light_above(surface, n)) return 0.0;
@@ -180,11 +180,12 @@ void ExactVisibility::rectangle_image(const ImageF& positions, const ImageF& nor
         origins[count++] = viewpoint(surface, n);
       }
     if (count == 0) return;
-    thread_local std::vector<uint32_t> leaves;
+    thread_local std::vector<detail::CasterBvh::Leaf> leaves;
     leaves.clear();
     const detail::PyramidsBound bound(f, origins.data(), count, extent_);
     casters_.leaves(
-        [&](const glm::dvec3& lo, const glm::dvec3& hi) { return bound.may_meet(lo, hi); }, leaves);
+        [&](const glm::dvec3& lo, const glm::dvec3& hi) { return bound.may_meet(lo, hi); },
+        [&](const detail::CasterTriangle& t) { return bound.may_meet(t.a, t.b, t.c); }, leaves);
     for (size_t k = 0; k < count; ++k)
       out.data[pixels[k].i] =
           float(rectangle_visibility(pixels[k].surface, pixels[k].n, origins[k], &leaves));

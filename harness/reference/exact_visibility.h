@@ -211,18 +211,20 @@ class ExactVisibility {
   glm::dvec3 viewpoint(const glm::dvec3& surface, const glm::dvec3& n) const;
 
   // occluding_polygons() into `out`, the occluders seen from `origin`
-  // (viewpoint(surface, n)). `leaves`: the hierarchy's leaves to look in
-  // (CasterBvh::leaves, culled by a PyramidsBound around this pyramid),
+  // (viewpoint(surface, n)). `leaves`: the hierarchy's leaves and triangles
+  // to look in (CasterBvh::leaves, culled by a PyramidsBound around this
+  // pyramid),
   // else all of it; the polygons are the same either way.
   void collect_polygons(const glm::dvec3& surface, const glm::dvec3& n, const glm::dvec3& origin,
-                        FlatPolygons& out, const std::vector<uint32_t>* leaves = nullptr) const;
+                        FlatPolygons& out,
+                        const std::vector<detail::CasterBvh::Leaf>* leaves = nullptr) const;
   static double union_area(const FlatPolygons& polygons, double half_width, double half_height);
 
   // A rectangle's V at surface, seen from origin (viewpoint(surface, n));
   // `leaves` as for collect_polygons.
   double rectangle_visibility(const glm::dvec3& surface, const glm::dvec3& n,
                               const glm::dvec3& origin,
-                              const std::vector<uint32_t>* leaves = nullptr) const;
+                              const std::vector<detail::CasterBvh::Leaf>* leaves = nullptr) const;
 
   // Whether some of a rectangular light lies above the plane through
   // `surface` normal to n (else V is 0).

@@ -37,6 +37,15 @@ class PyramidsBound {
            lo_.z <= hi.z && box_meets(lo, hi, planes_);
   }
 
+  // False only when the triangle abc lies farther than the margin from
+  // every pyramid: wholly outside one of the planes.
+  bool may_meet(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) const {
+    for (const Plane& plane : planes_)
+      if (plane.distance(a) < 0.0 && plane.distance(b) < 0.0 && plane.distance(c) < 0.0)
+        return false;
+    return true;
+  }
+
  private:
   glm::dvec3 lo_, hi_;
   std::array<Plane, 5> planes_;

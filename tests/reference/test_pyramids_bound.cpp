@@ -1,6 +1,6 @@
 // The bound around several pyramids to a rectangular light
 // (harness/reference/pyramids_bound.h), against each pyramid's own clip: a
-// triangle that any of the pyramids meets has a box the bound keeps.
+// triangle that any of the pyramids meets is kept, and so is its box.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -25,10 +25,10 @@ glm::dvec3 random_unit(std::mt19937& rng) {
   }
 }
 
-TEST(ReferencePyramidsBound, KeepsTheBoxOfEveryTriangleThatOneOfThePyramidsMeets) {
+TEST(ReferencePyramidsBound, KeepsEveryTriangleThatOneOfThePyramidsMeetsAndItsBox) {
   std::mt19937 rng(65);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  size_t met = 0, culled = 0;
+  size_t met = 0, culled = 0, culled_triangles = 0;
   for (int trial = 0; trial < 300; ++trial) {
     // A light of any size and orientation.
     sb::core::AreaLight light;
@@ -53,13 +53,15 @@ TEST(ReferencePyramidsBound, KeepsTheBoxOfEveryTriangleThatOneOfThePyramidsMeets
       const glm::dvec3 a = c + size * random_unit(rng), b = c + size * random_unit(rng),
                        d = c + size * random_unit(rng);
       const glm::dvec3 lo = glm::min(a, glm::min(b, d)), hi = glm::max(a, glm::max(b, d));
-      const bool kept = bound.may_meet(lo, hi);
+      const bool kept = bound.may_meet(lo, hi), kept_triangle = bound.may_meet(a, b, d);
       culled += !kept;
+      culled_triangles += !kept_triangle;
       for (const glm::dvec3& p : points) {
         if (!sb::reference::detail::triangle_meets(a, b, d, sb::reference::detail::pyramid(f, p)))
           continue;
         ++met;
         EXPECT_TRUE(kept) << "trial " << trial << ", triangle " << k;
+        EXPECT_TRUE(kept_triangle) << "trial " << trial << ", triangle " << k;
         break;
       }
     }
@@ -67,6 +69,7 @@ TEST(ReferencePyramidsBound, KeepsTheBoxOfEveryTriangleThatOneOfThePyramidsMeets
   // Both answers happen often, or the test shows nothing.
   EXPECT_GT(met, 10000u);
   EXPECT_GT(culled, 10000u);
+  EXPECT_GT(culled_triangles, culled);
 }
 
 // Every pyramid's own points (its apex, the light's corners, a point
