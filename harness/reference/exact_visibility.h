@@ -13,7 +13,9 @@
 //   - V = 1 − area(union of the polygons) / area(light).
 // The union is Clipper's (libpolyclipping, integer coordinates): the light's
 // half-size maps to 2^30, so a vertex moves by at most 2^-31 of it and the
-// area by under 1e-8 of the light's.
+// area by under 1e-8 of the light's. The edges neighbouring triangles share
+// cancel first; when the outlines left are simple loops apart from each
+// other, the union is their area, summed exactly (separate_loops.h).
 //
 // The occluders are seen from p + ε·n (n made unit), ε = 2^-16 · max(|p|∞,
 // M), M the largest |coordinate| of the caster triangles p lies on: the
