@@ -45,6 +45,29 @@ class CasterBvh {
   template <typename Keep, typename Visit>
   bool traverse(const Keep& keep, const Visit& visit) const;
 
+  // A leaf of the hierarchy, and which of its triangles a query keeps
+  // (bit i: its i-th; a leaf has at most four).
+  struct Leaf {
+    uint32_t node;
+    uint32_t triangles;
+  };
+
+  // Appends to `out` the leaves that traverse(keep, ·) would visit, in its
+  // order, each with the triangles that keep_triangle(triangle) accepts
+  // (none: not appended).
+  template <typename Keep, typename KeepTriangle>
+  void leaves(const Keep& keep, const KeepTriangle& keep_triangle, std::vector<Leaf>& out) const;
+
+  // Calls visit(lo, hi, first, kept) for each of `leaves` (from leaves())
+  // whose own box [lo, hi] keep accepts, in their order: its triangles
+  // first[i] for each bit i of kept. These are the triangles that
+  // traverse(keep, ·) visits, in its order, when the leaves came from
+  // leaves() with tests that accept every box and triangle that keep does,
+  // or at least every one holding a triangle that the visit acts on.
+  template <typename Keep, typename VisitLeaf>
+  void traverse_leaves(const std::vector<Leaf>& leaves, const Keep& keep,
+                       const VisitLeaf& visit) const;
+
  private:
   struct Node {
     glm::dvec3 lo, hi;
@@ -52,10 +75,23 @@ class CasterBvh {
     uint32_t left = 0, right = 0;   // inner: children (count == 0)
   };
   uint32_t build(uint32_t first, uint32_t count);
+  template <typename Visit>
+  bool visit_leaf(const Node& node, const Visit& visit) const;
 
   std::vector<CasterTriangle> triangles_;
   std::vector<Node> nodes_;
 };
+
+template <typename Visit>
+bool CasterBvh::visit_leaf(const Node& node, const Visit& visit) const {
+  for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+    if constexpr (std::is_void_v<std::invoke_result_t<const Visit&, const CasterTriangle&>>)
+      visit(triangles_[i]);
+    else if (!visit(triangles_[i]))
+      return false;
+  }
+  return true;
+}
 
 template <typename Keep, typename Visit>
 bool CasterBvh::traverse(const Keep& keep, const Visit& visit) const {
@@ -73,14 +109,42 @@ bool CasterBvh::traverse(const Keep& keep, const Visit& visit) const {
       stack[size++] = node.right;
       continue;
     }
-    for (uint32_t i = node.first; i < node.first + node.count; ++i) {
-      if constexpr (std::is_void_v<std::invoke_result_t<const Visit&, const CasterTriangle&>>)
-        visit(triangles_[i]);
-      else if (!visit(triangles_[i]))
-        return false;
-    }
+    if (!visit_leaf(node, visit)) return false;
   }
   return true;
+}
+
+template <typename Keep, typename KeepTriangle>
+void CasterBvh::leaves(const Keep& keep, const KeepTriangle& keep_triangle,
+                       std::vector<Leaf>& out) const {
+  if (nodes_.empty()) return;
+  std::array<uint32_t, 64> stack;  // as traverse()'s
+  size_t size = 1;
+  stack[0] = 0;
+  while (size > 0) {
+    const uint32_t index = stack[--size];
+    const Node& node = nodes_[index];
+    if (!keep(node.lo, node.hi)) continue;
+    if (node.count == 0) {
+      stack[size++] = node.left;
+      stack[size++] = node.right;
+      continue;
+    }
+    uint32_t kept = 0;
+    for (uint32_t i = 0; i < node.count; ++i)
+      if (keep_triangle(triangles_[node.first + i])) kept |= 1u << i;
+    if (kept != 0) out.push_back({index, kept});
+  }
+}
+
+template <typename Keep, typename VisitLeaf>
+void CasterBvh::traverse_leaves(const std::vector<Leaf>& leaves, const Keep& keep,
+                                const VisitLeaf& visit) const {
+  for (const Leaf& leaf : leaves) {
+    const Node& node = nodes_[leaf.node];
+    if (keep(node.lo, node.hi))
+      visit(node.lo, node.hi, triangles_.data() + node.first, leaf.triangles);
+  }
 }
 
 }  // namespace sb::reference::detail

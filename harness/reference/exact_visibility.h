@@ -13,7 +13,9 @@
 //   - V = 1 − area(union of the polygons) / area(light).
 // The union is Clipper's (libpolyclipping, integer coordinates): the light's
 // half-size maps to 2^30, so a vertex moves by at most 2^-31 of it and the
-// area by under 1e-8 of the light's.
+// area by under 1e-8 of the light's. The edges neighbouring triangles share
+// cancel first; when the outlines left are simple loops apart from each
+// other, the union is their area, summed exactly (separate_loops.h).
 //
 // The occluders are seen from p + ε·n (n made unit), ε = 2^-16 · max(|p|∞,
 // M), M the largest |coordinate| of the caster triangles p lies on: the
@@ -21,7 +23,10 @@
 // tangent plane stays p's own.
 //
 // Candidates come from a bounding-volume hierarchy over the casters'
-// triangles, culled by the pyramid's five planes. A closed caster is split
+// triangles, culled by the pyramid's five planes; image() culls it once per
+// tile of 8×8 pixels, around all of their pyramids (pyramids_bound.h), and
+// each pixel then tests only the leaves its tile kept: the same triangles
+// that make polygons, so the same V. A closed caster is split
 // into its parts, the triangles connected through shared edges (each a
 // closed surface, consistently wound: scenes/topology.h), and each part is
 // oriented by the sign of its own volume, whatever its mesh's total. A point
@@ -83,6 +88,7 @@
 #include "core/image.h"
 #include "core/scene.h"
 #include "reference/caster_bvh.h"
+#include "reference/light_frame.h"
 
 namespace sb::reference {
 
@@ -207,23 +213,43 @@ class ExactVisibility {
   glm::dvec3 viewpoint(const glm::dvec3& surface, const glm::dvec3& n) const;
 
   // occluding_polygons() into `out`, the occluders seen from `origin`
-  // (viewpoint(surface, n)).
+  // (viewpoint(surface, n)). `leaves`: the hierarchy's leaves and triangles
+  // to look in (CasterBvh::leaves, culled by a PyramidsBound around this
+  // pyramid),
+  // else all of it; the polygons are the same either way.
   void collect_polygons(const glm::dvec3& surface, const glm::dvec3& n, const glm::dvec3& origin,
-                        FlatPolygons& out) const;
+                        FlatPolygons& out,
+                        const std::vector<detail::CasterBvh::Leaf>* leaves = nullptr) const;
   static double union_area(const FlatPolygons& polygons, double half_width, double half_height);
 
-  // A rectangle's V at surface, seen from origin (viewpoint(surface, n)).
+  // A rectangle's V at surface, seen from origin (viewpoint(surface, n));
+  // `leaves` as for collect_polygons.
   double rectangle_visibility(const glm::dvec3& surface, const glm::dvec3& n,
-                              const glm::dvec3& origin) const;
+                              const glm::dvec3& origin,
+                              const std::vector<detail::CasterBvh::Leaf>* leaves = nullptr) const;
+
+  // Whether some of a rectangular light lies above the plane through
+  // `surface` normal to n (else V is 0).
+  bool light_above(const glm::dvec3& surface, const glm::dvec3& n) const;
+
+  // image() for a rectangular light: tiles of pixels, each culling the
+  // hierarchy once for all of its pixels' pyramids (pyramids_bound.h).
+  void rectangle_image(const core::ImageF& positions, const core::ImageF& normals,
+                       core::ImageF& out) const;
 
   // The sun's V at p (sun_occluding_polygons, union_disk_area).
   double sun_visibility(const glm::dvec3& p, const glm::dvec3& n) const;
 
   core::AreaLight light_;
+  // Its frame and corners, made once: per pixel they cost 2 % of the time.
+  detail::Frame frame_;
+  std::array<glm::dvec3, 4> corners_;
   detail::CasterBvh casters_;
   // The casters' bounding sphere: how far the sun's inside test must look.
   glm::dvec3 reach_centre_{0.0};
   double reach_ = 0.0;
+  // The largest |coordinate| of the casters' triangles.
+  double extent_ = 0.0;
   std::string unsupported_;
 };
 

@@ -242,6 +242,79 @@ TEST(ReferenceExact, TheUnionOfTrianglesTilingARingIsTheRingsArea) {
   EXPECT_NEAR(ExactVisibility::union_area(squares, 1.0, 1.0), 0.64 + 0.64 - 0.36, 1e-8);
 }
 
+// image() walks the caster hierarchy once per tile of pixels and then only
+// the leaves that tile kept: the same V, bit for bit, as each pixel's own
+// walk, on tiles of one surface, tiles of scattered points (inside and
+// around closed boxes, facing anywhere) and tiles with background.
+TEST(ReferenceExact, TheImageIsEveryPixelsOwnVisibility) {
+  sb::core::Scene scene;
+  scene.light = sbtest::square_light();
+  scene.light.target = {0, 0, 0};
+  std::mt19937 rng(66);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<bool> closed;
+  for (int i = 0; i < 4; ++i) {
+    const glm::vec3 lo(4.0f * unit(rng) - 2.5f, 1.0f + 4.0f * unit(rng), 4.0f * unit(rng) - 2.5f);
+    scene.meshes.push_back(box("box", lo, lo + glm::vec3(0.3f) + unit(rng) * glm::vec3(1.0f)));
+    closed.push_back(true);
+  }
+  scene.meshes.push_back(sbtest::sphere({0.8f, 2.5f, -0.6f}, 0.7f, 12, 8));
+  closed.push_back(false);
+  sb::core::Mesh triangles;
+  triangles.name = "triangles";
+  for (int i = 0; i < 40; ++i) {
+    const glm::vec3 c(6.0f * unit(rng) - 3.0f, 1.0f + 7.0f * unit(rng), 6.0f * unit(rng) - 3.0f);
+    for (int k = 0; k < 3; ++k) {
+      triangles.indices.push_back(uint32_t(triangles.positions.size()));
+      triangles.positions.push_back(
+          c + 0.6f * glm::vec3(unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f));
+    }
+  }
+  scene.meshes.push_back(triangles);
+  closed.push_back(false);
+  const ExactVisibility exact(scene, closed);
+
+  constexpr int kWidth = 44, kHeight = 36;
+  sb::core::ImageF positions(kWidth, kHeight, 4, 0.0f), normals(kWidth, kHeight, 3, 0.0f);
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const size_t i = size_t(y) * kWidth + size_t(x);
+      glm::vec3 p, n(0.0f, 1.0f, 0.0f);
+      if (y < 14) {  // the ground, smoothly
+        p = {-3.0f + 6.0f * float(x) / kWidth, 0.0f, -3.0f + 6.0f * float(y) / 14.0f};
+      } else if (y < 30) {  // anywhere, facing anywhere
+        p = {6.0f * unit(rng) - 3.0f, 6.0f * unit(rng), 6.0f * unit(rng) - 3.0f};
+        n = glm::vec3(unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f);
+      } else {  // the ground, some of it background
+        if (unit(rng) < 0.4f) continue;
+        p = {6.0f * unit(rng) - 3.0f, 0.0f, 6.0f * unit(rng) - 3.0f};
+      }
+      positions.data[i * 4 + 0] = p.x;
+      positions.data[i * 4 + 1] = p.y;
+      positions.data[i * 4 + 2] = p.z;
+      positions.data[i * 4 + 3] = 1.0f;
+      normals.data[i * 3 + 0] = n.x;
+      normals.data[i * 3 + 1] = n.y;
+      normals.data[i * 3 + 2] = n.z;
+    }
+  const sb::core::ImageF v = exact.image(positions, normals);
+  int soft = 0, dark = 0;
+  for (size_t i = 0; i < v.data.size(); ++i) {
+    if (!(positions.data[i * 4 + 3] > 0.5f)) {
+      EXPECT_EQ(v.data[i], 1.0f);
+      continue;
+    }
+    const float own = float(exact.visibility(
+        glm::dvec3(positions.data[i * 4], positions.data[i * 4 + 1], positions.data[i * 4 + 2]),
+        glm::dvec3(normals.data[i * 3], normals.data[i * 3 + 1], normals.data[i * 3 + 2])));
+    EXPECT_EQ(v.data[i], own) << "pixel " << i % kWidth << ", " << i / kWidth;
+    soft += own > 0.0f && own < 1.0f;
+    dark += own == 0.0f;
+  }
+  EXPECT_GT(soft, 200) << "too few pixels see a penumbra";
+  EXPECT_GT(dark, 50) << "too few pixels in an umbra";
+}
+
 TEST(ReferenceExact, MasksAnalyticShapesAndLightsOfNoAreaAreNamedAsUnsupported) {
   sb::core::Scene masked = plate_scene(false);
   masked.meshes[0].alpha_mode = sb::core::AlphaMode::Mask;
