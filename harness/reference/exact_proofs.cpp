@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <span>
+#include <vector>
 
 #include "reference/closed_parts.h"
 #include "reference/exact_visibility.h"
@@ -18,6 +20,7 @@ using core::AreaLight;
 namespace {
 
 using detail::box_meets;
+using detail::box_outside;
 using detail::CasterTriangle;
 using detail::clip;
 using detail::Frame;
@@ -101,6 +104,139 @@ std::optional<ProofStart> proof_start(const AreaLight& light, const glm::dvec3& 
   return s;
 }
 
+// The shaft of a set of ray origins (a pixel tile's), each as
+// sees_whole_light takes it: six planes holding every origin's wider
+// pyramid (proof_pyramid, from its apex set back), and their box. Its sides
+// pass through the edges of the rectangle in the cap's plane that holds
+// every pyramid's section there, each turned about its edge until every
+// apex is inside; then the cap; then a plane below every apex along the
+// first point's normal (so the flat surface they lie on stays outside),
+// with the cap inside. Empty where one origin has no proof start, a light
+// corner below its horizon, or where the origins lie on both sides of the
+// light's plane or the cap reaches below the last plane.
+struct Shaft {
+  std::array<Plane, 6> planes;
+  glm::dvec3 lo{0.0}, hi{0.0};
+  Plane light_plane;                            // the light's own, facing the origins
+  glm::dvec3 origins_lo{0.0}, origins_hi{0.0};  // the origins' box
+  bool meets(const glm::dvec3& box_lo, const glm::dvec3& box_hi) const {
+    if (box_lo.x > hi.x || box_lo.y > hi.y || box_lo.z > hi.z || lo.x > box_hi.x ||
+        lo.y > box_hi.y || lo.z > box_hi.z)
+      return false;
+    for (const Plane& plane : planes)
+      if (box_outside(box_lo, box_hi, plane)) return false;
+    return true;
+  }
+};
+
+std::optional<Shaft> tile_shaft(const AreaLight& light,
+                                std::span<const ExactVisibility::ProofPoint> points) {
+  if (points.empty()) return std::nullopt;
+  std::vector<glm::dvec3> apexes;
+  apexes.reserve(points.size());
+  std::optional<Frame> wider;
+  double side = 0.0;
+  Shaft shaft;
+  shaft.origins_lo = shaft.origins_hi = points[0].origin;
+  for (const ExactVisibility::ProofPoint& q : points) {
+    const std::optional<ProofStart> s = proof_start(light, q.surface, q.origin, q.n);
+    if (!s || s->above != 4) return std::nullopt;
+    const glm::dvec3 apex = q.origin - 0.25 * s->offset * s->axis;
+    const double h = glm::dot(apex - s->light.centre, s->light.normal);
+    const double sign = h > 0.0 ? 1.0 : h < 0.0 ? -1.0 : 0.0;
+    if (sign == 0.0 || (side != 0.0 && sign != side)) return std::nullopt;
+    side = sign;
+    if (!wider) wider = s->light;
+    apexes.push_back(apex);
+    shaft.origins_lo = glm::min(shaft.origins_lo, q.origin);
+    shaft.origins_hi = glm::max(shaft.origins_hi, q.origin);
+  }
+  const Frame& f = *wider;
+  const double size = std::max(f.hw, f.hh), beyond = kProofWider * size;
+  // A hair against rounding: every plane below is moved out by it.
+  const double hair = 1e-9 * size;
+  const glm::dvec3 inward = side * f.normal;  // towards the apexes
+  const glm::dvec3 cap_centre = f.centre - beyond * inward;
+  double u0 = std::numeric_limits<double>::infinity(), v0 = u0, u1 = -u0, v1 = -u0;
+  for (const glm::dvec3& apex : apexes) {
+    const double depth = std::fabs(glm::dot(apex - f.centre, f.normal));
+    const double scale = (depth + beyond) / depth;
+    for (const glm::dvec3& corner : f.corners()) {
+      const glm::dvec2 c = f.plane_coords(apex + (corner - apex) * scale);
+      u0 = std::min(u0, c.x);
+      u1 = std::max(u1, c.x);
+      v0 = std::min(v0, c.y);
+      v1 = std::max(v1, c.y);
+    }
+  }
+  u0 -= hair;
+  v0 -= hair;
+  u1 += hair;
+  v1 += hair;
+  const std::array<glm::dvec3, 4> cap{
+      cap_centre + u0 * f.u + v0 * f.v, cap_centre + u1 * f.u + v0 * f.v,
+      cap_centre + u1 * f.u + v1 * f.v, cap_centre + u0 * f.u + v1 * f.v};
+  // A plane holding every apex: moved out past the one farthest outside
+  // (for the sides, none but by rounding) and a hair more.
+  const auto holding_all = [&](glm::dvec3 normal, const glm::dvec3& point) {
+    normal = glm::normalize(normal);
+    double worst = 0.0;
+    for (const glm::dvec3& apex : apexes) worst = std::min(worst, glm::dot(normal, apex - point));
+    return Plane{normal, point - (hair - worst) * normal};
+  };
+  // The apexes lie on one side of the cap's plane, so each one outside a
+  // side turns it further the same way about its edge: the last is the
+  // support.
+  for (size_t k = 0; k < 4; ++k) {
+    const glm::dvec3 &a = cap[k], &b = cap[(k + 1) % 4];
+    glm::dvec3 normal(0.0);
+    for (size_t j = 0; j < apexes.size(); ++j) {
+      if (j > 0 && glm::dot(normal, apexes[j] - a) >= 0.0) continue;
+      normal = glm::cross(b - a, apexes[j] - a);
+      if (glm::dot(normal, cap_centre - a) < 0.0) normal = -normal;
+    }
+    if (!(glm::length(normal) > 0.0)) return std::nullopt;
+    shaft.planes[k] = holding_all(normal, a);
+  }
+  shaft.planes[4] = Plane{inward, cap_centre};
+  shaft.planes[5] = holding_all(points[0].n, apexes[0]);
+  for (const glm::dvec3& corner : cap)
+    if (shaft.planes[5].distance(corner) < 0.0) return std::nullopt;
+  shaft.light_plane = Plane{inward, f.centre};
+  shaft.lo = shaft.hi = apexes[0];
+  for (const glm::dvec3& x : apexes) {
+    shaft.lo = glm::min(shaft.lo, x);
+    shaft.hi = glm::max(shaft.hi, x);
+  }
+  for (const glm::dvec3& x : cap) {
+    shaft.lo = glm::min(shaft.lo, x);
+    shaft.hi = glm::max(shaft.hi, x);
+  }
+  return shaft;
+}
+
+// Whether any part of segment pq lies inside all N planes.
+template <size_t N>
+bool segment_inside(const glm::dvec3& p, const glm::dvec3& q, const std::array<Plane, N>& planes) {
+  double t0 = 0.0, t1 = 1.0;
+  for (const Plane& plane : planes) {
+    const double dp = plane.distance(p), dq = plane.distance(q);
+    if (dp < 0.0 && dq < 0.0) return false;
+    if (dp < 0.0) t0 = std::max(t0, dp / (dp - dq));
+    if (dq < 0.0) t1 = std::min(t1, dp / (dp - dq));
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+// Which side of triangle t's plane every point of the box lies on: +1 the
+// side its normal points to, -1 the other, 0 both or on it.
+int side_of_box(const CasterTriangle& t, const glm::dvec3& lo, const glm::dvec3& hi) {
+  const glm::dvec3 centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+  const double d = glm::dot(t.normal, centre - t.a), r = glm::dot(glm::abs(t.normal), half);
+  return d > r ? 1 : d < -r ? -1 : 0;
+}
+
 }  // namespace
 
 bool ExactVisibility::sees_whole_light(const glm::dvec3& surface, const glm::dvec3& origin,
@@ -178,6 +314,88 @@ bool ExactVisibility::hides_whole_light(const glm::dvec3& surface, const glm::dv
             continue;
           if (segment_meets(v[k], v[(k + 1) % 3], wider.planes))
             return false;  // a silhouette edge inside
+        }
+        return true;
+      });
+}
+
+bool ExactVisibility::sees_whole_light_from_all(std::span<const ProofPoint> points) const {
+  const std::optional<Shaft> shaft = tile_shaft(light_, points);
+  if (!shaft) return false;
+  // No triangle keeps any part inside the shaft, so none inside any pyramid.
+  return casters_.traverse(
+      [&](const glm::dvec3& lo, const glm::dvec3& hi) { return shaft->meets(lo, hi); },
+      [&](const CasterTriangle& t) { return !triangle_meets(t.a, t.b, t.c, shaft->planes); });
+}
+
+bool ExactVisibility::hides_whole_light_from_all(std::span<const ProofPoint> points) const {
+  if (points.empty()) return false;
+  // The horizon: all of the light below every point's plane.
+  bool all_below = true;
+  for (const ProofPoint& q : points) {
+    const std::optional<ProofStart> s = proof_start(light_, q.surface, q.origin, q.n);
+    if (!s) return false;
+    all_below = all_below && s->below == 4;
+  }
+  if (all_below) return true;
+  if (casters_.empty()) return false;
+  const std::optional<Shaft> shaft = tile_shaft(light_, points);
+  if (!shaft) return false;
+  // The closed part that the first point's ray to the light's centre
+  // crosses first (as hides_whole_light), the first point outside it.
+  const glm::dvec3& origin = points[0].origin;
+  const glm::dvec3 to_centre = glm::dvec3(light_.center) - origin;
+  PartCrossings crossings(origin, to_centre);
+  double first_hit = std::numeric_limits<double>::infinity();
+  const CasterTriangle* first = nullptr;
+  casters_.traverse(
+      [&](const glm::dvec3& lo, const glm::dvec3& hi) {
+        return segment_meets_box(origin, to_centre, lo, hi);
+      },
+      [&](const CasterTriangle& t) {
+        if (t.part == kNoPart) return;
+        const double hit = crossings.add(t.part, t.outward, t.a, t.b, t.c, t.normal);
+        if (hit < first_hit) {
+          first_hit = hit;
+          first = &t;
+        }
+      });
+  if (first == nullptr || crossings.winds_around_start()) return false;
+  // Whether a ray from an origin to the light crosses that part changes
+  // only where it grazes an edge of the part that is a silhouette from its
+  // origin, meets the part in the light's plane, or starts on the part. So
+  // if no triangle of the part that some origin sees edge-on or from both
+  // sides meets the shaft, no edge between triangles facing the origins'
+  // box differently (or without one neighbour) does, and the part does not
+  // reach the light's plane inside the shaft, then every ray of the tile
+  // crosses it as that first ray does.
+  const uint32_t part = first->part;
+  const Shaft& sh = *shaft;
+  const std::array<Plane, 4> sides{sh.planes[0], sh.planes[1], sh.planes[2], sh.planes[3]};
+  return casters_.traverse(
+      [&](const glm::dvec3& lo, const glm::dvec3& hi) { return sh.meets(lo, hi); },
+      [&](const CasterTriangle& t) {
+        if (t.part != part) return true;
+        const int own = side_of_box(t, sh.origins_lo, sh.origins_hi);
+        if (own == 0) return !triangle_meets(t.a, t.b, t.c, sh.planes);
+        if (!(sh.light_plane.distance(t.a) > 0.0 && sh.light_plane.distance(t.b) > 0.0 &&
+              sh.light_plane.distance(t.c) > 0.0)) {
+          std::array<glm::dvec3, 16> in{t.a, t.b, t.c}, out{};
+          size_t n = 3;
+          for (const Plane& plane : sides) {
+            n = detail::clip_into(in.data(), n, plane, out.data());
+            std::swap(in, out);
+          }
+          for (size_t i = 0; i < n; ++i)
+            if (!(sh.light_plane.distance(in[i]) > 0.0)) return false;
+        }
+        const std::array<glm::dvec3, 3> v{t.a, t.b, t.c};
+        for (size_t k = 0; k < 3; ++k) {
+          const uint32_t across = t.neighbour[k];
+          if (across != kNoNeighbour &&
+              side_of_box(casters_.triangles()[across], sh.origins_lo, sh.origins_hi) == own)
+            continue;
+          if (segment_inside(v[k], v[(k + 1) % 3], sh.planes)) return false;
         }
         return true;
       });

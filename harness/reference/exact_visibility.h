@@ -77,6 +77,7 @@
 #include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -120,6 +121,28 @@ class ExactVisibility {
   // that a lit pilot missed nothing (adaptive.h).
   bool sees_whole_light(const glm::dvec3& surface, const glm::dvec3& origin,
                         const glm::dvec3& n) const;
+
+  // One ray origin as sees_whole_light() takes it.
+  struct ProofPoint {
+    glm::dvec3 surface, origin, n;
+  };
+  // Whether sees_whole_light() holds at every one of `points` (a pixel
+  // tile's), by one walk: each point passes its own horizon test, and no
+  // caster triangle meets one shaft that holds all their pyramids (planes
+  // through the edges of a light section holding every pyramid's cap, each
+  // supporting all apexes; the cap; a plane below every apex along the
+  // first point's normal). False when `points` is empty.
+  bool sees_whole_light_from_all(std::span<const ProofPoint> points) const;
+
+  // Whether every shadow ray from every one of `points` provably misses the
+  // light, by one walk: each passes the horizon test as above, and the
+  // closed part that the first point's ray to the light's centre crosses
+  // first (that point outside every part) has, inside the same shaft, no
+  // triangle whose plane meets the points' box, no edge between triangles
+  // facing that box differently (or without a neighbour), and no point in
+  // the light's plane. Then whether a ray of the shaft crosses the part
+  // never changes between them, and the first one does.
+  bool hides_whole_light_from_all(std::span<const ProofPoint> points) const;
 
   // Whether every shadow ray from `origin` to a rectangular light provably
   // misses it: the whole light below the plane through `origin` normal to
