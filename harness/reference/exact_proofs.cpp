@@ -21,6 +21,7 @@ namespace {
 
 using detail::box_meets;
 using detail::box_outside;
+using detail::CasterBvh;
 using detail::CasterTriangle;
 using detail::clip;
 using detail::Frame;
@@ -230,11 +231,70 @@ bool segment_inside(const glm::dvec3& p, const glm::dvec3& q, const std::array<P
 }
 
 // Which side of triangle t's plane every point of the box lies on: +1 the
-// side its normal points to, -1 the other, 0 both or on it.
+// side its normal points to, -1 the other, 0 both, on it or near it.
 int side_of_box(const CasterTriangle& t, const glm::dvec3& lo, const glm::dvec3& hi) {
   const glm::dvec3 centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
   const double d = glm::dot(t.normal, centre - t.a), r = glm::dot(glm::abs(t.normal), half);
-  return d > r ? 1 : d < -r ? -1 : 0;
+  // A margin far beyond the rounding of the facing test at one point
+  // (keeps_umbra), so that every point in the box gets this answer there.
+  const double margin =
+      1e-9 * glm::length(t.normal) * (glm::length(centre - t.a) + glm::length(half));
+  return d > r + margin ? 1 : d < -r - margin ? -1 : 0;
+}
+
+// The first closed part that the segment from origin to centre crosses
+// (nullptr: none); `inside` when some part winds around origin more often
+// than around centre (closed_parts.h).
+const CasterTriangle* first_part(const CasterBvh& casters, const glm::dvec3& origin,
+                                 const glm::dvec3& centre, bool& inside) {
+  const glm::dvec3 to_centre = centre - origin;
+  PartCrossings crossings(origin, to_centre);
+  double first_hit = std::numeric_limits<double>::infinity();
+  const CasterTriangle* first = nullptr;
+  casters.traverse(
+      [&](const glm::dvec3& lo, const glm::dvec3& hi) {
+        return segment_meets_box(origin, to_centre, lo, hi);
+      },
+      [&](const CasterTriangle& t) {
+        if (t.part == kNoPart) return;
+        const double hit = crossings.add(t.part, t.outward, t.a, t.b, t.c, t.normal);
+        if (hit < first_hit) {
+          first_hit = hit;
+          first = &t;
+        }
+      });
+  inside = first != nullptr && crossings.winds_around_start();
+  return first;
+}
+
+// Whether triangle t of the part keeps hides_whole_light's proof from
+// origin: it does not reach the light's plane inside `rays`, and none of
+// its edges that is a silhouette seen from origin (an edge-on triangle, or
+// no single neighbour, counting as one) meets `wider`.
+bool keeps_umbra(const std::vector<CasterTriangle>& all, const CasterTriangle& t,
+                 const glm::dvec3& origin, const std::array<Plane, 5>& rays,
+                 const std::array<Plane, 5>& wider) {
+  // Reaching the light's plane inside the pyramid: rays may pass beside it
+  // there.
+  if (!(rays[4].distance(t.a) > 0.0 && rays[4].distance(t.b) > 0.0 &&
+        rays[4].distance(t.c) > 0.0)) {
+    Polygon3 sides{t.a, t.b, t.c};
+    for (size_t i = 0; i < 4; ++i) sides = clip(sides, rays[i]);
+    for (const glm::dvec3& x : sides)
+      if (!(rays[4].distance(x) > 0.0)) return false;
+  }
+  const auto faces = [&](const CasterTriangle& u) {
+    const double facing = glm::dot(u.normal, origin - u.a);
+    return facing > 0.0 ? 1 : facing < 0.0 ? -1 : 0;
+  };
+  const int own = faces(t);
+  const std::array<glm::dvec3, 3> v{t.a, t.b, t.c};
+  for (size_t k = 0; k < 3; ++k) {
+    const uint32_t across = t.neighbour[k];
+    if (own != 0 && across != kNoNeighbour && faces(all[across]) == own) continue;
+    if (segment_meets(v[k], v[(k + 1) % 3], wider)) return false;  // a silhouette edge inside
+  }
+  return true;
 }
 
 }  // namespace
@@ -256,149 +316,137 @@ bool ExactVisibility::sees_whole_light(const glm::dvec3& surface, const glm::dve
 
 bool ExactVisibility::hides_whole_light(const glm::dvec3& surface, const glm::dvec3& origin,
                                         const glm::dvec3& n) const {
+  return hides_whole_light({surface, origin, n}, TileCandidates{});
+}
+
+bool ExactVisibility::hides_whole_light(const ProofPoint& q, const TileCandidates& dark) const {
   // The horizon: the Monte Carlo rays trace no sample below the origin's
   // plane. All of the light below it hides all of it; part of it, nothing
   // this proves.
-  const std::optional<ProofStart> start = proof_start(light_, surface, origin, n);
+  const glm::dvec3& origin = q.origin;
+  const std::optional<ProofStart> start = proof_start(light_, q.surface, origin, q.n);
   if (!start) return false;
   if (start->below == 4) return true;
   if (start->above != 4 || casters_.empty()) return false;
-  const Frame& f = start->light;
-  const double offset = start->offset;
   // The closed part the ray to the light's centre crosses first.
-  const glm::dvec3 to_centre = f.centre - origin;
-  PartCrossings crossings(origin, to_centre);
-  double first_hit = std::numeric_limits<double>::infinity();
-  const CasterTriangle* first = nullptr;
-  casters_.traverse(
-      [&](const glm::dvec3& lo, const glm::dvec3& hi) {
-        return segment_meets_box(origin, to_centre, lo, hi);
-      },
-      [&](const CasterTriangle& t) {
-        if (t.part == kNoPart) return;
-        const double hit = crossings.add(t.part, t.outward, t.a, t.b, t.c, t.normal);
-        if (hit < first_hit) {
-          first_hit = hit;
-          first = &t;
-        }
-      });
+  bool inside = false;
+  const CasterTriangle* first = first_part(casters_, origin, start->light.centre, inside);
   if (first == nullptr) return false;
   // Inside a closed part: every ray leaves it (as the exact visibility has it).
-  if (crossings.winds_around_start()) return true;
+  if (inside) return true;
   // That part alone (a closed surface), whichever way it winds.
   const uint32_t part = first->part;
   const std::array<Plane, 5> rays = proof_pyramid(*start, origin).planes;
-  const ProofPyramid wider = proof_pyramid(*start, origin - 0.25 * offset * start->axis);
-  const auto faces = [&](const CasterTriangle& t) {
-    const double facing = glm::dot(t.normal, origin - t.a);
-    return facing > 0.0 ? 1 : facing < 0.0 ? -1 : 0;
+  const ProofPyramid wider = proof_pyramid(*start, origin - 0.25 * start->offset * start->axis);
+  const auto keeps = [&](const CasterTriangle& t) {
+    return keeps_umbra(casters_.triangles(), t, origin, rays, wider.planes);
   };
+  if (dark.usable && dark.part == part) {
+    // The tile's walk found every triangle of the part that could fail.
+    for (const uint32_t i : dark.triangles)
+      if (!keeps(casters_.triangles()[i])) return false;
+    return true;
+  }
   return casters_.traverse(
       [&](const glm::dvec3& lo, const glm::dvec3& hi) { return wider.meets(lo, hi); },
+      [&](const CasterTriangle& t) { return t.part != part || keeps(t); });
+}
+
+bool ExactVisibility::sees_whole_light(const ProofPoint& q, const TileCandidates& lit) const {
+  if (!lit.usable) return sees_whole_light(q.surface, q.origin, q.n);
+  const std::optional<ProofStart> start = proof_start(light_, q.surface, q.origin, q.n);
+  if (!start || start->above != 4) return false;
+  const ProofPyramid rays = proof_pyramid(*start, q.origin - 0.25 * start->offset * start->axis);
+  // The tile's walk found every triangle that could meet the pyramid.
+  for (const uint32_t i : lit.triangles) {
+    const CasterTriangle& t = casters_.triangles()[i];
+    if (triangle_meets(t.a, t.b, t.c, rays.planes)) return false;
+  }
+  return true;
+}
+
+void ExactVisibility::sees_candidates(std::span<const ProofPoint> points,
+                                      TileCandidates& out) const {
+  out = {};
+  const std::optional<Shaft> shaft = tile_shaft(light_, points);
+  if (!shaft) return;
+  // Every triangle that keeps a part inside the shaft: any that meets a
+  // point's pyramid is one of them.
+  const CasterTriangle* const base = casters_.triangles().data();
+  out.usable = casters_.traverse(
+      [&](const glm::dvec3& lo, const glm::dvec3& hi) { return shaft->meets(lo, hi); },
       [&](const CasterTriangle& t) {
-        if (t.part != part) return true;
-        // Reaching the light's plane inside the pyramid: rays may pass
-        // beside it there.
-        if (!(rays[4].distance(t.a) > 0.0 && rays[4].distance(t.b) > 0.0 &&
-              rays[4].distance(t.c) > 0.0)) {
-          Polygon3 sides{t.a, t.b, t.c};
-          for (size_t i = 0; i < 4; ++i) sides = clip(sides, rays[i]);
-          for (const glm::dvec3& x : sides)
-            if (!(rays[4].distance(x) > 0.0)) return false;
-        }
-        const int own = faces(t);
-        const std::array<glm::dvec3, 3> v{t.a, t.b, t.c};
-        for (size_t k = 0; k < 3; ++k) {
-          const uint32_t across = t.neighbour[k];
-          if (own != 0 && across != kNoNeighbour && faces(casters_.triangles()[across]) == own)
-            continue;
-          if (segment_meets(v[k], v[(k + 1) % 3], wider.planes))
-            return false;  // a silhouette edge inside
-        }
+        if (!triangle_meets(t.a, t.b, t.c, shaft->planes)) return true;
+        if (out.triangles.size() == kMaxCandidates) return false;
+        out.triangles.push_back(uint32_t(&t - base));
         return true;
       });
+  out.whole = out.usable && out.triangles.empty();
+  if (!out.usable) out.triangles.clear();
 }
 
-bool ExactVisibility::sees_whole_light_from_all(std::span<const ProofPoint> points) const {
-  const std::optional<Shaft> shaft = tile_shaft(light_, points);
-  if (!shaft) return false;
-  // No triangle keeps any part inside the shaft, so none inside any pyramid.
-  return casters_.traverse(
-      [&](const glm::dvec3& lo, const glm::dvec3& hi) { return shaft->meets(lo, hi); },
-      [&](const CasterTriangle& t) { return !triangle_meets(t.a, t.b, t.c, shaft->planes); });
-}
-
-bool ExactVisibility::hides_whole_light_from_all(std::span<const ProofPoint> points) const {
-  if (points.empty()) return false;
+void ExactVisibility::hides_candidates(std::span<const ProofPoint> points,
+                                       TileCandidates& out) const {
+  out = {};
+  if (points.empty()) return;
   // The horizon: all of the light below every point's plane.
   bool all_below = true;
   for (const ProofPoint& q : points) {
     const std::optional<ProofStart> s = proof_start(light_, q.surface, q.origin, q.n);
-    if (!s) return false;
+    if (!s) return;
     all_below = all_below && s->below == 4;
   }
-  if (all_below) return true;
-  if (casters_.empty()) return false;
+  if (all_below) {
+    out.usable = out.whole = true;
+    out.part = kNoPart;
+    return;
+  }
+  if (casters_.empty()) return;
   const std::optional<Shaft> shaft = tile_shaft(light_, points);
-  if (!shaft) return false;
-  // The closed part that the first point's ray to the light's centre
-  // crosses first (as hides_whole_light), the first point outside it.
-  const glm::dvec3& origin = points[0].origin;
-  const glm::dvec3 to_centre = glm::dvec3(light_.center) - origin;
-  PartCrossings crossings(origin, to_centre);
-  double first_hit = std::numeric_limits<double>::infinity();
-  const CasterTriangle* first = nullptr;
-  casters_.traverse(
-      [&](const glm::dvec3& lo, const glm::dvec3& hi) {
-        return segment_meets_box(origin, to_centre, lo, hi);
-      },
-      [&](const CasterTriangle& t) {
-        if (t.part == kNoPart) return;
-        const double hit = crossings.add(t.part, t.outward, t.a, t.b, t.c, t.normal);
-        if (hit < first_hit) {
-          first_hit = hit;
-          first = &t;
-        }
-      });
-  if (first == nullptr || crossings.winds_around_start()) return false;
-  // Whether a ray from an origin to the light crosses that part changes
-  // only where it grazes an edge of the part that is a silhouette from its
-  // origin, meets the part in the light's plane, or starts on the part. So
-  // if no triangle of the part that some origin sees edge-on or from both
-  // sides meets the shaft, no edge between triangles facing the origins'
-  // box differently (or without one neighbour) does, and the part does not
-  // reach the light's plane inside the shaft, then every ray of the tile
-  // crosses it as that first ray does.
-  const uint32_t part = first->part;
+  if (!shaft) return;
+  bool inside = false;
+  const CasterTriangle* first =
+      first_part(casters_, points[0].origin, glm::dvec3(light_.center), inside);
+  if (first == nullptr || inside) return;
+  out.part = first->part;
+  // The part's triangles that could fail keeps_umbra for some point: one
+  // with a point not in front of the light's plane, or an edge inside the
+  // shaft between triangles that do not both face the origins' box the
+  // same way (or with no neighbour). The others keep it at every point.
   const Shaft& sh = *shaft;
-  const std::array<Plane, 4> sides{sh.planes[0], sh.planes[1], sh.planes[2], sh.planes[3]};
-  return casters_.traverse(
+  const std::vector<CasterTriangle>& all = casters_.triangles();
+  bool meets_origins = false;
+  out.usable = casters_.traverse(
       [&](const glm::dvec3& lo, const glm::dvec3& hi) { return sh.meets(lo, hi); },
       [&](const CasterTriangle& t) {
-        if (t.part != part) return true;
+        if (t.part != out.part) return true;
+        bool suspect = !(sh.light_plane.distance(t.a) > 0.0 && sh.light_plane.distance(t.b) > 0.0 &&
+                         sh.light_plane.distance(t.c) > 0.0);
         const int own = side_of_box(t, sh.origins_lo, sh.origins_hi);
-        if (own == 0) return !triangle_meets(t.a, t.b, t.c, sh.planes);
-        if (!(sh.light_plane.distance(t.a) > 0.0 && sh.light_plane.distance(t.b) > 0.0 &&
-              sh.light_plane.distance(t.c) > 0.0)) {
-          std::array<glm::dvec3, 16> in{t.a, t.b, t.c}, out{};
-          size_t n = 3;
-          for (const Plane& plane : sides) {
-            n = detail::clip_into(in.data(), n, plane, out.data());
-            std::swap(in, out);
-          }
-          for (size_t i = 0; i < n; ++i)
-            if (!(sh.light_plane.distance(in[i]) > 0.0)) return false;
-        }
+        if (own == 0 && !meets_origins) meets_origins = triangle_meets(t.a, t.b, t.c, sh.planes);
         const std::array<glm::dvec3, 3> v{t.a, t.b, t.c};
-        for (size_t k = 0; k < 3; ++k) {
+        for (size_t k = 0; k < 3 && !suspect; ++k) {
           const uint32_t across = t.neighbour[k];
-          if (across != kNoNeighbour &&
-              side_of_box(casters_.triangles()[across], sh.origins_lo, sh.origins_hi) == own)
+          if (own != 0 && across != kNoNeighbour &&
+              side_of_box(all[across], sh.origins_lo, sh.origins_hi) == own)
             continue;
-          if (segment_inside(v[k], v[(k + 1) % 3], sh.planes)) return false;
+          suspect = segment_inside(v[k], v[(k + 1) % 3], sh.planes);
         }
+        if (!suspect) return true;
+        if (out.triangles.size() == kMaxCandidates) return false;
+        out.triangles.push_back(uint32_t(&t - all.data()));
         return true;
       });
+  if (!out.usable) {
+    out.triangles.clear();
+    return;
+  }
+  // Then whether a ray from a point to the light crosses the part changes
+  // only where it grazes a silhouette edge from its point, meets the part
+  // in the light's plane, or starts on the part: with no candidate, and
+  // no triangle whose plane meets the origins' box inside the shaft, every
+  // ray crosses it as the first point's ray to the centre does.
+  out.whole = out.triangles.empty() && !meets_origins;
 }
 
 }  // namespace sb::reference

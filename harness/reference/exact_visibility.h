@@ -122,28 +122,6 @@ class ExactVisibility {
   bool sees_whole_light(const glm::dvec3& surface, const glm::dvec3& origin,
                         const glm::dvec3& n) const;
 
-  // One ray origin as sees_whole_light() takes it.
-  struct ProofPoint {
-    glm::dvec3 surface, origin, n;
-  };
-  // Whether sees_whole_light() holds at every one of `points` (a pixel
-  // tile's), by one walk: each point passes its own horizon test, and no
-  // caster triangle meets one shaft that holds all their pyramids (planes
-  // through the edges of a light section holding every pyramid's cap, each
-  // supporting all apexes; the cap; a plane below every apex along the
-  // first point's normal). False when `points` is empty.
-  bool sees_whole_light_from_all(std::span<const ProofPoint> points) const;
-
-  // Whether every shadow ray from every one of `points` provably misses the
-  // light, by one walk: each passes the horizon test as above, and the
-  // closed part that the first point's ray to the light's centre crosses
-  // first (that point outside every part) has, inside the same shaft, no
-  // triangle whose plane meets the points' box, no edge between triangles
-  // facing that box differently (or without a neighbour), and no point in
-  // the light's plane. Then whether a ray of the shaft crosses the part
-  // never changes between them, and the first one does.
-  bool hides_whole_light_from_all(std::span<const ProofPoint> points) const;
-
   // Whether every shadow ray from `origin` to a rectangular light provably
   // misses it: the whole light below the plane through `origin` normal to
   // n; or origin inside a closed part (as visibility() tells it); or the
@@ -159,6 +137,41 @@ class ExactVisibility {
   // where it proves nothing.
   bool hides_whole_light(const glm::dvec3& surface, const glm::dvec3& origin,
                          const glm::dvec3& n) const;
+
+  // One ray origin as the proofs above take it.
+  struct ProofPoint {
+    glm::dvec3 surface, origin, n;
+  };
+  // What one walk over a tile of points (a shaft holding every one's
+  // pyramid) finds for the proofs at each of them: the triangles that could
+  // make one fail. When `whole`, the proof holds at every point at once.
+  struct TileCandidates {
+    bool usable = false, whole = false;
+    uint32_t part = 0;                // hides: the closed part they are of
+    std::vector<uint32_t> triangles;  // indices into the casters
+  };
+  // More, and a tile's walk gives up (then the proofs walk per point).
+  static constexpr size_t kMaxCandidates = 256;
+  // sees_whole_light()'s candidates for `points`: the caster triangles that
+  // meet the shaft (planes through the edges of a light section holding
+  // every pyramid's cap, each supporting all apexes; the cap; a plane below
+  // every apex along the first point's normal). Not usable where a point
+  // fails the horizon test, or with more than kMaxCandidates.
+  void sees_candidates(std::span<const ProofPoint> points, TileCandidates& out) const;
+  // hides_whole_light()'s: of the closed part that the first point's ray to
+  // the light's centre crosses first (that point outside every part), the
+  // triangles in the shaft with a point not in front of the light's plane
+  // or an edge inside it between triangles not both facing the points'
+  // box the same way. Whole also when no triangle's plane meets that box
+  // inside the shaft: then whether a ray crosses the part never changes
+  // between the points' rays, and the first point's does. Whole, with no
+  // walk, when every point has all of the light below its horizon.
+  void hides_candidates(std::span<const ProofPoint> points, TileCandidates& out) const;
+  // The proofs at q, one of the points the candidates were found for
+  // (unusable ones: the walks above): the same answers, checking only the
+  // candidates.
+  bool sees_whole_light(const ProofPoint& q, const TileCandidates& lit) const;
+  bool hides_whole_light(const ProofPoint& q, const TileCandidates& dark) const;
 
   // Whether the light is partly seen from p (geometric normal n): V strictly
   // between kPartlyLitMargin and 1 − kPartlyLitMargin, the penumbra's own
