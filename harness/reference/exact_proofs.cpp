@@ -237,8 +237,10 @@ int side_of_box(const CasterTriangle& t, const glm::dvec3& lo, const glm::dvec3&
   const double d = glm::dot(t.normal, centre - t.a), r = glm::dot(glm::abs(t.normal), half);
   // A margin far beyond the rounding of the facing test at one point
   // (keeps_umbra), so that every point in the box gets this answer there.
-  const double margin =
-      1e-9 * glm::length(t.normal) * (glm::length(centre - t.a) + glm::length(half));
+  const auto l1 = [](const glm::dvec3& x) {
+    return std::fabs(x.x) + std::fabs(x.y) + std::fabs(x.z);
+  };
+  const double margin = 1e-9 * l1(t.normal) * (l1(centre - t.a) + l1(half));
   return d > r + margin ? 1 : d < -r - margin ? -1 : 0;
 }
 

@@ -16,7 +16,7 @@ using core::ImageF;
 
 namespace {
 
-constexpr int kTile = 8;  // pixels a side
+constexpr int kTile = 4;  // pixels a side
 
 }  // namespace
 
