@@ -372,13 +372,18 @@ void ExactVisibility::sees_candidates(std::span<const ProofPoint> points,
   out = {};
   const std::optional<Shaft> shaft = tile_shaft(light_, points);
   if (!shaft) return;
-  // Every triangle that keeps a part inside the shaft: any that meets a
-  // point's pyramid is one of them.
+  // Every triangle not wholly outside one of the shaft's planes: any that
+  // meets a point's pyramid is one of them. Clipped exactly only while the
+  // list is empty (whether the tile is whole); after that, the points'
+  // own tests reject the others.
   const CasterTriangle* const base = casters_.triangles().data();
   out.usable = casters_.traverse(
       [&](const glm::dvec3& lo, const glm::dvec3& hi) { return shaft->meets(lo, hi); },
       [&](const CasterTriangle& t) {
-        if (!triangle_meets(t.a, t.b, t.c, shaft->planes)) return true;
+        for (const Plane& plane : shaft->planes)
+          if (plane.distance(t.a) < 0.0 && plane.distance(t.b) < 0.0 && plane.distance(t.c) < 0.0)
+            return true;
+        if (out.triangles.empty() && !triangle_meets(t.a, t.b, t.c, shaft->planes)) return true;
         if (out.triangles.size() == kMaxCandidates) return false;
         out.triangles.push_back(uint32_t(&t - base));
         return true;

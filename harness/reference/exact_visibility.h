@@ -151,9 +151,9 @@ class ExactVisibility {
     std::vector<uint32_t> triangles;  // indices into the casters
   };
   // More, and a tile's walk gives up (then the proofs walk per point).
-  static constexpr size_t kMaxCandidates = 256;
+  static constexpr size_t kMaxCandidates = 512;
   // sees_whole_light()'s candidates for `points`: the caster triangles that
-  // meet the shaft (planes through the edges of a light section holding
+  // may meet the shaft (planes through the edges of a light section holding
   // every pyramid's cap, each supporting all apexes; the cap; a plane below
   // every apex along the first point's normal). Not usable where a point
   // fails the horizon test, or with more than kMaxCandidates.
