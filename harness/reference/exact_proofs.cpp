@@ -362,6 +362,11 @@ bool ExactVisibility::sees_whole_light(const ProofPoint& q, const TileCandidates
   // The tile's walk found every triangle that could meet the pyramid.
   for (const uint32_t i : lit.triangles) {
     const CasterTriangle& t = casters_.triangles()[i];
+    // Outside the pyramid's box: the cheap answer for most.
+    const glm::dvec3 lo = glm::min(t.a, glm::min(t.b, t.c)), hi = glm::max(t.a, glm::max(t.b, t.c));
+    if (hi.x < rays.lo.x || hi.y < rays.lo.y || hi.z < rays.lo.z || lo.x > rays.hi.x ||
+        lo.y > rays.hi.y || lo.z > rays.hi.z)
+      continue;
     if (triangle_meets(t.a, t.b, t.c, rays.planes)) return false;
   }
   return true;
