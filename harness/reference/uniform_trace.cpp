@@ -16,7 +16,12 @@ using core::ImageF;
 
 namespace {
 
-constexpr int kTile = 4;  // pixels a side
+// Pixels a side of a proof tile. On the 800×600 sphere grid 4 took fewer
+// instructions than 8 (9.84 G against 10.10 G for BM_Reference/spp:64,
+// under callgrind): the smaller shaft is proven whole more often and keeps
+// shorter candidate lists; 8 with 4 inside it (lists filtered from the
+// larger tile's) took 10.28 G.
+constexpr int kTile = 4;
 
 }  // namespace
 
