@@ -162,10 +162,11 @@ class ExactVisibility {
   // the light's centre crosses first (that point outside every part), the
   // triangles in the shaft with a point not in front of the light's plane
   // or an edge inside it between triangles not both facing the points'
-  // box the same way. Whole also when no triangle's plane meets that box
-  // inside the shaft: then whether a ray crosses the part never changes
-  // between the points' rays, and the first point's does. Whole, with no
-  // walk, when every point has all of the light below its horizon.
+  // box the same way. Whole when there is none and no triangle of the part
+  // that meets the shaft has its plane through that box: then whether a
+  // ray crosses the part never changes between the points' rays, and the
+  // first point's does. Whole, with no walk, when every point has all of
+  // the light below its horizon.
   void hides_candidates(std::span<const ProofPoint> points, TileCandidates& out) const;
   // The proofs at q, one of the points the candidates were found for
   // (unusable ones: the walks above): the same answers, checking only the
