@@ -82,6 +82,7 @@
 #include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -142,6 +143,42 @@ class ExactVisibility {
   // where it proves nothing.
   bool hides_whole_light(const glm::dvec3& surface, const glm::dvec3& origin,
                          const glm::dvec3& n) const;
+
+  // One ray origin as the proofs above take it.
+  struct ProofPoint {
+    glm::dvec3 surface, origin, n;
+  };
+  // What one walk over a tile of points (a shaft holding every one's
+  // pyramid) finds for the proofs at each of them: the triangles that could
+  // make one fail. When `whole`, the proof holds at every point at once.
+  struct TileCandidates {
+    bool usable = false, whole = false;
+    uint32_t part = 0;                // hides: the closed part they are of
+    std::vector<uint32_t> triangles;  // indices into the casters
+  };
+  // More, and a tile's walk gives up (then the proofs walk per point).
+  static constexpr size_t kMaxCandidates = 512;
+  // sees_whole_light()'s candidates for `points`: the caster triangles that
+  // may meet the shaft (planes through the edges of a light section holding
+  // every pyramid's cap, each supporting all apexes; the cap; a plane below
+  // every apex along the first point's normal). Not usable where a point
+  // fails the horizon test, or with more than kMaxCandidates.
+  void sees_candidates(std::span<const ProofPoint> points, TileCandidates& out) const;
+  // hides_whole_light()'s: of the closed part that the first point's ray to
+  // the light's centre crosses first (that point outside every part), the
+  // triangles in the shaft with a point not in front of the light's plane
+  // or an edge inside it between triangles not both facing the points'
+  // box the same way. Whole when there is none and no triangle of the part
+  // that meets the shaft has its plane through that box: then whether a
+  // ray crosses the part never changes between the points' rays, and the
+  // first point's does. Whole, with no walk, when every point has all of
+  // the light below its horizon.
+  void hides_candidates(std::span<const ProofPoint> points, TileCandidates& out) const;
+  // The proofs at q, one of the points the candidates were found for
+  // (unusable ones: the walks above): the same answers, checking only the
+  // candidates.
+  bool sees_whole_light(const ProofPoint& q, const TileCandidates& lit) const;
+  bool hides_whole_light(const ProofPoint& q, const TileCandidates& dark) const;
 
   // Whether the light is partly seen from p (geometric normal n): V strictly
   // between kPartlyLitMargin and 1 − kPartlyLitMargin, the penumbra's own

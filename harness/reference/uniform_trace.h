@@ -14,6 +14,13 @@
 // the one every sample traced gives, bit for bit. The proof also settles
 // the pixel's penumbra membership (settled.h), which the penumbra pass asked
 // of the same proofs before.
+//
+// The proofs run per tile of 4×4 pixels (exact_visibility.h:
+// sees_candidates, hides_candidates): when the tile's first pixel's first
+// packet agrees, one walk over a shaft holding every pixel's pyramid tries
+// to prove the whole tile so, and then none of its pixels traces a ray.
+// Otherwise the walks' short lists of candidate triangles stand in for
+// each pixel's own walk, with the same answers.
 #include <cstdint>
 #include <vector>
 

@@ -8,6 +8,8 @@
 
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -98,6 +100,109 @@ TEST(ReferenceUniformTrace, ThePenumbraIsStillPartlyLitWhereTheSamplesAgree) {
     }
     EXPECT_GT(region, 100u) << type;
   }
+}
+
+// The tile proofs (ExactVisibility::sees_candidates, hides_candidates) on
+// random tiles of random sphere grids (sizes, stacked layers, coarse and
+// fine spheres, small and large lights) and a jeep, against tracing every
+// sample of every pixel (64 spp): a tile proven whole has every sample of
+// every pixel lit (or occluded); a point's proof with the tile's candidates
+// gives the answer of its own walk, and holds only where its samples agree.
+void expect_tile_proofs_sound(const Scene& scene, std::mt19937& rng, size_t& whole_lit,
+                              size_t& whole_dark) {
+  const GBuffer g = sb::reference::trace_gbuffer(scene, kWidth, kHeight);
+  d::Device device(sb::reference::resolve_isa(sb::reference::default_embree_config()));
+  const d::FlatScene casters(
+      device, scene, [](const Mesh& m) { return m.casts_shadow; }, true);
+  const sb::reference::ExactVisibility exact(scene, closed_casters(scene));
+  const d::Layout layout = d::make_layout(64);
+  const d::RaySetup setup(scene, casters, layout, g.positions, g.normals, 3);
+  d::PixelRays rays(setup);
+  std::vector<uint32_t> all(64);
+  for (uint32_t i = 0; i < 64; ++i) all[i] = i;
+  std::vector<uint8_t> reached(64);
+  using Point = sb::reference::ExactVisibility::ProofPoint;
+  std::uniform_int_distribution<int> side(1, 6), px(0, kWidth - 1), py(0, kHeight - 1);
+  // Half the tiles start at a pixel its own walk proves dark (umbra is
+  // rare at this size).
+  std::vector<size_t> dark_pixels;
+  for (size_t pix = 0; pix < g.positions.pixel_count(); ++pix) {
+    if (!d::covered(g.positions, pix)) continue;
+    rays.start(pix);
+    const float* p = &g.positions.data[pix * 4];
+    if (exact.hides_whole_light(glm::dvec3(p[0], p[1], p[2]), glm::dvec3(rays.origin()),
+                                glm::dvec3(rays.normal())))
+      dark_pixels.push_back(pix);
+  }
+  for (int trial = 0; trial < 150; ++trial) {
+    int x0 = px(rng), y0 = py(rng);
+    if (trial % 2 == 1 && !dark_pixels.empty()) {
+      const size_t pix = dark_pixels[size_t(px(rng) * kHeight + py(rng)) % dark_pixels.size()];
+      x0 = int(pix % size_t(kWidth));
+      y0 = int(pix / size_t(kWidth));
+    }
+    const int x1 = std::min(kWidth, x0 + side(rng)), y1 = std::min(kHeight, y0 + side(rng));
+    std::vector<Point> points;
+    std::vector<size_t> lit_samples;  // per point: of 64
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const size_t pix = size_t(y) * size_t(kWidth) + size_t(x);
+        if (!d::covered(g.positions, pix)) continue;
+        rays.start(pix);
+        const float* p = &g.positions.data[pix * 4];
+        points.push_back(
+            {glm::dvec3(p[0], p[1], p[2]), glm::dvec3(rays.origin()), glm::dvec3(rays.normal())});
+        rays.trace(all.data(), 64, reached.data());
+        size_t count = 0;
+        for (uint8_t r : reached) count += r;
+        lit_samples.push_back(count);
+      }
+    sb::reference::ExactVisibility::TileCandidates lit, dark;
+    exact.sees_candidates(points, lit);
+    exact.hides_candidates(points, dark);
+    for (size_t k = 0; k < points.size(); ++k) {
+      const Point& q = points[k];
+      if (lit.whole) {
+        EXPECT_EQ(lit_samples[k], 64u) << "tile " << x0 << "," << y0;
+      }
+      if (dark.whole) {
+        EXPECT_EQ(lit_samples[k], 0u) << "tile " << x0 << "," << y0;
+      }
+      const bool sees = exact.sees_whole_light(q, lit), hides = exact.hides_whole_light(q, dark);
+      EXPECT_EQ(sees, exact.sees_whole_light(q.surface, q.origin, q.n));
+      EXPECT_EQ(hides, exact.hides_whole_light(q.surface, q.origin, q.n));
+      if (sees) {
+        EXPECT_EQ(lit_samples[k], 64u);
+      }
+      if (hides) {
+        EXPECT_EQ(lit_samples[k], 0u);
+      }
+    }
+    whole_lit += lit.whole && !points.empty();
+    whole_dark += dark.whole && !points.empty();
+  }
+}
+
+TEST(ReferenceUniformTrace, TileProofsNeverContradictASample) {
+  std::mt19937 rng(65);
+  size_t whole_lit = 0, whole_dark = 0;
+  for (int i = 0; i < 6; ++i) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const nlohmann::json params{
+        {"grid", 2 + int(4 * u(rng))},       {"layers", 1 + int(2 * u(rng))},
+        {"slices", 6 + int(20 * u(rng))},    {"stacks", 4 + int(16 * u(rng))},
+        {"radius", 0.3 + 0.4 * u(rng)},      {"spacing", 1.2 + 1.0 * u(rng)},
+        {"height", 0.5 + 1.0 * u(rng)},      {"light_size", 0.5 + 3.0 * u(rng)},
+        {"light_height", 4.0 + 8.0 * u(rng)}};
+    SCOPED_TRACE(params.dump());
+    expect_tile_proofs_sound(sb::test::scene_of_type("sphere_grid", params), rng, whole_lit,
+                             whole_dark);
+  }
+  expect_tile_proofs_sound(sb::test::scene_of_type("jeep"), rng, whole_lit, whole_dark);
+  std::printf("%zu tiles proven lit, %zu dark, of %d\n", whole_lit, whole_dark, 7 * 150);
+  // The proofs must hold somewhere for the test to test them.
+  EXPECT_GT(whole_lit, 20u);
+  EXPECT_GT(whole_dark, 5u);
 }
 
 }  // namespace uniform_trace_test
