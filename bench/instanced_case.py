@@ -13,10 +13,11 @@ counts, the 16-spp Monte Carlo reference, no cache. Timed by hand:
     /usr/bin/time build/shadowbench run OUT_DIR/instances.json --out OUT_DIR/run
 
 (docs/performance.md, "Heavy instancing"). --scale=S scales the shared mesh
-(default 1: 1 wide, 1.2 tall, over an 8 × 8 ground): at 1, shadow_map's
-frames are fill-bound on llvmpipe (every copy covers the same texels of
-the light map, 200,000-fold overdraw), which is the technique's measured
-work, not the harness's; at 0.1 the draws themselves dominate. With --flat the same triangles
+(default 1: 1 wide, 1.2 tall, over an 8 × 8 ground). At either scale
+shadow_map's frames are fill-bound on llvmpipe: every copy covers the same
+texels of the light map (200,000-fold overdraw; at 0.1 a copy still covers
+about 1 % of the map, at 1 about a quarter), which is the technique's
+measured work, not the harness's. With --flat the same triangles
 are written as COUNT separate meshes (one node each) instead of one shared
 mesh: the flattened twin the instanced scene must trace the same as.
 """

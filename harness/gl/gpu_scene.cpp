@@ -87,6 +87,10 @@ GpuScene::GpuScene(const Scene& scene, const std::vector<std::vector<uint32_t>>&
     }
     base += GLint(m.positions.size());
   }
+  // No cap on a run's length: llvmpipe's rasteriser threads, not its draw
+  // module, take a big draw's time; capping a 2.8 M-triangle draw at 65,536
+  // or 1 M triangles made no frame faster (docs/performance.md, "Heavy
+  // instancing").
   for (const Range& r : ranges_) {
     if (!batches_.empty() && batches_.back().info == r.info &&
         batches_.back().first_byte + GLsizeiptr(batches_.back().count) * 4 == r.first_byte)
