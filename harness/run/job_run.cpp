@@ -1,5 +1,6 @@
 #include "run/job_run.h"
 
+#include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
 #include <chrono>
@@ -180,7 +181,10 @@ void run_job(const JobSetting& s, const TechniqueVariant& tv,
           write_job_images(s.o.run_dir, r.job_id, visibility, shaded, b.ref.visibility, b.regions);
     });
   ImageF flip_map;
-  r.metrics = metrics::measure(visibility, shaded, *b.prepared, b.regions, &flip_map);
+  // Isolated: while it waits for its own parallel loops, this thread takes
+  // none of the images' tasks, which would hold a loop's end back.
+  tbb::this_task_arena::isolate(
+      [&] { r.metrics = metrics::measure(visibility, shaded, *b.prepared, b.regions, &flip_map); });
   if (b.second)
     r.second_reference = SecondReferenceRecord{
         *b.second_record,
