@@ -68,10 +68,10 @@ bool triangle_meets(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& 
   return true;
 }
 
-// Whether any part of segment pq lies inside all five planes (parametric
+// Whether any part of segment pq lies inside all N planes (parametric
 // clipping: the part left is t in [t0, t1]).
-inline bool segment_meets(const glm::dvec3& p, const glm::dvec3& q,
-                          const std::array<Plane, 5>& planes) {
+template <std::size_t N>
+bool segment_meets(const glm::dvec3& p, const glm::dvec3& q, const std::array<Plane, N>& planes) {
   double t0 = 0.0, t1 = 1.0;
   for (const Plane& plane : planes) {
     const double dp = plane.distance(p), dq = plane.distance(q);

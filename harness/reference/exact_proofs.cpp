@@ -216,20 +216,6 @@ std::optional<Shaft> tile_shaft(const AreaLight& light,
   return shaft;
 }
 
-// Whether any part of segment pq lies inside all N planes.
-template <size_t N>
-bool segment_inside(const glm::dvec3& p, const glm::dvec3& q, const std::array<Plane, N>& planes) {
-  double t0 = 0.0, t1 = 1.0;
-  for (const Plane& plane : planes) {
-    const double dp = plane.distance(p), dq = plane.distance(q);
-    if (dp < 0.0 && dq < 0.0) return false;
-    if (dp < 0.0) t0 = std::max(t0, dp / (dp - dq));
-    if (dq < 0.0) t1 = std::min(t1, dp / (dp - dq));
-    if (t0 > t1) return false;
-  }
-  return true;
-}
-
 // Which side of triangle t's plane every point of the box lies on: +1 the
 // side its normal points to, -1 the other, 0 both, on it or near it.
 int side_of_box(const CasterTriangle& t, const glm::dvec3& lo, const glm::dvec3& hi) {
@@ -442,7 +428,7 @@ void ExactVisibility::hides_candidates(std::span<const ProofPoint> points,
           if (own != 0 && across != kNoNeighbour &&
               side_of_box(all[across], sh.origins_lo, sh.origins_hi) == own)
             continue;
-          suspect = segment_inside(v[k], v[(k + 1) % 3], sh.planes);
+          suspect = segment_meets(v[k], v[(k + 1) % 3], sh.planes);
         }
         if (!suspect) return true;
         if (out.triangles.size() == kMaxCandidates) return false;

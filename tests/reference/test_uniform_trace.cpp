@@ -47,14 +47,26 @@ size_t differing(const sb::core::ImageF& a, const sb::core::ImageF& b) {
   return n;
 }
 
+// A scene's G-buffer, its casters in Embree and its exact visibility.
+struct Traced {
+  explicit Traced(const Scene& scene)
+      : g(sb::reference::trace_gbuffer(scene, kWidth, kHeight)),
+        device(sb::reference::resolve_isa(sb::reference::default_embree_config())),
+        casters(
+            device, scene, [](const Mesh& m) { return m.casts_shadow; }, true),
+        exact(scene, closed_casters(scene)) {}
+  GBuffer g;
+  d::Device device;
+  d::FlatScene casters;
+  sb::reference::ExactVisibility exact;
+};
+
 void expect_same_images_with_fewer_rays(const Scene& scene) {
-  const GBuffer g = sb::reference::trace_gbuffer(scene, kWidth, kHeight);
-  d::Device device(sb::reference::resolve_isa(sb::reference::default_embree_config()));
-  const d::FlatScene casters(
-      device, scene, [](const Mesh& m) { return m.casts_shadow; }, true);
-  const sb::reference::ExactVisibility exact(scene, closed_casters(scene));
+  const Traced traced(scene);
+  const GBuffer& g = traced.g;
+  const sb::reference::ExactVisibility& exact = traced.exact;
   const d::Layout layout = d::make_layout(64);
-  const d::RaySetup setup(scene, casters, layout, g.positions, g.normals, 7);
+  const d::RaySetup setup(scene, traced.casters, layout, g.positions, g.normals, 7);
   const d::UniformImages every = d::trace_uniform(setup, nullptr);
   const d::UniformImages proven = d::trace_uniform(setup, &exact);
   EXPECT_EQ(differing(every.visibility, proven.visibility), 0u);
@@ -110,13 +122,11 @@ TEST(ReferenceUniformTrace, ThePenumbraIsStillPartlyLitWhereTheSamplesAgree) {
 // gives the answer of its own walk, and holds only where its samples agree.
 void expect_tile_proofs_sound(const Scene& scene, std::mt19937& rng, size_t& whole_lit,
                               size_t& whole_dark) {
-  const GBuffer g = sb::reference::trace_gbuffer(scene, kWidth, kHeight);
-  d::Device device(sb::reference::resolve_isa(sb::reference::default_embree_config()));
-  const d::FlatScene casters(
-      device, scene, [](const Mesh& m) { return m.casts_shadow; }, true);
-  const sb::reference::ExactVisibility exact(scene, closed_casters(scene));
+  const Traced traced(scene);
+  const GBuffer& g = traced.g;
+  const sb::reference::ExactVisibility& exact = traced.exact;
   const d::Layout layout = d::make_layout(64);
-  const d::RaySetup setup(scene, casters, layout, g.positions, g.normals, 3);
+  const d::RaySetup setup(scene, traced.casters, layout, g.positions, g.normals, 3);
   d::PixelRays rays(setup);
   std::vector<uint32_t> all(64);
   for (uint32_t i = 0; i < 64; ++i) all[i] = i;
