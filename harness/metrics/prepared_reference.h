@@ -4,6 +4,8 @@
 // FLIP's half of its V and of its shaded image as FLIP's tool reads it from
 // shaded.png (FlipReference). The first job measured pays for it, in its
 // `measure` phase; the others reuse it, and their figures keep their bits.
+// It holds 68 bytes a pixel (the two images' FLIP halves, 40, and the copies):
+// 141 MB at 1920x1080, kept while the (scene, resolution)'s jobs run.
 #include <memory>
 #include <mutex>
 
