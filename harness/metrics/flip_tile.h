@@ -35,8 +35,8 @@ enum Quantity { kY, kCx, kCz1, kCz2, kDx, kDdx, kG, kQuantities };
 enum Prepared { kL, kA, kB, kEdge, kPoint, kPreparedPlanes };
 
 // Which images a tile filters: both, making the map; the reference only,
-// writing its values into `Setup::prepared`; or the test only, reading the
-// reference's from there. Each image's values are the same bits either way.
+// writing its values into `Setup::prepared_out`; or the test only, reading the
+// reference's from `Setup::prepared_in`. Each image's values are the same bits either way.
 enum class Sides : std::uint8_t { Both, ReferenceOnly, TestOnly };
 
 struct Setup {
